@@ -1,0 +1,69 @@
+// Adapter for ours/ (the seed's engine), in f32 (`ours`, the seed's own scalar) and f64 (`ours-f64`).
+//
+// Mapping (scene -> ours):
+//   gravity g          -> World::gravity
+//   damping rate k     -> World::linearDrag = exp(-k*h), the seed's per-step factor at this h
+//   mass, position, v  -> Model::translation, RigidBody::{mass, velocity}; static -> isStatic
+//   force this step    -> RigidBody::force (IntegrateLinearForce clears it)
+// Contacts: ours has none yet (the seed's Part IV adds them), so contact scenes are refused.
+#include <vector>
+
+#include "adapters.hpp"
+#include "ours/physics.hpp"
+
+namespace dropcheck {
+namespace {
+
+template <typename T>
+class OursEngine final : public Engine {
+ public:
+  EngineInfo info() const override {
+    EngineInfo i;
+    i.name = sizeof(T) == 4 ? "ours" : "ours-f64";
+    i.version = "seed part III";
+    i.scalar = sizeof(T) == 4 ? Scalar::f32 : Scalar::f64;
+    i.capabilities = {.contacts = false, .planar_only = false};
+    i.law = DampingOrder::AfterForces;
+    i.damping_mapping = "linearDrag f = exp(-k*h) per step";
+    return i;
+  }
+
+  void load(const Scene& scene, double h) override {
+    h_ = static_cast<T>(h);
+    world_.gravity = scene.world.gravity.cast<T>();
+    world_.linearDrag = static_cast<T>(decay_per_step(scene, h));
+    models_.assign(scene.bodies.size(), {});
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      const Body& b = scene.bodies[i];
+      models_[i].translation = b.position.cast<T>();
+      models_[i].rigidBody.velocity = b.velocity.cast<T>();
+      models_[i].rigidBody.mass = static_cast<T>(b.mass);
+      models_[i].rigidBody.isStatic = b.is_static;
+    }
+  }
+
+  void set_forces(std::span<const Vec3> forces) override {
+    for (std::size_t i = 0; i < models_.size(); ++i) models_[i].rigidBody.force = forces[i].cast<T>();
+  }
+
+  void step() override { ours::ApplyPhysics<T>(models_, world_, h_); }
+
+  void read(std::span<BodyState> out) const override {
+    for (std::size_t i = 0; i < models_.size(); ++i) {
+      out[i].position = models_[i].translation.template cast<double>();
+      out[i].velocity = models_[i].rigidBody.velocity.template cast<double>();
+    }
+  }
+
+ private:
+  T h_ = ours::PHYSICS_TIMESTEP<T>;
+  ours::World<T> world_;
+  std::vector<ours::Model<T>> models_;
+};
+
+}  // namespace
+
+std::unique_ptr<Engine> make_ours_f32() { return std::make_unique<OursEngine<float>>(); }
+std::unique_ptr<Engine> make_ours_f64() { return std::make_unique<OursEngine<double>>(); }
+
+}  // namespace dropcheck

@@ -1,0 +1,52 @@
+#include "cli.hpp"
+
+#include <exception>
+
+#include "harness/input_error.hpp"
+
+namespace dropcheck {
+namespace {
+
+using Command = int (*)(const std::vector<std::string>&, std::ostream&, std::ostream&);
+
+struct CommandEntry {
+  const char* name;
+  Command run;
+  const char* usage;
+};
+
+const CommandEntry kCommands[] = {
+    {"engines", cmd_engines, "dropcheck engines"},
+    {"run", cmd_run, "dropcheck run FILE [--engine E]... [--dt H] [--csv OUT] [--json OUT]"},
+};
+
+void usage(std::ostream& err) {
+  err << "usage:\n";
+  for (const CommandEntry& c : kCommands) err << "  " << c.usage << "\n";
+}
+
+}  // namespace
+
+int cli_main(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
+  if (argv.empty() || argv[0] == "--help" || argv[0] == "-h") {
+    usage(argv.empty() ? err : out);
+    return argv.empty() ? kExitBadInput : kExitOk;
+  }
+  for (const CommandEntry& c : kCommands) {
+    if (argv[0] != c.name) continue;
+    try {
+      return c.run({argv.begin() + 1, argv.end()}, out, err);
+    } catch (const InputError& e) {
+      err << "dropcheck " << c.name << ": " << e.what() << "\n";
+      return kExitBadInput;
+    } catch (const std::exception& e) {
+      err << "dropcheck " << c.name << ": internal error: " << e.what() << "\n";
+      return kExitBadInput;
+    }
+  }
+  err << "dropcheck: unknown command '" << argv[0] << "'\n";
+  usage(err);
+  return kExitBadInput;
+}
+
+}  // namespace dropcheck

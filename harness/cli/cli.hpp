@@ -1,0 +1,22 @@
+// The dropcheck command line (contract in DESIGN.md "CLI"). Exit codes: 0 success, 1 a check
+// failed, 2 bad input or usage.
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace dropcheck {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitCheckFailed = 1;
+inline constexpr int kExitBadInput = 2;
+
+// Runs one command; `argv` excludes the program name. Never throws.
+int cli_main(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
+
+// The commands, each in its own file (cmd_*.cpp). They may throw InputError.
+int cmd_engines(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
+int cmd_run(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
+
+}  // namespace dropcheck

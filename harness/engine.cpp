@@ -1,0 +1,23 @@
+#include "engine.hpp"
+
+namespace dropcheck {
+
+std::string Engine::cannot_run(const Scene& scene) const {
+  const Capabilities caps = info().capabilities;
+  if (scene.world.contacts && !caps.contacts) return "no contacts";
+  if (caps.planar_only && !is_planar(scene)) return "not planar";
+  return {};
+}
+
+const char* to_string(DampingOrder order) {
+  switch (order) {
+    case DampingOrder::AfterForces: return "v = phi*(v + a*h); x += h*v";
+    case DampingOrder::BeforeForces: return "v = phi*v + a*h; x += h*v";
+    case DampingOrder::AfterPosition: return "v' = v + a*h; x += h*v'; v = phi*v'";
+  }
+  return "?";
+}
+
+const char* to_string(Scalar scalar) { return scalar == Scalar::f32 ? "f32" : "f64"; }
+
+}  // namespace dropcheck

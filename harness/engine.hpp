@@ -1,0 +1,78 @@
+// Engine: the one interface every physics engine is driven through. Adapters (adapters/*.cpp)
+// implement it; they only convert data between a Scene and one engine.
+#pragma once
+
+#include <memory>
+#include <span>
+#include <stdexcept>
+#include <string>
+
+#include "scene.hpp"
+
+namespace dropcheck {
+
+// Where an engine applies the per-step damping factor phi relative to the velocity and position
+// updates of a free body with acceleration a = g + F/m. This is each engine's discrete law; with it
+// the harness predicts every engine's free-flight trajectory to rounding (harness/discrete_law.hpp).
+enum class DampingOrder {
+  AfterForces,    // ours, Box2D, MuJoCo:  v = phi*(v + a*h);  x += h*v
+  BeforeForces,   // Bullet:               v = phi*v + a*h;    x += h*v
+  AfterPosition,  // ODE:                  v' = v + a*h;  x += h*v';  v = phi*v'
+};
+
+enum class Scalar { f32, f64 };
+
+struct Capabilities {
+  bool contacts = false;      // can collide boxes with a static floor
+  bool planar_only = false;   // 2-D engine: runs x-y plane scenes only
+};
+
+struct EngineInfo {
+  std::string name;      // registry name: ours, ours-f64, bullet, ode, box2d, mujoco
+  std::string version;   // the engine library's version
+  Scalar scalar = Scalar::f64;
+  Capabilities capabilities;
+  DampingOrder law = DampingOrder::AfterForces;
+  std::string damping_mapping;  // how k becomes the engine's parameter, e.g. "d = 1 - exp(-k)"
+};
+
+struct BodyState {
+  Vec3 position = Vec3::Zero();
+  Vec3 velocity = Vec3::Zero();
+};
+
+class Engine {
+ public:
+  virtual ~Engine() = default;
+
+  virtual EngineInfo info() const = 0;
+
+  // Why this engine cannot run `scene` ("not planar", "no contacts"); empty when it can.
+  virtual std::string cannot_run(const Scene& scene) const;
+
+  // Builds the engine's world for `scene`, to be stepped at exactly h seconds per step.
+  virtual void load(const Scene& scene, double h) = 0;
+
+  // This step's external force on each body (N), indexed like Scene::bodies; applied once, by the
+  // next step() only. Entries of static bodies are zero and ignored.
+  virtual void set_forces(std::span<const Vec3> forces) = 0;
+
+  // Advances exactly one step of h. Throws EngineError when the engine reports an error.
+  virtual void step() = 0;
+
+  // The true state of every body after the last step (not an interpolated or stale copy).
+  virtual void read(std::span<BodyState> out) const = 0;
+
+  // True when the last step clamped a body's speed (Box2D moves at most 2 m per step).
+  virtual bool speed_clamped() const { return false; }
+};
+
+// An engine refused or failed a call; a result to record, never a crash of the harness.
+struct EngineError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+const char* to_string(DampingOrder order);
+const char* to_string(Scalar scalar);
+
+}  // namespace dropcheck

@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Installs what dropcheck needs from Debian 12's packages, skipping the apt calls when all are there.
+# Sourced by scripts/report.sh and scripts/test.sh; safe to run on its own.
+set -euo pipefail
+
+DROPCHECK_PACKAGES=(
+  cmake g++ make pkg-config            # build
+  libeigen3-dev libtomlplusplus-dev    # ours, scene files
+  catch2                               # tests
+  libbullet-dev libode-dev libbox2d-dev libmujoco-dev libqhull-dev  # the engines compared
+  gnuplot-nox                          # report plots (SVG)
+)
+
+missing=()
+for p in "${DROPCHECK_PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "dropcheck: installing ${missing[*]}" >&2
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  $SUDO apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
