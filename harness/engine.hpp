@@ -34,6 +34,12 @@ struct EngineInfo {
   Capabilities capabilities;
   DampingOrder law = DampingOrder::AfterForces;
   std::string damping_mapping;  // how k becomes the engine's parameter, e.g. "d = 1 - exp(-k)"
+  std::string contact_settings; // contact model and parameters used when contacts = true
+  // Landing on a static floor: where the centre of a resting box sits relative to the geometric
+  // rest height (floor top + half extent), in m, and how far from that still counts as expected.
+  // Documented per engine in ENGINE-NOTES.md section 5 (Box2D: +0.015 from skin and slop).
+  double rest_offset = 0.0;
+  double rest_tolerance = 1e-3;
 };
 
 struct BodyState {
