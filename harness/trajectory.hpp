@@ -28,7 +28,7 @@ struct Trajectory {
   std::int64_t failed_step = -1;        // first step that failed
   std::int64_t clamped_steps = 0;       // steps on which the engine clamped a speed
   std::int64_t first_clamped_step = -1;
-  double wall_seconds = 0.0;            // stepping loop, including forces and sampling
+  double wall_seconds = 0.0;            // stepping loop (forces, step, read, sampling), not load
 
   std::size_t samples() const { return recorded.size(); }
   std::size_t bodies() const { return body_names.size(); }

@@ -1,0 +1,43 @@
+// Run-time measurement: wall time per simulated second, as the minimum and median of repeated runs
+// after a warm-up, on a scene replicated until one run is long enough to time.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine.hpp"
+
+namespace dropcheck {
+
+using EngineFactory = std::function<std::unique_ptr<Engine>()>;
+
+struct TimingOptions {
+  double min_run_seconds = 0.02;  // replicate the scene until one run takes at least this long
+  int warmups = 1;
+  int repeats = 5;
+  int max_replicas = 4096;
+};
+
+struct Timing {
+  std::string engine;
+  double h = 0.0;
+  int replicas = 1;              // copies of the scene's dynamic bodies in one timed run
+  double min_per_sim_s = 0.0;    // wall seconds per simulated second, per copy of the scene
+  double median_per_sim_s = 0.0;
+  double bare_min_per_sim_s = 0.0;  // the engine's bare step() loop, no forces/reads/sampling
+  // Harness overhead: (full loop - bare loop) / bare loop, from the minima.
+  double overhead() const { return bare_min_per_sim_s > 0 ? min_per_sim_s / bare_min_per_sim_s - 1 : 0; }
+};
+
+// The scene with its dynamic bodies copied `copies` times, each copy shifted 10 m apart along z
+// (far enough that boxes never touch) and forces duplicated to the copies.
+Scene replicate(const Scene& scene, int copies);
+
+// Times each engine on `scene` at step h. Engines run in alternating order within each repeat so
+// that drift of the machine (frequency, cache, other load) hits all alike.
+std::vector<Timing> time_engines(const std::vector<std::pair<std::string, EngineFactory>>& engines,
+                                 const Scene& scene, double h, const TimingOptions& options = {});
+
+}  // namespace dropcheck
