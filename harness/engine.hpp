@@ -2,6 +2,7 @@
 // implement it; they only convert data between a Scene and one engine.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <span>
 #include <stdexcept>
@@ -77,6 +78,9 @@ class Engine {
 struct EngineError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+// Makes a fresh engine; how engine-neutral code (timing, evaluation, checks) gets engines.
+using EngineFactory = std::function<std::unique_ptr<Engine>()>;
 
 const char* to_string(DampingOrder order);
 const char* to_string(Scalar scalar);

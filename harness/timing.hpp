@@ -11,8 +11,6 @@
 
 namespace dropcheck {
 
-using EngineFactory = std::function<std::unique_ptr<Engine>()>;
-
 struct TimingOptions {
   double min_run_seconds = 0.02;  // replicate the scene until one run takes at least this long
   int warmups = 1;
