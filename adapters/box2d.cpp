@@ -1,0 +1,201 @@
+// Adapter for Box2D 2.4.1 (float, 2-D). Planar scenes only: the x-y plane, y up; z is dropped.
+//
+// Mapping (scene -> Box2D):
+//   gravity g           -> b2World(gravity) (x, y), set explicitly
+//   damping rate k      -> b2Body::SetLinearDamping(c), c = (exp(k*h) - 1)/h; angular damping 0.
+//                          b2Island::Solve: v = (v + h*a)*1/(1 + h*c) and 1/(1 + h*c) = exp(-k*h),
+//                          the same order as ours (DampingOrder::AfterForces)
+//   cube, half extents  -> a square body of half extents (hx, hy); the scene's mass is the mass per
+//                          unit depth: fixture density = m/(4*hx*hy), so that GetMass() = m (checked)
+//   contacts = false    -> no fixture at all; b2Body::SetMassData gives mass m (a body without
+//                          fixtures would have mass 1) and the box's inertia m*(hx^2 + hy^2)/3
+//   static body         -> b2_staticBody (a polygon fixture only with contacts)
+//   position, velocity  -> b2BodyDef::position, linearVelocity; read back with GetPosition() and
+//                          GetLinearVelocity() after the step (no interpolation in Box2D)
+//   force this step     -> ApplyForceToCenter(F) before Step; b2World::Step clears forces at its
+//                          end (m_clearForces, SetAutoClearForces(true) set explicitly)
+//   sleeping            -> off: b2World::SetAllowSleeping(false) and b2BodyDef::allowSleep = false
+//   one step            -> one b2World::Step(h, 8, 3)
+// Speed clamp: b2Island::Solve scales v so that |h*v| <= b2_maxTranslation (2 m per step, 120 m/s
+// at 60 Hz) and stores the clamped v; speed_clamped() reports the steps where that happened.
+// Contacts: polygon boxes, restitution 0, friction 0.5 (mixed as sqrt(f1*f2)); every polygon has a
+// b2_polygonRadius = 0.01 m skin and the solver keeps b2_linearSlop = 0.005 m of overlap, so a
+// resting box's centre sits about 0.015 m above the geometric rest height (ENGINE-NOTES 5).
+#include <box2d/box2d.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "adapters.hpp"
+
+namespace dropcheck {
+namespace {
+
+// Box2D's recommended iteration counts (b2World::Step documentation).
+constexpr int32 kVelocityIterations = 8;
+constexpr int32 kPositionIterations = 3;
+constexpr float kFriction = 0.5f;
+
+// Resting centre above floor top + half extent: the two skins (2*0.01 m) less the allowed slop
+// (0.005 m) = 0.015 m; measured +0.014999 m (unit cube on a box floor, 60 Hz, after 5 s).
+constexpr double kRestOffset = 0.015;
+// Measured |rest - 0.015| = 6.4e-7 m at 60 Hz; the band keeps float noise and iteration counts out.
+constexpr double kRestTolerance = 5e-4;
+
+// A clamped step leaves |h*v| = b2_maxTranslation up to float rounding (ratio = 2/|h*v|, then
+// v*ratio): measured |h*v|/2 - 1 within 1.2e-7 on clamped steps. An unclamped body whose |h*v|
+// lies within this band below the limit is reported too (speeds within 1e-5 of the limit).
+constexpr float kClampBand = 1e-5f;
+
+b2Vec2 to_b2(const Vec3& v) { return {static_cast<float>(v.x()), static_cast<float>(v.y())}; }
+
+class Box2dEngine final : public Engine {
+ public:
+  EngineInfo info() const override;
+  void load(const Scene& scene, double h) override;
+  void set_forces(std::span<const Vec3> forces) override;
+  void step() override;
+  void read(std::span<BodyState> out) const override;
+  bool speed_clamped() const override { return clamped_; }
+
+  // Box2D's mass of body i (kg per unit depth), for tests.
+  float mass_of(std::size_t i) const { return bodies_.at(i)->GetMass(); }
+
+ private:
+  b2Body* create_body(const Body& body, float damping);
+  void set_box_mass(b2Body* b, const Body& body, bool fixture);
+  bool any_clamped() const;
+
+  std::unique_ptr<b2World> world_;
+  std::vector<b2Body*> bodies_;  // owned by world_, indexed like Scene::bodies
+  std::vector<b2Vec2> forces_;
+  float h_ = 1.0f / 60.0f;
+  bool contacts_ = false;
+  bool clamped_ = false;
+};
+
+EngineInfo Box2dEngine::info() const {
+  EngineInfo i;
+  i.name = "box2d";
+#ifdef DROPCHECK_BOX2D_VERSION
+  i.version = DROPCHECK_BOX2D_VERSION;  // the package's; b2_version says 2.4.0 in 2.4.1
+#else
+  i.version = std::to_string(b2_version.major) + "." + std::to_string(b2_version.minor) + "." +
+              std::to_string(b2_version.revision);
+#endif
+  i.scalar = Scalar::f32;
+  i.capabilities = {.contacts = true, .planar_only = true};
+  i.law = DampingOrder::AfterForces;
+  i.damping_mapping = "SetLinearDamping(c), c = (exp(k*h) - 1)/h; v = (v + a*h)/(1 + h*c)";
+  i.contact_settings =
+      "polygon boxes (0.01 m skin, 0.005 m slop), restitution 0, friction 0.5 (sqrt mix), "
+      "8 velocity / 3 position iterations, continuous collision on";
+  i.rest_offset = kRestOffset;
+  i.rest_tolerance = kRestTolerance;
+  return i;
+}
+
+void Box2dEngine::load(const Scene& scene, double h) {
+  if (!is_planar(scene)) throw EngineError("not planar");
+  h_ = static_cast<float>(h);
+  contacts_ = scene.world.contacts;
+  clamped_ = false;
+  bodies_.clear();  // bodies belong to the old world, destroyed next
+  world_ = std::make_unique<b2World>(to_b2(scene.world.gravity));
+  world_->SetAllowSleeping(false);
+  world_->SetAutoClearForces(true);
+  // dv/dt = -k*v: exact decay exp(-k*h) per step; Box2D's Pade step v/(1 + h*c) equals it for
+  // c = (exp(k*h) - 1)/h. Computed in double, rounded once to float.
+  const double k = scene.world.damping_rate;
+  const float c = static_cast<float>(std::expm1(k * h) / h);
+  for (const Body& b : scene.bodies) bodies_.push_back(create_body(b, c));
+  forces_.assign(bodies_.size(), b2Vec2(0.0f, 0.0f));
+}
+
+b2Body* Box2dEngine::create_body(const Body& body, float damping) {
+  b2BodyDef def;
+  def.type = body.is_static ? b2_staticBody : b2_dynamicBody;
+  def.position = to_b2(body.position);
+  def.linearVelocity = body.is_static ? b2Vec2(0.0f, 0.0f) : to_b2(body.velocity);
+  def.linearDamping = damping;
+  def.angularDamping = 0.0f;
+  def.allowSleep = false;
+  def.awake = true;
+  b2Body* b = world_->CreateBody(&def);
+  if (contacts_) {
+    b2PolygonShape box;
+    box.SetAsBox(static_cast<float>(body.half_extents.x()), static_cast<float>(body.half_extents.y()));
+    b2FixtureDef fixture;
+    fixture.shape = &box;
+    // Mass per unit depth m over the square's area 4*hx*hy.
+    fixture.density = static_cast<float>(
+        body.mass / (4.0 * body.half_extents.x() * body.half_extents.y()));
+    fixture.friction = kFriction;
+    fixture.restitution = 0.0f;
+    b->CreateFixture(&fixture);
+  }
+  if (!body.is_static) set_box_mass(b, body, contacts_);
+  return b;
+}
+
+// With a fixture: check that density*area gave the scene's mass. Without: set it (Box2D gives a
+// dynamic body without fixtures mass 1).
+void Box2dEngine::set_box_mass(b2Body* b, const Body& body, bool fixture) {
+  const double m = body.mass;
+  if (!fixture) {
+    const double hx = body.half_extents.x(), hy = body.half_extents.y();
+    b2MassData data;
+    data.mass = static_cast<float>(m);
+    data.center.SetZero();
+    // Rectangle of sides 2hx, 2hy about its centre: I = m*((2hx)^2 + (2hy)^2)/12.
+    data.I = static_cast<float>(m * (hx * hx + hy * hy) / 3.0);
+    b->SetMassData(&data);
+  }
+  // float area and density: measured relative error 0 for the scenes in scenarios/.
+  if (std::abs(b->GetMass() - m) > 1e-6 * m)
+    throw EngineError("Box2D mass " + std::to_string(b->GetMass()) + " != scene mass " +
+                      std::to_string(m));
+}
+
+void Box2dEngine::set_forces(std::span<const Vec3> forces) {
+  for (std::size_t i = 0; i < forces_.size(); ++i) forces_[i] = to_b2(forces[i]);
+}
+
+void Box2dEngine::step() {
+  for (std::size_t i = 0; i < bodies_.size(); ++i)
+    if (bodies_[i]->GetType() == b2_dynamicBody) bodies_[i]->ApplyForceToCenter(forces_[i], true);
+  world_->Step(h_, kVelocityIterations, kPositionIterations);
+  clamped_ = any_clamped();
+}
+
+// b2Island::Solve: if |h*v|^2 > b2_maxTranslationSquared then v *= b2_maxTranslation/|h*v|, so a
+// clamped body ends the step with |h*v| = b2_maxTranslation (up to rounding, kClampBand).
+bool Box2dEngine::any_clamped() const {
+  for (const b2Body* b : bodies_) {
+    if (b->GetType() != b2_dynamicBody) continue;
+    const float travel = (h_ * b->GetLinearVelocity()).Length();
+    if (travel >= b2_maxTranslation * (1.0f - kClampBand)) return true;
+  }
+  return false;
+}
+
+void Box2dEngine::read(std::span<BodyState> out) const {
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    const b2Vec2 p = bodies_[i]->GetPosition();
+    const b2Vec2 v = bodies_[i]->GetLinearVelocity();
+    out[i].position = Vec3(p.x, p.y, 0.0);
+    out[i].velocity = Vec3(v.x, v.y, 0.0);
+  }
+}
+
+}  // namespace
+
+std::unique_ptr<Engine> make_box2d() { return std::make_unique<Box2dEngine>(); }
+
+// For tests (tests/adapters/box2d_test.cpp): Box2D's GetMass() of body i of a loaded box2d engine.
+double box2d_body_mass(const Engine& engine, std::size_t body) {
+  return dynamic_cast<const Box2dEngine&>(engine).mass_of(body);
+}
+
+}  // namespace dropcheck

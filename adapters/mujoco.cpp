@@ -1,0 +1,262 @@
+// Adapter for MuJoCo 2.2.2 (double). The scene becomes an MJCF model built in memory (a virtual
+// file, nothing on disk), loaded with mj_loadXML and stepped with mj_step.
+//
+// Mapping (scene -> MuJoCo):
+//   step h, gravity g   -> <option timestep="h" gravity="gx gy gz" integrator="Euler"/>, both set
+//                          explicitly (defaults: 0.002 s and (0, 0, -9.81)); the scene's axes are
+//                          kept as they are (y up), gravity simply points along -y
+//   damping rate k      -> <joint type="free" damping="b"/>, b = m*(exp(k*h) - 1)/h, then
+//                          dof_damping of the 3 rotational dofs set to 0 (linear drag only).
+//                          mj_Euler integrates damping implicitly: v = (v + a*h)/(1 + h*b/m), and
+//                          1/(1 + h*b/m) = exp(-k*h): the order of ours (DampingOrder::AfterForces)
+//   mass, box           -> <inertial mass="m" diaginertia=...> (exactly m; a geom-derived mass
+//                          goes through density*volume) and a box geom of the half extents
+//   static body         -> a box geom in the worldbody
+//   contacts = false    -> contype="0" conaffinity="0" on every geom: no collision at all
+//   position, velocity  -> qpos[0..2], qvel[0..2] of the free joint, written after mj_makeData and
+//                          read after mj_step (xpos is one step stale after mj_step)
+//   force this step     -> qfrc_applied of the 3 translational dofs (world frame for a free joint),
+//                          written before mj_step and zeroed after it (MuJoCo never clears it)
+// Errors: mju_user_error throws EngineError (MuJoCo would print and exit); a mj_loadXML failure is an
+// EngineError with MuJoCo's message; a warning counted in d->warning during a step (bad qpos, qvel,
+// qacc: MuJoCo then resets the state, hiding the instability) is an EngineError "MuJoCo warning: ...".
+// Contacts (soft, ENGINE-NOTES 5): box geoms, solimp "0.9999 0.9999 0.001" (impedance ~1: stiff),
+// solref "2h 1" (time constant 2h, the smallest MuJoCo accepts without disabling refsafe; critically
+// damped), friction 0.5 (MuJoCo mixes by max).
+#include <mujoco/mujoco.h>
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <locale>
+#include <mutex>
+#include <sstream>
+#include <vector>
+
+#include "adapters.hpp"
+
+namespace dropcheck {
+namespace {
+
+// Resting centre relative to floor top + half extent: measured -3.3e-7 m (unit cube on a box
+// floor, 60 Hz, after 5 s): the soft contact's steady penetration with solimp 0.9999.
+constexpr double kRestOffset = 0.0;
+constexpr double kRestTolerance = 1e-4;
+
+// mju_error must not return (MuJoCo would go on with a broken state): throw through MuJoCo's frames.
+[[noreturn]] void throw_mujoco_error(const char* msg) {
+  throw EngineError(std::string("MuJoCo error: ") + msg);
+}
+
+// The text of the last warning MuJoCo printed on this thread; the step turns it into an error.
+thread_local std::string t_last_warning;
+
+void record_mujoco_warning(const char* msg) { t_last_warning = msg; }
+
+// MuJoCo's handlers are process-wide function pointers; installed once, never restored.
+void install_handlers() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    mju_user_error = throw_mujoco_error;
+    mju_user_warning = record_mujoco_warning;
+  });
+}
+
+using ModelPtr = std::unique_ptr<mjModel, decltype(&mj_deleteModel)>;
+using DataPtr = std::unique_ptr<mjData, decltype(&mj_deleteData)>;
+
+// Numbers as text that reads back to the same double.
+std::string num(double x) {
+  std::ostringstream s;
+  s.imbue(std::locale::classic());
+  s.precision(17);
+  s << x;
+  return s.str();
+}
+
+std::string vec(const Vec3& v) { return num(v.x()) + " " + num(v.y()) + " " + num(v.z()); }
+
+// Solid box of half extents (hx, hy, hz): Ixx = m*((2hy)^2 + (2hz)^2)/12 = m*(hy^2 + hz^2)/3, ...
+Vec3 box_inertia(const Body& b) {
+  const Vec3 s = b.half_extents.cwiseProduct(b.half_extents);
+  return b.mass / 3.0 * Vec3(s.y() + s.z(), s.x() + s.z(), s.x() + s.y());
+}
+
+std::string geom_defaults(const Scene& scene, double h) {
+  if (!scene.world.contacts) return R"(<default><geom contype="0" conaffinity="0"/></default>)";
+  // solref (timeconst, dampratio) = (2h, 1); solimp (dmin, dmax, width) near 1: stiff, inelastic.
+  return R"(<default><geom friction="0.5 0.005 0.0001" solimp="0.9999 0.9999 0.001" solref=")" +
+         num(2.0 * h) + R"( 1"/></default>)";
+}
+
+std::string body_xml(const Body& b, std::size_t i, double damping) {
+  const std::string box = R"(<geom type="box" size=")" + vec(b.half_extents) + R"("/>)";
+  if (b.is_static)
+    return R"(<geom name="s)" + std::to_string(i) + R"(" type="box" pos=")" + vec(b.position) +
+           R"(" size=")" + vec(b.half_extents) + R"("/>)";
+  // b = m*(exp(k*h) - 1)/h on the free joint (all six dofs; load() zeroes the rotational three).
+  return R"(<body name="b)" + std::to_string(i) + R"(" pos=")" + vec(b.position) + R"(">)" +
+         R"(<joint name="j)" + std::to_string(i) + R"(" type="free" damping=")" +
+         num(b.mass * damping) + R"("/>)" + R"(<inertial pos="0 0 0" mass=")" + num(b.mass) +
+         R"(" diaginertia=")" + vec(box_inertia(b)) + R"("/>)" + box + "</body>";
+}
+
+// The scene as MJCF. damping is (exp(k*h) - 1)/h per unit mass.
+std::string model_xml(const Scene& scene, double h) {
+  const double damping = std::expm1(scene.world.damping_rate * h) / h;
+  std::string xml = R"(<mujoco model="dropcheck"><option timestep=")" + num(h) +
+                    R"(" gravity=")" + vec(scene.world.gravity) + R"(" integrator="Euler"/>)" +
+                    geom_defaults(scene, h) + "<worldbody>";
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+    xml += body_xml(scene.bodies[i], i, damping);
+  return xml + "</worldbody></mujoco>";
+}
+
+// mj_loadXML from a virtual file holding `xml`; an EngineError with MuJoCo's message on failure.
+ModelPtr load_xml(const std::string& xml) {
+  static constexpr const char* kName = "dropcheck_scene.xml";
+  auto vfs = std::make_unique<mjVFS>();  // ~2 MB: heap, not stack
+  mj_defaultVFS(vfs.get());
+  if (mj_makeEmptyFileVFS(vfs.get(), kName, static_cast<int>(xml.size())) != 0)
+    throw EngineError("MuJoCo: cannot create the virtual model file");
+  std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), kName)], xml.data(), xml.size());
+  char error[1000] = "";
+  ModelPtr m(mj_loadXML(kName, vfs.get(), error, sizeof error), mj_deleteModel);
+  mj_deleteVFS(vfs.get());
+  if (!m) throw EngineError(std::string("MuJoCo cannot load the model: ") + error);
+  // A compiler warning on a generated model means the generator is wrong.
+  if (error[0] != '\0') throw EngineError(std::string("MuJoCo model warning: ") + error);
+  return m;
+}
+
+class MujocoEngine final : public Engine {
+ public:
+  MujocoEngine() { install_handlers(); }
+
+  EngineInfo info() const override;
+  void load(const Scene& scene, double h) override;
+  void set_forces(std::span<const Vec3> forces) override;
+  void step() override;
+  void read(std::span<BodyState> out) const override;
+
+  // MuJoCo's body_mass of scene body i (dynamic bodies only), for tests.
+  double mass_of(std::size_t i) const { return m_->body_mass[m_->jnt_bodyid[joint_.at(i)]]; }
+
+ private:
+  void map_bodies(const Scene& scene);
+  void check_warnings();
+
+  ModelPtr m_{nullptr, mj_deleteModel};
+  DataPtr d_{nullptr, mj_deleteData};
+  std::vector<int> joint_;        // free joint of each scene body; -1 for static bodies
+  std::vector<Vec3> static_pos_;  // static bodies do not move
+  std::array<int, mjNWARNING> warnings_{};
+};
+
+EngineInfo MujocoEngine::info() const {
+  EngineInfo i;
+  i.name = "mujoco";
+  i.version = mj_versionString();
+  i.scalar = Scalar::f64;
+  i.capabilities = {.contacts = true, .planar_only = false};
+  i.law = DampingOrder::AfterForces;
+  i.damping_mapping = "free joint damping b = m*(exp(k*h) - 1)/h, rotational dofs 0; Euler";
+  i.contact_settings =
+      "box geoms, solimp 0.9999 0.9999 0.001, solref 2h 1 (soft, critically damped), "
+      "friction 0.5 (max mix)";
+  i.rest_offset = kRestOffset;
+  i.rest_tolerance = kRestTolerance;
+  return i;
+}
+
+void MujocoEngine::load(const Scene& scene, double h) {
+  d_.reset();
+  m_.reset();
+  t_last_warning.clear();
+  m_ = load_xml(model_xml(scene, h));
+  map_bodies(scene);
+  d_.reset(mj_makeData(m_.get()));
+  if (!d_) throw EngineError("MuJoCo: mj_makeData failed");
+  for (std::size_t i = 0; i < joint_.size(); ++i) {
+    if (joint_[i] < 0) continue;
+    const Body& b = scene.bodies[i];
+    // Free joint: qpos = (x, y, z, qw, qx, qy, qz), qvel = (vx, vy, vz, wx, wy, wz).
+    std::memcpy(d_->qpos + m_->jnt_qposadr[joint_[i]], b.position.data(), 3 * sizeof(mjtNum));
+    std::memcpy(d_->qvel + m_->jnt_dofadr[joint_[i]], b.velocity.data(), 3 * sizeof(mjtNum));
+  }
+  warnings_.fill(0);
+  check_warnings();
+}
+
+// Joint ids by name (j<i>); rotational damping of each free joint zeroed.
+void MujocoEngine::map_bodies(const Scene& scene) {
+  joint_.assign(scene.bodies.size(), -1);
+  static_pos_.assign(scene.bodies.size(), Vec3::Zero());
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    static_pos_[i] = scene.bodies[i].position;
+    if (scene.bodies[i].is_static) continue;
+    joint_[i] = mj_name2id(m_.get(), mjOBJ_JOINT, ("j" + std::to_string(i)).c_str());
+    if (joint_[i] < 0) throw EngineError("MuJoCo: free joint of body '" + scene.bodies[i].name + "' missing");
+    const int dof = m_->jnt_dofadr[joint_[i]];
+    for (int r = 3; r < 6; ++r) m_->dof_damping[dof + r] = 0.0;
+  }
+}
+
+void MujocoEngine::set_forces(std::span<const Vec3> forces) {
+  for (std::size_t i = 0; i < joint_.size(); ++i)
+    if (joint_[i] >= 0)
+      std::memcpy(d_->qfrc_applied + m_->jnt_dofadr[joint_[i]], forces[i].data(), 3 * sizeof(mjtNum));
+}
+
+void MujocoEngine::step() {
+  t_last_warning.clear();
+  mj_step(m_.get(), d_.get());
+  // The applied forces persist in mjData: this step's force must not act on the next one.
+  mju_zero(d_->qfrc_applied, m_->nv);
+  check_warnings();
+}
+
+// A warning counted during the call (mj_warning increments d->warning[i].number and prints only the
+// first time) is an error: on bad qpos/qvel/qacc MuJoCo resets the state, which would hide it.
+void MujocoEngine::check_warnings() {
+  for (int i = 0; i < mjNWARNING; ++i) {
+    const int n = d_->warning[i].number;
+    if (n == warnings_[i]) continue;
+    warnings_[i] = n;
+    const std::string text = t_last_warning.empty()
+                                 ? std::string(mju_warningText(i, d_->warning[i].lastinfo))
+                                 : t_last_warning;
+    throw EngineError("MuJoCo warning: " + text);
+  }
+  if (!t_last_warning.empty()) throw EngineError("MuJoCo warning: " + t_last_warning);
+}
+
+void MujocoEngine::read(std::span<BodyState> out) const {
+  for (std::size_t i = 0; i < joint_.size(); ++i) {
+    if (joint_[i] < 0) {
+      out[i] = {static_pos_[i], Vec3::Zero()};
+      continue;
+    }
+    const mjtNum* q = d_->qpos + m_->jnt_qposadr[joint_[i]];
+    const mjtNum* v = d_->qvel + m_->jnt_dofadr[joint_[i]];
+    out[i].position = Vec3(q[0], q[1], q[2]);
+    out[i].velocity = Vec3(v[0], v[1], v[2]);
+  }
+}
+
+}  // namespace
+
+std::unique_ptr<Engine> make_mujoco() { return std::make_unique<MujocoEngine>(); }
+
+// For tests (tests/adapters/mujoco_test.cpp): body_mass of scene body i of a loaded mujoco engine.
+double mujoco_body_mass(const Engine& engine, std::size_t body) {
+  return dynamic_cast<const MujocoEngine&>(engine).mass_of(body);
+}
+
+// For tests: raises mju_error(msg) through the adapter's handler (it must throw, not exit).
+void mujoco_raise_error(const char* msg) {
+  install_handlers();
+  mju_error(msg);
+}
+
+}  // namespace dropcheck
