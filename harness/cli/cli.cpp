@@ -18,6 +18,7 @@ struct CommandEntry {
 const CommandEntry kCommands[] = {
     {"engines", cmd_engines, "dropcheck engines"},
     {"run", cmd_run, "dropcheck run FILE [--engine E]... [--dt H] [--csv OUT] [--json OUT]"},
+    {"check", cmd_check, "dropcheck check FILE... [--engine E]..."},
 };
 
 void usage(std::ostream& err) {

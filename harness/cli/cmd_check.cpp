@@ -1,0 +1,51 @@
+// dropcheck check FILE... [--engine E]...
+// Runs every check that applies to each scene on each engine (harness/checks.hpp) and prints one
+// line per check: PASS/FAIL, scene, engine, check, measured figures. Exit 1 if any check failed.
+// An engine that cannot run a scene is printed as "skipped: <reason>" (ctest reports it skipped).
+#include "args.hpp"
+#include "cli.hpp"
+#include "harness/checks.hpp"
+#include "harness/input_error.hpp"
+#include "harness/registry.hpp"
+#include "harness/scene_loader.hpp"
+#include "selection.hpp"
+
+namespace dropcheck {
+namespace {
+
+EngineFactory factory(const std::string& name) {
+  return [name] { return make_engine(name); };
+}
+
+void print(const CheckResult& r, std::ostream& out) {
+  out << (r.passed ? "PASS  " : "FAIL  ") << r.scene << "  " << r.engine << "  " << r.check << ": "
+      << r.message << "\n";
+}
+
+}  // namespace
+
+int cmd_check(const std::vector<std::string>& argv, std::ostream& out, std::ostream&) {
+  const Args args = parse_args(argv, {"--engine"}, {});
+  if (args.positional.empty()) throw InputError("", 0, "check", "expects one or more scene FILEs");
+  std::vector<Scene> scenes;
+  for (const std::string& file : args.positional) scenes.push_back(load_scene(file));
+  if (!make_engine("ours-f64")) throw InputError("", 0, "ours-f64", "the reference engine is missing");
+
+  int failed = 0, passed = 0;
+  for (const Scene& scene : scenes) {
+    for (const SelectedEngine& e : select_engines(args.values("--engine"), scene)) {
+      if (!e.engine) {
+        out << "skipped: " << scene.name << "  " << e.name << ": " << e.skipped_because << "\n";
+        continue;
+      }
+      for (const CheckResult& r : check_scene(scene, factory(e.name), factory("ours-f64"))) {
+        print(r, out);
+        (r.passed ? passed : failed)++;
+      }
+    }
+  }
+  out << passed << " checks passed, " << failed << " failed\n";
+  return failed ? kExitCheckFailed : kExitOk;
+}
+
+}  // namespace dropcheck
