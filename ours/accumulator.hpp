@@ -15,7 +15,7 @@
 // `droppedTime`, never run silently.
 #pragma once
 
-#include <algorithm>
+#include <cmath>
 
 #include "constants.hpp"
 
@@ -46,9 +46,11 @@ struct PhysicsAccumulator {
       ++out.steps;
     }
     if (physicsAccumulator >= timestep) {  // capped: keep the fraction, drop whole steps
-      const T whole = timestep * T(int(physicsAccumulator / timestep));
-      out.droppedTime = whole;
-      physicsAccumulator = std::max(T(0), physicsAccumulator - whole);
+      // fmod is exact (acc - q*timestep for a whole q, in [0, timestep)) and needs no integer
+      // step count, which would overflow an int after a hitch of more than 2^31 steps.
+      const T fraction = std::fmod(physicsAccumulator, timestep);
+      out.droppedTime = physicsAccumulator - fraction;
+      physicsAccumulator = fraction;
     }
     out.alpha = physicsAccumulator / timestep;
     return out;
