@@ -1,5 +1,6 @@
 #include "scene_loader.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -86,10 +87,10 @@ class Reader {
     if (n.is_string()) {
       text = *n.value<std::string>();
     } else if (n.is_number()) {
-      std::ostringstream s;
-      s.precision(17);
-      s << number(key, n);
-      text = s.str();
+      // Shortest text that reads back to the same double: 0.1 stays "0.1" in messages and output.
+      char buf[32];
+      const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, number(key, n));
+      text.assign(buf, ec == std::errc() ? end : buf);
     } else {
       fail(key, std::string("expected seconds or \"1/N\", got ") + type_name(n), &n);
     }
@@ -280,6 +281,9 @@ Scene parse_scene(const std::string& text, const std::string& path) {
 }
 
 Scene load_scene(const std::string& path) {
+  // A directory opens as a stream on Linux and then reads as empty text: refuse it by name.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path, 0, "", "cannot read the file: it is a directory");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "", "cannot read the file");
   std::ostringstream text;

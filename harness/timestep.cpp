@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 
 namespace dropcheck {
 namespace {
@@ -39,9 +40,13 @@ std::optional<Timestep> parse_timestep(const std::string& text, std::string& why
 std::string step_problem(double duration, double h) {
   if (h > duration) return "step " + std::to_string(h) + " s is longer than the duration";
   const double n = duration / h;
-  if (n > static_cast<double>(kMaxSteps))
-    return "duration / step = " + std::to_string(std::llround(n)) + " steps, more than the limit of " +
+  if (n > static_cast<double>(kMaxSteps)) {
+    // %.15g, not llround: a count beyond 2^63 (duration = 1e300) has no integer to round to.
+    char count[32];
+    std::snprintf(count, sizeof count, "%.15g", std::round(n));
+    return "duration / step = " + std::string(count) + " steps, more than the limit of " +
            std::to_string(kMaxSteps);
+  }
   if (std::abs(n - std::round(n)) > 1e-9 * n)
     return "the duration is not a whole number of steps (" + std::to_string(n) + ")";
   return {};
