@@ -163,8 +163,10 @@ void Box2dEngine::set_forces(std::span<const Vec3> forces) {
 }
 
 void Box2dEngine::step() {
-  for (std::size_t i = 0; i < bodies_.size(); ++i)
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
     if (bodies_[i]->GetType() == b2_dynamicBody) bodies_[i]->ApplyForceToCenter(forces_[i], true);
+    forces_[i].SetZero();  // this step only (Engine::set_forces)
+  }
   world_->Step(h_, kVelocityIterations, kPositionIterations);
   clamped_ = any_clamped();
 }

