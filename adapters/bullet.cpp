@@ -1,0 +1,177 @@
+// Adapter for Bullet (btDiscreteDynamicsWorld), linked against Debian's float64 or float build.
+//
+// Mapping (scene -> Bullet), ENGINE-NOTES.md sections 2, 3 and 5:
+//   gravity g           -> btDiscreteDynamicsWorld::setGravity (Bullet's default is (0, -10, 0)).
+//   damping rate k      -> btRigidBody::setDamping(d = 1 - exp(-k), 0). btRigidBody::applyDamping
+//                          does v *= (1 - d)^h, so d is "lost per second" and the per-step decay is
+//                          (exp(-k))^h = exp(-k*h) at any h. Angular damping 0 (the engine's own).
+//   law                 -> DampingOrder::BeforeForces: predictUnconstraintMotion damps v, then the
+//                          solver adds (m*g + F)*(1/m)*h, then integrateTransforms does x += h*v.
+//   mass m              -> btRigidBody mass m, local inertia of a box of that mass and the scene's
+//                          half extents (btBoxShape::calculateLocalInertia). Rotations stay free.
+//   static body         -> mass 0 (Bullet marks it CF_STATIC_OBJECT); read back as its fixed
+//                          position and zero velocity.
+//   position, velocity  -> start world transform, setLinearVelocity. No motion state at all: the
+//                          state is read from getWorldTransform / getLinearVelocity, never from an
+//                          interpolated btMotionState (one step stale with an accumulator).
+//   force this step     -> applyCentralForce before the step; clearForces after it (stepSimulation
+//                          also clears them; the explicit call documents "this step only").
+//   one step            -> stepSimulation(h, 0): maxSubSteps = 0 is Bullet's variable-step mode,
+//                          exactly one internal step of h, no accumulator, no interpolation.
+//   sleeping            -> setActivationState(DISABLE_DEACTIVATION) on every body.
+// Contacts (scene.world.contacts):
+//   true  -> a btBoxShape per body with the scene's half extents (Bullet keeps its 0.04 m margin
+//            inside them), restitution 0, friction sqrt(0.5) per body: Bullet combines friction as
+//            the product, so every pair gets mu = 0.5. Solver: sequential impulse, 10 iterations
+//            (defaults), split impulse for every penetration: m_splitImpulsePenetrationThreshold
+//            0 instead of -0.04 m. Bullet's default pushes penetrations shallower than 4 cm out
+//            with a Baumgarte velocity (ERP 0.2 * depth / h) that stays in the body: the cube
+//            landing from 10 m rebounded 4 mm at 1/120 and 2.3 cm at 1/240. Split impulse moves
+//            the body out without adding velocity: no rebound at any step (bullet_test.cpp).
+//   false -> one shared btEmptyShape (a btRigidBody needs some shape) and collision filter group
+//            and mask 0, so the broadphase never pairs anything: no contact shapes, no contacts.
+#include <btBulletDynamicsCommon.h>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "adapters.hpp"
+
+namespace dropcheck {
+namespace {
+
+#ifdef BT_USE_DOUBLE_PRECISION
+constexpr const char* kPrecision = "double";
+constexpr Scalar kScalar = Scalar::f64;
+#else
+constexpr const char* kPrecision = "float";
+constexpr Scalar kScalar = Scalar::f32;
+#endif
+
+// Combined friction of a pair (Bullet: product of the two bodies' coefficients).
+constexpr double kFriction = 0.5;
+
+btVector3 to_bt(const Vec3& v) {
+  return {btScalar(v.x()), btScalar(v.y()), btScalar(v.z())};
+}
+
+Vec3 from_bt(const btVector3& v) {
+  return {double(v.x()), double(v.y()), double(v.z())};
+}
+
+// Everything one loaded scene owns. Members are destroyed in reverse order: the world first (its
+// destructor still touches the bodies' broadphase handles), then bodies, shapes, solver, ...
+struct BulletWorld {
+  btDefaultCollisionConfiguration config;
+  btCollisionDispatcher dispatcher{&config};
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  btEmptyShape empty_shape;
+  std::vector<std::unique_ptr<btBoxShape>> box_shapes;
+  std::vector<std::unique_ptr<btRigidBody>> bodies;  // indexed like Scene::bodies
+  btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+
+  ~BulletWorld() {
+    for (auto& b : bodies) world.removeRigidBody(b.get());
+  }
+};
+
+// Inertia of a solid box of mass m and half extents e, by Bullet's own formula:
+// I = m/12 * (ly^2 + lz^2, lx^2 + lz^2, lx^2 + ly^2) with l = 2e (btBoxShape, margin included).
+btVector3 box_inertia(const Body& b) {
+  btVector3 inertia(0, 0, 0);
+  if (!b.is_static) btBoxShape(to_bt(b.half_extents)).calculateLocalInertia(btScalar(b.mass), inertia);
+  return inertia;
+}
+
+class BulletEngine final : public Engine {
+ public:
+  EngineInfo info() const override {
+    EngineInfo i;
+    i.name = "bullet";
+    i.version = std::string(DROPCHECK_BULLET_VERSION) + " " + kPrecision;
+    i.scalar = kScalar;
+    i.capabilities = {.contacts = true, .planar_only = false};
+    i.law = DampingOrder::BeforeForces;
+    i.damping_mapping = "setDamping(d = 1 - exp(-k), 0); v *= (1-d)^h";
+    i.contact_settings =
+        "btBoxShape per body (margin 0.04 inside), restitution 0, friction sqrt(0.5) each "
+        "(product: mu = 0.5), sequential impulse 10 iterations, split impulse for every "
+        "penetration (threshold 0)";
+    // Measured on drop_on_floor(_undamped): final y - 0.5 = -3.2e-7 / -3.5e-7 m at 1/60, from
+    // -1.3e-6 m (1/30) to -2e-8 m (1/240) over the sweep (bullet_test.cpp).
+    i.rest_offset = -3e-7;
+    i.rest_tolerance = 2e-6;
+    return i;
+  }
+
+  void load(const Scene& scene, double h) override {
+    w_.reset();
+    w_ = std::make_unique<BulletWorld>();
+    h_ = btScalar(h);
+    w_->world.setGravity(to_bt(scene.world.gravity));
+    // Position recovery by split impulse for any penetration depth (see the mapping at the top).
+    w_->world.getSolverInfo().m_splitImpulsePenetrationThreshold = 0;
+    for (const Body& b : scene.bodies) add_body(scene, b);
+  }
+
+  void set_forces(std::span<const Vec3> forces) override {
+    for (std::size_t i = 0; i < w_->bodies.size(); ++i) {
+      btRigidBody& b = *w_->bodies[i];
+      if (!b.isStaticObject()) b.applyCentralForce(to_bt(forces[i]));
+    }
+  }
+
+  void step() override {
+    // maxSubSteps = 0: exactly one internal step of h_ (no accumulator, no interpolation).
+    w_->world.stepSimulation(h_, 0);
+    for (auto& b : w_->bodies) b->clearForces();
+  }
+
+  void read(std::span<BodyState> out) const override {
+    for (std::size_t i = 0; i < w_->bodies.size(); ++i) {
+      const btRigidBody& b = *w_->bodies[i];
+      out[i].position = from_bt(b.getWorldTransform().getOrigin());
+      out[i].velocity = from_bt(b.getLinearVelocity());
+    }
+  }
+
+ private:
+  btCollisionShape* shape_for(const Scene& scene, const Body& b) {
+    if (!scene.world.contacts) return &w_->empty_shape;
+    w_->box_shapes.push_back(std::make_unique<btBoxShape>(to_bt(b.half_extents)));
+    return w_->box_shapes.back().get();
+  }
+
+  void add_body(const Scene& scene, const Body& b) {
+    const btScalar mass = b.is_static ? btScalar(0) : btScalar(b.mass);
+    btTransform start;
+    start.setIdentity();
+    start.setOrigin(to_bt(b.position));
+    btRigidBody::btRigidBodyConstructionInfo ci(mass, nullptr, shape_for(scene, b), box_inertia(b));
+    ci.m_startWorldTransform = start;
+    ci.m_restitution = 0;
+    ci.m_friction = btScalar(std::sqrt(kFriction));
+    auto body = std::make_unique<btRigidBody>(ci);
+    // dv/dt = -k*v over 1 s: v *= exp(-k), so d = 1 - exp(-k) is the fraction lost per second;
+    // Bullet applies v *= (1 - d)^h per step = exp(-k*h).
+    body->setDamping(btScalar(1.0 - std::exp(-scene.world.damping_rate)), 0);
+    body->setActivationState(DISABLE_DEACTIVATION);
+    if (!b.is_static) body->setLinearVelocity(to_bt(b.velocity));
+    if (scene.world.contacts)
+      w_->world.addRigidBody(body.get());
+    else
+      w_->world.addRigidBody(body.get(), 0, 0);  // group 0, mask 0: never paired
+    w_->bodies.push_back(std::move(body));
+  }
+
+  btScalar h_ = btScalar(1.0 / 60.0);
+  std::unique_ptr<BulletWorld> w_;
+};
+
+}  // namespace
+
+std::unique_ptr<Engine> make_bullet() { return std::make_unique<BulletEngine>(); }
+
+}  // namespace dropcheck
