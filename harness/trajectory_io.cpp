@@ -11,6 +11,14 @@ void append_csv(std::string& out, const Vec3& v) {
   for (int i = 0; i < 3; ++i) out += "," + exact(v[i]);
 }
 
+// RFC 4180: a field holding a comma, a quote or a line break is quoted, its quotes doubled.
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
 std::string json_string(const std::string& s) {
   std::string out = "\"";
   for (char c : s) {
@@ -47,8 +55,8 @@ std::string trajectories_to_csv(std::span<const Trajectory> runs) {
     for (std::size_t s = 0; s < t.samples(); ++s) {
       for (std::size_t b = 0; b < t.bodies(); ++b) {
         const BodyState& st = t.at(s, b);
-        out += t.engine + "," + exact(t.h) + "," + std::to_string(t.recorded[s]) + "," +
-               exact(t.time(s)) + "," + t.body_names[b];
+        out += csv_field(t.engine) + "," + exact(t.h) + "," + std::to_string(t.recorded[s]) + "," +
+               exact(t.time(s)) + "," + csv_field(t.body_names[b]);
         append_csv(out, st.position);
         append_csv(out, st.velocity);
         out += '\n';
