@@ -48,6 +48,11 @@ std::string Attribution::sentence() const {
   std::string why;
   if (total == 0.0) {
     why = "identical";
+  } else if (explained() && law_part <= budget) {
+    // Same discrete law (or laws that differ by less than rounding): nothing for the laws to split.
+    std::snprintf(buf, sizeof buf, "the two discrete laws agree, so all of it is rounding (residual %s, budget %s)",
+                  format_length(residual).c_str(), format_length(budget).c_str());
+    why = buf;
   } else if (explained()) {
     const double share = law_part >= total ? 100.0 : 100.0 * law_part / total;
     std::snprintf(buf, sizeof buf, "%s from the two discrete laws (damping order); residual %s, within rounding",
