@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <variant>
 
 #include "runner.hpp"
 
@@ -25,40 +26,65 @@ double time_full(Engine& engine, const Scene& scene, double h) {
   return run_scene(engine, scene, h).wall_seconds;
 }
 
-// The engine alone: load, then step() only.
+// The engine alone: load, then step() only. An engine that throws ends the loop (its failure is
+// the run's business, recorded by run_scene; here it only must not abort the timing).
 double time_bare(Engine& engine, const Scene& scene, double h) {
-  engine.load(scene, h);
+  try {
+    engine.load(scene, h);
+  } catch (const std::exception&) {
+    return 0.0;
+  }
   const std::int64_t steps = step_count(scene, h);
   const auto start = Clock::now();
-  for (std::int64_t n = 0; n < steps; ++n) engine.step();
+  try {
+    for (std::int64_t n = 0; n < steps; ++n) engine.step();
+  } catch (const std::exception&) {
+  }
   return seconds_since(start);
 }
 
+// Doubles the copies until one full run lasts min_run_seconds; a failed run stops the search (a
+// failure takes no time and would otherwise drive the copies to max_replicas).
 int replicas_needed(const EngineFactory& make, const Scene& scene, double h, const TimingOptions& o) {
   int copies = 1;
   while (copies < o.max_replicas) {
     std::unique_ptr<Engine> e = make();
-    if (time_full(*e, replicate(scene, copies), h) >= o.min_run_seconds) break;
+    const Trajectory run = run_scene(*e, replicate(scene, copies), h);
+    if (run.status != RunStatus::ok || run.wall_seconds >= o.min_run_seconds) break;
     copies *= 2;
   }
   return std::min(copies, o.max_replicas);
+}
+
+// Width of the scene along x (m), from the lowest to the highest box face of any body.
+double x_extent(const Scene& scene) {
+  double lo = 0.0, hi = 0.0;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const Body& b = scene.bodies[i];
+    const double a = b.position.x() - b.half_extents.x(), c = b.position.x() + b.half_extents.x();
+    lo = i ? std::min(lo, a) : a;
+    hi = i ? std::max(hi, c) : c;
+  }
+  return hi - lo;
 }
 
 }  // namespace
 
 Scene replicate(const Scene& scene, int copies) {
   Scene out = scene;
-  const std::size_t n = scene.bodies.size();
+  const Vec3 step(x_extent(scene) + 10.0, 0.0, 0.0);
   for (int c = 1; c < copies; ++c) {
-    for (std::size_t i = 0; i < n; ++i) {
-      if (scene.bodies[i].is_static) continue;
-      Body b = scene.bodies[i];
+    const Vec3 offset = step * c;
+    const std::size_t first = out.bodies.size();
+    for (Body b : scene.bodies) {
       b.name += "#" + std::to_string(c);
-      b.position.z() += 10.0 * c;
+      b.position += offset;
       out.bodies.push_back(b);
-      for (Force& f : out.forces)
-        if (std::find(f.bodies.begin(), f.bodies.end(), i) != f.bodies.end())
-          f.bodies.push_back(out.bodies.size() - 1);
+    }
+    for (Force f : scene.forces) {
+      for (std::size_t& i : f.bodies) i += first;
+      if (auto* s = std::get_if<Spring>(&f.law)) s->anchor += offset;
+      out.forces.push_back(f);
     }
   }
   return out;

@@ -29,8 +29,10 @@ struct Timing {
   double overhead() const { return bare_min_per_sim_s > 0 ? min_per_sim_s / bare_min_per_sim_s - 1 : 0; }
 };
 
-// The scene with its dynamic bodies copied `copies` times, each copy shifted 10 m apart along z
-// (far enough that boxes never touch) and forces duplicated to the copies.
+// The scene copied `copies` times side by side: every body (static floors too, so that each copy
+// lands on its own floor), copy c shifted by c*(x extent of the scene + 10 m) along x, so that the
+// copies never touch and a planar scene stays planar; every force duplicated onto the copies (a
+// spring's anchor shifted with its body).
 Scene replicate(const Scene& scene, int copies);
 
 // Times each engine on `scene` at step h. Engines run in alternating order within each repeat so
