@@ -27,8 +27,9 @@ void write_file_atomic(const std::string& path, const std::string& content) {
   }
   std::filesystem::rename(tmp, target, ec);
   if (ec) {
+    const std::string why = ec.message();  // before remove() overwrites ec
     std::filesystem::remove(tmp, ec);
-    throw InputError(path, 0, "", "cannot replace the file: " + ec.message());
+    throw InputError(path, 0, "", "cannot replace the file: " + why);
   }
 }
 
