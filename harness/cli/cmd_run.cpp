@@ -32,6 +32,10 @@ void print_header(const Scene& s, const Timestep& dt, std::ostream& out) {
 
 void print_run(const Trajectory& t, std::ostream& out) {
   char line[320];
+  if (t.samples() == 0) {  // the engine failed before step 0 (load): no state to print
+    out << t.engine << "  " << to_string(t.status) << ": " << t.failure << "\n";
+    return;
+  }
   for (std::size_t b = 0; b < t.bodies(); ++b) {
     const BodyState& s = t.final_state(b);
     std::string status = to_string(t.status);

@@ -1,0 +1,178 @@
+// Tests harness/cli/cmd_run.cpp through dropcheck::cli_main: exit codes, messages on err, and the
+// CSV/JSON files `run` writes (whole, exact, deterministic, absent after a failure).
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+#include "harness/cli/cli.hpp"
+#include "harness/registry.hpp"
+#include "harness/runner.hpp"
+#include "harness/scene_loader.hpp"
+
+using Catch::Matchers::Contains;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kWind = DROPCHECK_SOURCE_DIR "/scenarios/wind.toml";          // 2 bodies, a force, 2 s
+const std::string kThrowUp = DROPCHECK_SOURCE_DIR "/scenarios/throw_up.toml";  // v0 != 0, 2 s
+
+// A fresh directory under the system temp dir, removed with everything in it at scope exit.
+struct ScratchDir {
+  fs::path path;
+  explicit ScratchDir(const std::string& tag)
+      : path(fs::temp_directory_path() / ("dropcheck_cli_" + tag + "_" + std::to_string(::getpid()))) {
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+  std::string operator/(const std::string& name) const { return (path / name).string(); }
+};
+
+struct Result {
+  int code;
+  std::string out, err;
+};
+
+Result cli(const std::vector<std::string>& argv) {
+  std::ostringstream out, err;
+  const int code = dropcheck::cli_main(argv, out, err);
+  return {code, out.str(), err.str()};
+}
+
+std::string read_all(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<std::string> split(const std::string& text, char sep) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string item; std::getline(in, item, sep);) out.push_back(item);
+  return out;
+}
+
+bool same_bits(const std::string& text, double v) {
+  const double r = std::strtod(text.c_str(), nullptr);
+  return std::memcmp(&r, &v, sizeof r) == 0;
+}
+
+}  // namespace
+
+TEST_CASE("run on a missing file exits 2 naming the file on err", "[cli]") {
+  const Result r = cli({"run", "no/such/scene.toml"});
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Contains("no/such/scene.toml") && Contains("cannot read"));
+  CHECK(r.out.empty());
+}
+
+TEST_CASE("run on a malformed file exits 2 with the loader's file, key and problem on err", "[cli]") {
+  ScratchDir dir("malformed");
+  std::ofstream(dir / "bad.toml") << "duration = 1.0\n[world]\ngravity = [0, -9.8, 0]\n"
+                                     "[[body]]\nname = \"cube\"\nposition = [0, 0, 0]\nmass = 0.0\n";
+  const Result r = cli({"run", dir / "bad.toml"});
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Contains("bad.toml:7: body[0].mass: must be > 0 kg"));
+}
+
+TEST_CASE("run --engine nope exits 2 naming the engine", "[cli]") {
+  const Result r = cli({"run", kWind, "--engine", "nope"});
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Contains("nope") && Contains("unknown engine"));
+}
+
+TEST_CASE("run --dt 0.7 on a 2 s scene exits 2: not a whole number of steps", "[cli]") {
+  const Result r = cli({"run", kThrowUp, "--dt", "0.7"});
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Contains("--dt 0.7") && Contains("not a whole number of steps"));
+  CHECK(cli({"run", kThrowUp, "--dt", "abc"}).code == 2);
+  CHECK(cli({"run", kThrowUp, "--dt", "1/0"}).code == 2);
+}
+
+TEST_CASE("run with a bad usage exits 2: no file, two files, an unknown option, a missing value", "[cli]") {
+  CHECK(cli({"run"}).code == 2);
+  CHECK(cli({"run", kWind, kThrowUp}).code == 2);
+  const Result unknown = cli({"run", kWind, "--bogus"});
+  CHECK(unknown.code == 2);
+  CHECK_THAT(unknown.err, Contains("--bogus") && Contains("unknown option"));
+  const Result missing = cli({"run", kWind, "--csv"});
+  CHECK(missing.code == 2);
+  CHECK_THAT(missing.err, Contains("--csv") && Contains("expects a value"));
+}
+
+TEST_CASE("a failing run leaves no output file and no temporary behind", "[cli]") {
+  ScratchDir dir("fail");
+  const Result r = cli({"run", kThrowUp, "--dt", "0.7", "--csv", dir / "out.csv", "--json", dir / "out.json"});
+  CHECK(r.code == 2);
+  CHECK(fs::is_empty(dir.path));
+}
+
+TEST_CASE("run --csv writes the contract's header, step 0 first and numbers equal to run_scene bit for bit", "[cli]") {
+  ScratchDir dir("csv");
+  const Result r = cli({"run", kWind, "--engine", "ours", "--engine", "ours-f64", "--csv", dir / "out.csv"});
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.out, Contains("ours ") && Contains("ours-f64 "));
+  const std::vector<std::string> lines = split(read_all(dir / "out.csv"), '\n');
+  REQUIRE(!lines.empty());
+  CHECK(lines[0] == "engine,dt,step,t,body,x,y,z,vx,vy,vz");
+
+  const dropcheck::Scene scene = dropcheck::load_scene(kWind);
+  std::size_t row = 1;
+  for (const char* name : {"ours", "ours-f64"}) {
+    auto engine = dropcheck::make_engine(name);
+    const dropcheck::Trajectory t = dropcheck::run_scene(*engine, scene, scene.timestep.seconds);
+    REQUIRE(t.samples() == 121);  // every step of 2 s at 1/60, and step 0
+    for (std::size_t s = 0; s < t.samples(); ++s) {
+      for (std::size_t b = 0; b < t.bodies(); ++b, ++row) {
+        REQUIRE(row < lines.size());
+        const std::vector<std::string> f = split(lines[row], ',');
+        REQUIRE(f.size() == 11);
+        INFO(lines[row]);
+        CHECK(f[0] == name);
+        CHECK(same_bits(f[1], 1.0 / 60.0));
+        CHECK(f[2] == std::to_string(t.recorded[s]));
+        CHECK(same_bits(f[3], t.time(s)));
+        CHECK(f[4] == t.body_names[b]);
+        for (int k = 0; k < 3; ++k) {
+          CHECK(same_bits(f[5 + k], t.at(s, b).position[k]));
+          CHECK(same_bits(f[8 + k], t.at(s, b).velocity[k]));
+        }
+      }
+    }
+  }
+  CHECK(row == lines.size());
+  // Step 0 is the scene's initial state: "medium" at (-2, 6, 0) at rest.
+  CHECK(lines[1] == "ours,0.016666666666666666,0,0,medium,-2,6,0,0,0,0");
+}
+
+TEST_CASE("run --dt 1/120 runs and records at that step", "[cli]") {
+  ScratchDir dir("dt");
+  REQUIRE(cli({"run", kThrowUp, "--engine", "ours-f64", "--dt", "1/120", "--csv", dir / "out.csv"}).code == 0);
+  const std::vector<std::string> lines = split(read_all(dir / "out.csv"), '\n');
+  REQUIRE(lines.size() == 1 + 241);  // 2 s at 1/120, one body, step 0 included
+  CHECK(lines.back().rfind("ours-f64,0.0083333333333333332,240,2,cube,", 0) == 0);
+}
+
+TEST_CASE("running the same scene twice gives byte-identical CSV and JSON", "[cli][determinism]") {
+  ScratchDir dir("determinism");
+  for (const char* n : {"1", "2"})
+    REQUIRE(cli({"run", kWind, "--engine", "ours", "--engine", "ours-f64", "--csv", dir / (std::string(n) + ".csv"),
+                 "--json", dir / (std::string(n) + ".json")})
+                .code == 0);
+  const std::string csv = read_all(dir / "1.csv");
+  CHECK(csv.size() > 10000);  // 2 engines x 121 samples x 2 bodies
+  CHECK(csv == read_all(dir / "2.csv"));
+  CHECK(read_all(dir / "1.json") == read_all(dir / "2.json"));
+}
