@@ -1,5 +1,6 @@
 #include "attribution.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -7,12 +8,19 @@ namespace dropcheck {
 
 double rounding_budget(Scalar scalar) { return scalar == Scalar::f32 ? 1e-4 : 1e-9; }
 
+double rounding_budget(Scalar scalar, const Trajectory& law) {
+  const double eps = scalar == Scalar::f32 ? 0x1p-23 : 0x1p-52;  // spacing of numbers in [1, 2)
+  double scale = 0.0;
+  for (const BodyState& s : law.states) scale = std::max(scale, s.position.cwiseAbs().maxCoeff());
+  return std::max(rounding_budget(scalar), 0.5 * eps * scale * static_cast<double>(law.steps));
+}
+
 Attribution attribute(const Trajectory& e, const Trajectory& le, Scalar se, const Trajectory& r,
                       const Trajectory& lr, Scalar sr) {
   Attribution a;
   a.engine = e.engine;
   a.reference = r.engine;
-  a.budget = rounding_budget(se) + rounding_budget(sr);
+  a.budget = rounding_budget(se, le) + rounding_budget(sr, lr);
   const std::size_t samples = std::min({e.samples(), r.samples(), le.samples(), lr.samples()});
   for (std::size_t s = 0; s < samples; ++s) {
     double final_dx = 0.0;

@@ -30,6 +30,14 @@ CheckResult check_own_law(const Scene& scene, const EngineFactory& make, const T
 CheckResult check_divergence(const Scene& scene, const EngineFactory& make,
                              const EngineFactory& reference);
 
+// A landing may rise at most this far above its rest height after first contact (m).
+inline constexpr double kMaxRebound = 1e-3;
+
+// Oracle 1 for contacts: each dynamic body over a static floor makes first contact within one step
+// of its own discrete law's contact step, rebounds no higher than rest + kMaxRebound, rests within
+// the engine's declared rest_offset +- rest_tolerance, and is still over the last 2 s.
+CheckResult check_landing(const Scene& scene, const EngineFactory& make, const Timestep& h);
+
 // Every check that applies to `scene` on one engine (free flight: own law at three steps and
 // divergence; contacts: landing). An engine that cannot run the scene gives no results.
 std::vector<CheckResult> check_scene(const Scene& scene, const EngineFactory& make,
