@@ -19,6 +19,7 @@ const CommandEntry kCommands[] = {
     {"engines", cmd_engines, "dropcheck engines"},
     {"run", cmd_run, "dropcheck run FILE [--engine E]... [--dt H] [--csv OUT] [--json OUT]"},
     {"check", cmd_check, "dropcheck check FILE... [--engine E]..."},
+    {"report", cmd_report, "dropcheck report [FILE|DIR]... [--out DIR] [--engine E]... [--no-timing]"},
 };
 
 void usage(std::ostream& err) {

@@ -19,5 +19,6 @@ int cli_main(const std::vector<std::string>& argv, std::ostream& out, std::ostre
 int cmd_engines(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
 int cmd_run(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
 int cmd_check(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
+int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
 
 }  // namespace dropcheck

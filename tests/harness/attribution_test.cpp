@@ -1,8 +1,9 @@
 // Tests harness/attribution.cpp: a divergence built from the exact discrete laws is all "law part";
 // a perturbed engine leaves a residual that is flagged; lengths print in readable units.
+#include "harness/attribution.hpp"
+
 #include <catch2/catch.hpp>
 
-#include "harness/attribution.hpp"
 #include "harness/discrete_law.hpp"
 
 using namespace dropcheck;
@@ -39,16 +40,19 @@ TEST_CASE("Bullet's law against ours' law is all of it from the laws", "[attribu
   CHECK(a.residual == 0.0);
   CHECK(a.budget == 2e-9);
   CHECK(a.explained());
-  CHECK_THAT(a.sentence(), Contains("6.96 cm at t = 1 s") && Contains("all of it from the two discrete laws"));
+  CHECK_THAT(a.sentence(),
+             Contains("6.96 cm at t = 1 s") && Contains("all of it from the two discrete laws"));
 }
 
-TEST_CASE("an engine that departs from its own law leaves an unexplained residual", "[attribution]") {
+TEST_CASE("an engine that departs from its own law leaves an unexplained residual",
+          "[attribution]") {
   const Scene s = drop();
   const double h = 1.0 / 60;
   const Trajectory law = predict_discrete(DampingOrder::BeforeForces, s, h);
   const Trajectory ours = predict_discrete(DampingOrder::AfterForces, s, h);
   Trajectory engine = law;  // as if gravity were -10 instead of -9.8: 0.1*t^2 m off by t = 1 s
-  for (std::size_t i = 0; i < engine.samples(); ++i) engine.states[i].position.y() -= 0.1 * engine.time(i) * engine.time(i);
+  for (std::size_t i = 0; i < engine.samples(); ++i)
+    engine.states[i].position.y() -= 0.1 * engine.time(i) * engine.time(i);
   const Attribution a = attribute(engine, law, Scalar::f64, ours, ours, Scalar::f64);
   CHECK_FALSE(a.explained());
   CHECK(a.residual == Approx(0.1).epsilon(1e-9));
@@ -70,7 +74,8 @@ TEST_CASE("two engines on the same law differ by rounding only", "[attribution]"
   CHECK(a.law_part == 0.0);
   CHECK(a.explained());
   CHECK_THAT(a.sentence(), Contains("the two discrete laws agree, so all of it is rounding"));
-  CHECK_THAT(attribute(law, law, Scalar::f64, law, law, Scalar::f64).sentence(), Contains("identical"));
+  CHECK_THAT(attribute(law, law, Scalar::f64, law, law, Scalar::f64).sentence(),
+             Contains("identical"));
 }
 
 TEST_CASE("format_length picks a readable unit", "[attribution]") {

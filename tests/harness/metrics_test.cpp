@@ -1,19 +1,19 @@
 // Tests harness/metrics.cpp: distances between hand-made trajectories whose differences are known
 // exactly, sample matching across steps, time to divergence, and observed orders on e = C*h^p.
-#include <catch2/catch.hpp>
+#include "harness/metrics.hpp"
 
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <functional>
-
-#include "harness/metrics.hpp"
 
 using namespace dropcheck;
 
 namespace {
 
 // A one-body trajectory at step h over `steps` steps with x(t) = (f(t), 0, 0), v(t) = (g(t), 0, 0).
-Trajectory line(double h, std::int64_t steps, const std::function<double(double)>& f,
-                const std::function<double(double)>& g = [](double) { return 0.0; }) {
+Trajectory line(
+    double h, std::int64_t steps, const std::function<double(double)>& f,
+    const std::function<double(double)>& g = [](double) { return 0.0; }) {
   Trajectory t;
   t.engine = "hand-made";
   t.h = h;
@@ -27,13 +27,16 @@ Trajectory line(double h, std::int64_t steps, const std::function<double(double)
   return t;
 }
 
-double zero(double) { return 0.0; }
+double zero(double) {
+  return 0.0;
+}
 
 }  // namespace
 
 TEST_CASE("compare measures max, RMS and final distances of hand-made trajectories", "[metrics]") {
   // a: x = t, v = 2; b: x = 0, v = 0 over t = 0, 0.25, ..., 1.
-  const Trajectory a = line(0.25, 4, [](double t) { return t; }, [](double) { return 2.0; });
+  const Trajectory a = line(
+      0.25, 4, [](double t) { return t; }, [](double) { return 2.0; });
   const Trajectory b = line(0.25, 4, zero);
   const ErrorStats s = compare(a, b, 0, 0.3);
   CHECK(s.samples == 5);
@@ -58,7 +61,8 @@ TEST_CASE("compare says never when the distance stays within the tolerance", "[m
 TEST_CASE("compare matches samples at common times when the steps differ", "[metrics]") {
   // Coarse h = 0.1 (11 samples) against fine h = 0.1/8 (81 samples): the coarse times only.
   const auto x = [](double t) { return t * t; };
-  const Trajectory coarse = line(0.1, 10, x), fine = line(0.1 / 8, 80, [](double t) { return t * t + 0.5; });
+  const Trajectory coarse = line(0.1, 10, x),
+                   fine = line(0.1 / 8, 80, [](double t) { return t * t + 0.5; });
   const ErrorStats s = compare(coarse, fine, 0, 1.0);
   CHECK(s.samples == 11);
   CHECK(s.max_dx == Approx(0.5).epsilon(1e-12));

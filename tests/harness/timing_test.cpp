@@ -1,12 +1,13 @@
-// Tests harness/timing.cpp: replication keeps the physics of every copy, and timing returns figures.
-// No timing thresholds: wall times depend on the machine and its load, and such tests flake.
-#include <catch2/catch.hpp>
+// Tests harness/timing.cpp: replication keeps the physics of every copy, and timing returns
+// figures. No timing thresholds: wall times depend on the machine and its load, and such tests
+// flake.
+#include "harness/timing.hpp"
 
+#include <catch2/catch.hpp>
 #include <variant>
 
 #include "harness/registry.hpp"
 #include "harness/runner.hpp"
-#include "harness/timing.hpp"
 
 using namespace dropcheck;
 
@@ -51,7 +52,7 @@ TEST_CASE("replicate copies every body and force, shifted along x", "[timing]") 
       CHECK(copy.velocity == s.bodies[i].velocity);
       CHECK(copy.is_static == s.bodies[i].is_static);
     }
-    const Force& push = r.forces[2 * c], &spring = r.forces[2 * c + 1];
+    const Force &push = r.forces[2 * c], &spring = r.forces[2 * c + 1];
     CHECK(push.bodies == std::vector<std::size_t>{3u * c + 1});
     CHECK(std::get<ConstantForce>(push.law).force == Vec3(2.0, 0.0, 0.0));
     CHECK(spring.bodies == std::vector<std::size_t>{3u * c + 2});
@@ -85,7 +86,8 @@ TEST_CASE("time_engines returns positive figures for every engine", "[timing]") 
   fast.repeats = 2;
   fast.max_replicas = 2;
   const std::vector<std::pair<std::string, EngineFactory>> engines{
-      {"ours", [] { return make_engine("ours"); }}, {"ours-f64", [] { return make_engine("ours-f64"); }}};
+      {"ours", [] { return make_engine("ours"); }},
+      {"ours-f64", [] { return make_engine("ours-f64"); }}};
   const std::vector<Timing> t = time_engines(engines, s, 1.0 / 60, fast);
   REQUIRE(t.size() == 2);
   for (std::size_t i = 0; i < 2; ++i) {
