@@ -93,7 +93,10 @@ void run_sweep(EngineEvaluation& ev, const EngineSlot& slot, const SceneEvaluati
     s.h = se.sweep[i];
     s.run = run_scene(*slot.make(), se.scene, s.h.seconds);
     if (refs.analytic(i)) s.vs_analytic = compare_worst(s.run, *refs.analytic(i), tol);
-    if (se.uses_law) s.vs_law = compare_worst(s.run, refs.law(ev.info.law, i), tol);
+    if (se.uses_law) {
+      s.vs_law = compare_worst(s.run, refs.law(ev.info.law, i), tol);
+      s.law_budget = rounding_budget(ev.info.scalar, refs.law(ev.info.law, i));
+    }
     ev.sweep.push_back(std::move(s));
   }
   ev.default_index = se.default_index;

@@ -51,6 +51,7 @@ struct StepEvaluation {
   Trajectory run;
   std::optional<ErrorStats> vs_analytic;      // oracle 1, worst body
   std::optional<ErrorStats> vs_law;           // oracle 2, worst body
+  double law_budget = 0.0;                    // rounding_budget(scalar, law): how far vs_law may go
   std::optional<ErrorStats> vs_fine;          // oracle 3, worst body
   std::optional<ErrorStats> vs_reference;     // divergence from the reference engine, worst body
   std::vector<ErrorStats> reference_by_body;  // the same per body, indexed like Scene::bodies

@@ -94,7 +94,8 @@ std::string method(const ReportInput& in) {
   md +=
       "- Oracle 2, own discrete law: each engine's declared update order iterated in long "
       "double (harness/discrete_law.hpp); free flight only. Departing from it beyond "
-      "rounding (f64 1e-9 m, f32 1e-4 m) is an adapter bug.\n";
+      "rounding (f64 1e-9 m, f32 1e-4 m, or n*eps/2*max|x| over n steps when larger) is an "
+      "adapter bug.\n";
   md +=
       "- Oracle 3, self-consistency: where there is no closed form, the same engine at the "
       "finest step of the sweep / 8, compared at the coarse run's sample times.\n";

@@ -158,19 +158,17 @@ std::vector<std::string> oracle_header(const SceneEvaluation& se) {
   return h;
 }
 
-std::vector<std::string> oracle_row(const SceneEvaluation& se, const EngineEvaluation& ev) {
+std::vector<std::string> oracle_row(const EngineEvaluation& ev) {
   const StepEvaluation& st = ev.at_default();
   std::vector<std::string> r{ev.name};
   if (const auto& a = st.vs_analytic)
     r.insert(r.end(), {g3(a->max_dx), g3(a->final_dx), g3(a->max_dv)});
   if (const auto& l = st.vs_law) {
-    const double budget = rounding_budget(ev.info.scalar);
-    const bool ok = l->max_dx <= budget && l->max_dv <= budget;
-    r.insert(r.end(), {g3(l->max_dx), g3(l->max_dv), g3(budget), ok ? "yes" : "**NO**"});
+    const bool ok = l->max_dx <= st.law_budget && l->max_dv <= st.law_budget;
+    r.insert(r.end(), {g3(l->max_dx), g3(l->max_dv), g3(st.law_budget), ok ? "yes" : "**NO**"});
   }
   if (const auto& f = st.vs_fine)
     r.insert(r.end(), {g3(f->max_dx), g3(f->final_dx), g3(f->max_dv)});
-  (void)se;
   return r;
 }
 
@@ -178,7 +176,7 @@ std::string oracles(const SceneEvaluation& se) {
   if (!se.no_analytic.empty() && !se.uses_law && !se.uses_fine) return {};
   MarkdownTable t(oracle_header(se), "lr");
   for (const EngineEvaluation& ev : se.engines)
-    if (ev.ran()) t.add(oracle_row(se, ev));
+    if (ev.ran()) t.add(oracle_row(ev));
   return "#### Error against each oracle at h = " + se.scene.timestep.text + " (worst body)\n\n" +
          t.str() + "\n";
 }
