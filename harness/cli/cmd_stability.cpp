@@ -1,0 +1,29 @@
+// dropcheck stability FILE [--engine E]... [--json OUT]
+// Classifies each engine at the scene's step (stable, or its failure with a sentence), searches its
+// largest stable step by bisection on h, and prints a table; --json writes the study atomically.
+// Failures are results: the exit code is 0 unless the input is bad (2).
+#include "args.hpp"
+#include "cli.hpp"
+#include "harness/atomic_file.hpp"
+#include "harness/input_error.hpp"
+#include "harness/scene_loader.hpp"
+#include "harness/stability_study.hpp"
+#include "selection.hpp"
+
+namespace dropcheck {
+
+int cmd_stability(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
+  const Args args = parse_args(argv, {"--engine", "--json"}, {});
+  if (args.positional.size() != 1) throw InputError("", 0, "stability", "expects exactly one scene FILE");
+  const Scene scene = load_scene(args.positional[0]);
+  std::vector<std::string> names;
+  for (const SelectedEngine& e : select_engines(args.values("--engine"), scene)) names.push_back(e.name);
+  StudyOptions options;
+  const SceneStability study = study_scene(scene, names, options, &err);
+  out << stability_to_text(study);
+  if (args.has("--json"))
+    write_file_atomic(args.value("--json"), stability_to_json(study, options.search_options));
+  return kExitOk;
+}
+
+}  // namespace dropcheck
