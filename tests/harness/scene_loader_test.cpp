@@ -149,7 +149,7 @@ TEST_CASE("a half extent <= 0 is rejected naming the key", "[loader]") {
   check_error(scene(kHead, kWorld, kBody + "half_extents = [0.5, 0.5, -1.0]\n"), "body[0].half_extents", "> 0 m");
 }
 
-TEST_CASE("linear_drag outside (0, 1] is rejected and so are both drag keys together", "[loader]") {
+TEST_CASE("linear_drag of 0 or 1.5 is rejected and so are both drag keys together", "[loader]") {
   check_error(scene(kHead, kWorld + "linear_drag = 0.0\n", kBody), "world.linear_drag", "must be in (0, 1], got 0");
   check_error(scene(kHead, kWorld + "linear_drag = 1.5\n", kBody), "world.linear_drag", "must be in (0, 1], got 1.5");
   check_error(scene(kHead, kWorld + "linear_damping = -1.0\n", kBody), "world.linear_damping", "must be >= 0");

@@ -27,7 +27,7 @@ TEST_CASE("an option's value is taken verbatim even when it looks like an option
   CHECK(a.positional.empty());
 }
 
-TEST_CASE("-- and single-dash words are positionals", "[cli][args]") {
+TEST_CASE("single-dash words and a bare -- are positionals", "[cli][args]") {
   const dropcheck::Args a = dropcheck::parse_args({"--", "-x"}, {}, {});
   CHECK(a.positional == std::vector<std::string>{"--", "-x"});
 }

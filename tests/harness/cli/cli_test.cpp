@@ -46,7 +46,7 @@ TEST_CASE("an unknown command exits 2 naming it, with the usage on err", "[cli]"
   CHECK(r.out.empty());
 }
 
-TEST_CASE("no command exits 2 with the usage on err; --help exits 0 with it on out", "[cli]") {
+TEST_CASE("no command exits 2 with the usage on err, and --help exits 0 with it on out", "[cli]") {
   const Result none = cli({});
   CHECK(none.code == 2);
   CHECK_THAT(none.err, StartsWith("usage:") && Contains("dropcheck run FILE"));
