@@ -1,0 +1,304 @@
+// Adapter for ODE (Open Dynamics Engine), Debian's double-precision build.
+//
+// Mapping (scene -> ODE), ENGINE-NOTES.md sections 2, 3 and 5:
+//   gravity g           -> dWorldSetGravity (ODE's default is zero).
+//   damping rate k      -> per body dBodySetLinearDamping(s = 1 - exp(-k*h)): ODE scales v by
+//                          (1 - s) once per step, so s is per step and depends on h.
+//                          dBodySetLinearDampingThreshold(b, 0): the default skips damping while
+//                          |v| <= 0.01 m/s. Angular damping 0. Set per body: world defaults are
+//                          copied only into bodies created after them.
+//   law                 -> DampingOrder::AfterPosition: dxStepBody does v += h*(m*g + F)/m,
+//                          x += h*v, then damps v.
+//   mass m              -> dMassSetBoxTotal(m, full side lengths 2*half_extents), dBodySetMass.
+//   static body         -> no ODE body: with contacts a box geom attached to body 0 (the static
+//                          environment), without contacts nothing at all. Read back as its fixed
+//                          position and zero velocity.
+//   position, velocity  -> dBodySetPosition, dBodySetLinearVel; read with dBodyGetPosition and
+//                          dBodyGetLinearVel (ODE has no interpolated state).
+//   force this step     -> dBodyAddForce before dWorldStep; the step clears ODE's accumulator.
+//   one step            -> dWorldStep(world, h). Chosen over dWorldQuickStep: identical for free
+//                          bodies, and its direct (Dantzig LCP) solver rests a box 2e-11 m deep
+//                          instead of 2e-8 (ENGINE-NOTES section 5).
+//   sleeping            -> dWorldSetAutoDisableFlag(0) and dBodySetAutoDisableFlag(b, 0) (off by
+//                          default; set explicitly).
+// Contacts (scene.world.contacts):
+//   true  -> a dSimpleSpace with a dCreateBox geom per body; the near callback asks dCollide for up
+//            to 8 contacts per pair (a box face needs >= 4) and makes a contact joint for each with
+//            dContact zeroed, mode dContactApprox1 (mu is a coefficient, not a force bound),
+//            mu = 0.5 for every pair (no mixing: the callback sets the pair's value), bounce 0.
+//            World ERP 0.2 and CFM 1e-10 (ODE's double defaults), surface layer 0.
+//            dWorldSetContactMaxCorrectingVel 0.3 m/s: ODE pushes a penetrating body out with the
+//            velocity ERP*depth/h, capped by this value, and that velocity stays in the body.
+//            Uncapped, a deep first contact pops the cube up (15 cm, ENGINE-NOTES section 5); a
+//            cap above about 2*g*h/ERP (0.41 m/s at 1/240) lets the body fly on after the push
+//            (1 m/s rebounded 9 mm at 1/120 and 2.3 cm at 1/240). 0.3 m/s: no rebound from 1/30
+//            to 1/240, and the 0.22 m first penetration of the undamped 10 m drop at 1/60 is
+//            recovered in 0.7 s (ode_test.cpp).
+//   false -> no space, no geoms, no contact joints.
+// Errors: ODE reports through dError / dDebug (fatal: ODE exits or aborts when the handler returns)
+// and dMessage (a warning). Our handlers throw EngineError from the fatal two; ODE is C++ built with
+// unwind tables, so the throw unwinds through its frames to the adapter (ode_test.cpp shows it).
+// The throw skips ODE's va_end (a no-op on the x86-64 and AArch64 ABIs). An error thrown out of
+// dWorldStep or dSpaceCollide may leave that world's internals mid-update (a locked space, a step
+// arena in use); such a world is marked poisoned, refuses further steps, and is leaked rather than
+// destroyed, because destroying it can re-enter ODE's checks during unwinding.
+#include <ode/ode.h>
+
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "adapters.hpp"
+
+namespace dropcheck {
+namespace {
+
+constexpr int kMaxContacts = 8;          // per geom pair; a resting box face needs >= 4
+constexpr dReal kFriction = 0.5;         // Coulomb mu, dContactApprox1
+constexpr dReal kMaxCorrectingVel = 0.3; // m/s, depth recovery speed of a contact
+
+// The last non-fatal ODE message on this thread, quoted in the next error as its context.
+thread_local std::string t_last_message;
+
+std::string format_ode(const char* kind, int num, const char* msg, va_list ap) {
+  char text[512];
+  std::vsnprintf(text, sizeof text, msg, ap);
+  return std::string(kind) + " " + std::to_string(num) + ": " + text;
+}
+
+[[noreturn]] void throw_ode(const char* kind, int num, const char* msg, va_list ap) {
+  std::string what = format_ode(kind, num, msg, ap);
+  if (!t_last_message.empty()) what += " (after " + t_last_message + ")";
+  t_last_message.clear();
+  throw EngineError(what);
+}
+
+// dError: ODE calls exit(1) if this returns.
+void on_ode_error(int num, const char* msg, va_list ap) { throw_ode("ODE error", num, msg, ap); }
+
+// dDebug (failed dIASSERT / dUASSERT / dAASSERT): ODE calls abort() if this returns.
+void on_ode_debug(int num, const char* msg, va_list ap) {
+  throw_ode("ODE internal error", num, msg, ap);
+}
+
+// dMessage: a warning (e.g. "LCP internal error, s <= 0"); printed as ODE would, and kept.
+void on_ode_message(int num, const char* msg, va_list ap) {
+  t_last_message = format_ode("ODE message", num, msg, ap);
+  std::cerr << t_last_message << '\n';
+}
+
+struct OdeLibrary {
+  OdeLibrary() {
+    dSetErrorHandler(on_ode_error);
+    dSetDebugHandler(on_ode_debug);
+    dSetMessageHandler(on_ode_message);
+    ok = dInitODE2(0) != 0;
+  }
+  ~OdeLibrary() {
+    if (ok) dCloseODE();
+  }
+  bool ok = false;
+};
+
+// Initialises ODE once per process (handlers first) and its per-thread data for this thread.
+void ensure_ode() {
+  static OdeLibrary library;
+  if (!library.ok) throw EngineError("ODE: dInitODE2 failed");
+  // Same precision as our headers assume (dReal), or every state we read is garbage.
+#ifdef dDOUBLE
+  if (!dCheckConfiguration("ODE_double_precision")) throw EngineError("ODE: library is not double");
+#else
+  if (!dCheckConfiguration("ODE_single_precision")) throw EngineError("ODE: library is not single");
+#endif
+  if (!dAllocateODEDataForThread(dAllocateMaskAll)) throw EngineError("ODE: no per-thread data");
+}
+
+// One loaded scene. Destroyed in ODE's order: contact group, space (and its geoms), world (and its
+// bodies and joints). A poisoned world (an error escaped a step) is leaked on purpose (see top).
+struct OdeWorld {
+  dWorldID world = nullptr;
+  dSpaceID space = nullptr;                 // contacts only
+  dJointGroupID contacts = nullptr;         // contacts only
+  std::vector<dBodyID> bodies;              // indexed like Scene::bodies; nullptr when static
+  std::vector<Vec3> static_positions;       // indexed like Scene::bodies
+  std::exception_ptr callback_error;        // thrown in the near callback, rethrown after collide
+  bool poisoned = false;
+
+  ~OdeWorld() {
+    if (poisoned) return;
+    if (contacts) dJointGroupDestroy(contacts);
+    if (space) dSpaceDestroy(space);
+    if (world) dWorldDestroy(world);
+  }
+};
+
+// A pair of geoms whose boxes may touch: one contact joint per contact point (mapping at the top).
+void make_contacts(OdeWorld& w, dGeomID a, dGeomID b) {
+  const dBodyID ba = dGeomGetBody(a);
+  const dBodyID bb = dGeomGetBody(b);
+  if (!ba && !bb) return;  // two static boxes
+  dContact c[kMaxContacts] = {};
+  const int n = dCollide(a, b, kMaxContacts, &c[0].geom, sizeof(dContact));
+  for (int i = 0; i < n; ++i) {
+    c[i].surface.mode = dContactApprox1;
+    c[i].surface.mu = kFriction;
+    c[i].surface.bounce = 0;
+    dJointAttach(dJointCreateContact(w.world, w.contacts, &c[i]), ba, bb);
+  }
+}
+
+// dSpaceCollide's callback. No exception may leave it: the space stays locked if one does.
+void near_callback(void* data, dGeomID a, dGeomID b) {
+  auto& w = *static_cast<OdeWorld*>(data);
+  if (w.callback_error) return;
+  try {
+    make_contacts(w, a, b);
+  } catch (...) {
+    w.callback_error = std::current_exception();
+  }
+}
+
+class OdeEngine final : public Engine {
+ public:
+  EngineInfo info() const override {
+    EngineInfo i;
+    i.name = "ode";
+    i.version = DROPCHECK_ODE_VERSION;
+#ifdef dDOUBLE
+    i.scalar = Scalar::f64;
+#else
+    i.scalar = Scalar::f32;
+#endif
+    i.capabilities = {.contacts = true, .planar_only = false};
+    i.law = DampingOrder::AfterPosition;
+    i.damping_mapping = "dBodySetLinearDamping(s = 1 - exp(-k*h)), threshold 0";
+    i.contact_settings =
+        "dWorldStep; box geoms, <= 8 contacts per pair, dContactApprox1, mu 0.5, bounce 0, "
+        "ERP 0.2, CFM 1e-10, surface layer 0, max correcting vel 0.3 m/s";
+    // Measured on drop_on_floor(_undamped): final y - 0.5 = -2.04e-11 m at 1/60 (proportional to
+    // h: -5.1e-12 m at 1/240), -9.8e-10 m at 1/30 where it is still settling (ode_test.cpp).
+    i.rest_offset = -2e-11;
+    i.rest_tolerance = 1e-8;
+    return i;
+  }
+
+  void load(const Scene& scene, double h) override {
+    ensure_ode();
+    w_.reset();
+    w_ = std::make_unique<OdeWorld>();
+    h_ = dReal(h);
+    make_world(scene);
+    const dReal phi = dReal(decay_per_step(scene, h));
+    for (const Body& b : scene.bodies) add_body(scene, b, phi);
+  }
+
+  void set_forces(std::span<const Vec3> forces) override {
+    for (std::size_t i = 0; i < w_->bodies.size(); ++i) {
+      if (w_->bodies[i]) dBodyAddForce(w_->bodies[i], forces[i].x(), forces[i].y(), forces[i].z());
+    }
+  }
+
+  void step() override {
+    if (w_->poisoned) throw EngineError("ODE: world unusable after an earlier error");
+    if (w_->space) collide();
+    int stepped = 0;
+    guarded([&] { stepped = dWorldStep(w_->world, h_); });
+    if (w_->contacts) dJointGroupEmpty(w_->contacts);
+    if (!stepped) throw EngineError("ODE: dWorldStep failed (out of step memory)");
+  }
+
+  void read(std::span<BodyState> out) const override {
+    for (std::size_t i = 0; i < w_->bodies.size(); ++i) {
+      const dBodyID b = w_->bodies[i];
+      if (!b) {
+        out[i] = {w_->static_positions[i], Vec3::Zero()};
+        continue;
+      }
+      const dReal* x = dBodyGetPosition(b);
+      const dReal* v = dBodyGetLinearVel(b);
+      out[i] = {Vec3(x[0], x[1], x[2]), Vec3(v[0], v[1], v[2])};
+    }
+  }
+
+ private:
+  void make_world(const Scene& scene) {
+    w_->world = dWorldCreate();
+    const Vec3& g = scene.world.gravity;
+    dWorldSetGravity(w_->world, g.x(), g.y(), g.z());
+    dWorldSetAutoDisableFlag(w_->world, 0);
+    if (!scene.world.contacts) return;
+    w_->space = dSimpleSpaceCreate(nullptr);
+    w_->contacts = dJointGroupCreate(0);
+    dWorldSetContactSurfaceLayer(w_->world, 0);
+    dWorldSetContactMaxCorrectingVel(w_->world, kMaxCorrectingVel);
+  }
+
+  // A box geom of the body's size in the space, attached to `body` (nullptr: static).
+  void add_geom(const Body& b, dBodyID body) {
+    const Vec3 side = 2.0 * b.half_extents;
+    const dGeomID g = dCreateBox(w_->space, side.x(), side.y(), side.z());
+    if (body)
+      dGeomSetBody(g, body);
+    else
+      dGeomSetPosition(g, b.position.x(), b.position.y(), b.position.z());
+  }
+
+  void add_body(const Scene& scene, const Body& b, dReal phi) {
+    w_->static_positions.push_back(b.position);
+    w_->bodies.push_back(b.is_static ? nullptr : make_body(b, phi));
+    if (scene.world.contacts) add_geom(b, w_->bodies.back());
+  }
+
+  dBodyID make_body(const Body& b, dReal phi) {
+    // Owned by the world from here on (dWorldDestroy frees it), even if a call below throws.
+    const dBodyID body = dBodyCreate(w_->world);
+    dBodySetPosition(body, b.position.x(), b.position.y(), b.position.z());
+    dBodySetLinearVel(body, b.velocity.x(), b.velocity.y(), b.velocity.z());
+    dMass m;
+    const Vec3 side = 2.0 * b.half_extents;
+    dMassSetBoxTotal(&m, b.mass, side.x(), side.y(), side.z());
+    dBodySetMass(body, &m);
+    // ODE: v *= (1 - s) once per step; (1 - s) = phi = exp(-k*h)  =>  s = 1 - exp(-k*h).
+    dBodySetLinearDamping(body, 1 - phi);
+    dBodySetLinearDampingThreshold(body, 0);
+    dBodySetAngularDamping(body, 0);
+    dBodySetAutoDisableFlag(body, 0);
+    return body;
+  }
+
+  // Contact joints for this step (near_callback). An error caught in the callback is rethrown
+  // here, after dSpaceCollide has unlocked the space: the world stays consistent and usable.
+  void collide() {
+    guarded([&] { dSpaceCollide(w_->space, w_.get(), near_callback); });
+    if (!w_->callback_error) return;
+    dJointGroupEmpty(w_->contacts);
+    std::rethrow_exception(std::exchange(w_->callback_error, nullptr));
+  }
+
+  // Runs an ODE call that may stop midway (a throw out of ODE's internals): the world is then
+  // poisoned (see the top of this file).
+  template <typename F>
+  void guarded(F&& call) {
+    try {
+      call();
+    } catch (...) {
+      w_->poisoned = true;
+      throw;
+    }
+  }
+
+  dReal h_ = dReal(1.0 / 60.0);
+  std::unique_ptr<OdeWorld> w_;
+};
+
+}  // namespace
+
+std::unique_ptr<Engine> make_ode() { return std::make_unique<OdeEngine>(); }
+
+}  // namespace dropcheck
