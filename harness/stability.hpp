@@ -75,10 +75,10 @@ struct StepSearch {
   double min_unstable_dt = none;  // smallest h above it found unstable (NaN: none up to the cap)
   double min_stable_dt = none;    // set when h0 fails at small h (frozen): smallest stable h above
   std::optional<FailureMode> limit;  // the failure at min_unstable_dt
-  double start = 0.0;             // h0, the step the search started from
-  double horizon = 0.0;           // simulated seconds of each probe (before rounding up to whole h)
-  double cap = 0.0;               // largest h tried
-  int probes = 0;                 // runs made
+  double start = 0.0;                // h0, the step the search started from
+  double horizon = 0.0;  // simulated seconds of each probe (before rounding up to whole h)
+  double cap = 0.0;      // largest h tried
+  int probes = 0;        // runs made
 };
 
 // Searches the largest stable h for engines made by `make` on `scene`, starting at h0 (stable:

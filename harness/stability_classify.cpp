@@ -59,7 +59,8 @@ void add_status(const Trajectory& run, std::vector<Failure>& out) {
 // The sample at or after `step` (the last one if none).
 std::size_t sample_at(const Trajectory& run, std::int64_t step) {
   auto it = std::lower_bound(run.recorded.begin(), run.recorded.end(), step);
-  return it == run.recorded.end() ? run.samples() - 1 : static_cast<std::size_t>(it - run.recorded.begin());
+  return it == run.recorded.end() ? run.samples() - 1
+                                  : static_cast<std::size_t>(it - run.recorded.begin());
 }
 
 // Speed clamps are counted by the runner (Engine::speed_clamped); name the fastest body at the
@@ -74,25 +75,32 @@ void add_clamp(const Scene& scene, const Trajectory& run, std::vector<Failure>& 
     const double v = run.at(s, b).velocity.norm();
     if (v > speed) speed = v, fastest = b;
   }
-  out.push_back({FailureMode::clamped, run.body_names[fastest], run.first_clamped_step,
-                 format("speed clamped by the engine on %lld of %lld steps, first at step %lld "
-                        "(t = %.4g s), where body '%s' moves %.3g m per step (|v| = %.4g m/s)",
-                        static_cast<long long>(run.clamped_steps), static_cast<long long>(run.steps),
-                        static_cast<long long>(run.first_clamped_step),
-                        static_cast<double>(run.first_clamped_step) * run.h,
-                        run.body_names[fastest].c_str(), speed * run.h, speed)});
+  out.push_back(
+      {FailureMode::clamped, run.body_names[fastest], run.first_clamped_step,
+       format("speed clamped by the engine on %lld of %lld steps, first at step %lld "
+              "(t = %.4g s), where body '%s' moves %.3g m per step (|v| = %.4g m/s)",
+              static_cast<long long>(run.clamped_steps), static_cast<long long>(run.steps),
+              static_cast<long long>(run.first_clamped_step),
+              static_cast<double>(run.first_clamped_step) * run.h, run.body_names[fastest].c_str(),
+              speed * run.h, speed)});
 }
 
 }  // namespace
 
 const char* to_string(FailureMode mode) {
   switch (mode) {
-    case FailureMode::engine_error: return "engine error";
-    case FailureMode::non_finite: return "NaN/Inf";
-    case FailureMode::unbounded_growth: return "unbounded growth";
-    case FailureMode::tunnelled: return "tunnelled";
-    case FailureMode::frozen: return "frozen";
-    case FailureMode::clamped: return "speed clamped";
+    case FailureMode::engine_error:
+      return "engine error";
+    case FailureMode::non_finite:
+      return "NaN/Inf";
+    case FailureMode::unbounded_growth:
+      return "unbounded growth";
+    case FailureMode::tunnelled:
+      return "tunnelled";
+    case FailureMode::frozen:
+      return "frozen";
+    case FailureMode::clamped:
+      return "speed clamped";
   }
   return "?";
 }

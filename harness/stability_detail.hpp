@@ -34,7 +34,8 @@ BodyLaw body_law(const Scene& scene, std::size_t index);
 // Distance between |x| and the next representable number above it in `scalar` (m).
 double float_spacing(double x, Scalar scalar);
 
-// Failures of growth: spring energy, free-flight speed, contact-scene energy (stability_growth.cpp).
+// Failures of growth: spring energy, free-flight speed, contact-scene energy
+// (stability_growth.cpp).
 void find_growth(const Scene& scene, const Trajectory& run, const ClassifyOptions& o,
                  std::vector<Failure>& out);
 

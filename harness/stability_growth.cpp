@@ -52,18 +52,21 @@ void spring_growth(const Scene& scene, const Trajectory& run, std::size_t i, con
                           "%.3g J to %.3g J (x%.3g) by step %lld%s (omega*h = %.4g)",
                           run.body_names[i].c_str(), energy(0), energy(s), energy(s) / e_ref,
                           static_cast<long long>(run.recorded[s]),
-                          windows ? format(", %.3g x the peak of the run's first third", energy(s) / std::max(early, e_ref)).c_str() : "",
+                          windows ? format(", %.3g x the peak of the run's first third",
+                                           energy(s) / std::max(early, e_ref))
+                                        .c_str()
+                                  : "",
                           w * run.h)});
     return;
   }
 }
 
 // Free flight: v' = a - k*v. Exactly, v(t) = a/k + (v0 - a/k)*exp(-k*t) is a convex combination of
-// v0 and the terminal velocity a/k, so |v(t)| <= max(|v0|, |a|/k); for k = 0, |v(t)| <= |v0| + |a|*t.
-// The discrete laws move the terminal speed: |a|*h*phi/(1 - phi) when damping follows the forces,
-// |a|*h/(1 - phi) when it precedes them (Bullet), = (|a|/k)*kh/(1 - exp(-kh)) >= |a|/k; each step
-// is again a convex combination of v and that terminal velocity, so no first-order law exceeds
-// max(|v0|, (|a|/k)*kh/(1 - exp(-kh))) (k = 0: v_n = v0 + n*a*h exactly, the same bound).
+// v0 and the terminal velocity a/k, so |v(t)| <= max(|v0|, |a|/k); for k = 0, |v(t)| <= |v0| +
+// |a|*t. The discrete laws move the terminal speed: |a|*h*phi/(1 - phi) when damping follows the
+// forces, |a|*h/(1 - phi) when it precedes them (Bullet), = (|a|/k)*kh/(1 - exp(-kh)) >= |a|/k;
+// each step is again a convex combination of v and that terminal velocity, so no first-order law
+// exceeds max(|v0|, (|a|/k)*kh/(1 - exp(-kh))) (k = 0: v_n = v0 + n*a*h exactly, the same bound).
 void speed_growth(const Scene& scene, const Trajectory& run, std::size_t i, const BodyLaw& law,
                   const ClassifyOptions& o, std::vector<Failure>& out) {
   const double k = scene.world.damping_rate, a = law.accel.norm(), h = run.h;
@@ -74,11 +77,12 @@ void speed_growth(const Scene& scene, const Trajectory& run, std::size_t i, cons
     const double bound = k > 0.0 ? std::max(v0, terminal) : v0 + a * t;
     const double v = run.at(s, i).velocity.norm();
     if (v <= bound * (1.0 + o.speed_slack) + 1e-12) continue;
-    out.push_back({FailureMode::unbounded_growth, run.body_names[i], run.recorded[s],
-                   format("body '%s': speed %.4g m/s at step %lld exceeds %.4g m/s, the most this "
-                          "free flight reaches under any first-order damping order (%s)",
-                          run.body_names[i].c_str(), v, static_cast<long long>(run.recorded[s]), bound,
-                          k > 0.0 ? "max(|v0|, (|a|/k)*kh/(1 - exp(-kh)))" : "|v0| + |a|*t")});
+    out.push_back(
+        {FailureMode::unbounded_growth, run.body_names[i], run.recorded[s],
+         format("body '%s': speed %.4g m/s at step %lld exceeds %.4g m/s, the most this "
+                "free flight reaches under any first-order damping order (%s)",
+                run.body_names[i].c_str(), v, static_cast<long long>(run.recorded[s]), bound,
+                k > 0.0 ? "max(|v0|, (|a|/k)*kh/(1 - exp(-kh)))" : "|v0| + |a|*t")});
     return;
   }
 }
@@ -92,7 +96,8 @@ double spring_energy(const Spring& s, const Vec3& x) {
 // Contact scene: total mechanical energy E = sum over dynamic bodies of 1/2 m|v|^2 - m*a.x plus the
 // springs' energy. Contacts, drag and dashpots only remove energy (a tunnelling body keeps E);
 // first-order steps and penetration recovery add a little. Growth: E(t) - E(0) above contact_gain
-// times the peak total kinetic energy, i.e. most of the motion is energy the physics never supplied.
+// times the peak total kinetic energy, i.e. most of the motion is energy the physics never
+// supplied.
 void contact_growth(const Scene& scene, const Trajectory& run, const ClassifyOptions& o,
                     std::vector<Failure>& out) {
   std::vector<BodyLaw> laws;

@@ -26,7 +26,9 @@ std::string passage(const Body& a, const Body& b, const Trajectory& run, std::si
   const double rest = a.half_extents.y() + b.half_extents.y(), sep = ca.y() - cb.y();
   if (sep < 0.5 * rest && overlap_xz(a, ca, b, cb0)) {
     const std::string aside =
-        overlap_xz(a, ca, b, cb) ? std::string() : format(", which was pushed aside to x = %.4g, z = %.4g", cb.x(), cb.z());
+        overlap_xz(a, ca, b, cb)
+            ? std::string()
+            : format(", which was pushed aside to x = %.4g, z = %.4g", cb.x(), cb.z());
     return format("ended %s '%s'%s (centres %.4g m apart vertically, %.4g m when resting on it)",
                   sep < 0.0 ? "below" : "level with", b.name.c_str(), aside.c_str(), sep, rest);
   }
@@ -50,12 +52,13 @@ void check_pair(const Scene& scene, const Trajectory& run, std::size_t ia, std::
   std::size_t s = 0;  // the first sample where it showed, for the step and the speed then
   while (s < last && passage(a, b, run, ia, ib, s).empty()) ++s;
   const double travel = run.at(s, ia).velocity.norm() * run.h;
-  out.push_back({FailureMode::tunnelled, a.name, run.recorded[s],
-                 format("body '%s' %s; it started above that %s body; from step %lld, moving %.3g m "
-                        "per step (|v|*h) against %.3g m of both boxes' heights",
-                        a.name.c_str(), how.c_str(), b.is_static ? "static" : "dynamic",
-                        static_cast<long long>(run.recorded[s]), travel,
-                        2.0 * (a.half_extents.y() + b.half_extents.y()))});
+  out.push_back(
+      {FailureMode::tunnelled, a.name, run.recorded[s],
+       format("body '%s' %s; it started above that %s body; from step %lld, moving %.3g m "
+              "per step (|v|*h) against %.3g m of both boxes' heights",
+              a.name.c_str(), how.c_str(), b.is_static ? "static" : "dynamic",
+              static_cast<long long>(run.recorded[s]), travel,
+              2.0 * (a.half_extents.y() + b.half_extents.y()))});
 }
 
 }  // namespace
@@ -107,13 +110,15 @@ std::string frozen_sentence(const Trajectory& run, std::size_t i, int c, const S
           ? format("v*h = %.2g m to %.2g m per step is below half the %s spacing %.2g m at %.6g m",
                    st.min_vh, st.max_vh, scalar == Scalar::f32 ? "float" : "double", 0.5 * spacing,
                    std::abs(x))
-          : format("its own v*h (%.2g m to %.2g m per step, %.2g m in all, against half the spacing "
-                   "%.2g m) does not explain it: the engine held it (sleeping or a threshold)",
-                   st.min_vh, st.max_vh, st.path_engine, 0.5 * spacing);
-  return format("body '%s': position frozen at %s = %.6f from step %lld to step %lld while it should "
-                "have moved %.3g m: %s",
-                run.body_names[i].c_str(), kAxis[c], x, static_cast<long long>(run.recorded[st.first] + 1),
-                static_cast<long long>(run.recorded[st.last]), moved, why.c_str());
+          : format(
+                "its own v*h (%.2g m to %.2g m per step, %.2g m in all, against half the spacing "
+                "%.2g m) does not explain it: the engine held it (sleeping or a threshold)",
+                st.min_vh, st.max_vh, st.path_engine, 0.5 * spacing);
+  return format(
+      "body '%s': position frozen at %s = %.6f from step %lld to step %lld while it should "
+      "have moved %.3g m: %s",
+      run.body_names[i].c_str(), kAxis[c], x, static_cast<long long>(run.recorded[st.first] + 1),
+      static_cast<long long>(run.recorded[st.last]), moved, why.c_str());
 }
 
 // Frozen by precision: coordinate c stays bit-identical over at least frozen_steps steps although
@@ -125,7 +130,8 @@ std::string frozen_sentence(const Trajectory& run, std::size_t i, int c, const S
 // none; then the engine's own velocity must say so AND every step's v*h must lie below the
 // spacing: only rounding explains that (a resting box's solver velocity does not count).
 bool frozen_in(const Trajectory& run, const std::vector<BodyState>* exact, std::size_t i, int c,
-               Scalar scalar, double tolerance, const ClassifyOptions& o, std::vector<Failure>& out) {
+               Scalar scalar, double tolerance, const ClassifyOptions& o,
+               std::vector<Failure>& out) {
   std::size_t first = 0;
   for (std::size_t s = 1; s <= run.samples(); ++s) {
     if (s < run.samples() && run.at(s, i).position[c] == run.at(first, i).position[c]) continue;
@@ -134,7 +140,8 @@ bool frozen_in(const Trajectory& run, const std::vector<BodyState>* exact, std::
       const Stretch st = measure(run, exact, i, c, first, last);
       const double spacing = float_spacing(run.at(first, i).position[c], scalar);
       const double lost = std::max(0.5 * spacing, tolerance);
-      const bool moves = exact ? st.path_physics > lost : st.path_engine > lost && st.max_vh < spacing;
+      const bool moves =
+          exact ? st.path_physics > lost : st.path_engine > lost && st.max_vh < spacing;
       if (moves) {
         out.push_back({FailureMode::frozen, run.body_names[i], run.recorded[first] + 1,
                        frozen_sentence(run, i, c, st, spacing, scalar)});
@@ -156,9 +163,11 @@ void find_frozen(const Scene& scene, const Trajectory& run, Scalar scalar, const
     if (scene.bodies[i].is_static) continue;
     exact.clear();
     if (has_exact)
-      for (std::size_t s = 0; s < run.samples(); ++s) exact.push_back(analytic_state(scene, i, run.time(s)));
+      for (std::size_t s = 0; s < run.samples(); ++s)
+        exact.push_back(analytic_state(scene, i, run.time(s)));
     for (int c = 0; c < 3; ++c)
-      if (frozen_in(run, has_exact ? &exact : nullptr, i, c, scalar, scene.tolerance, o, out)) break;
+      if (frozen_in(run, has_exact ? &exact : nullptr, i, c, scalar, scene.tolerance, o, out))
+        break;
   }
 }
 

@@ -47,7 +47,8 @@ std::string skipped_cell(const EngineStability* e) {
 
 std::string verdict_cell(const EngineStability* e) {
   if (!e || !e->ran()) return skipped_cell(e);
-  return e->verdict.stable() ? "stable" : format("**%s**", to_string(e->verdict.failures.front().mode));
+  return e->verdict.stable() ? "stable"
+                             : format("**%s**", to_string(e->verdict.failures.front().mode));
 }
 
 std::string step_cell(const EngineStability* e) {
@@ -89,7 +90,8 @@ std::string scene_list(const std::vector<SceneStability>& studies) {
     std::replace(d.begin(), d.end(), '\n', ' ');
     out += format("- `%s` (%s, %lld steps of %s s): ", s.name.c_str(),
                   std::filesystem::path(s.source).filename().string().c_str(),
-                  static_cast<long long>(s.steps), s.h.text.c_str()) + d + "\n";
+                  static_cast<long long>(s.steps), s.h.text.c_str()) +
+           d + "\n";
   }
   return out;
 }
@@ -99,7 +101,8 @@ std::string failure_list(const std::vector<SceneStability>& studies) {
   for (const SceneStability& s : studies)
     for (const EngineStability& e : s.engines)
       for (const Failure& f : e.verdict.failures)
-        out += "- `" + s.name + "`, " + e.label() + ", " + to_string(f.mode) + ": " + f.what + ".\n";
+        out +=
+            "- `" + s.name + "`, " + e.label() + ", " + to_string(f.mode) + ": " + f.what + ".\n";
   return out.empty() ? "No failure at any scene's own step.\n" : out;
 }
 
@@ -109,7 +112,8 @@ std::string stability_report_section(const std::vector<std::string>& extreme_sce
                                      std::ostream& progress) {
   std::vector<Scene> scenes;
   for (const std::string& file : extreme_scene_files) scenes.push_back(load_scene(file));
-  std::sort(scenes.begin(), scenes.end(), [](const Scene& a, const Scene& b) { return a.name < b.name; });
+  std::sort(scenes.begin(), scenes.end(),
+            [](const Scene& a, const Scene& b) { return a.name < b.name; });
   const StudyOptions options;
   std::vector<SceneStability> studies;
   for (const Scene& scene : scenes) studies.push_back(study_scene(scene, {}, options, &progress));
@@ -118,17 +122,22 @@ std::string stability_report_section(const std::vector<std::string>& extreme_sce
   std::string out = "## Stability: stiff and extreme cases\n\n";
   out += format(
       "Each engine runs each scene at the scene's own step h and is classified as stable or by its "
-      "severest failure (NaN/Inf, engine error, unbounded growth, tunnelled, frozen, speed clamped; "
-      "harness/stability.hpp). Then its largest stable step is searched by bisection on h: each probe "
-      "runs min(duration, %lld h) rounded up to whole steps of the probe's h, and the bisection stops "
+      "severest failure (NaN/Inf, engine error, unbounded growth, tunnelled, frozen, speed "
+      "clamped; "
+      "harness/stability.hpp). Then its largest stable step is searched by bisection on h: each "
+      "probe "
+      "runs min(duration, %lld h) rounded up to whole steps of the probe's h, and the bisection "
+      "stops "
       "at a relative width of %.1g. For springs the theoretical edge of the engine's damping order "
-      "follows the measured one (harness/stability_theory.cpp): semi-implicit Euler without damping is "
+      "follows the measured one (harness/stability_theory.cpp): semi-implicit Euler without "
+      "damping is "
       "stable iff omega*h < 2.\n\n",
       static_cast<long long>(so.horizon_steps), so.rel_tol);
   out += "### Scenes\n\n" + scene_list(studies);
   out += "\n### Verdict at each scene's step\n\n" + table(studies, verdict_cell, true);
-  out += "\n### Largest stable step h (s): measured (what failed above it) / theory for springs\n\n" +
-         table(studies, step_cell, false);
+  out +=
+      "\n### Largest stable step h (s): measured (what failed above it) / theory for springs\n\n" +
+      table(studies, step_cell, false);
   out += "\n### Error at the scene's step against the analytic solution: max |dx| (m)\n\n" +
          table(studies, error_cell, false);
   out += "\n### What failed at each scene's step\n\n" + failure_list(studies);

@@ -85,7 +85,8 @@ void climb(Prober& p, double lo, const SearchOptions& o, StepSearch& r) {
 
 // From an unstable h0 that did not fail by freezing alone: halves h until a probe is stable.
 void descend(Prober& p, double h0, const SearchOptions& o, StepSearch& r) {
-  // Probes below h0 cost more steps: at most max_probe_growth times those of h0 (and max_probe_steps).
+  // Probes below h0 cost more steps: at most max_probe_growth times those of h0 (and
+  // max_probe_steps).
   const double budget = std::min(static_cast<double>(o.max_probe_steps),
                                  o.max_probe_growth * std::ceil(r.horizon / h0));
   double hi = h0;
@@ -124,7 +125,9 @@ void rise(Prober& p, double h0, const SearchOptions& o, StepSearch& r) {
 
 }  // namespace
 
-std::int64_t stability_record_every(std::int64_t steps) { return steps / 20000 + 1; }
+std::int64_t stability_record_every(std::int64_t steps) {
+  return steps / 20000 + 1;
+}
 
 Scene scene_for_step(const Scene& scene, double h, double horizon) {
   Scene s = scene;
@@ -136,7 +139,8 @@ Scene scene_for_step(const Scene& scene, double h, double horizon) {
 }
 
 StepSearch search_max_stable_dt(const EngineFactory& make, Scalar scalar, const Scene& scene,
-                                double h0, const SearchOptions& o, const ClassifyOptions& classify) {
+                                double h0, const SearchOptions& o,
+                                const ClassifyOptions& classify) {
   StepSearch r;
   r.start = h0;
   r.horizon = std::min(scene.duration, static_cast<double>(o.horizon_steps) * h0);

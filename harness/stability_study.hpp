@@ -16,15 +16,16 @@ namespace dropcheck {
 // One engine on one scene.
 struct EngineStability {
   std::string engine;
-  std::string skipped;  // why it did not run the scene ("no contacts", "not compiled in"); "" if it ran
+  std::string
+      skipped;  // why it did not run the scene ("no contacts", "not compiled in"); "" if it ran
   Scalar scalar = Scalar::f64;
   DampingOrder law = DampingOrder::AfterForces;
   RunStatus status = RunStatus::ok;
-  std::int64_t steps_run = 0;               // last step recorded at the scene's step
-  Verdict verdict;                          // at the scene's step
-  std::optional<ErrorStats> vs_analytic;    // worst body, at the scene's step; none without oracle
-  std::optional<StepSearch> search;         // largest stable step; none when not searched
-  std::optional<double> theory_max_dt;      // spring edge of this engine's damping order
+  std::int64_t steps_run = 0;             // last step recorded at the scene's step
+  Verdict verdict;                        // at the scene's step
+  std::optional<ErrorStats> vs_analytic;  // worst body, at the scene's step; none without oracle
+  std::optional<StepSearch> search;       // largest stable step; none when not searched
+  std::optional<double> theory_max_dt;    // spring edge of this engine's damping order
 
   bool ran() const { return skipped.empty(); }
   std::string label() const { return engine_label(engine, scalar); }
@@ -33,7 +34,7 @@ struct EngineStability {
 // One scene on every engine asked for.
 struct SceneStability {
   std::string name;
-  std::string source;       // the scene file
+  std::string source;  // the scene file
   std::string description;
   Timestep h;               // the scene's step
   double duration = 0.0;    // s

@@ -43,9 +43,12 @@ struct StepCoefficients {
 StepCoefficients coefficients(DampingOrder law, const SpringModel& s, double h) {
   const double phi = std::exp(-s.k * h), wh2 = s.omega * s.omega * h * h, gh = s.gamma * h;
   switch (law) {
-    case DampingOrder::AfterForces: return {phi * wh2, phi * (1.0 - gh)};
-    case DampingOrder::BeforeForces: return {wh2, phi - gh};
-    case DampingOrder::AfterPosition: return {wh2, phi * (1.0 - gh)};
+    case DampingOrder::AfterForces:
+      return {phi * wh2, phi * (1.0 - gh)};
+    case DampingOrder::BeforeForces:
+      return {wh2, phi - gh};
+    case DampingOrder::AfterPosition:
+      return {wh2, phi * (1.0 - gh)};
   }
   return {};
 }

@@ -14,10 +14,12 @@ namespace dropcheck {
 
 int cmd_stability(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
   const Args args = parse_args(argv, {"--engine", "--json"}, {});
-  if (args.positional.size() != 1) throw InputError("", 0, "stability", "expects exactly one scene FILE");
+  if (args.positional.size() != 1)
+    throw InputError("", 0, "stability", "expects exactly one scene FILE");
   const Scene scene = load_scene(args.positional[0]);
   std::vector<std::string> names;
-  for (const SelectedEngine& e : select_engines(args.values("--engine"), scene)) names.push_back(e.name);
+  for (const SelectedEngine& e : select_engines(args.values("--engine"), scene))
+    names.push_back(e.name);
   StudyOptions options;
   const SceneStability study = study_scene(scene, names, options, &err);
   out << stability_to_text(study);
