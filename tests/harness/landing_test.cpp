@@ -54,7 +54,7 @@ const double kSeedK = -std::log(0.98) * 60.0;  // the seed's drag as a rate, 1.2
 
 }  // namespace
 
-TEST_CASE("height_continuous is the parabola without damping and the damped closed form with it",
+TEST_CASE("The landing height is the parabola without damping and the damped closed form with it",
           "[landing]") {
   // y = y0 + v0*t + a*t^2/2: exact in double for these values (measured difference 0).
   CHECK(height_continuous(10.0, 2.0, -9.8, 0.0, 1.5) == Approx(10.0 + 3.0 - 4.9 * 2.25).epsilon(0).margin(1e-14));
@@ -72,7 +72,7 @@ TEST_CASE("height_continuous is the parabola without damping and the damped clos
   }
 }
 
-TEST_CASE("contact_time_continuous solves the undamped drop in closed form", "[landing]") {
+TEST_CASE("The landing contact time solves the undamped drop in closed form", "[landing]") {
   // Dropped from rest: 9.5 m = 9.8*t^2/2, t = sqrt(2*9.5/9.8) = 1.3923987... s.
   CHECK(contact_time_continuous(10.0, 0.0, -9.8, 0.0, 0.5) == Approx(std::sqrt(19.0 / 9.8)).epsilon(1e-15));
   // Thrown up at 8 m/s from 1 m onto 0.5: t = (v0 + sqrt(v0^2 + 2*9.8*0.5))/9.8.
@@ -82,7 +82,7 @@ TEST_CASE("contact_time_continuous solves the undamped drop in closed form", "[l
   CHECK(std::isnan(contact_time_continuous(1.0, 1.0, 9.8, 0.0, 0.5)));  // pushed away
 }
 
-TEST_CASE("contact_time_continuous finds the damped contact to the last bits", "[landing]") {
+TEST_CASE("The landing contact time with damping is found to the last bits", "[landing]") {
   SECTION("no acceleration: y = y0 + v0*(1 - exp(-k*t))/k = target gives t = -ln(1 - k*d/|v0|)/k") {
     const double t = -std::log(1.0 - 1.2 * 1.0 / 3.0) / 1.2;
     // Measured relative difference 2.2e-16.
@@ -128,7 +128,7 @@ TEST_CASE("landing_setups finds each dynamic body over a static floor box", "[la
   CHECK(landing_setups(beside).empty());
 }
 
-TEST_CASE("Every law's first contact is its discrete twin's, within two steps of t_c",
+TEST_CASE("Every law's first landing contact is its discrete twin's, within two steps of t_c",
           "[landing][law]") {
   const Scene undamped = scenario("drop_on_floor_undamped");
   const Scene damped = scenario("drop_on_floor");
