@@ -74,6 +74,7 @@ void worst_error(const Case& c, int steps, T h, double& dx, double& dv, double& 
 // takes about 5 rounded operations (g*h, +, F/m*h, +, *f) of size <= V = max|v| + |a|*h, and f <= 1
 // does not amplify old errors, so |dv_n| <= 5*n*u*V. The position adds u*(|x| + h*|v|) per step plus
 // h*|dv_j| carried: |dx_n| <= n*u*(X + h*V) + h*5*u*V*n*(n+1)/2 <= n*u*(X + 3*(n + 1)*h*V).
+// A worst case: roundings of either sign partly cancel, so the measured error sits 20-100x below.
 struct Bound {
   double x, v;
 };
