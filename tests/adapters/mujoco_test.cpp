@@ -205,7 +205,7 @@ TEST_CASE("A model MuJoCo cannot load is an engine error, not an exit", "[mujoco
   CHECK(run_scene(*engine, scenario("free_fall"), 1.0 / 60.0).status == RunStatus::ok);
 }
 
-TEST_CASE("mju_error becomes an EngineError instead of ending the process", "[mujoco][errors]") {
+TEST_CASE("MuJoCo's mju_error becomes an EngineError instead of ending the process", "[mujoco][errors]") {
   CHECK_THROWS_MATCHES(mujoco_raise_error("forced by a test"), EngineError,
                        Catch::Matchers::Message("MuJoCo error: forced by a test"));
 }
