@@ -20,9 +20,17 @@
 // Errors: mju_user_error throws EngineError (MuJoCo would print and exit); a mj_loadXML failure is an
 // EngineError with MuJoCo's message; a warning counted in d->warning during a step (bad qpos, qvel,
 // qacc: MuJoCo then resets the state, hiding the instability) is an EngineError "MuJoCo warning: ...".
+// The warning handler only records the text: throwing from it would leave mj_step half done.
 // Contacts (soft, ENGINE-NOTES 5): box geoms, solimp "0.9999 0.9999 0.001" (impedance ~1: stiff),
 // solref "2h 1" (time constant 2h, the smallest MuJoCo accepts without disabling refsafe; critically
 // damped), friction 0.5 (MuJoCo mixes by max).
+// Landing, measured (unit cube from 10 m onto a box floor, no drag, 60 Hz): collisions are found at
+// the start of a step (no continuous collision), so the step that crosses the floor ends 0.218 m
+// inside it (step 84, t_c = 1.392 s) and the contact acts from step 85. The penetration then shrinks
+// by a factor 1 - h^2*k/2 = 0.875 per step (k = 1/(2h)^2; the box-box collider reports half the
+// depth), with no rebound (highest 0.49999993 m); still (|v| <= 1e-3 m/s) from t = 2.38 s (1.82 s
+// at 1/120, 3.43 s at 1/30). A dampratio below 1 recovers faster but pops the cube up: 0.14 m at
+// 0.8, 2 m at 0.5. Rest offset -7.9e-8 m.
 #include <mujoco/mujoco.h>
 
 #include <array>
@@ -38,9 +46,11 @@
 namespace dropcheck {
 namespace {
 
-// Resting centre relative to floor top + half extent: measured -3.3e-7 m (unit cube on a box
-// floor, 60 Hz, after 5 s): the soft contact's steady penetration with solimp 0.9999.
+// Resting centre relative to floor top + half extent: the soft contact's steady sag with solimp
+// 0.9999, measured -7.9e-8 m at 1/60 (-5.2e-7 at 1/30, -2.1e-8 at 1/120, -5.3e-9 at 1/240: ~h^2)
+// for a unit cube dropped from 10 m on a box floor, after 5 s.
 constexpr double kRestOffset = 0.0;
+// Measured worst |rest| 5.2e-7 m (1/30); the band leaves room for coarser steps (sag ~ h^2).
 constexpr double kRestTolerance = 1e-4;
 
 // mju_error must not return (MuJoCo would go on with a broken state): throw through MuJoCo's frames.
@@ -139,14 +149,17 @@ std::string one_line(std::string text) {
 // mj_loadXML from a virtual file holding `xml`; an EngineError with MuJoCo's message on failure.
 ModelPtr load_xml(const std::string& xml) {
   static constexpr const char* kName = "dropcheck_scene.xml";
-  auto vfs = std::make_unique<mjVFS>();  // ~2 MB: heap, not stack
+  // ~2 MB: on the heap; mj_deleteVFS frees the file data even when loading throws.
+  std::unique_ptr<mjVFS, void (*)(mjVFS*)> vfs(new mjVFS(), [](mjVFS* v) {
+    mj_deleteVFS(v);
+    delete v;
+  });
   mj_defaultVFS(vfs.get());
   if (mj_makeEmptyFileVFS(vfs.get(), kName, static_cast<int>(xml.size())) != 0)
     throw EngineError("MuJoCo: cannot create the virtual model file");
   std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), kName)], xml.data(), xml.size());
   char error[1000] = "";
   ModelPtr m(mj_loadXML(kName, vfs.get(), error, sizeof error), mj_deleteModel);
-  mj_deleteVFS(vfs.get());
   if (!m) throw EngineError("MuJoCo cannot load the model: " + one_line(error));
   // A compiler warning on a generated model means the generator is wrong.
   if (error[0] != '\0') throw EngineError("MuJoCo model warning: " + one_line(error));
@@ -167,7 +180,7 @@ class MujocoEngine final : public Engine {
   double mass_of(std::size_t i) const { return m_->body_mass[m_->jnt_bodyid[joint_.at(i)]]; }
 
  private:
-  void map_bodies(const Scene& scene);
+  static std::vector<int> free_joints(mjModel& m, const Scene& scene);
   void check_warnings();
 
   ModelPtr m_{nullptr, mj_deleteModel};
@@ -194,49 +207,59 @@ EngineInfo MujocoEngine::info() const {
 }
 
 void MujocoEngine::load(const Scene& scene, double h) {
-  d_.reset();
+  d_.reset();  // a failed load leaves no engine behind, not a half-built one
   m_.reset();
   t_last_warning.clear();
-  m_ = load_xml(model_xml(scene, h));
-  map_bodies(scene);
-  d_.reset(mj_makeData(m_.get()));
-  if (!d_) throw EngineError("MuJoCo: mj_makeData failed");
+  ModelPtr m = load_xml(model_xml(scene, h));
+  joint_ = free_joints(*m, scene);
+  DataPtr d(mj_makeData(m.get()), mj_deleteData);
+  if (!d) throw EngineError("MuJoCo: mj_makeData failed");
+  static_pos_.clear();
   for (std::size_t i = 0; i < joint_.size(); ++i) {
-    if (joint_[i] < 0) continue;
     const Body& b = scene.bodies[i];
+    static_pos_.push_back(b.position);
+    if (joint_[i] < 0) continue;
     // Free joint: qpos = (x, y, z, qw, qx, qy, qz), qvel = (vx, vy, vz, wx, wy, wz).
-    std::memcpy(d_->qpos + m_->jnt_qposadr[joint_[i]], b.position.data(), 3 * sizeof(mjtNum));
-    std::memcpy(d_->qvel + m_->jnt_dofadr[joint_[i]], b.velocity.data(), 3 * sizeof(mjtNum));
+    std::memcpy(d->qpos + m->jnt_qposadr[joint_[i]], b.position.data(), 3 * sizeof(mjtNum));
+    std::memcpy(d->qvel + m->jnt_dofadr[joint_[i]], b.velocity.data(), 3 * sizeof(mjtNum));
   }
+  m_ = std::move(m);
+  d_ = std::move(d);
   warnings_.fill(0);
-  check_warnings();
 }
 
-// The free joint of each dynamic body, found through the body's name; its rotational damping zeroed.
-void MujocoEngine::map_bodies(const Scene& scene) {
-  joint_.assign(scene.bodies.size(), -1);
-  static_pos_.assign(scene.bodies.size(), Vec3::Zero());
+// The free joint of each dynamic body (-1 for static ones), found through the body's name; its
+// rotational damping zeroed so that only the linear drag acts.
+std::vector<int> MujocoEngine::free_joints(mjModel& m, const Scene& scene) {
+  std::vector<int> joints(scene.bodies.size(), -1);
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    static_pos_[i] = scene.bodies[i].position;
     if (scene.bodies[i].is_static) continue;
-    const int body = mj_name2id(m_.get(), mjOBJ_BODY, scene.bodies[i].name.c_str());
-    if (body < 0 || m_->body_jntnum[body] != 1)
+    const int body = mj_name2id(&m, mjOBJ_BODY, scene.bodies[i].name.c_str());
+    if (body < 0 || m.body_jntnum[body] != 1)
       throw EngineError("MuJoCo: no free joint for body '" + scene.bodies[i].name + "'");
-    joint_[i] = m_->body_jntadr[body];
-    const int dof = m_->jnt_dofadr[joint_[i]];
-    for (int r = 3; r < 6; ++r) m_->dof_damping[dof + r] = 0.0;
+    joints[i] = m.body_jntadr[body];
+    const int dof = m.jnt_dofadr[joints[i]];
+    for (int r = 3; r < 6; ++r) m.dof_damping[dof + r] = 0.0;
   }
+  return joints;
 }
 
 void MujocoEngine::set_forces(std::span<const Vec3> forces) {
+  if (!d_) return;  // step() reports it
   for (std::size_t i = 0; i < joint_.size(); ++i)
     if (joint_[i] >= 0)
       std::memcpy(d_->qfrc_applied + m_->jnt_dofadr[joint_[i]], forces[i].data(), 3 * sizeof(mjtNum));
 }
 
 void MujocoEngine::step() {
+  if (!d_) throw EngineError("MuJoCo: no model loaded (or the last one failed)");
   t_last_warning.clear();
-  mj_step(m_.get(), d_.get());
+  try {
+    mj_step(m_.get(), d_.get());
+  } catch (...) {
+    d_.reset();  // mju_error unwound out of mj_step: its state is not to be trusted any more
+    throw;
+  }
   // The applied forces persist in mjData: this step's force must not act on the next one.
   mju_zero(d_->qfrc_applied, m_->nv);
   check_warnings();
@@ -258,6 +281,7 @@ void MujocoEngine::check_warnings() {
 }
 
 void MujocoEngine::read(std::span<BodyState> out) const {
+  if (!d_) throw EngineError("MuJoCo: no model loaded (or the last one failed)");
   for (std::size_t i = 0; i < joint_.size(); ++i) {
     if (joint_[i] < 0) {
       out[i] = {static_pos_[i], Vec3::Zero()};

@@ -198,6 +198,7 @@ TEST_CASE("A model MuJoCo cannot load is an engine error, not an exit", "[mujoco
   scene.bodies[0].mass = 0.0;  // in code, past the loader's validation
   auto engine = mujoco();
   CHECK_THROWS_AS(engine->load(scene, 1.0 / 60.0), EngineError);
+  CHECK_THROWS_AS(engine->step(), EngineError);  // nothing half-loaded is left to step
   const Trajectory t = run_scene(*engine, scene, 1.0 / 60.0);
   CHECK(t.status == RunStatus::engine_error);
   CHECK_THAT(t.failure, Catch::Contains("MuJoCo cannot load the model"));
