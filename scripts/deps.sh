@@ -8,6 +8,7 @@ DROPCHECK_PACKAGES=(
   libeigen3-dev libtomlplusplus-dev    # ours, scene files
   catch2                               # tests
   libbullet-dev libode-dev libbox2d-dev libmujoco-dev libqhull-dev  # the engines compared
+  libgl-dev                            # MuJoCo's CMake package requires OpenGL to be findable
   gnuplot-nox                          # report plots (SVG)
 )
 
