@@ -20,6 +20,7 @@ const CommandEntry kCommands[] = {
     {"run", cmd_run, "dropcheck run FILE [--engine E]... [--dt H] [--csv OUT] [--json OUT]"},
     {"check", cmd_check, "dropcheck check FILE... [--engine E]..."},
     {"report", cmd_report, "dropcheck report [FILE|DIR]... [--out DIR] [--engine E]... [--no-timing]"},
+    {"stability", cmd_stability, "dropcheck stability FILE [--engine E]... [--json OUT]"},
 };
 
 void usage(std::ostream& err) {

@@ -20,5 +20,6 @@ int cmd_engines(const std::vector<std::string>& argv, std::ostream& out, std::os
 int cmd_run(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
 int cmd_check(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
 int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
+int cmd_stability(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
 
 }  // namespace dropcheck
