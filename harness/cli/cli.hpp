@@ -18,6 +18,8 @@ int cli_main(const std::vector<std::string>& argv, std::ostream& out, std::ostre
 // The commands, each in its own file (cmd_*.cpp). They may throw InputError.
 int cmd_engines(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
 int cmd_run(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
+int cmd_bless(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
+int cmd_diff(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
 int cmd_check(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
 int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
 int cmd_stability(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);

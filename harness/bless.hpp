@@ -1,0 +1,32 @@
+// Blessing: turning fresh runs into the golden baselines (or any result set), but only when they
+// pass the oracle checks. A baseline that is wrong physics must never become the truth.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "baseline.hpp"
+
+namespace dropcheck {
+
+using NamedFactory = std::pair<std::string, EngineFactory>;
+
+struct BlessOptions {
+  std::string out_dir = "tests/baselines";  // the result set to (re)write
+  std::string commit = "unknown commit";    // recorded in each file's provenance line
+  BaselineOptions baseline;                 // sampling; --timing
+};
+
+struct BlessOutcome {
+  std::vector<std::string> refused;  // each failed oracle check (tier 3); nothing written if any
+  std::vector<std::string> lines;    // per file: "new", "updated" or "unchanged", path and hash
+};
+
+// Makes the baseline of every scene on every engine, checks each with check_physics, and only if
+// all pass writes them (atomically, file by file) to out_dir. A file whose data is unchanged is left
+// untouched, so re-blessing at another commit keeps the bytes. Throws InputError on a write error.
+BlessOutcome bless(const std::vector<Scene>& scenes, const std::vector<NamedFactory>& engines,
+                   const BlessOptions& options);
+
+}  // namespace dropcheck

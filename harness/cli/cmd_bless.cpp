@@ -1,0 +1,127 @@
+// dropcheck bless [FILE]... [--engine E]... [--out DIR] [--timing]
+//   Rewrites the golden baselines (default: every scenarios/*.toml on ours and ours-f64, into
+//   tests/baselines/) and refuses, exit 1, when a fresh run fails an oracle check.
+// dropcheck bless --check FILE... [--engine E]... [--tier T]... [--baselines DIR]
+//   Compares this build with the baselines, tier by tier (harness/regression.hpp): exit 0 when every
+//   tier passed, 1 when one failed, 77 when every tier was skipped (ctest's SKIP_RETURN_CODE).
+#include <algorithm>
+#include <filesystem>
+
+#include "args.hpp"
+#include "cli.hpp"
+#include "harness/bless.hpp"
+#include "harness/build_id.hpp"
+#include "harness/input_error.hpp"
+#include "harness/registry.hpp"
+#include "harness/regression.hpp"
+#include "harness/scene_loader.hpp"
+
+namespace dropcheck {
+namespace {
+
+constexpr int kExitSkipped = 77;
+
+// Every *.toml directly in scenarios/ (not in subfolders), sorted.
+std::vector<std::string> shipped_scenes() {
+  std::vector<std::string> files;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator("scenarios", ec))
+    if (entry.is_regular_file() && entry.path().extension() == ".toml") files.push_back(entry.path().string());
+  if (ec || files.empty())
+    throw InputError("scenarios", 0, "", "no scene files here; run from the source tree or name FILEs");
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+std::vector<NamedFactory> engines_from(const Args& args) {
+  std::vector<std::string> names = args.values("--engine");
+  if (names.empty()) names = {"ours", "ours-f64"};
+  std::vector<NamedFactory> out;
+  for (const std::string& name : names) {
+    if (std::string why = engine_unavailable_reason(name); !why.empty())
+      throw InputError("", 0, "--engine " + name, why);
+    out.push_back({name, [name] { return make_engine(name); }});
+  }
+  return out;
+}
+
+// One tier on one scene and engine; `now` is made on first use.
+TierResult run_tier(Tier tier, const Scene& scene, const NamedFactory& engine, const std::string& dir,
+                    std::optional<Baseline>& now) {
+  if (tier == Tier::determinism) return check_determinism(scene, engine.second);
+  if (!now) now = make_baseline(scene, engine.second);
+  if (tier == Tier::physics) return check_physics(*now);
+  const std::string name = scene.name + " / " + engine.first + " / " + to_string(tier) + ": ";
+  if (!now->skipped.empty()) return {Verdict::skipped, name + "the engine cannot run this scene: " + now->skipped};
+  const std::string path = (std::filesystem::path(dir) / baseline_file_name(scene.name, engine.first)).string();
+  if (!std::filesystem::exists(path))
+    return {Verdict::failed, name + "no baseline " + path + "; run `dropcheck bless " + scene.source + "` to make one"};
+  const Baseline expected = read_baseline(path);
+  return tier == Tier::bits ? check_bits(expected, *now) : check_tolerance(expected, *now);
+}
+
+std::vector<Tier> tiers_from(const Args& args) {
+  std::vector<Tier> tiers;
+  for (const std::string& name : args.values("--tier")) {
+    const std::optional<Tier> t = parse_tier(name);
+    if (!t) throw InputError("", 0, "--tier " + name, "expected bits, tolerance, physics or determinism");
+    tiers.push_back(*t);
+  }
+  if (tiers.empty()) tiers = {Tier::bits, Tier::tolerance, Tier::physics, Tier::determinism};
+  return tiers;
+}
+
+int check(const Args& args, const std::vector<Scene>& scenes, std::ostream& out) {
+  const std::vector<Tier> tiers = tiers_from(args);
+  const std::string dir = args.value("--baselines", "tests/baselines");
+  int failed = 0, skipped = 0, total = 0;
+  for (const Scene& scene : scenes) {
+    for (const NamedFactory& engine : engines_from(args)) {
+      std::optional<Baseline> now;
+      for (Tier tier : tiers) {
+        const TierResult r = run_tier(tier, scene, engine, dir, now);
+        out << to_string(r.verdict) << ": " << r.message << "\n";
+        failed += r.verdict == Verdict::failed;
+        skipped += r.verdict == Verdict::skipped;
+        ++total;
+      }
+    }
+  }
+  if (failed) out << failed << " of " << total << " regression checks FAILED; if the change is intended, "
+                  << "run `dropcheck bless` and commit tests/baselines/ (docs/regression.md)\n";
+  return failed ? kExitCheckFailed : skipped == total ? kExitSkipped : kExitOk;
+}
+
+int write(const Args& args, const std::vector<Scene>& scenes, std::ostream& out, std::ostream& err) {
+  BlessOptions options;
+  options.out_dir = args.value("--out", "tests/baselines");
+  options.commit = source_commit();
+  options.baseline.timing = args.has("--timing");
+  const BlessOutcome outcome = bless(scenes, engines_from(args), options);
+  for (const std::string& why : outcome.refused) err << "dropcheck bless: refused: " << why << "\n";
+  if (!outcome.refused.empty()) {
+    err << "dropcheck bless: nothing written: a baseline that fails an oracle check would make wrong "
+           "physics the truth. Fix the integrator, or the law its adapter declares.\n";
+    return kExitCheckFailed;
+  }
+  for (const std::string& line : outcome.lines) out << line << "\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+int cmd_bless(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
+  const Args args = parse_args(argv, {"--engine", "--out", "--tier", "--baselines"}, {"--check", "--timing"});
+  const bool checking = args.has("--check");
+  if (checking && (args.has("--out") || args.has("--timing")))
+    throw InputError("", 0, "--check", "compares only; --out and --timing belong to blessing");
+  if (!checking && (args.has("--tier") || args.has("--baselines")))
+    throw InputError("", 0, "--tier/--baselines", "only with --check");
+  std::vector<std::string> files = args.positional;
+  if (files.empty()) files = shipped_scenes();
+  std::vector<Scene> scenes;
+  for (const std::string& f : files) scenes.push_back(load_scene(f));
+  return checking ? check(args, scenes, out) : write(args, scenes, out, err);
+}
+
+}  // namespace dropcheck
