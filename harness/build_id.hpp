@@ -19,7 +19,8 @@ BuildId current_build();
 
 // The FP-relevant part of a flag string, normalised: the last -O level ("-O0" when none), then
 // -ffast-math, -ffp-contract=..., -march=..., -mfma, ... in order. Sanitizers, -g, -W... are left
-// out: they do not change results (measured: Debug vs ASan/UBSan RelWithDebInfo, identical hashes).
+// out: they do not change results. (Measured, GCC 12.2: -O0 and -O2 with ASan/UBSan gave identical
+// hashes on every shipped scene; the level stays in the key because it may change bits elsewhere.)
 std::string fp_flags(const std::string& flags);
 
 // commit_stamp of the source tree this binary was built from.
