@@ -140,7 +140,31 @@ void choose_reference(SceneEvaluation& se, const std::string& wanted) {
   }
 }
 
-// Divergence of `ev` from the reference at every step, and its attribution for free flight.
+// The samples of `t` recorded before step n.
+Trajectory before_step(const Trajectory& t, std::int64_t n) {
+  Trajectory out = t;
+  std::size_t keep = 0;
+  while (keep < t.samples() && t.recorded[keep] < n) ++keep;
+  out.recorded.resize(keep);
+  out.states.resize(keep * t.bodies());
+  return out;
+}
+
+// The step before the first one on which any of the trajectories has a body at or below its
+// floor (harness/landing.hpp): until then every body is in free flight. -1 when none lands.
+std::int64_t free_flight_end(const Scene& scene, std::initializer_list<const Trajectory*> runs) {
+  std::int64_t first = -1;
+  for (const LandingSetup& setup : landing_setups(scene))
+    for (const Trajectory* t : runs)
+      if (const std::int64_t n = first_contact_step(*t, setup); n >= 0 && (first < 0 || n < first))
+        first = n;
+  // One step earlier: an engine with a contact skin (Box2D, 0.01 m) meets the floor up to one
+  // step before its bottom does.
+  return first < 0 ? -1 : std::max<std::int64_t>(first - 1, 0);
+}
+
+// Divergence of `ev` from the reference at every step, and its attribution (law part, residual)
+// over the free flight: the whole run without contacts, the fall before landing with contacts.
 void measure_divergence(EngineEvaluation& ev, const EngineEvaluation& ref,
                         const SceneEvaluation& se, References& refs) {
   for (std::size_t i = 0; i < ev.sweep.size(); ++i) {
@@ -149,9 +173,17 @@ void measure_divergence(EngineEvaluation& ev, const EngineEvaluation& ref,
     for (std::size_t b = 0; b < s.run.bodies(); ++b)
       s.reference_by_body.push_back(compare(s.run, r, b, se.scene.tolerance));
     s.vs_reference = compare_worst(s.run, r, se.scene.tolerance);
-    if (!se.uses_law) continue;
-    s.attribution = attribute(s.run, refs.law(ev.info.law, i), ev.info.scalar, r,
-                              refs.law(ref.info.law, i), ref.info.scalar);
+    const Trajectory& le = refs.law(ev.info.law, i);
+    const Trajectory& lr = refs.law(ref.info.law, i);
+    if (se.uses_law) {
+      s.attribution = attribute(s.run, le, ev.info.scalar, r, lr, ref.info.scalar);
+      continue;
+    }
+    const std::int64_t n = free_flight_end(se.scene, {&s.run, &r, &le, &lr});
+    if (n <= 0) continue;
+    s.attribution = attribute(before_step(s.run, n), before_step(le, n), ev.info.scalar,
+                              before_step(r, n), before_step(lr, n), ref.info.scalar);
+    s.attributed_until = s.attribution->final_t;
   }
 }
 

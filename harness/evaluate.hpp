@@ -55,8 +55,12 @@ struct StepEvaluation {
   std::optional<ErrorStats> vs_fine;          // oracle 3, worst body
   std::optional<ErrorStats> vs_reference;     // divergence from the reference engine, worst body
   std::vector<ErrorStats> reference_by_body;  // the same per body, indexed like Scene::bodies
-  std::optional<Attribution> attribution;  // free flight: law part and residual of that divergence
-  std::vector<LandingResult> landings;     // contact scenes: one per body above a floor
+  // Law part and residual of that divergence: over the whole run in free flight; with contacts,
+  // over the free fall before either run (or law) first touches a floor (the laws know no
+  // contacts).
+  std::optional<Attribution> attribution;
+  double attributed_until = -1.0;  // s: contacts: last sample time the attribution covers; -1 all
+  std::vector<LandingResult> landings;  // contact scenes: one per body above a floor
   std::optional<Timing> timing;
 
   // Error against the continuous reference (oracle 1, else oracle 3): max |dx| in m; NaN if none.

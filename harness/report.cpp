@@ -51,8 +51,9 @@ std::string summary(const ReportInput& in) {
   }
   return "## Summary\n\nAt each scene's default step. Divergence: max |dx| over the run from "
          "ours-f64 at the same step (worst body). Cause: damping-order (all from the "
-         "engines' discrete laws), precision (float vs double rounding), identical, contacts "
-         "(not attributed), UNEXPLAINED (a residual beyond rounding: look at it). Error: max "
+         "engines' discrete laws), precision (float vs double rounding), identical, landing (the "
+         "largest gap opens at first contact; the fall before it is attributed in the scene's "
+         "section), UNEXPLAINED (a residual beyond rounding: look at it). Error: max "
          "|dx| against the closed form, or (*) against the same engine at a fine step where "
          "there is no closed form.\n\n" +
          t.str() + "\n";

@@ -61,8 +61,8 @@ std::vector<std::string> left_out(const SceneEvaluation& se) {
                   (statics ? " (static bodies are inert: the cubes fall through them)" : ""));
   } else {
     out.push_back(
-        "free flight only for the discrete laws: with contacts, no own-law oracle and no "
-        "attribution of divergences");
+        "the discrete laws model free flight only: with contacts, no own-law oracle, and "
+        "divergences are attributed over the fall before first contact only");
   }
   if (!se.no_analytic.empty())
     out.push_back(
@@ -124,8 +124,12 @@ std::string attribution_lines(const SceneEvaluation& se) {
   std::string md;
   for (const EngineEvaluation& ev : se.engines) {
     if (!ev.ran() || !ev.at_default().attribution) continue;
-    md += "- " + ev.at_default().attribution->sentence() + " Cause: " + divergence_cause(se, ev) +
-          ".\n";
+    const StepEvaluation& st = ev.at_default();
+    const std::string until =
+        st.attributed_until < 0.0
+            ? ""
+            : "Before first contact (t <= " + strf("%.4g", st.attributed_until) + " s): ";
+    md += "- " + until + st.attribution->sentence() + " Cause: " + divergence_cause(se, ev) + ".\n";
   }
   return md.empty() ? md
                     : "Attribution (law part = what the two exact discrete laws predict; "

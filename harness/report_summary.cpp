@@ -104,11 +104,15 @@ std::string divergence_cause(const SceneEvaluation& se, const EngineEvaluation& 
   if (st.run.status != RunStatus::ok) return "failed";
   const EngineEvaluation* ref = se.find(se.reference);
   if (ref && ref->at_default().run.status != RunStatus::ok) return "reference-failed";
-  if (!st.attribution)
-    return st.vs_reference && st.vs_reference->max_dx == 0.0 ? "identical" : "contacts";
+  const bool none = st.vs_reference && st.vs_reference->max_dx == 0.0;
+  if (!st.attribution) return none ? "identical" : "contacts";
   const Attribution& a = *st.attribution;
-  if (a.total == 0.0) return "identical";
   if (!a.explained()) return "UNEXPLAINED";
+  // With contacts the attribution covers the fall only: when the gap over the whole run is more
+  // than the fall's by over 10%, it opened at the landing.
+  if (st.attributed_until >= 0.0 && st.vs_reference->max_dx > 1.1 * a.total + a.budget)
+    return "landing";
+  if (a.total == 0.0) return "identical";
   // Explained: the laws' difference beyond rounding is the damping order; the rest is precision.
   return a.law_part > a.budget ? "damping-order" : "precision";
 }
