@@ -1,9 +1,10 @@
 // dropcheck report [FILE|DIR]... [--out DIR] [--engine E]... [--no-timing]
 // Evaluates every scene on every engine (harness/evaluate.hpp) and writes DIR/README.md plus SVG
 // plots (harness/report.hpp). Default: every *.toml directly in scenarios/; scenes in an extreme/
-// folder belong to the stability section. Every scene file is loaded before any work starts, and
-// the output is built in a staging directory and swapped into place only when complete: a bad scene
-// file exits 2 naming the file, key and problem, and leaves the previous report untouched.
+// folder go to the stability section (harness/stability_report.hpp). Every scene file is loaded
+// before any work starts, and the output is built in a staging directory and swapped into place
+// only when complete: a bad scene file exits 2 naming the file, key and problem, and leaves the
+// previous report untouched.
 #include <algorithm>
 #include <filesystem>
 
@@ -14,6 +15,7 @@
 #include "harness/registry.hpp"
 #include "harness/report.hpp"
 #include "harness/scene_loader.hpp"
+#include "harness/stability_report.hpp"
 
 namespace fs = std::filesystem;
 
@@ -115,11 +117,11 @@ int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ost
   describe_engines(slots, in);
   const std::size_t total = scenes.size() + (files.extreme.empty() ? 0 : 1);
   evaluate_all(scenes, slots, total, in, err);
-  if (!files.extreme.empty())
-    in.stability_note =
-        "The stability section (harness/stability_report.hpp) is not in this build yet; "
-        "extreme scenes: " +
-        std::to_string(files.extreme.size()) + ".";
+  if (!files.extreme.empty()) {
+    err << "[" << total << "/" << total << "] stability: " << files.extreme.size()
+        << " extreme scenes ...\n";
+    in.stability = stability_report_section(files.extreme, err);
+  }
 
   StagingDir staging(out_dir);
   write_report(in, staging.path(),
