@@ -71,10 +71,18 @@ std::vector<Tier> tiers_from(const Args& args) {
   return tiers;
 }
 
+// What to do about failed checks (docs/regression.md walks through both cases).
+const char* next_step(bool physics_failed) {
+  return physics_failed ? "the run breaks an oracle: fix the integrator, or declare its new law in its "
+                          "adapter; `dropcheck bless` refuses until then (docs/regression.md)"
+                        : "if the change is intended, run `dropcheck bless` and commit tests/baselines/ "
+                          "(docs/regression.md)";
+}
+
 int check(const Args& args, const std::vector<Scene>& scenes, std::ostream& out) {
   const std::vector<Tier> tiers = tiers_from(args);
   const std::string dir = args.value("--baselines", "tests/baselines");
-  int failed = 0, skipped = 0, total = 0;
+  int failed = 0, skipped = 0, total = 0, physics_failed = 0;
   for (const Scene& scene : scenes) {
     for (const NamedFactory& engine : engines_from(args)) {
       std::optional<Baseline> now;
@@ -82,13 +90,13 @@ int check(const Args& args, const std::vector<Scene>& scenes, std::ostream& out)
         const TierResult r = run_tier(tier, scene, engine, dir, now);
         out << to_string(r.verdict) << ": " << r.message << "\n";
         failed += r.verdict == Verdict::failed;
+        physics_failed += r.verdict == Verdict::failed && tier == Tier::physics;
         skipped += r.verdict == Verdict::skipped;
         ++total;
       }
     }
   }
-  if (failed) out << failed << " of " << total << " regression checks FAILED; if the change is intended, "
-                  << "run `dropcheck bless` and commit tests/baselines/ (docs/regression.md)\n";
+  if (failed) out << failed << " of " << total << " regression checks FAILED; " << next_step(physics_failed > 0) << "\n";
   return failed ? kExitCheckFailed : skipped == total ? kExitSkipped : kExitOk;
 }
 
