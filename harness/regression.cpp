@@ -113,7 +113,7 @@ TierResult check_bits(const Baseline& expected, const Baseline& now) {
   const std::string p = prefix(now, Tier::bits);
   if (!now.skipped.empty()) return result(Verdict::skipped, p + "the engine cannot run this scene: " + now.skipped);
   if (expected.build_key != now.build_key)
-    return result(Verdict::skipped, p + "skipped: the baseline was made by [" + expected.build_key +
+    return result(Verdict::skipped, p + "the baseline was made by [" + expected.build_key +
                                         "], this build is [" + now.build_key +
                                         "]; bits may differ, tier 2 compares at tolerance");
   if (expected.hash == now.hash && expected.status == now.status)

@@ -1,9 +1,10 @@
-// A test double for the regression guard: ours' own structures (ours::Model, ours::World,
-// ours::ApplyGravity) with one deliberate change, the drag moved after the position update:
-//   ours:   v = f*(v + a*h);  x += h*v          (the seed's order, DampingOrder::AfterForces)
-//   double: v += a*h;  x += h*v;  v *= f        (ODE's order, DampingOrder::AfterPosition)
-// It still declares ours' name and law, as an edited ours/physics.hpp would, so that the oracle
-// checks and the baselines see exactly what a careless change to the integrator looks like.
+// Test doubles for the regression guard: ours' own structures (ours::Model, ours::World,
+// ours::ApplyGravity) stepped with the drag on either side of the position update:
+//   DampingOrder::AfterForces    v += a*h;  v *= f;  x += h*v   (the seed's order, IntegrateLinearForce)
+//   DampingOrder::AfterPosition  v += a*h;  x += h*v;  v *= f   (the drag moved after the position)
+// Each double runs one order and declares a law, possibly another one, exactly as an edited
+// ours/physics.hpp whose adapter still declares the old law would. The orders are written here, not
+// taken from ours/physics.hpp, so that these tests do not move when ours does.
 #pragma once
 
 #include <memory>
@@ -16,13 +17,16 @@
 namespace dropcheck::testing {
 
 template <typename T>
-class MovedDragEngine final : public Engine {
+class ReorderedDragEngine final : public Engine {
  public:
+  // Runs `runs` (AfterForces or AfterPosition) and tells the harness it follows `declares`.
+  ReorderedDragEngine(DampingOrder runs, DampingOrder declares) : runs_(runs), declares_(declares) {}
+
   EngineInfo info() const override {
     EngineInfo i;
     i.name = sizeof(T) == 4 ? "ours" : "ours-f64";
     i.scalar = sizeof(T) == 4 ? Scalar::f32 : Scalar::f64;
-    i.law = DampingOrder::AfterForces;  // what ours declares; the double no longer follows it
+    i.law = declares_;
     return i;
   }
 
@@ -43,15 +47,17 @@ class MovedDragEngine final : public Engine {
     for (std::size_t i = 0; i < models_.size(); ++i) models_[i].rigidBody.force = forces[i].cast<T>();
   }
 
-  // ApplyPhysics with IntegrateLinearForce's drag moved after the position update.
+  // ApplyPhysics with IntegrateLinearForce's drag where `runs` puts it.
   void step() override {
     for (ours::Model<T>& m : models_) {
       if (m.rigidBody.isStatic) continue;
       ours::ApplyGravity(&m, world_, h_);
-      m.rigidBody.velocity += (m.rigidBody.force / m.rigidBody.mass) * h_;
-      m.rigidBody.force = ours::Vector3<T>::Zero();
-      m.translation += m.rigidBody.velocity * h_;
-      m.rigidBody.velocity *= world_.linearDrag;
+      ours::RigidBody<T>& body = m.rigidBody;
+      body.velocity += (body.force / body.mass) * h_;
+      body.force = ours::Vector3<T>::Zero();
+      if (runs_ == DampingOrder::AfterForces) body.velocity *= world_.linearDrag;
+      m.translation += body.velocity * h_;
+      if (runs_ == DampingOrder::AfterPosition) body.velocity *= world_.linearDrag;
     }
   }
 
@@ -63,13 +69,28 @@ class MovedDragEngine final : public Engine {
   }
 
  private:
+  DampingOrder runs_, declares_;
   T h_ = T(1) / T(60);
   ours::World<T> world_;
   std::vector<ours::Model<T>> models_;
 };
 
-// Factories for make_baseline, bless and check_determinism.
-inline std::unique_ptr<Engine> make_moved_drag_f64() { return std::make_unique<MovedDragEngine<double>>(); }
-inline std::unique_ptr<Engine> make_moved_drag_f32() { return std::make_unique<MovedDragEngine<float>>(); }
+// The seed's order, declared honestly: what ours-f64 is today.
+inline std::unique_ptr<Engine> make_seed_order_f64() {
+  return std::make_unique<ReorderedDragEngine<double>>(DampingOrder::AfterForces, DampingOrder::AfterForces);
+}
+
+// The careless change: drag moved after the position update, the seed's law still declared.
+inline std::unique_ptr<Engine> make_moved_drag_f64() {
+  return std::make_unique<ReorderedDragEngine<double>>(DampingOrder::AfterPosition, DampingOrder::AfterForces);
+}
+
+// The drag moved to the other side of the position update from where `ours_law` (the law ours
+// declares now) puts it, while still declaring `ours_law`: a change to ours, whatever ours is today.
+inline EngineFactory moved_from(DampingOrder ours_law) {
+  const DampingOrder runs =
+      ours_law == DampingOrder::AfterPosition ? DampingOrder::AfterForces : DampingOrder::AfterPosition;
+  return [=] { return std::make_unique<ReorderedDragEngine<double>>(runs, ours_law); };
+}
 
 }  // namespace dropcheck::testing
