@@ -46,7 +46,8 @@ double max_abs(const Vec3& v) {
 
 }  // namespace
 
-TEST_CASE("drag flight matches the closed form of dv/dt = g + F/m - k*v", "[analytic]") {
+TEST_CASE("the analytic drag flight matches the closed form of dv/dt = g + F/m - k*v",
+          "[analytic]") {
   Scene s = one_body({0.0, 1.0, 0.0}, {1.0, 8.0, -0.5}, 2.0);
   s.world.gravity = {0.0, -9.8, 0.0};
   s.world.damping_rate = 1.2121622213135165;
@@ -62,7 +63,8 @@ TEST_CASE("drag flight matches the closed form of dv/dt = g + F/m - k*v", "[anal
   }
 }
 
-TEST_CASE("drag flight tends to the parabola as the damping rate goes to zero", "[analytic]") {
+TEST_CASE("the analytic drag flight tends to the parabola as the damping rate goes to zero",
+          "[analytic]") {
   Scene s = one_body({0.0, 10.0, 0.0}, {1.0, 2.0, 0.0});
   s.world.gravity = {0.0, -9.8, 0.0};
   const double t = 1.5;
@@ -87,7 +89,7 @@ TEST_CASE("drag flight tends to the parabola as the damping rate goes to zero", 
 }
 
 TEST_CASE(
-    "the spring oscillator solves x'' + 2 zeta w x' + w^2 (x - x_eq) = 0 when under-, "
+    "the analytic spring oscillator solves x'' + 2 zeta w x' + w^2 (x - x_eq) = 0 when under-, "
     "critically and over-damped",
     "[analytic]") {
   // m = 2, S = 32 -> w = 4. 2*zeta*w = C/m + k; x_eq = A + m*g/S.
@@ -123,7 +125,7 @@ TEST_CASE(
   }
 }
 
-TEST_CASE("ours-f64 converges to the closed form at first order as h halves", "[analytic]") {
+TEST_CASE("ours-f64 converges to the analytic solution at first order as h halves", "[analytic]") {
   Scene s = one_body({0.0, 10.0, 0.0}, {1.0, 3.0, 0.0});
   s.duration = 1.0;
   s.world.gravity = {0.0, -9.8, 0.0};
@@ -143,7 +145,8 @@ TEST_CASE("ours-f64 converges to the closed form at first order as h halves", "[
   }
 }
 
-TEST_CASE("there is no closed form with contacts or a spring with a rest length", "[analytic]") {
+TEST_CASE("there is no analytic solution with contacts or a spring with a rest length",
+          "[analytic]") {
   Scene s = one_body({0.0, 1.0, 0.0}, {0.0, 0.0, 0.0});
   CHECK(analytic_unavailable(s).empty());
   CHECK(analytic_trajectory(s, 0.1));

@@ -27,7 +27,8 @@ Scene drop() {
 
 }  // namespace
 
-TEST_CASE("Bullet's law against ours' law is all of it from the laws", "[attribution]") {
+TEST_CASE("the attribution of Bullet's law against ours' law is all of it from the laws",
+          "[attribution]") {
   const Scene s = drop();
   const double h = 1.0 / 60;
   const Trajectory bullet = predict_discrete(DampingOrder::BeforeForces, s, h);
@@ -44,8 +45,9 @@ TEST_CASE("Bullet's law against ours' law is all of it from the laws", "[attribu
              Contains("6.96 cm at t = 1 s") && Contains("all of it from the two discrete laws"));
 }
 
-TEST_CASE("an engine that departs from its own law leaves an unexplained residual",
-          "[attribution]") {
+TEST_CASE(
+    "the attribution flags an engine that departs from its own law as an unexplained residual",
+    "[attribution]") {
   const Scene s = drop();
   const double h = 1.0 / 60;
   const Trajectory law = predict_discrete(DampingOrder::BeforeForces, s, h);
@@ -65,7 +67,7 @@ TEST_CASE("an engine that departs from its own law leaves an unexplained residua
   CHECK(b.budget == Approx(1e-4 + 1e-9));
 }
 
-TEST_CASE("two engines on the same law differ by rounding only", "[attribution]") {
+TEST_CASE("the attribution of two engines on the same law is rounding only", "[attribution]") {
   const Scene s = drop();
   const Trajectory law = predict_discrete(DampingOrder::AfterForces, s, 1.0 / 60);
   Trajectory f32 = law;
@@ -78,7 +80,7 @@ TEST_CASE("two engines on the same law differ by rounding only", "[attribution]"
              Contains("identical"));
 }
 
-TEST_CASE("format_length picks a readable unit", "[attribution]") {
+TEST_CASE("attribution sentences print lengths in a readable unit", "[attribution]") {
   CHECK(format_length(0.0) == "0 m");
   CHECK(format_length(1.5) == "1.5 m");
   CHECK(format_length(0.0696347) == "6.96 cm");

@@ -33,7 +33,8 @@ double zero(double) {
 
 }  // namespace
 
-TEST_CASE("compare measures max, RMS and final distances of hand-made trajectories", "[metrics]") {
+TEST_CASE("the metrics of hand-made trajectories are their max, RMS and final distances",
+          "[metrics]") {
   // a: x = t, v = 2; b: x = 0, v = 0 over t = 0, 0.25, ..., 1.
   const Trajectory a = line(
       0.25, 4, [](double t) { return t; }, [](double) { return 2.0; });
@@ -51,14 +52,15 @@ TEST_CASE("compare measures max, RMS and final distances of hand-made trajectori
   CHECK(s.diverged_at == 0.5);  // first sample with |dx| > 0.3
 }
 
-TEST_CASE("compare says never when the distance stays within the tolerance", "[metrics]") {
+TEST_CASE("the metrics say never diverged when the distance stays within the tolerance",
+          "[metrics]") {
   const Trajectory a = line(0.1, 10, [](double t) { return 1e-4 * t; });
   const ErrorStats s = compare(a, line(0.1, 10, zero), 0, 1e-3);
   CHECK(s.diverged_at == -1.0);
   CHECK(s.max_dx == Approx(1e-4).epsilon(1e-12));
 }
 
-TEST_CASE("compare matches samples at common times when the steps differ", "[metrics]") {
+TEST_CASE("the metrics match samples at common times when the steps differ", "[metrics]") {
   // Coarse h = 0.1 (11 samples) against fine h = 0.1/8 (81 samples): the coarse times only.
   const auto x = [](double t) { return t * t; };
   const Trajectory coarse = line(0.1, 10, x),
@@ -71,7 +73,7 @@ TEST_CASE("compare matches samples at common times when the steps differ", "[met
   CHECK(compare(fine, coarse, 0, 1.0).samples == 11);
 }
 
-TEST_CASE("compare stops at the last sample of a run that failed early", "[metrics]") {
+TEST_CASE("the metrics stop at the last sample of a run that failed early", "[metrics]") {
   Trajectory failed = line(0.1, 10, [](double t) { return t; });
   failed.recorded.resize(6);  // steps 0..5, as a run that went NaN at step 6 keeps
   failed.states.resize(6);
@@ -81,7 +83,7 @@ TEST_CASE("compare stops at the last sample of a run that failed early", "[metri
   CHECK(s.max_dx == Approx(0.5).epsilon(1e-15));
 }
 
-TEST_CASE("compare_worst picks the body farthest apart", "[metrics]") {
+TEST_CASE("the worst-body metrics pick the body farthest apart", "[metrics]") {
   Trajectory a = line(0.5, 2, zero), b = line(0.5, 2, zero);
   for (Trajectory* t : {&a, &b}) {
     t->body_names = {"near", "far"};
@@ -95,7 +97,7 @@ TEST_CASE("compare_worst picks the body farthest apart", "[metrics]") {
   CHECK(compare(a, b, 0, 1.0).max_dx == 1.0);
 }
 
-TEST_CASE("observed_orders recovers p from e = C*h^p", "[metrics]") {
+TEST_CASE("the observed-order metrics recover p from e = C*h^p", "[metrics]") {
   const std::vector<double> h{1.0 / 30, 1.0 / 60, 1.0 / 120, 1.0 / 240};
   for (double p : {1.0, 2.0, 0.5}) {
     std::vector<double> e;
@@ -106,7 +108,7 @@ TEST_CASE("observed_orders recovers p from e = C*h^p", "[metrics]") {
   }
 }
 
-TEST_CASE("observed_orders gives NaN where an error is zero", "[metrics]") {
+TEST_CASE("the observed-order metrics give NaN where an error is zero", "[metrics]") {
   const std::vector<double> h{0.1, 0.05, 0.025}, e{1e-3, 0.0, 2.5e-4};
   const std::vector<double> orders = observed_orders(h, e);
   REQUIRE(orders.size() == 2);

@@ -38,7 +38,7 @@ Scene scene() {
 
 }  // namespace
 
-TEST_CASE("replicate copies every body and force, shifted along x", "[timing]") {
+TEST_CASE("timing replicates every body and force, shifted along x", "[timing]") {
   const Scene s = scene();
   const Scene r = replicate(s, 3);
   REQUIRE(r.bodies.size() == 9);
@@ -62,7 +62,7 @@ TEST_CASE("replicate copies every body and force, shifted along x", "[timing]") 
   CHECK(replicate(s, 1).bodies.size() == 3);
 }
 
-TEST_CASE("every copy of a replicated scene moves like the original", "[timing]") {
+TEST_CASE("every copy of a scene replicated for timing moves like the original", "[timing]") {
   const Scene s = scene();
   const double h = 1.0 / 60, shift = 20.0;
   auto engine = make_engine("ours-f64");
@@ -78,7 +78,7 @@ TEST_CASE("every copy of a replicated scene moves like the original", "[timing]"
   CHECK(worst < 1e-12);  // measured 9.3e-15 m: only the rounding of x + 20 m and x + 40 m
 }
 
-TEST_CASE("time_engines returns positive figures for every engine", "[timing]") {
+TEST_CASE("timing returns positive figures for every engine", "[timing]") {
   const Scene s = scene();
   TimingOptions fast;  // as little work as possible: this checks the plumbing, not the machine
   fast.min_run_seconds = 1e-5;
