@@ -5,6 +5,11 @@
 //   damping rate k      -> btRigidBody::setDamping(d = 1 - exp(-k), 0). btRigidBody::applyDamping
 //                          does v *= (1 - d)^h, so d is "lost per second" and the per-step decay is
 //                          (exp(-k))^h = exp(-k*h) at any h. Angular damping 0 (the engine's own).
+//                          Limit: Bullet computes 1 - d in btScalar, and below 1 a btScalar has
+//                          a spacing of 1.1e-16 (double) / 6e-8 (float). When exp(-k) is below
+//                          half of it (k > 36.7 1/s in double, about 17 in float) d rounds to 1
+//                          and Bullet would zero every velocity each step instead of decaying it
+//                          by exp(-k*h): such scenes are refused (cannot_run, and load throws).
 //   law                 -> DampingOrder::BeforeForces: predictUnconstraintMotion damps v, then the
 //                          solver adds (m*g + F)*(1/m)*h, then integrateTransforms does x += h*v.
 //   mass m              -> btRigidBody mass m, local inertia of a box of that mass and the scene's
@@ -34,6 +39,7 @@
 
 #include <cmath>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "adapters.hpp"
@@ -85,6 +91,16 @@ btVector3 box_inertia(const Body& b) {
   return inertia;
 }
 
+// Bullet's per-second damping for rate k: d = 1 - exp(-k), so that (1 - d)^h = exp(-k*h).
+btScalar damping_fraction(double k) { return btScalar(1.0 - std::exp(-k)); }
+
+// Why Bullet cannot represent damping rate k (1 - d rounds to 0 in btScalar); empty when it can.
+std::string damping_problem(double k) {
+  if (btScalar(1) - damping_fraction(k) > btScalar(0)) return {};
+  return "damping rate k = " + std::to_string(k) + " 1/s: Bullet's per-second damping d = 1 - exp(-k) "
+         "rounds to 1 in " + kPrecision + ", which would zero every velocity each step";
+}
+
 class BulletEngine final : public Engine {
  public:
   EngineInfo info() const override {
@@ -106,7 +122,14 @@ class BulletEngine final : public Engine {
     return i;
   }
 
+  std::string cannot_run(const Scene& scene) const override {
+    const std::string why = Engine::cannot_run(scene);
+    return why.empty() ? damping_problem(scene.world.damping_rate) : why;
+  }
+
   void load(const Scene& scene, double h) override {
+    if (std::string why = damping_problem(scene.world.damping_rate); !why.empty())
+      throw EngineError(why);
     w_.reset();
     w_ = std::make_unique<BulletWorld>();
     h_ = btScalar(h);
@@ -156,7 +179,7 @@ class BulletEngine final : public Engine {
     auto body = std::make_unique<btRigidBody>(ci);
     // dv/dt = -k*v over 1 s: v *= exp(-k), so d = 1 - exp(-k) is the fraction lost per second;
     // Bullet applies v *= (1 - d)^h per step = exp(-k*h).
-    body->setDamping(btScalar(1.0 - std::exp(-scene.world.damping_rate)), 0);
+    body->setDamping(damping_fraction(scene.world.damping_rate), 0);
     body->setActivationState(DISABLE_DEACTIVATION);
     if (!b.is_static) body->setLinearVelocity(to_bt(b.velocity));
     if (scene.world.contacts)

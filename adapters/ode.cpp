@@ -3,7 +3,9 @@
 // Mapping (scene -> ODE), ENGINE-NOTES.md sections 2, 3 and 5:
 //   gravity g           -> dWorldSetGravity (ODE's default is zero).
 //   damping rate k      -> per body dBodySetLinearDamping(s = 1 - exp(-k*h)): ODE scales v by
-//                          (1 - s) once per step, so s is per step and depends on h.
+//                          (1 - s) once per step, so s is per step and depends on h. ODE's
+//                          1 - s is phi to 1.1e-16 absolute: fine at any k*h (beyond k*h = 37
+//                          it zeroes v where the law keeps less than 1e-16 of it).
 //                          dBodySetLinearDampingThreshold(b, 0): the default skips damping while
 //                          |v| <= 0.01 m/s. Angular damping 0. Set per body: world defaults are
 //                          copied only into bodies created after them.

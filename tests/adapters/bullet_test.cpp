@@ -262,3 +262,27 @@ TEST_CASE("Bullet's landing never rebounds at any step of the sweep", "[bullet][
     }
   }
 }
+
+TEST_CASE("Bullet refuses a damping rate its per-second parameter cannot hold", "[bullet][law]") {
+  REQUIRE_BULLET(engine);
+  // k = 60 1/s (scenarios/extreme/heavy_drag): d = 1 - exp(-60) = 1 - 8.8e-27 rounds to 1, and
+  // Bullet's (1 - d)^h would be 0 instead of exp(-k*h) = 0.61 at 1/120.
+  Scene scene = scenario("free_fall");
+  scene.world.damping_rate = 60.0;
+  CHECK_THAT(engine->cannot_run(scene), Catch::Contains("rounds to 1"));
+  const Trajectory run = run_scene(*engine, scene, 1.0 / 120.0);
+  CHECK(run.status == RunStatus::engine_error);
+  CHECK_THAT(run.failure, Catch::Contains("damping rate k = 60"));
+  // Below the limit Bullet runs, but 1 - d carries a relative rounding of up to spacing/exp(-k),
+  // and phi = (1 - d)^h h times that: k = 15 1/s holds in double (measured |dx| 3.4e-12 m at
+  // 1/120); float needs k = 5 1/s (1 - d = 6.7e-3, rounding 4.5e-6; measured MEASURED_K5).
+  const bool f64 = engine->info().scalar == Scalar::f64;
+  scene.world.damping_rate = f64 ? 15.0 : 5.0;
+  CHECK(engine->cannot_run(scene).empty());
+  const Trajectory ok = run_scene(*engine, scene, 1.0 / 120.0);
+  REQUIRE(ok.status == RunStatus::ok);
+  const Worst w = worst_vs_law(ok, predict_discrete(engine->info().law, scene, 1.0 / 120.0));
+  INFO(w.where);
+  if (measuring()) WARN("k = " << scene.world.damping_rate << ": |dx| " << w.dx << " |dv| " << w.dv);
+  CHECK(w.dx <= law_tolerance(engine->info().scalar));
+}
