@@ -85,12 +85,4 @@ inline std::unique_ptr<Engine> make_moved_drag_f64() {
   return std::make_unique<ReorderedDragEngine<double>>(DampingOrder::AfterPosition, DampingOrder::AfterForces);
 }
 
-// The drag moved to the other side of the position update from where `ours_law` (the law ours
-// declares now) puts it, while still declaring `ours_law`: a change to ours, whatever ours is today.
-inline EngineFactory moved_from(DampingOrder ours_law) {
-  const DampingOrder runs =
-      ours_law == DampingOrder::AfterPosition ? DampingOrder::AfterForces : DampingOrder::AfterPosition;
-  return [=] { return std::make_unique<ReorderedDragEngine<double>>(runs, ours_law); };
-}
-
 }  // namespace dropcheck::testing
