@@ -24,8 +24,9 @@ struct BlessOutcome {
 };
 
 // Makes the baseline of every scene on every engine, checks each with check_physics, and only if
-// all pass writes them (atomically, file by file) to out_dir. A file whose data is unchanged is left
-// untouched, so re-blessing at another commit keeps the bytes. Throws InputError on a write error.
+// all pass writes them (atomically, file by file) to out_dir. A file whose numbers are unchanged is
+// left untouched (same_data), so re-blessing at another commit or from another build keeps the bytes
+// and the build key of the build that first wrote them. Throws InputError on a write error.
 BlessOutcome bless(const std::vector<Scene>& scenes, const std::vector<NamedFactory>& engines,
                    const BlessOptions& options);
 
