@@ -38,6 +38,7 @@
 #include <btBulletDynamicsCommon.h>
 
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
@@ -97,8 +98,11 @@ btScalar damping_fraction(double k) { return btScalar(1.0 - std::exp(-k)); }
 // Why Bullet cannot represent damping rate k (1 - d rounds to 0 in btScalar); empty when it can.
 std::string damping_problem(double k) {
   if (btScalar(1) - damping_fraction(k) > btScalar(0)) return {};
-  return "damping rate k = " + std::to_string(k) + " 1/s: Bullet's per-second damping d = 1 - exp(-k) "
-         "rounds to 1 in " + kPrecision + ", which would zero every velocity each step";
+  char why[160];
+  std::snprintf(why, sizeof why,
+                "damping rate k = %g 1/s: Bullet's per-second damping d = 1 - exp(-k) rounds to 1 "
+                "in %s, which would zero every velocity each step", k, kPrecision);
+  return why;
 }
 
 class BulletEngine final : public Engine {

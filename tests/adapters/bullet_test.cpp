@@ -275,7 +275,7 @@ TEST_CASE("Bullet refuses a damping rate its per-second parameter cannot hold", 
   CHECK_THAT(run.failure, Catch::Contains("damping rate k = 60"));
   // Below the limit Bullet runs, but 1 - d carries a relative rounding of up to spacing/exp(-k),
   // and phi = (1 - d)^h h times that: k = 15 1/s holds in double (measured |dx| 3.4e-12 m at
-  // 1/120); float needs k = 5 1/s (1 - d = 6.7e-3, rounding 4.5e-6; measured MEASURED_K5).
+  // 1/120); float needs k = 5 1/s (1 - d = 6.7e-3, rounding 4.5e-6; measured |dx| 4.2e-6 m).
   const bool f64 = engine->info().scalar == Scalar::f64;
   scene.world.damping_rate = f64 ? 15.0 : 5.0;
   CHECK(engine->cannot_run(scene).empty());
