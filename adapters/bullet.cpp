@@ -88,12 +88,15 @@ struct BulletWorld {
 // I = m/12 * (ly^2 + lz^2, lx^2 + lz^2, lx^2 + ly^2) with l = 2e (btBoxShape, margin included).
 btVector3 box_inertia(const Body& b) {
   btVector3 inertia(0, 0, 0);
-  if (!b.is_static) btBoxShape(to_bt(b.half_extents)).calculateLocalInertia(btScalar(b.mass), inertia);
+  if (!b.is_static)
+    btBoxShape(to_bt(b.half_extents)).calculateLocalInertia(btScalar(b.mass), inertia);
   return inertia;
 }
 
 // Bullet's per-second damping for rate k: d = 1 - exp(-k), so that (1 - d)^h = exp(-k*h).
-btScalar damping_fraction(double k) { return btScalar(1.0 - std::exp(-k)); }
+btScalar damping_fraction(double k) {
+  return btScalar(1.0 - std::exp(-k));
+}
 
 // Why Bullet cannot represent damping rate k (1 - d rounds to 0 in btScalar); empty when it can.
 std::string damping_problem(double k) {
@@ -101,7 +104,8 @@ std::string damping_problem(double k) {
   char why[160];
   std::snprintf(why, sizeof why,
                 "damping rate k = %g 1/s: Bullet's per-second damping d = 1 - exp(-k) rounds to 1 "
-                "in %s, which would zero every velocity each step", k, kPrecision);
+                "in %s, which would zero every velocity each step",
+                k, kPrecision);
   return why;
 }
 
@@ -199,6 +203,8 @@ class BulletEngine final : public Engine {
 
 }  // namespace
 
-std::unique_ptr<Engine> make_bullet() { return std::make_unique<BulletEngine>(); }
+std::unique_ptr<Engine> make_bullet() {
+  return std::make_unique<BulletEngine>();
+}
 
 }  // namespace dropcheck

@@ -38,12 +38,12 @@
 //            recovered in 0.7 s (ode_test.cpp).
 //   false -> no space, no geoms, no contact joints.
 // Errors: ODE reports through dError / dDebug (fatal: ODE exits or aborts when the handler returns)
-// and dMessage (a warning). Our handlers throw EngineError from the fatal two; ODE is C++ built with
-// unwind tables, so the throw unwinds through its frames to the adapter (ode_test.cpp shows it).
-// The throw skips ODE's va_end (a no-op on the x86-64 and AArch64 ABIs). An error thrown out of
-// dWorldStep or dSpaceCollide may leave that world's internals mid-update (a locked space, a step
-// arena in use); such a world is marked poisoned, refuses further steps, and is leaked rather than
-// destroyed, because destroying it can re-enter ODE's checks during unwinding.
+// and dMessage (a warning). Our handlers throw EngineError from the fatal two; ODE is C++ built
+// with unwind tables, so the throw unwinds through its frames to the adapter (ode_test.cpp shows
+// it). The throw skips ODE's va_end (a no-op on the x86-64 and AArch64 ABIs). An error thrown out
+// of dWorldStep or dSpaceCollide may leave that world's internals mid-update (a locked space, a
+// step arena in use); such a world is marked poisoned, refuses further steps, and is leaked rather
+// than destroyed, because destroying it can re-enter ODE's checks during unwinding.
 #include <ode/ode.h>
 
 #include <cmath>
@@ -61,9 +61,15 @@
 namespace dropcheck {
 namespace {
 
-constexpr int kMaxContacts = 8;          // per geom pair; a resting box face needs >= 4
-constexpr dReal kFriction = 0.5;         // Coulomb mu, dContactApprox1
-constexpr dReal kMaxCorrectingVel = 0.3; // m/s, depth recovery speed of a contact
+constexpr int kMaxContacts = 8;           // per geom pair; a resting box face needs >= 4
+constexpr dReal kFriction = 0.5;          // Coulomb mu, dContactApprox1
+constexpr dReal kMaxCorrectingVel = 0.3;  // m/s, depth recovery speed of a contact
+
+#ifdef dDOUBLE
+constexpr const char* kPrecisionToken = "ODE_double_precision";
+#else
+constexpr const char* kPrecisionToken = "ODE_single_precision";
+#endif
 
 // The last non-fatal ODE message on this thread, quoted in the next error as its context.
 thread_local std::string t_last_message;
@@ -82,7 +88,9 @@ std::string format_ode(const char* kind, int num, const char* msg, va_list ap) {
 }
 
 // dError: ODE calls exit(1) if this returns.
-void on_ode_error(int num, const char* msg, va_list ap) { throw_ode("ODE error", num, msg, ap); }
+void on_ode_error(int num, const char* msg, va_list ap) {
+  throw_ode("ODE error", num, msg, ap);
+}
 
 // dDebug (failed dIASSERT / dUASSERT / dAASSERT): ODE calls abort() if this returns.
 void on_ode_debug(int num, const char* msg, va_list ap) {
@@ -113,11 +121,8 @@ void ensure_ode() {
   static OdeLibrary library;
   if (!library.ok) throw EngineError("ODE: dInitODE2 failed");
   // Same precision as our headers assume (dReal), or every state we read is garbage.
-#ifdef dDOUBLE
-  if (!dCheckConfiguration("ODE_double_precision")) throw EngineError("ODE: library is not double");
-#else
-  if (!dCheckConfiguration("ODE_single_precision")) throw EngineError("ODE: library is not single");
-#endif
+  if (!dCheckConfiguration(kPrecisionToken))
+    throw EngineError(std::string("ODE: the library is not built with ") + kPrecisionToken);
   if (!dAllocateODEDataForThread(dAllocateMaskAll)) throw EngineError("ODE: no per-thread data");
 }
 
@@ -125,11 +130,11 @@ void ensure_ode() {
 // bodies and joints). A poisoned world (an error escaped a step) is leaked on purpose (see top).
 struct OdeWorld {
   dWorldID world = nullptr;
-  dSpaceID space = nullptr;                 // contacts only
-  dJointGroupID contacts = nullptr;         // contacts only
-  std::vector<dBodyID> bodies;              // indexed like Scene::bodies; nullptr when static
-  std::vector<Vec3> static_positions;       // indexed like Scene::bodies
-  std::exception_ptr callback_error;        // thrown in the near callback, rethrown after collide
+  dSpaceID space = nullptr;            // contacts only
+  dJointGroupID contacts = nullptr;    // contacts only
+  std::vector<dBodyID> bodies;         // indexed like Scene::bodies; nullptr when static
+  std::vector<Vec3> static_positions;  // indexed like Scene::bodies
+  std::exception_ptr callback_error;   // thrown in the near callback, rethrown after collide
   bool poisoned = false;
 
   ~OdeWorld() {
@@ -301,6 +306,8 @@ class OdeEngine final : public Engine {
 
 }  // namespace
 
-std::unique_ptr<Engine> make_ode() { return std::make_unique<OdeEngine>(); }
+std::unique_ptr<Engine> make_ode() {
+  return std::make_unique<OdeEngine>();
+}
 
 }  // namespace dropcheck

@@ -12,8 +12,12 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-double top(const Body& b) { return b.position.y() + b.half_extents.y(); }
-double bottom(const Body& b) { return b.position.y() - b.half_extents.y(); }
+double top(const Body& b) {
+  return b.position.y() + b.half_extents.y();
+}
+double bottom(const Body& b) {
+  return b.position.y() - b.half_extents.y();
+}
 
 // Static box `f` holds body `b`: f's top is at or below b's bottom and b's centre lies over f's
 // footprint in the x-z plane.
@@ -85,7 +89,8 @@ double bracket_end(double y0, double v0, double a, double k, double target) {
 }
 
 // Largest |v| and largest position range of `body` over the samples from step `from` on.
-void still_figures(const Trajectory& run, std::size_t body, std::int64_t from, LandingObservation& o) {
+void still_figures(const Trajectory& run, std::size_t body, std::int64_t from,
+                   LandingObservation& o) {
   Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
   o.still_speed = 0.0;
   for (std::size_t s = 0; s < run.samples(); ++s) {
@@ -135,9 +140,9 @@ std::vector<LandingSetup> landing_setups(const Scene& scene) {
     s.floor_top = top(scene.bodies[s.floor]);
     s.half_height = b.half_extents.y();
     s.rest_height = s.floor_top + s.half_height;
-    s.contact_time = contact_time_continuous(b.position.y(), b.velocity.y(),
-                                             vertical_acceleration(scene, i),
-                                             scene.world.damping_rate, s.rest_height);
+    s.contact_time =
+        contact_time_continuous(b.position.y(), b.velocity.y(), vertical_acceleration(scene, i),
+                                scene.world.damping_rate, s.rest_height);
     out.push_back(s);
   }
   return out;
@@ -157,8 +162,12 @@ std::int64_t discrete_contact_step(DampingOrder law, const Scene& scene, double 
 
 LandingObservation observe_landing(const Trajectory& run, const LandingSetup& setup,
                                    const StillCriteria& still) {
-  LandingObservation o{.first_contact_time = kNaN, .deepest = kNaN, .rebound = kNaN,
-                       .rest_offset = kNaN, .still_speed = kNaN, .still_range = kNaN};
+  LandingObservation o{.first_contact_time = kNaN,
+                       .deepest = kNaN,
+                       .rebound = kNaN,
+                       .rest_offset = kNaN,
+                       .still_speed = kNaN,
+                       .still_range = kNaN};
   if (run.samples() == 0) return o;
   o.first_contact_step = first_contact_step(run, setup);
   double lowest = INFINITY, highest_after = -INFINITY;

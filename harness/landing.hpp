@@ -18,19 +18,19 @@ namespace dropcheck {
 
 // One dynamic body above a static floor box, and what the continuous model expects of its landing.
 struct LandingSetup {
-  std::size_t body = 0;          // index into Scene::bodies
-  std::size_t floor = 0;         // static body whose top is under the body's centre
-  double floor_top = 0.0;        // m: floor centre y + floor half extent y
-  double half_height = 0.0;      // m: the body's half extent along y (bottom = centre - this)
-  double rest_height = 0.0;      // m: floor_top + body half extent y (centre of a resting body)
-  double contact_time = 0.0;     // s: continuous model, bottom reaches floor_top; NaN if never
+  std::size_t body = 0;       // index into Scene::bodies
+  std::size_t floor = 0;      // static body whose top is under the body's centre
+  double floor_top = 0.0;     // m: floor centre y + floor half extent y
+  double half_height = 0.0;   // m: the body's half extent along y (bottom = centre - this)
+  double rest_height = 0.0;   // m: floor_top + body half extent y (centre of a resting body)
+  double contact_time = 0.0;  // s: continuous model, bottom reaches floor_top; NaN if never
 };
 
 // Whether a body sat still over the last `seconds` of a run (to the end).
 struct StillCriteria {
-  double seconds = 2.0;          // window at the end of the run
-  double max_speed = 1e-3;       // m/s: largest |v| allowed in the window
-  double max_range = 1e-3;       // m: largest (max - min) of any position component in the window
+  double seconds = 2.0;     // window at the end of the run
+  double max_speed = 1e-3;  // m/s: largest |v| allowed in the window
+  double max_range = 1e-3;  // m: largest (max - min) of any position component in the window
 };
 
 // What one run shows of a LandingSetup.

@@ -6,7 +6,6 @@
 // first-contact step, geometric rest height) for landing; ENGINE-NOTES.md sections 2 and 5 for the
 // figures reproduced here. Set DROPCHECK_MEASURE=1 to print the measured figures.
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -30,12 +29,17 @@ Scene scenario(const std::string& name) {
   return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + name + ".toml");
 }
 
-bool measuring() { return std::getenv("DROPCHECK_MEASURE") != nullptr; }
+bool measuring() {
+  return std::getenv("DROPCHECK_MEASURE") != nullptr;
+}
 
 // Rounding of a run against its own law (m, m/s). Double: measured worst 1.8e-13 m and 1.1e-13 m/s
-// (seed_part3 at 1/240); at 1/60 2.1e-14 m, at 1/30 1.4e-14 m. Float build (DROPCHECK_BULLET_PRECISION=float): measured
-// worst 1.8e-5 m (seed_part3 at 1/60) and 1.5e-5 m/s (free_fall at 1/240).
-double law_tolerance(Scalar s) { return s == Scalar::f64 ? 1e-9 : 1e-4; }
+// (seed_part3 at 1/240); at 1/60 2.1e-14 m, at 1/30 1.4e-14 m. Float build
+// (DROPCHECK_BULLET_PRECISION=float): measured worst 1.8e-5 m (seed_part3 at 1/60) and 1.5e-5 m/s
+// (free_fall at 1/240).
+double law_tolerance(Scalar s) {
+  return s == Scalar::f64 ? 1e-9 : 1e-4;
+}
 
 // The largest |engine - law| component of any body at any sample, and where it happened.
 struct Worst {
@@ -72,7 +76,8 @@ Worst worst_vs_law(const Trajectory& run, const Trajectory& law) {
 class MisreportingEngine final : public Engine {
  public:
   enum class Fault { wrong_law, per_step_damping };
-  MisreportingEngine(std::unique_ptr<Engine> real, Fault fault) : real_(std::move(real)), fault_(fault) {}
+  MisreportingEngine(std::unique_ptr<Engine> real, Fault fault)
+      : real_(std::move(real)), fault_(fault) {}
 
   EngineInfo info() const override {
     EngineInfo i = real_->info();
@@ -97,11 +102,11 @@ class MisreportingEngine final : public Engine {
 
 }  // namespace
 
-#define REQUIRE_BULLET(engine)                                      \
-  auto engine = make_engine("bullet");                              \
-  if (!engine) {                                                    \
-    WARN("bullet: " << engine_unavailable_reason("bullet"));        \
-    return;                                                         \
+#define REQUIRE_BULLET(engine)                               \
+  auto engine = make_engine("bullet");                       \
+  if (!engine) {                                             \
+    WARN("bullet: " << engine_unavailable_reason("bullet")); \
+    return;                                                  \
   }
 
 TEST_CASE("Bullet follows its own discrete law in every free-flight scene at three steps",
@@ -134,7 +139,9 @@ TEST_CASE("Bullet reproduces ENGINE-NOTES' 60-step drag figure", "[bullet][law]"
     // Measured 6.5182636233228308 exactly (ENGINE-NOTES section 2); 1e-12 leaves room for libm.
     CHECK(x == Approx(6.5182636233228308).epsilon(0).margin(1e-12));
   } else {
-    CHECK(x == Approx(6.5182623863220215).epsilon(0).margin(1e-6));  // float libs, ENGINE-NOTES section 2
+    CHECK(
+        x ==
+        Approx(6.5182623863220215).epsilon(0).margin(1e-6));  // float libs, ENGINE-NOTES section 2
   }
 }
 
@@ -154,7 +161,8 @@ TEST_CASE("The own-law check catches a Bullet adapter that misreports its law or
     CHECK_THAT(r.message, Catch::Contains("worst at body 'cube' step") &&
                               Catch::Contains("engine x = (") && Catch::Contains("law x = ("));
   }
-  const CheckResult honest = check_own_law(scene, [] { return make_engine("bullet"); }, scene.timestep);
+  const CheckResult honest = check_own_law(
+      scene, [] { return make_engine("bullet"); }, scene.timestep);
   INFO(honest.message);
   CHECK(honest.passed);
 }
@@ -283,6 +291,7 @@ TEST_CASE("Bullet refuses a damping rate its per-second parameter cannot hold", 
   REQUIRE(ok.status == RunStatus::ok);
   const Worst w = worst_vs_law(ok, predict_discrete(engine->info().law, scene, 1.0 / 120.0));
   INFO(w.where);
-  if (measuring()) WARN("k = " << scene.world.damping_rate << ": |dx| " << w.dx << " |dv| " << w.dv);
+  if (measuring())
+    WARN("k = " << scene.world.damping_rate << ": |dx| " << w.dx << " |dv| " << w.dv);
   CHECK(w.dx <= law_tolerance(engine->info().scalar));
 }

@@ -1,11 +1,10 @@
 // Tests adapters/ode.cpp: ODE 0.16.2 (Debian's double build) through the Engine interface.
 //
 // References: oracle 2 (harness/discrete_law.hpp, ODE's law v' = v + a*h; x += h*v'; v = phi*v'
-// iterated in long double) for free flight; harness/landing.hpp (continuous first-contact time, the law's
-// first-contact step, geometric rest height) for landing; ENGINE-NOTES.md sections 2 and 5 for the
-// figures reproduced here. Set DROPCHECK_MEASURE=1 to print the measured figures.
+// iterated in long double) for free flight; harness/landing.hpp (continuous first-contact time, the
+// law's first-contact step, geometric rest height) for landing; ENGINE-NOTES.md sections 2 and 5
+// for the figures reproduced here. Set DROPCHECK_MEASURE=1 to print the measured figures.
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -29,7 +28,9 @@ Scene scenario(const std::string& name) {
   return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + name + ".toml");
 }
 
-bool measuring() { return std::getenv("DROPCHECK_MEASURE") != nullptr; }
+bool measuring() {
+  return std::getenv("DROPCHECK_MEASURE") != nullptr;
+}
 
 // Rounding of a run against its own law (m, m/s); ODE is double. Measured worst 1.8e-13 m and
 // 1.1e-13 m/s (seed_part3 at 1/240); at 1/60 2.1e-14 m, at 1/30 1.4e-14 m.
@@ -70,11 +71,13 @@ Worst worst_vs_law(const Trajectory& run, const Trajectory& law) {
 class MisreportingEngine final : public Engine {
  public:
   enum class Fault { wrong_law, per_second_damping };
-  MisreportingEngine(std::unique_ptr<Engine> real, Fault fault) : real_(std::move(real)), fault_(fault) {}
+  MisreportingEngine(std::unique_ptr<Engine> real, Fault fault)
+      : real_(std::move(real)), fault_(fault) {}
 
   EngineInfo info() const override {
     EngineInfo i = real_->info();
-    if (fault_ == Fault::wrong_law) i.law = DampingOrder::BeforeForces;  // Bullet's order, not ODE's
+    if (fault_ == Fault::wrong_law)
+      i.law = DampingOrder::BeforeForces;  // Bullet's order, not ODE's
     return i;
   }
   // per_second_damping: s = 1 - exp(-k) (the fraction lost per second) given to
@@ -103,11 +106,11 @@ Scene massless_cube() {
 
 }  // namespace
 
-#define REQUIRE_ODE(engine)                                   \
-  auto engine = make_engine("ode");                           \
-  if (!engine) {                                              \
-    WARN("ode: " << engine_unavailable_reason("ode"));        \
-    return;                                                   \
+#define REQUIRE_ODE(engine)                            \
+  auto engine = make_engine("ode");                    \
+  if (!engine) {                                       \
+    WARN("ode: " << engine_unavailable_reason("ode")); \
+    return;                                            \
   }
 
 TEST_CASE("ODE follows its own discrete law in every free-flight scene at three steps",
@@ -156,7 +159,8 @@ TEST_CASE("The own-law check catches an ODE adapter that misreports its law or i
     CHECK_THAT(r.message, Catch::Contains("worst at body 'cube' step") &&
                               Catch::Contains("engine x = (") && Catch::Contains("law x = ("));
   }
-  const CheckResult honest = check_own_law(scene, [] { return make_engine("ode"); }, scene.timestep);
+  const CheckResult honest = check_own_law(
+      scene, [] { return make_engine("ode"); }, scene.timestep);
   INFO(honest.message);
   CHECK(honest.passed);
 }
@@ -284,7 +288,8 @@ TEST_CASE("An error ODE reports becomes an EngineError and a recorded run status
   const Trajectory run = run_scene(*engine, massless_cube(), 1.0 / 60.0);
   CHECK(run.status == RunStatus::engine_error);
   CHECK(run.failed_step == 0);  // during load
-  CHECK_THAT(run.failure, Catch::Contains("ODE internal error") && Catch::Contains("mass must be > 0"));
+  CHECK_THAT(run.failure,
+             Catch::Contains("ODE internal error") && Catch::Contains("mass must be > 0"));
   // The same engine object is usable again: the half-built world was destroyed with it.
   const Trajectory ok = run_scene(*engine, scenario("free_fall_drag"), 1.0 / 60.0);
   CHECK(ok.status == RunStatus::ok);

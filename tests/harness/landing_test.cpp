@@ -2,13 +2,13 @@
 // fall of ENGINE-NOTES.md section 1 (continuous model dv/dt = g - k*v), its a = 0 special case
 // y(t) = y0 + v0*(1 - exp(-k*t))/k (solvable for t), and the discrete twin of every law at k = 0
 // (x_n = x0 - g*h^2*n*(n+1)/2, the same for all three orders when phi = 1).
-#include <catch2/catch.hpp>
+#include "harness/landing.hpp"
 
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 #include <string>
 
-#include "harness/landing.hpp"
 #include "harness/scene_loader.hpp"
 
 using namespace dropcheck;
@@ -23,7 +23,8 @@ Scene scenario(const std::string& name) {
 // (v0 - g/k)*(1 - exp(-k*t))/k.
 double damped_fall(double x0, double v0, double g, double k, double t) {
   const long double gk = static_cast<long double>(g) / k;
-  return static_cast<double>(x0 + gk * t + (v0 - gk) * (1.0L - std::exp(-static_cast<long double>(k) * t)) / k);
+  return static_cast<double>(x0 + gk * t +
+                             (v0 - gk) * (1.0L - std::exp(-static_cast<long double>(k) * t)) / k);
 }
 
 // A one-body trajectory sampled every h with the given heights (velocity from differences).
@@ -57,14 +58,16 @@ const double kSeedK = -std::log(0.98) * 60.0;  // the seed's drag as a rate, 1.2
 TEST_CASE("The landing height is the parabola without damping and the damped closed form with it",
           "[landing]") {
   // y = y0 + v0*t + a*t^2/2: exact in double for these values (measured difference 0).
-  CHECK(height_continuous(10.0, 2.0, -9.8, 0.0, 1.5) == Approx(10.0 + 3.0 - 4.9 * 2.25).epsilon(0).margin(1e-14));
+  CHECK(height_continuous(10.0, 2.0, -9.8, 0.0, 1.5) ==
+        Approx(10.0 + 3.0 - 4.9 * 2.25).epsilon(0).margin(1e-14));
   for (const double t : {0.01, 0.5, 1.9, 10.0}) {
     INFO("t = " << t);
     // Against ENGINE-NOTES' form in long double: measured <= 7.1e-15 m.
     CHECK(height_continuous(10.0, 1.0, -9.8, kSeedK, t) ==
           Approx(damped_fall(10.0, 1.0, -9.8, kSeedK, t)).epsilon(0).margin(1e-13));
     // Tiny k (the series branch, no cancellation): first order in k, y_k - y_0 =
-    // -k*(v0*t^2/2 + a*t^3/6) (1.6e-9 m at t = 10 s for k = 1e-12); measured residual <= 7.4e-14 m (t = 10 s).
+    // -k*(v0*t^2/2 + a*t^3/6) (1.6e-9 m at t = 10 s for k = 1e-12); measured residual <= 7.4e-14 m
+    // (t = 10 s).
     const double k = 1e-12;
     const double first_order = -k * (1.0 * t * t / 2 - 9.8 * t * t * t / 6);
     CHECK(height_continuous(10.0, 1.0, -9.8, k, t) - height_continuous(10.0, 1.0, -9.8, 0.0, t) ==
@@ -74,11 +77,12 @@ TEST_CASE("The landing height is the parabola without damping and the damped clo
 
 TEST_CASE("The landing contact time solves the undamped drop in closed form", "[landing]") {
   // Dropped from rest: 9.5 m = 9.8*t^2/2, t = sqrt(2*9.5/9.8) = 1.3923987... s.
-  CHECK(contact_time_continuous(10.0, 0.0, -9.8, 0.0, 0.5) == Approx(std::sqrt(19.0 / 9.8)).epsilon(1e-15));
+  CHECK(contact_time_continuous(10.0, 0.0, -9.8, 0.0, 0.5) ==
+        Approx(std::sqrt(19.0 / 9.8)).epsilon(1e-15));
   // Thrown up at 8 m/s from 1 m onto 0.5: t = (v0 + sqrt(v0^2 + 2*9.8*0.5))/9.8.
   CHECK(contact_time_continuous(1.0, 8.0, -9.8, 0.0, 0.5) ==
         Approx((8.0 + std::sqrt(64.0 + 9.8)) / 9.8).epsilon(1e-15));
-  CHECK(contact_time_continuous(0.4, 0.0, -9.8, 0.0, 0.5) == 0.0);       // already down
+  CHECK(contact_time_continuous(0.4, 0.0, -9.8, 0.0, 0.5) == 0.0);      // already down
   CHECK(std::isnan(contact_time_continuous(1.0, 1.0, 9.8, 0.0, 0.5)));  // pushed away
 }
 
@@ -162,7 +166,8 @@ TEST_CASE("observe_landing reads first contact, depth, rebound, rest offset and 
     CHECK(o.deepest == Approx(-0.1).epsilon(0).margin(1e-15));
     CHECK(o.rebound == Approx(0.02).epsilon(0).margin(1e-15));
     CHECK(o.rest_offset == Approx(-1e-4).epsilon(0).margin(1e-15));
-    CHECK(o.still_range == Approx(1e-4).epsilon(0).margin(1e-15));  // window: steps 7 to 11 (last 2 s)
+    CHECK(o.still_range ==
+          Approx(1e-4).epsilon(0).margin(1e-15));  // window: steps 7 to 11 (last 2 s)
     CHECK(o.still);
   }
   SECTION("moving in the last 2 s is not still") {
