@@ -3,10 +3,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <thread>
 
 #include "build_id.hpp"
+
+namespace fs = std::filesystem;
 
 namespace dropcheck {
 namespace {
@@ -33,12 +37,32 @@ std::string or_unknown(const std::string& s) {
   return s.empty() ? "unknown" : s;
 }
 
-std::string commit_of(const std::string& git) {
+// `output_dir` relative to the checkout's top level ("reports"), or "" when it lies outside.
+std::string relative_to_top(const std::string& git, const std::string& output_dir) {
+  const std::string top = output_of(git + " rev-parse --show-toplevel");
+  if (top.empty() || output_dir.empty()) return {};
+  std::error_code ec;
+  const fs::path rel = fs::relative(fs::absolute(output_dir, ec), top, ec).lexically_normal();
+  const std::string text = rel.generic_string();
+  return ec || text.empty() || text == "." || text.rfind("..", 0) == 0 ? "" : text;
+}
+
+// Whether a `git status --porcelain` line ("XY path") names a path under `dir` (relative to top).
+bool under(const std::string& line, const std::string& dir) {
+  if (dir.empty() || line.size() < 4) return false;
+  const std::string path = line.substr(3);
+  return path == dir || path.rfind(dir + "/", 0) == 0;
+}
+
+std::string commit_of(const std::string& git, const std::string& output_dir) {
   const std::string hash = output_of(git + " rev-parse --short HEAD");
   if (hash.empty()) return {};
   // Tracked files only: untracked files do not change what HEAD's sources build.
-  const std::string changes = output_of(git + " status --porcelain --untracked-files=no");
-  return changes.empty() ? hash : hash + "-dirty";
+  const std::string ignore = relative_to_top(git, output_dir);
+  std::istringstream changes(output_of(git + " status --porcelain --untracked-files=no"));
+  for (std::string line; std::getline(changes, line);)
+    if (!under(line, ignore)) return hash + "-dirty";
+  return hash;
 }
 
 std::string cpu_model() {
@@ -69,14 +93,14 @@ std::string iso_date_from_epoch(const std::string& epoch) {
   return buf;
 }
 
-Provenance current_provenance(const std::string& dir) {
+Provenance current_provenance(const std::string& dir, const std::string& output_dir) {
   const std::string git = "git -C " + shell_quoted(dir);
   Provenance p;
   const char* epoch = std::getenv("SOURCE_DATE_EPOCH");
   p.date = epoch ? iso_date_from_epoch(epoch) : "";
   if (p.date.empty()) p.date = output_of(git + " log -1 --format=%cI");
   p.date = or_unknown(p.date);
-  p.commit = or_unknown(commit_of(git));
+  p.commit = or_unknown(commit_of(git, output_dir));
   const BuildId build = current_build();
   p.build = build.key;
   p.build_type = or_unknown(build.build_type);

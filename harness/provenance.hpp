@@ -17,8 +17,10 @@ struct Provenance {
 };
 
 // The provenance of a report generated from the git checkout holding `dir` by this binary.
-// Parts that cannot be found read "unknown".
-Provenance current_provenance(const std::string& dir);
+// Changes under `output_dir` (the report's own directory, committed in the repository) do not make
+// the tree dirty: rerunning the report must not change its own provenance. Parts that cannot be
+// found read "unknown".
+Provenance current_provenance(const std::string& dir, const std::string& output_dir = "");
 
 // SOURCE_DATE_EPOCH (seconds since 1970, UTC) as ISO 8601 ("2026-11-21T18:24:33Z"); "" when the
 // text is not a non-negative whole number.

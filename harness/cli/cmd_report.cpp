@@ -113,7 +113,7 @@ int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ost
 
   ReportInput in;
   in.timing = !args.has("--no-timing");
-  in.provenance = current_provenance(".");
+  in.provenance = current_provenance(".", out_dir);
   describe_engines(slots, in);
   const std::size_t total = scenes.size() + (files.extreme.empty() ? 0 : 1);
   evaluate_all(scenes, slots, total, in, err);
