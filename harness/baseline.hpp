@@ -28,6 +28,7 @@
 
 namespace dropcheck {
 
+// "No value" in a baseline (no closed form, no timing): NaN, written "nan".
 inline constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
 
 // One step size of the scene's sweep: errors against both oracles, and optionally the run time.
@@ -45,6 +46,7 @@ struct SweepPoint {
   int replicas = 0;                     // copies of the scene in one timed run (--timing only)
 };
 
+// One scene on one engine: the golden record that the regression tiers compare a fresh run with.
 struct Baseline {
   std::string provenance;  // the "# dropcheck baseline: made by ..." line (not compared)
   std::string build_key;   // BuildId::key of the build that made it
@@ -61,6 +63,7 @@ struct Baseline {
   std::vector<SweepPoint> sweep;  // the scene's timesteps, in the scene's order
 };
 
+// How make_baseline samples and whether it times.
 struct BaselineOptions {
   std::int64_t record_every = 10;  // sampling of the stored trajectory
   bool timing = false;             // measure wall time per simulated second (harness/timing.hpp)

@@ -10,14 +10,17 @@
 
 namespace dropcheck {
 
+// An engine name (as in the baseline file name) and how to make the engine.
 using NamedFactory = std::pair<std::string, EngineFactory>;
 
+// Where to write and what to record.
 struct BlessOptions {
   std::string out_dir = "tests/baselines";  // the result set to (re)write
   std::string commit = "unknown commit";    // recorded in each file's provenance line
   BaselineOptions baseline;                 // sampling; --timing
 };
 
+// What bless did, for the command to print.
 struct BlessOutcome {
   std::vector<std::string> refused;  // each failed oracle check (tier 3); nothing written if any
   std::vector<std::string> lines;    // per file: "new", "updated" or "unchanged", path and hash

@@ -6,6 +6,7 @@
 
 namespace dropcheck {
 
+// The identity of this build as the regression guard sees it.
 struct BuildId {
   // Everything that can change ours' floating-point results: architecture, compiler and version,
   // Eigen and libm versions, optimisation level and FP-relevant flags. Equal keys: equal bits.

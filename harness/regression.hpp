@@ -16,9 +16,12 @@
 
 namespace dropcheck {
 
+// The four checks; each is its own ctest entry per scene and engine.
 enum class Tier { bits, tolerance, physics, determinism };
+// Outcome of one tier; skipped maps to exit code 77 (ctest SKIP_RETURN_CODE).
 enum class Verdict { passed, failed, skipped };
 
+// A verdict with the sentence a person reads in the ctest output.
 struct TierResult {
   Verdict verdict = Verdict::passed;
   std::string message;  // "scene / engine / tier: ..." with the measured figures

@@ -10,6 +10,7 @@
 
 namespace dropcheck {
 
+// A directory of baseline files, e.g. tests/baselines/ or what `bless --out DIR` wrote.
 struct ResultSet {
   std::string dir;
   std::map<std::string, Baseline> runs;  // by file name "<scene>.<engine>.txt", hence sorted
