@@ -119,6 +119,7 @@ struct OdeLibrary {
 // Initialises ODE once per process (handlers first) and its per-thread data for this thread.
 void ensure_ode() {
   static OdeLibrary library;
+  t_last_message.clear();  // a warning from an earlier scene is no context for this one
   if (!library.ok) throw EngineError("ODE: dInitODE2 failed");
   // Same precision as our headers assume (dReal), or every state we read is garbage.
   if (!dCheckConfiguration(kPrecisionToken))
