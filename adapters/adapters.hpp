@@ -3,7 +3,7 @@
 
 #include <memory>
 
-#include "harness/engine.hpp"
+#include "harness/core/engine.hpp"
 
 namespace dropcheck {
 

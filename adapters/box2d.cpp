@@ -22,7 +22,7 @@
 // collision then hides by stopping the body) or after it (|h*v| at the limit).
 // Contacts: polygon boxes, restitution 0, friction 0.5 (mixed as sqrt(f1*f2)); every polygon has a
 // b2_polygonRadius = 0.01 m skin and the solver keeps b2_linearSlop = 0.005 m of overlap, so a
-// resting box's centre sits about 0.015 m above the geometric rest height (ENGINE-NOTES 5).
+// resting box's centre sits about 0.015 m above the geometric rest height (docs/engines.md 5).
 #include <box2d/box2d.h>
 
 #include <cmath>

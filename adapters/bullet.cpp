@@ -1,6 +1,6 @@
 // Adapter for Bullet (btDiscreteDynamicsWorld), linked against Debian's float64 or float build.
 //
-// Mapping (scene -> Bullet), ENGINE-NOTES.md sections 2, 3 and 5:
+// Mapping (scene -> Bullet), docs/engines.md sections 2, 3 and 5:
 //   gravity g           -> btDiscreteDynamicsWorld::setGravity (Bullet's default is (0, -10, 0)).
 //   damping rate k      -> btRigidBody::setDamping(d = 1 - exp(-k), 0). btRigidBody::applyDamping
 //                          does v *= (1 - d)^h, so d is "lost per second" and the per-step decay is

@@ -21,7 +21,7 @@
 // EngineError with MuJoCo's message; a warning counted in d->warning during a step (bad qpos, qvel,
 // qacc: MuJoCo then resets the state, hiding the instability) is an EngineError "MuJoCo warning: ...".
 // The warning handler only records the text: throwing from it would leave mj_step half done.
-// Contacts (soft, ENGINE-NOTES 5): box geoms, solimp "0.9999 0.9999 0.001" (impedance ~1: stiff),
+// Contacts (soft, docs/engines.md 5): box geoms, solimp "0.9999 0.9999 0.001" (impedance ~1: stiff),
 // solref "2h 1" (time constant 2h, the smallest MuJoCo accepts without disabling refsafe; critically
 // damped), friction 0.5 (MuJoCo mixes by max).
 // Landing, measured (unit cube from 10 m onto a box floor, no drag, 60 Hz): collisions are found at

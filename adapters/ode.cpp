@@ -1,6 +1,6 @@
 // Adapter for ODE (Open Dynamics Engine), Debian's double-precision build.
 //
-// Mapping (scene -> ODE), ENGINE-NOTES.md sections 2, 3 and 5:
+// Mapping (scene -> ODE), docs/engines.md sections 2, 3 and 5:
 //   gravity g           -> dWorldSetGravity (ODE's default is zero).
 //   damping rate k      -> per body dBodySetLinearDamping(s = 1 - exp(-k*h)): ODE scales v by
 //                          (1 - s) once per step, so s is per step and depends on h. ODE's
@@ -20,7 +20,7 @@
 //   force this step     -> dBodyAddForce before dWorldStep; the step clears ODE's accumulator.
 //   one step            -> dWorldStep(world, h). Chosen over dWorldQuickStep: identical for free
 //                          bodies, and its direct (Dantzig LCP) solver rests a box 2e-11 m deep
-//                          instead of 2e-8 (ENGINE-NOTES section 5).
+//                          instead of 2e-8 (docs/engines.md section 5).
 //   sleeping            -> dWorldSetAutoDisableFlag(0) and dBodySetAutoDisableFlag(b, 0) (off by
 //                          default; set explicitly).
 // Contacts (scene.world.contacts):
@@ -31,7 +31,7 @@
 //            World ERP 0.2 and CFM 1e-10 (ODE's double defaults), surface layer 0.
 //            dWorldSetContactMaxCorrectingVel 0.3 m/s: ODE pushes a penetrating body out with the
 //            velocity ERP*depth/h, capped by this value, and that velocity stays in the body.
-//            Uncapped, a deep first contact pops the cube up (15 cm, ENGINE-NOTES section 5); a
+//            Uncapped, a deep first contact pops the cube up (15 cm, docs/engines.md section 5); a
 //            cap above about 2*g*h/ERP (0.41 m/s at 1/240) lets the body fly on after the push
 //            (1 m/s rebounded 9 mm at 1/120 and 2.3 cm at 1/240). 0.3 m/s: no rebound from 1/30
 //            to 1/240, and the 0.22 m first penetration of the undamped 10 m drop at 1/60 is

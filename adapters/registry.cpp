@@ -1,6 +1,6 @@
 // The one table of engines. An engine whose library was not found at configure time is listed
 // with the reason, never silently missing.
-#include "harness/registry.hpp"
+#include "harness/core/registry.hpp"
 
 #include <algorithm>
 

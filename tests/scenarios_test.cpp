@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/scene_loader.hpp"
+#include "harness/core/scene_loader.hpp"
 
 namespace {
 

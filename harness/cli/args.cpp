@@ -1,6 +1,6 @@
 #include "args.hpp"
 
-#include "harness/input_error.hpp"
+#include "harness/core/input_error.hpp"
 
 namespace dropcheck {
 

@@ -2,7 +2,7 @@
 
 #include <exception>
 
-#include "harness/input_error.hpp"
+#include "harness/core/input_error.hpp"
 
 namespace dropcheck {
 namespace {

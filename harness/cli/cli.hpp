@@ -1,4 +1,4 @@
-// The dropcheck command line (contract in DESIGN.md "CLI"). Exit codes: 0 success, 1 a check
+// The dropcheck command line (contract in docs/design.md "CLI"). Exit codes: 0 success, 1 a check
 // failed, 2 bad input or usage.
 #pragma once
 

@@ -2,19 +2,19 @@
 //   Rewrites the golden baselines (default: every scenarios/*.toml on ours and ours-f64, into
 //   tests/baselines/) and refuses, exit 1, when a fresh run fails an oracle check.
 // dropcheck bless --check FILE... [--engine E]... [--tier T]... [--baselines DIR]
-//   Compares this build with the baselines, tier by tier (harness/regression.hpp): exit 0 when every
+//   Compares this build with the baselines, tier by tier (harness/guard/regression.hpp): exit 0 when every
 //   tier passed, 1 when one failed, 77 when every tier was skipped (ctest's SKIP_RETURN_CODE).
 #include <algorithm>
 #include <filesystem>
 
 #include "args.hpp"
 #include "cli.hpp"
-#include "harness/bless.hpp"
-#include "harness/build_id.hpp"
-#include "harness/input_error.hpp"
-#include "harness/registry.hpp"
-#include "harness/regression.hpp"
-#include "harness/scene_loader.hpp"
+#include "harness/guard/bless.hpp"
+#include "harness/core/build_id.hpp"
+#include "harness/core/input_error.hpp"
+#include "harness/core/registry.hpp"
+#include "harness/guard/regression.hpp"
+#include "harness/core/scene_loader.hpp"
 
 namespace dropcheck {
 namespace {

@@ -1,13 +1,13 @@
 // dropcheck check FILE... [--engine E]...
-// Runs every check that applies to each scene on each engine (harness/checks.hpp) and prints one
+// Runs every check that applies to each scene on each engine (harness/measure/checks.hpp) and prints one
 // line per check: PASS/FAIL, scene, engine, check, measured figures. Exit 1 if any check failed.
 // An engine that cannot run a scene is printed as "skipped: <reason>" (ctest reports it skipped).
 #include "args.hpp"
 #include "cli.hpp"
-#include "harness/checks.hpp"
-#include "harness/input_error.hpp"
-#include "harness/registry.hpp"
-#include "harness/scene_loader.hpp"
+#include "harness/measure/checks.hpp"
+#include "harness/core/input_error.hpp"
+#include "harness/core/registry.hpp"
+#include "harness/core/scene_loader.hpp"
 #include "selection.hpp"
 
 namespace dropcheck {

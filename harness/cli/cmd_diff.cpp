@@ -1,12 +1,12 @@
 // dropcheck diff OLD NEW [--out FILE]
 // Compares two result sets (directories of baseline files: tests/baselines/, or what
-// `dropcheck bless --out DIR` wrote) and prints a Markdown summary (harness/result_diff.hpp) to
+// `dropcheck bless --out DIR` wrote) and prints a Markdown summary (harness/guard/result_diff.hpp) to
 // stdout or, atomically, to FILE. Exit 0 whatever moved: it reports, it does not judge.
 #include "args.hpp"
 #include "cli.hpp"
-#include "harness/atomic_file.hpp"
-#include "harness/input_error.hpp"
-#include "harness/result_diff.hpp"
+#include "harness/core/atomic_file.hpp"
+#include "harness/core/input_error.hpp"
+#include "harness/guard/result_diff.hpp"
 
 namespace dropcheck {
 

@@ -3,7 +3,7 @@
 
 #include "args.hpp"
 #include "cli.hpp"
-#include "harness/registry.hpp"
+#include "harness/core/registry.hpp"
 
 namespace dropcheck {
 
@@ -23,7 +23,7 @@ int cmd_engines(const std::vector<std::string>& argv, std::ostream& out, std::os
     std::string caps = i.capabilities.contacts ? "free flight, contacts" : "free flight";
     if (i.capabilities.planar_only) caps += ", 2-D";
     std::snprintf(line, sizeof line, "%-9s %-14s %-6s %-22s %-36s %s\n", i.name.c_str(),
-                  i.version.c_str(), to_string(i.scalar), caps.c_str(), to_string(i.law),
+                  i.version.c_str(), to_string(i.scalar), caps.c_str(), to_string(i.law).c_str(),
                   i.damping_mapping.c_str());
     out << line;
   }

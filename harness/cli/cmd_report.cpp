@@ -1,7 +1,7 @@
 // dropcheck report [FILE|DIR]... [--out DIR] [--engine E]... [--no-timing]
-// Evaluates every scene on every engine (harness/evaluate.hpp) and writes DIR/README.md plus SVG
-// plots (harness/report.hpp). Default: every *.toml directly in scenarios/; scenes in an extreme/
-// folder go to the stability section (harness/stability_report.hpp). Every scene file is loaded
+// Evaluates every scene on every engine (harness/measure/evaluate.hpp) and writes DIR/README.md plus SVG
+// plots (harness/report/report.hpp). Default: every *.toml directly in scenarios/; scenes in an extreme/
+// folder go to the stability section (harness/stability/stability_report.hpp). Every scene file is loaded
 // before any work starts, and the output is built in a staging directory and swapped into place
 // only when complete: a bad scene file exits 2 naming the file, key and problem, and leaves the
 // previous report untouched.
@@ -10,12 +10,12 @@
 
 #include "args.hpp"
 #include "cli.hpp"
-#include "harness/input_error.hpp"
-#include "harness/output_dir.hpp"
-#include "harness/registry.hpp"
-#include "harness/report.hpp"
-#include "harness/scene_loader.hpp"
-#include "harness/stability_report.hpp"
+#include "harness/core/input_error.hpp"
+#include "harness/core/output_dir.hpp"
+#include "harness/core/registry.hpp"
+#include "harness/report/report.hpp"
+#include "harness/core/scene_loader.hpp"
+#include "harness/stability/stability_report.hpp"
 
 namespace fs = std::filesystem;
 

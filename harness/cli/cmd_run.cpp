@@ -5,11 +5,11 @@
 
 #include "args.hpp"
 #include "cli.hpp"
-#include "harness/atomic_file.hpp"
-#include "harness/input_error.hpp"
-#include "harness/runner.hpp"
-#include "harness/scene_loader.hpp"
-#include "harness/trajectory_io.hpp"
+#include "harness/core/atomic_file.hpp"
+#include "harness/core/input_error.hpp"
+#include "harness/core/runner.hpp"
+#include "harness/core/scene_loader.hpp"
+#include "harness/core/trajectory_io.hpp"
 #include "selection.hpp"
 
 namespace dropcheck {

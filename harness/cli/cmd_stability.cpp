@@ -4,10 +4,10 @@
 // Failures are results: the exit code is 0 unless the input is bad (2).
 #include "args.hpp"
 #include "cli.hpp"
-#include "harness/atomic_file.hpp"
-#include "harness/input_error.hpp"
-#include "harness/scene_loader.hpp"
-#include "harness/stability_study.hpp"
+#include "harness/core/atomic_file.hpp"
+#include "harness/core/input_error.hpp"
+#include "harness/core/scene_loader.hpp"
+#include "harness/stability/stability_study.hpp"
 #include "selection.hpp"
 
 namespace dropcheck {

@@ -1,8 +1,8 @@
 #include "selection.hpp"
 
-#include "harness/input_error.hpp"
-#include "harness/registry.hpp"
-#include "harness/timestep.hpp"
+#include "harness/core/input_error.hpp"
+#include "harness/core/registry.hpp"
+#include "harness/core/timestep.hpp"
 
 namespace dropcheck {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/engine.hpp"
+#include "harness/core/engine.hpp"
 
 namespace dropcheck {
 

@@ -5,8 +5,8 @@
 #include <sstream>
 #include <string>
 
-#include "harness/scene_loader.hpp"
-#include "harness/trajectory.hpp"
+#include "harness/core/scene_loader.hpp"
+#include "harness/core/trajectory.hpp"
 
 namespace dropcheck::testing {
 

@@ -1,8 +1,8 @@
 // Tests adapters/box2d.cpp: Box2D 2.4.1 (float, 2-D) driven through the Engine interface.
 //
-// References: oracle 2 (harness/discrete_law.hpp: Box2D's law v = phi*(v + a*h); x += h*v, iterated
+// References: oracle 2 (harness/oracles/discrete_law.hpp: Box2D's law v = phi*(v + a*h); x += h*v, iterated
 // in long double) for free flight; the continuous first-contact time t_c = sqrt(2*fall/|g|) and the
-// geometric rest height (floor top + half extent) for landing; ENGINE-NOTES.md section 2 and 5 for
+// geometric rest height (floor top + half extent) for landing; docs/engines.md section 2 and 5 for
 // the measured figures reproduced here.
 #include <catch2/catch.hpp>
 
@@ -11,11 +11,11 @@
 #include <sstream>
 #include <string>
 
-#include "harness/discrete_law.hpp"
+#include "harness/oracles/discrete_law.hpp"
 #include "adapter_test_support.hpp"
-#include "harness/registry.hpp"
-#include "harness/runner.hpp"
-#include "harness/scene_loader.hpp"
+#include "harness/core/registry.hpp"
+#include "harness/core/runner.hpp"
+#include "harness/core/scene_loader.hpp"
 
 namespace dropcheck {
 // Defined in adapters/box2d.cpp for tests: Box2D's GetMass() of body i of a loaded box2d engine.
@@ -85,7 +85,7 @@ TEST_CASE("Box2D follows its own discrete law in every free-flight scene at thre
   }
 }
 
-TEST_CASE("Box2D reproduces ENGINE-NOTES' drag figure, bit-identical to ours in float",
+TEST_CASE("Box2D reproduces docs/engines.md's drag figure, bit-identical to ours in float",
           "[box2d][law]") {
   // 60 steps of h = 1/60, g = -9.8, f = 0.98, x0 = 10, v0 = 0, m = 1 (scenarios/free_fall_drag).
   const Scene scene = scenario("free_fall_drag");

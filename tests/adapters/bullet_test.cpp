@@ -1,9 +1,9 @@
 // Tests adapters/bullet.cpp: Bullet 3.24 (Debian's float64 build by default) through the Engine
 // interface.
 //
-// References: oracle 2 (harness/discrete_law.hpp, Bullet's law v = phi*v + a*h; x += h*v iterated
-// in long double) for free flight; harness/landing.hpp (continuous first-contact time, the law's
-// first-contact step, geometric rest height) for landing; ENGINE-NOTES.md sections 2 and 5 for the
+// References: oracle 2 (harness/oracles/discrete_law.hpp, Bullet's law v = phi*v + a*h; x += h*v iterated
+// in long double) for free flight; harness/oracles/landing.hpp (continuous first-contact time, the law's
+// first-contact step, geometric rest height) for landing; docs/engines.md sections 2 and 5 for the
 // figures reproduced here. Set DROPCHECK_MEASURE=1 to print the measured figures.
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -11,12 +11,12 @@
 #include <sstream>
 #include <string>
 
-#include "harness/checks.hpp"
-#include "harness/discrete_law.hpp"
-#include "harness/landing.hpp"
-#include "harness/registry.hpp"
-#include "harness/runner.hpp"
-#include "harness/scene_loader.hpp"
+#include "harness/measure/checks.hpp"
+#include "harness/oracles/discrete_law.hpp"
+#include "harness/oracles/landing.hpp"
+#include "harness/core/registry.hpp"
+#include "harness/core/runner.hpp"
+#include "harness/core/scene_loader.hpp"
 
 using namespace dropcheck;
 
@@ -129,19 +129,19 @@ TEST_CASE("Bullet follows its own discrete law in every free-flight scene at thr
   }
 }
 
-TEST_CASE("Bullet reproduces ENGINE-NOTES' 60-step drag figure", "[bullet][law]") {
+TEST_CASE("Bullet reproduces docs/engines.md's 60-step drag figure", "[bullet][law]") {
   REQUIRE_BULLET(engine);
   // 60 steps of h = 1/60, g = -9.8, f = 0.98, x0 = 10, v0 = 0, m = 1 (scenarios/free_fall_drag).
   const Trajectory run = run_scene(*engine, scenario("free_fall_drag"), 1.0 / 60.0);
   REQUIRE(run.recorded.back() == 60);
   const double x = run.final_state(0).position.y();
   if (engine->info().scalar == Scalar::f64) {
-    // Measured 6.5182636233228308 exactly (ENGINE-NOTES section 2); 1e-12 leaves room for libm.
+    // Measured 6.5182636233228308 exactly (docs/engines.md section 2); 1e-12 leaves room for libm.
     CHECK(x == Approx(6.5182636233228308).epsilon(0).margin(1e-12));
   } else {
     CHECK(
         x ==
-        Approx(6.5182623863220215).epsilon(0).margin(1e-6));  // float libs, ENGINE-NOTES section 2
+        Approx(6.5182623863220215).epsilon(0).margin(1e-6));  // float libs, docs/engines.md section 2
   }
 }
 
@@ -157,7 +157,7 @@ TEST_CASE("The own-law check catches a Bullet adapter that misreports its law or
     const CheckResult r = check_own_law(scene, broken, scene.timestep);
     INFO(r.message);
     CHECK_FALSE(r.passed);
-    // The message names the body, the step and both values (harness/checks.cpp).
+    // The message names the body, the step and both values (harness/measure/checks.cpp).
     CHECK_THAT(r.message, Catch::Contains("worst at body 'cube' step") &&
                               Catch::Contains("engine x = (") && Catch::Contains("law x = ("));
   }

@@ -1,8 +1,8 @@
 // Tests adapters/mujoco.cpp: MuJoCo 2.2.2 (double, Euler) driven through the Engine interface.
 //
-// References: oracle 2 (harness/discrete_law.hpp: MuJoCo's law v = phi*(v + a*h); x += h*v, iterated
+// References: oracle 2 (harness/oracles/discrete_law.hpp: MuJoCo's law v = phi*(v + a*h); x += h*v, iterated
 // in long double) for free flight; the continuous first-contact time t_c = sqrt(2*fall/|g|) and the
-// geometric rest height (floor top + half extent) for landing; ENGINE-NOTES.md sections 2 and 5.
+// geometric rest height (floor top + half extent) for landing; docs/engines.md sections 2 and 5.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -10,11 +10,11 @@
 #include <sstream>
 #include <string>
 
-#include "harness/discrete_law.hpp"
+#include "harness/oracles/discrete_law.hpp"
 #include "adapter_test_support.hpp"
-#include "harness/registry.hpp"
-#include "harness/runner.hpp"
-#include "harness/scene_loader.hpp"
+#include "harness/core/registry.hpp"
+#include "harness/core/runner.hpp"
+#include "harness/core/scene_loader.hpp"
 
 namespace dropcheck {
 // Defined in adapters/mujoco.cpp for tests: body_mass of scene body i of a loaded mujoco engine.
@@ -80,7 +80,7 @@ TEST_CASE("MuJoCo follows its own discrete law in every free-flight scene at thr
   }
 }
 
-TEST_CASE("MuJoCo reproduces ENGINE-NOTES' drag figure, equal to ours in double",
+TEST_CASE("MuJoCo reproduces docs/engines.md's drag figure, equal to ours in double",
           "[mujoco][law]") {
   // 60 steps of h = 1/60, g = -9.8, f = 0.98, x0 = 10, v0 = 0, m = 1 (scenarios/free_fall_drag).
   const Scene scene = scenario("free_fall_drag");

@@ -1,8 +1,8 @@
 // Tests adapters/ode.cpp: ODE 0.16.2 (Debian's double build) through the Engine interface.
 //
-// References: oracle 2 (harness/discrete_law.hpp, ODE's law v' = v + a*h; x += h*v'; v = phi*v'
-// iterated in long double) for free flight; harness/landing.hpp (continuous first-contact time, the
-// law's first-contact step, geometric rest height) for landing; ENGINE-NOTES.md sections 2 and 5
+// References: oracle 2 (harness/oracles/discrete_law.hpp, ODE's law v' = v + a*h; x += h*v'; v = phi*v'
+// iterated in long double) for free flight; harness/oracles/landing.hpp (continuous first-contact time, the
+// law's first-contact step, geometric rest height) for landing; docs/engines.md sections 2 and 5
 // for the figures reproduced here. Set DROPCHECK_MEASURE=1 to print the measured figures.
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -10,12 +10,12 @@
 #include <sstream>
 #include <string>
 
-#include "harness/checks.hpp"
-#include "harness/discrete_law.hpp"
-#include "harness/landing.hpp"
-#include "harness/registry.hpp"
-#include "harness/runner.hpp"
-#include "harness/scene_loader.hpp"
+#include "harness/measure/checks.hpp"
+#include "harness/oracles/discrete_law.hpp"
+#include "harness/oracles/landing.hpp"
+#include "harness/core/registry.hpp"
+#include "harness/core/runner.hpp"
+#include "harness/core/scene_loader.hpp"
 
 using namespace dropcheck;
 
@@ -133,12 +133,12 @@ TEST_CASE("ODE follows its own discrete law in every free-flight scene at three 
   }
 }
 
-TEST_CASE("ODE reproduces ENGINE-NOTES' 60-step drag figure", "[ode][law]") {
+TEST_CASE("ODE reproduces docs/engines.md's 60-step drag figure", "[ode][law]") {
   REQUIRE_ODE(engine);
   // 60 steps of h = 1/60, g = -9.8, f = 0.98, x0 = 10, v0 = 0, m = 1 (scenarios/free_fall_drag).
   const Trajectory run = run_scene(*engine, scenario("free_fall_drag"), 1.0 / 60.0);
   REQUIRE(run.recorded.back() == 60);
-  // Measured 6.5182636233228308 exactly (ENGINE-NOTES section 2), Bullet's figure: with v0 = 0
+  // Measured 6.5182636233228308 exactly (docs/engines.md section 2), Bullet's figure: with v0 = 0
   // damping after the position update gives the same positions as damping before forces.
   CHECK(run.final_state(0).position.y() == Approx(6.5182636233228308).epsilon(0).margin(1e-12));
 }
@@ -155,7 +155,7 @@ TEST_CASE("The own-law check catches an ODE adapter that misreports its law or i
     const CheckResult r = check_own_law(scene, broken, scene.timestep);
     INFO(r.message);
     CHECK_FALSE(r.passed);
-    // The message names the body, the step and both values (harness/checks.cpp).
+    // The message names the body, the step and both values (harness/measure/checks.cpp).
     CHECK_THAT(r.message, Catch::Contains("worst at body 'cube' step") &&
                               Catch::Contains("engine x = (") && Catch::Contains("law x = ("));
   }

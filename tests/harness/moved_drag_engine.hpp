@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/engine.hpp"
+#include "harness/core/engine.hpp"
 #include "ours/physics.hpp"
 
 namespace dropcheck::testing {

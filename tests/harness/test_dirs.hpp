@@ -8,7 +8,7 @@
 #include <sstream>
 #include <string>
 
-#include "harness/scene_loader.hpp"
+#include "harness/core/scene_loader.hpp"
 
 namespace dropcheck::testing {
 

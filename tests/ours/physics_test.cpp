@@ -1,12 +1,12 @@
 // Tests ours/physics.hpp and ours/constants.hpp: the seed's step against its exact discrete solution.
 //
-// Discrete law of one step (ENGINE-NOTES section 1), acceleration a = g + F/m constant, b = a*h:
+// Discrete law of one step (docs/engines.md section 1), acceleration a = g + F/m constant, b = a*h:
 //   v_{n+1} = f*(v_n + b);  x_{n+1} = x_n + h*v_{n+1}
 // Fixed point v* = f*b/(1 - f), so v_n - v* = f^n*(v0 - v*):
 //   v_n = f^n*v0 + f*b*(1 - f^n)/(1 - f)
 // Summing x_n = x0 + h*sum_{j=1..n} v_j with sum_{j=1..n} f^j = f*(1 - f^n)/(1 - f):
 //   x_n = x0 + h*v0*f*(1 - f^n)/(1 - f) + h*f*b/(1 - f)*[n - f*(1 - f^n)/(1 - f)]
-// For v0 = 0 and F = 0 this is ENGINE-NOTES' form (its "a" is our b = g*h).
+// For v0 = 0 and F = 0 this is docs/engines.md's form (its "a" is our b = g*h).
 // No drag (f = 1): v_n = v0 + n*b;  x_n = x0 + v0*n*h + a*h^2*n*(n + 1)/2.
 // The reference is evaluated in long double from the same (already rounded) constants the
 // iteration uses, so the difference is the iteration's own rounding only.
@@ -143,7 +143,7 @@ TEST_CASE("ApplyPhysics in float stays within the float rounding bound of the cl
   }
 }
 
-TEST_CASE("60 steps of the seed's scene reproduce ENGINE-NOTES' 6.5878983508563724 and 6.5878987312316895", "[ours]") {
+TEST_CASE("60 steps of the seed's scene reproduce docs/engines.md's 6.5878983508563724 and 6.5878987312316895", "[ours]") {
   std::vector<ours::Model<double>> d(1);
   std::vector<ours::Model<float>> f(1);
   d[0].translation = {0.0, 10.0, 0.0};

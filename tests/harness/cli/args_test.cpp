@@ -2,7 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include "harness/cli/args.hpp"
-#include "harness/input_error.hpp"
+#include "harness/core/input_error.hpp"
 
 using Catch::Matchers::Contains;
 

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "harness/cli/cli.hpp"
-#include "harness/registry.hpp"
-#include "harness/runner.hpp"
-#include "harness/scene_loader.hpp"
+#include "harness/core/registry.hpp"
+#include "harness/core/runner.hpp"
+#include "harness/core/scene_loader.hpp"
 
 using Catch::Matchers::Contains;
 namespace fs = std::filesystem;

@@ -1,0 +1,79 @@
+// Engine: the one interface every physics engine is driven through. Adapters (adapters/*.cpp)
+// implement it; they only convert data between a Scene and one engine.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <span>
+#include <stdexcept>
+#include <string>
+
+#include "harness/core/law.hpp"
+#include "harness/core/scene.hpp"
+
+namespace dropcheck {
+
+enum class Scalar { f32, f64 };
+
+struct Capabilities {
+  bool contacts = false;      // can collide boxes with a static floor
+  bool planar_only = false;   // 2-D engine: runs x-y plane scenes only
+};
+
+struct EngineInfo {
+  std::string name;      // registry name: ours, ours-f64, bullet, ode, box2d, mujoco
+  std::string version;   // the engine library's version
+  Scalar scalar = Scalar::f64;
+  Capabilities capabilities;
+  Law law;  // its member of the discrete-law family (harness/core/law.hpp)
+  std::string damping_mapping;  // how k becomes the engine's parameter, e.g. "d = 1 - exp(-k)"
+  std::string contact_settings; // contact model and parameters used when contacts = true
+  // Landing on a static floor: where the centre of a resting box sits relative to the geometric
+  // rest height (floor top + half extent), in m, and how far from that still counts as expected.
+  // Documented per engine in docs/engines.md section 5 (Box2D: +0.015 from skin and slop).
+  double rest_offset = 0.0;
+  double rest_tolerance = 1e-3;
+};
+
+struct BodyState {
+  Vec3 position = Vec3::Zero();
+  Vec3 velocity = Vec3::Zero();
+};
+
+class Engine {
+ public:
+  virtual ~Engine() = default;
+
+  virtual EngineInfo info() const = 0;
+
+  // Why this engine cannot run `scene` ("not planar", "no contacts"); empty when it can.
+  virtual std::string cannot_run(const Scene& scene) const;
+
+  // Builds the engine's world for `scene`, to be stepped at exactly h seconds per step.
+  virtual void load(const Scene& scene, double h) = 0;
+
+  // This step's external force on each body (N), indexed like Scene::bodies; applied once, by the
+  // next step() only. Entries of static bodies are zero and ignored.
+  virtual void set_forces(std::span<const Vec3> forces) = 0;
+
+  // Advances exactly one step of h. Throws EngineError when the engine reports an error.
+  virtual void step() = 0;
+
+  // The true state of every body after the last step (not an interpolated or stale copy).
+  virtual void read(std::span<BodyState> out) const = 0;
+
+  // True when the last step clamped a body's speed (Box2D moves at most 2 m per step).
+  virtual bool speed_clamped() const { return false; }
+};
+
+// An engine refused or failed a call; a result to record, never a crash of the harness.
+struct EngineError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Makes a fresh engine; how engine-neutral code (timing, evaluation, checks) gets engines.
+using EngineFactory = std::function<std::unique_ptr<Engine>()>;
+
+const char* to_string(Scalar scalar);
+
+}  // namespace dropcheck

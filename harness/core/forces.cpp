@@ -1,0 +1,33 @@
+#include "harness/core/forces.hpp"
+
+#include <variant>
+
+namespace dropcheck {
+namespace {
+
+// Spring with dashpot to a fixed anchor (scene.hpp): F = -s*(|d| - L)*d/|d| - c*v, d = x - anchor.
+Vec3 spring_force(const Spring& s, const BodyState& state) {
+  const Vec3 d = state.position - s.anchor;
+  Vec3 f = -s.damping * state.velocity;
+  if (s.rest_length == 0.0) return f - s.stiffness * d;
+  const double len = d.norm();
+  if (len > 0.0) f -= s.stiffness * (len - s.rest_length) * (d / len);
+  return f;
+}
+
+}  // namespace
+
+void compute_forces(const Scene& scene, std::span<const BodyState> states, std::span<Vec3> out) {
+  for (Vec3& f : out) f.setZero();
+  for (const Force& force : scene.forces) {
+    for (std::size_t i : force.bodies) {
+      if (scene.bodies[i].is_static) continue;
+      if (const auto* c = std::get_if<ConstantForce>(&force.law))
+        out[i] += c->force;
+      else
+        out[i] += spring_force(std::get<Spring>(force.law), states[i]);
+    }
+  }
+}
+
+}  // namespace dropcheck

@@ -1,0 +1,34 @@
+#include "harness/core/law.hpp"
+
+namespace dropcheck {
+
+std::string to_string(Law law) {
+  const bool explicit_x = law.position == PositionUpdate::Explicit;
+  switch (law.damping) {
+    case DampingOrder::AfterForces:
+      return explicit_x ? "x += h*v; v = phi*(v + a*h)" : "v = phi*(v + a*h); x += h*v";
+    case DampingOrder::BeforeForces:
+      return explicit_x ? "x += h*v; v = phi*v + a*h" : "v = phi*v + a*h; x += h*v";
+    case DampingOrder::AfterPosition:
+      return explicit_x ? "x += h*v; v = phi*(v + a*h)" : "v' = v + a*h; x += h*v'; v = phi*v'";
+  }
+  return "?";
+}
+
+std::string law_key(Law law) {
+  std::string key = law.damping == DampingOrder::AfterForces    ? "after-forces"
+                    : law.damping == DampingOrder::BeforeForces ? "before-forces"
+                                                                : "after-position";
+  if (law.position == PositionUpdate::Explicit) key += "/explicit";
+  return key;
+}
+
+std::optional<Law> parse_law_key(std::string_view key) {
+  for (DampingOrder d :
+       {DampingOrder::AfterForces, DampingOrder::BeforeForces, DampingOrder::AfterPosition})
+    for (PositionUpdate p : {PositionUpdate::SemiImplicit, PositionUpdate::Explicit})
+      if (law_key({d, p}) == key) return Law{d, p};
+  return std::nullopt;
+}
+
+}  // namespace dropcheck

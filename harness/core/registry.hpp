@@ -1,0 +1,24 @@
+// The registry: engine names to adapters compiled into this build (adapters/registry.cpp).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "harness/core/engine.hpp"
+
+namespace dropcheck {
+
+// Every engine dropcheck knows, in report order, whether or not it is compiled in.
+const std::vector<std::string>& known_engine_names();
+
+// The engines compiled into this build, in report order.
+std::vector<std::string> available_engine_names();
+
+// A fresh engine by name; nullptr when the name is unknown or not compiled in.
+std::unique_ptr<Engine> make_engine(const std::string& name);
+
+// Why `name` is not available ("unknown engine", "not compiled in: ..."); empty when it is.
+std::string engine_unavailable_reason(const std::string& name);
+
+}  // namespace dropcheck

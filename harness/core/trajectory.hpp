@@ -1,0 +1,44 @@
+// Trajectory: the sampled states of every body of one scene run on one engine at one step h.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "harness/core/engine.hpp"
+
+namespace dropcheck {
+
+enum class RunStatus {
+  ok,            // ran every step
+  non_finite,    // a position or velocity became NaN or Inf (recorded up to the step before)
+  engine_error,  // the engine threw or reported an error
+};
+
+struct Trajectory {
+  std::string engine;
+  std::string scene;
+  double h = 0.0;
+  std::int64_t steps = 0;               // steps the scene asks for
+  std::vector<std::string> body_names;  // as in Scene::bodies
+  std::vector<std::int64_t> recorded;   // step index of each sample; sample 0 is step 0
+  std::vector<BodyState> states;        // recorded.size() x body_names.size(), sample-major
+  RunStatus status = RunStatus::ok;
+  std::string failure;                  // what went wrong, for non-ok status
+  std::int64_t failed_step = -1;        // first step that failed
+  std::int64_t clamped_steps = 0;       // steps on which the engine clamped a speed
+  std::int64_t first_clamped_step = -1;
+  double wall_seconds = 0.0;            // stepping loop (forces, step, read, sampling), not load
+
+  std::size_t samples() const { return recorded.size(); }
+  std::size_t bodies() const { return body_names.size(); }
+  const BodyState& at(std::size_t sample, std::size_t body) const {
+    return states[sample * bodies() + body];
+  }
+  double time(std::size_t sample) const { return static_cast<double>(recorded[sample]) * h; }
+  const BodyState& final_state(std::size_t body) const { return at(samples() - 1, body); }
+};
+
+const char* to_string(RunStatus status);
+
+}  // namespace dropcheck

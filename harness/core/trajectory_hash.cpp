@@ -1,0 +1,43 @@
+#include "harness/core/trajectory_hash.hpp"
+
+#include <bit>
+#include <cstdio>
+
+namespace dropcheck {
+namespace {
+
+// FNV-1a 64: h = (h XOR byte) * 0x100000001b3, starting from 0xcbf29ce484222325.
+struct Fnv1a {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  void add(std::uint64_t word) {
+    for (int i = 0; i < 8; ++i) {
+      h ^= (word >> (8 * i)) & 0xffu;
+      h *= 0x100000001b3ull;
+    }
+  }
+  void add(const Vec3& v) {
+    for (int i = 0; i < 3; ++i) add(std::bit_cast<std::uint64_t>(v[i] == 0.0 ? 0.0 : v[i]));
+  }
+};
+
+}  // namespace
+
+std::uint64_t trajectory_hash(const Trajectory& t) {
+  Fnv1a f;
+  for (std::size_t s = 0; s < t.samples(); ++s) {
+    f.add(static_cast<std::uint64_t>(t.recorded[s]));
+    for (std::size_t b = 0; b < t.bodies(); ++b) {
+      f.add(t.at(s, b).position);
+      f.add(t.at(s, b).velocity);
+    }
+  }
+  return f.h;
+}
+
+std::string trajectory_hash_hex(const Trajectory& t) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(trajectory_hash(t)));
+  return buf;
+}
+
+}  // namespace dropcheck

@@ -1,0 +1,21 @@
+// Trajectories out: CSV (one row per body per recorded step) and JSON, numbers printed with %.17g
+// so that they read back exactly.
+#pragma once
+
+#include <span>
+#include <string>
+
+#include "harness/core/trajectory.hpp"
+
+namespace dropcheck {
+
+// Header "engine,dt,step,t,body,x,y,z,vx,vy,vz", then rows, step 0 being the initial state.
+std::string trajectories_to_csv(std::span<const Trajectory> runs);
+
+// {"runs":[{"engine","scene","dt","steps","status",...,"final":[...]}]} with every sample.
+std::string trajectories_to_json(std::span<const Trajectory> runs);
+
+// A double printed with %.17g (round-trips exactly).
+std::string exact(double v);
+
+}  // namespace dropcheck

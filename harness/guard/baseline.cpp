@@ -1,0 +1,127 @@
+// make_baseline: runs one scene on one engine over its sweep and measures it against both oracles.
+// (The text format lives in baseline_io.cpp.)
+#include "harness/guard/baseline.hpp"
+
+#include <cmath>
+
+#include "harness/oracles/analytic.hpp"
+#include "harness/measure/attribution.hpp"
+#include "harness/core/build_id.hpp"
+#include "harness/oracles/discrete_law.hpp"
+#include "harness/measure/metrics.hpp"
+#include "harness/core/runner.hpp"
+#include "harness/measure/timing.hpp"
+#include "harness/core/trajectory_hash.hpp"
+
+namespace dropcheck {
+namespace {
+
+// Keeps step 0, every `every`-th step and the last sample of a trajectory recorded at every step.
+Trajectory downsample(const Trajectory& full, std::int64_t every) {
+  Trajectory t = full;
+  t.recorded.clear();
+  t.states.clear();
+  for (std::size_t s = 0; s < full.samples(); ++s) {
+    if (full.recorded[s] % every != 0 && s + 1 != full.samples()) continue;
+    t.recorded.push_back(full.recorded[s]);
+    for (std::size_t b = 0; b < full.bodies(); ++b) t.states.push_back(full.at(s, b));
+  }
+  return t;
+}
+
+std::string status_text(const Trajectory& t) {
+  std::string s = to_string(t.status);
+  if (t.status != RunStatus::ok) s += ": " + t.failure;
+  return s;
+}
+
+// Oracle 2: the engine's departure from its own discrete law, worst dynamic body, and the first
+// step at which any body leaves the rounding budget.
+void measure_law(const Scene& scene, const Trajectory& run, const Trajectory& law, double budget,
+                 SweepPoint& p) {
+  for (std::size_t b = 0; b < run.bodies(); ++b) {
+    if (scene.bodies[b].is_static) continue;
+    const ErrorStats e = compare(run, law, b, budget);
+    if (p.law_worst_body.empty() || e.max_dx > p.law_max_dx) {
+      p.law_max_dx = e.max_dx;
+      p.law_worst_body = run.body_names[b];
+    }
+    if (e.diverged_at < 0.0) continue;
+    const std::int64_t step = std::llround(e.diverged_at / run.h);
+    if (p.law_first_over < 0 || step < p.law_first_over) p.law_first_over = step;
+  }
+}
+
+// One point of the sweep: the run at dt (every step recorded) against both oracles.
+SweepPoint measure(const Scene& scene, const EngineInfo& info, const Trajectory& run,
+                   const Timestep& dt) {
+  SweepPoint p;
+  p.dt = dt;
+  p.steps = run.steps;
+  p.status = to_string(run.status);
+  if (const auto exact = analytic_trajectory(scene, dt.seconds)) {
+    const ErrorStats e = compare_worst(run, *exact, scene.tolerance);
+    p.analytic_max_dx = e.max_dx;
+    p.analytic_final_dx = e.final_dx;
+  }
+  measure_law(scene, run, predict_discrete(info.law, scene, dt.seconds), rounding_budget(info.scalar), p);
+  return p;
+}
+
+void add_timing(const Scene& scene, const EngineFactory& make, const std::string& name, SweepPoint& p) {
+  const std::vector<Timing> t = time_engines({{name, make}}, scene, p.dt.seconds);
+  p.wall_min = t.front().min_per_sim_s;
+  p.wall_median = t.front().median_per_sim_s;
+  p.replicas = t.front().replicas;
+}
+
+}  // namespace
+
+Baseline make_baseline(const Scene& scene, const EngineFactory& make, const BaselineOptions& options) {
+  Baseline out;
+  std::unique_ptr<Engine> engine = make();
+  const EngineInfo info = engine->info();
+  out.provenance = provenance("unknown commit");
+  out.build_key = current_build().key;
+  out.scene = scene.name;
+  out.engine = info.name;
+  out.scalar = info.scalar;
+  out.law = to_string(info.law);
+  const std::string no_oracle = analytic_unavailable(scene);
+  out.analytic = no_oracle.empty() ? "closed form" : "none: " + no_oracle;
+  out.dt = scene.timestep;
+  out.record_every = options.record_every < 1 ? 1 : options.record_every;
+  out.skipped = engine->cannot_run(scene);
+  if (!out.skipped.empty()) return out;
+
+  bool default_in_sweep = false;
+  for (const Timestep& dt : scene.timesteps) {
+    const Trajectory run = run_scene(*make(), scene, dt.seconds);
+    out.sweep.push_back(measure(scene, info, run, dt));
+    if (options.timing) add_timing(scene, make, info.name, out.sweep.back());
+    if (dt.seconds != scene.timestep.seconds) continue;
+    default_in_sweep = true;
+    out.status = status_text(run);
+    out.hash = trajectory_hash_hex(run);
+    out.samples = downsample(run, out.record_every);
+  }
+  if (!default_in_sweep) {
+    const Trajectory run = run_scene(*make(), scene, scene.timestep.seconds);
+    out.status = status_text(run);
+    out.hash = trajectory_hash_hex(run);
+    out.samples = downsample(run, out.record_every);
+  }
+  return out;
+}
+
+std::string provenance(const std::string& commit) {
+  const BuildId id = current_build();
+  return "made by `dropcheck bless` with " + id.key + ", build type " +
+         (id.build_type.empty() ? "(none)" : id.build_type) + " \"" + id.flags + "\", on commit " + commit;
+}
+
+std::string baseline_file_name(const std::string& scene, const std::string& engine) {
+  return scene + "." + engine + ".txt";
+}
+
+}  // namespace dropcheck

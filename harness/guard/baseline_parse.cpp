@@ -1,0 +1,182 @@
+// Parsing the baseline text format (harness/guard/baseline.hpp) back into a Baseline, to the bit: every
+// number was printed with %.17g, which strtod reads back exactly.
+#include <cerrno>
+#include <cstdlib>
+#include <map>
+#include <sstream>
+#include <vector>
+
+#include "harness/guard/baseline.hpp"
+#include "harness/core/input_error.hpp"
+#include "harness/core/timestep.hpp"
+
+namespace dropcheck {
+namespace {
+
+constexpr const char* kProvenancePrefix = "# dropcheck baseline: ";
+
+struct Parser {
+  std::string path;
+  int line = 0;
+  Baseline b;
+  std::size_t next_body = 0;  // index of the body the next `sample` line must name
+
+  [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
+    throw InputError(path, line, key, problem);
+  }
+
+  double number(const std::string& text, const std::string& key) const {
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0') fail(key, "not a number: '" + text + "'");
+    return v;
+  }
+
+  std::int64_t integer(const std::string& text, const std::string& key) const {
+    char* end = nullptr;
+    const long long v = std::strtoll(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0') fail(key, "not an integer: '" + text + "'");
+    return v;
+  }
+
+  // "k1=v1 k2=v2 ..." with exactly the keys in `expected`.
+  std::map<std::string, std::string> fields(const std::string& rest, const std::string& key,
+                                            const std::vector<std::string>& expected) const {
+    std::map<std::string, std::string> out;
+    std::istringstream in(rest);
+    std::string word;
+    while (in >> word) {
+      const std::size_t eq = word.find('=');
+      if (eq == std::string::npos) fail(key, "expected name=value, got '" + word + "'");
+      out[word.substr(0, eq)] = word.substr(eq + 1);
+    }
+    for (const std::string& e : expected)
+      if (!out.count(e)) fail(key, "missing " + e + "=");
+    if (out.size() != expected.size()) fail(key, "unexpected fields in '" + rest + "'");
+    return out;
+  }
+
+  void sweep(const std::string& rest) {
+    auto f = fields(rest, "sweep", {"h", "steps", "status", "analytic_max_dx", "analytic_final_dx",
+                                    "law_max_dx", "law_worst_body", "law_first_over"});
+    SweepPoint p;
+    std::string why;
+    const std::optional<Timestep> dt = parse_timestep(f["h"], why);
+    if (!dt) fail("sweep h", why);
+    p.dt = *dt;
+    p.steps = integer(f["steps"], "sweep steps");
+    p.status = f["status"];
+    p.analytic_max_dx = number(f["analytic_max_dx"], "sweep analytic_max_dx");
+    p.analytic_final_dx = number(f["analytic_final_dx"], "sweep analytic_final_dx");
+    p.law_max_dx = number(f["law_max_dx"], "sweep law_max_dx");
+    p.law_worst_body = f["law_worst_body"];
+    p.law_first_over = integer(f["law_first_over"], "sweep law_first_over");
+    b.sweep.push_back(p);
+  }
+
+  void timing(const std::string& rest) {
+    auto f = fields(rest, "timing", {"h", "min_per_sim_s", "median_per_sim_s", "replicas"});
+    for (SweepPoint& p : b.sweep) {
+      if (p.dt.text != f["h"]) continue;
+      p.wall_min = number(f["min_per_sim_s"], "timing min_per_sim_s");
+      p.wall_median = number(f["median_per_sim_s"], "timing median_per_sim_s");
+      p.replicas = static_cast<int>(integer(f["replicas"], "timing replicas"));
+      return;
+    }
+    fail("timing", "no sweep line for h=" + f["h"]);
+  }
+
+  void dt(const std::string& rest) {
+    std::istringstream in(rest);
+    std::string text, seconds, extra;
+    if (!(in >> text >> seconds) || (in >> extra)) fail("dt", "expected 'dt TEXT SECONDS'");
+    b.dt = {number(seconds, "dt"), text};
+  }
+
+  void bodies(const std::string& rest) {
+    std::istringstream in(rest);
+    std::string name;
+    while (in >> name) b.samples.body_names.push_back(name);
+    if (b.samples.body_names.empty()) fail("bodies", "no body names");
+  }
+
+  void sample(const std::string& rest) {
+    std::istringstream in(rest);
+    std::vector<std::string> w;
+    for (std::string word; in >> word;) w.push_back(word);
+    if (w.size() != 8) fail("sample", "expected STEP BODY x y z vx vy vz");
+    Trajectory& t = b.samples;
+    if (t.body_names.empty()) fail("sample", "before the 'bodies' line");
+    const std::int64_t step = integer(w[0], "sample step");
+    if (next_body == 0) t.recorded.push_back(step);
+    if (step != t.recorded.back()) fail("sample", "step " + w[0] + " before every body of step " +
+                                                      std::to_string(t.recorded.back()) + " was listed");
+    if (w[1] != t.body_names[next_body]) fail("sample", "expected body " + t.body_names[next_body]);
+    BodyState s;
+    for (int i = 0; i < 3; ++i) s.position[i] = number(w[2 + i], "sample " + w[1]);
+    for (int i = 0; i < 3; ++i) s.velocity[i] = number(w[5 + i], "sample " + w[1]);
+    t.states.push_back(s);
+    next_body = (next_body + 1) % t.body_names.size();
+  }
+
+  Scalar scalar(const std::string& rest) const {
+    if (rest == "f32") return Scalar::f32;
+    if (rest != "f64") fail("scalar", "expected f32 or f64, got '" + rest + "'");
+    return Scalar::f64;
+  }
+
+  void record(const std::string& key, const std::string& rest) {
+    if (key == "build_key") b.build_key = rest;
+    else if (key == "scene") b.scene = rest;
+    else if (key == "engine") b.engine = rest;
+    else if (key == "scalar") b.scalar = scalar(rest);
+    else if (key == "law") b.law = rest;
+    else if (key == "analytic") b.analytic = rest;
+    else if (key == "skipped") b.skipped = rest;
+    else if (key == "dt") dt(rest);
+    else if (key == "steps") b.samples.steps = integer(rest, key);
+    else if (key == "record_every") b.record_every = integer(rest, key);
+    else if (key == "status") b.status = rest;
+    else if (key == "hash") b.hash = rest;
+    else if (key == "sweep") sweep(rest);
+    else if (key == "timing") timing(rest);
+    else if (key == "bodies") bodies(rest);
+    else if (key == "sample") sample(rest);
+    else fail(key, "unknown record");
+  }
+
+  void finish() {
+    line = 0;
+    if (b.scene.empty() || b.engine.empty()) fail("", "no 'scene' or 'engine' line");
+    if (!b.skipped.empty()) return;
+    if (b.hash.empty() || b.samples.recorded.empty()) fail("", "no 'hash' or no samples");
+    if (next_body != 0) fail("sample", "the last step does not list every body");
+    b.samples.engine = b.engine;
+    b.samples.scene = b.scene;
+    b.samples.h = b.dt.seconds;
+  }
+};
+
+}  // namespace
+
+Baseline parse_baseline(const std::string& text, const std::string& path) {
+  Parser p;
+  p.path = path;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    ++p.line;
+    if (line.rfind(kProvenancePrefix, 0) == 0) {
+      p.b.provenance = line.substr(std::string(kProvenancePrefix).size());
+      continue;
+    }
+    if (line.empty() || line[0] == '#') continue;
+    const std::size_t space = line.find(' ');
+    p.record(line.substr(0, space), space == std::string::npos ? "" : line.substr(space + 1));
+  }
+  p.finish();
+  return p.b;
+}
+
+}  // namespace dropcheck

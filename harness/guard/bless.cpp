@@ -1,0 +1,51 @@
+#include "harness/guard/bless.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "harness/core/atomic_file.hpp"
+#include "harness/guard/regression.hpp"
+
+namespace dropcheck {
+namespace {
+
+std::string read_or_empty(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return {};
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Writes one baseline unless the file already holds the same data; returns the log line.
+std::string write_one(const Baseline& b, const std::string& dir) {
+  const std::string path = (std::filesystem::path(dir) / baseline_file_name(b.scene, b.engine)).string();
+  const std::string text = baseline_to_text(b), old = read_or_empty(path);
+  const std::string what = b.skipped.empty() ? "hash " + b.hash : "skipped: " + b.skipped;
+  if (!old.empty() && same_data(old, text)) return "unchanged " + path + " (" + what + ")";
+  write_file_atomic(path, text);
+  return (old.empty() ? "new       " : "updated   ") + path + " (" + what + ")";
+}
+
+}  // namespace
+
+BlessOutcome bless(const std::vector<Scene>& scenes, const std::vector<NamedFactory>& engines,
+                   const BlessOptions& options) {
+  BlessOutcome out;
+  std::vector<Baseline> made;
+  for (const Scene& scene : scenes) {
+    for (const NamedFactory& engine : engines) {
+      Baseline b = make_baseline(scene, engine.second, options.baseline);
+      b.provenance = provenance(options.commit);
+      const TierResult physics = check_physics(b);
+      if (physics.verdict == Verdict::failed) out.refused.push_back(physics.message);
+      made.push_back(std::move(b));
+    }
+  }
+  if (!out.refused.empty()) return out;
+  for (const Baseline& b : made) out.lines.push_back(write_one(b, options.out_dir));
+  return out;
+}
+
+}  // namespace dropcheck

@@ -1,0 +1,46 @@
+// The checks behind `dropcheck check` and `ctest -L cross`: each one passes or fails with a message
+// a person can act on (scene, engine, body, step, both values).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "harness/core/engine.hpp"
+
+namespace dropcheck {
+
+struct CheckResult {
+  std::string scene, engine;
+  std::string check;    // "own law at h = 1/60", "divergence from ours-f64", "landing", ...
+  bool passed = false;
+  std::string message;  // the measured figures; on failure, what differs and where
+};
+
+// The steps the own-law check runs at: the scene's step and two others from its sweep (or h/2, h/4).
+std::vector<Timestep> conformance_steps(const Scene& scene);
+
+// Oracle 2: on a free-flight scene, the engine follows its own declared discrete law at step h to
+// within rounding_budget(scalar) in every position and velocity component.
+CheckResult check_own_law(const Scene& scene, const EngineFactory& make, const Timestep& h);
+
+// Cross-engine: over the scene's sweep, the engine's divergence from `reference` is explained by
+// the two laws (residual within rounding) and, where the laws differ, shrinks at first order
+// (observed order 0.9-1.1: the signature of a damping-order difference and nothing else). For the
+// reference itself: its error against the analytic solution shrinks at first order.
+CheckResult check_divergence(const Scene& scene, const EngineFactory& make,
+                             const EngineFactory& reference);
+
+// A landing may rise at most this far above its rest height after first contact (m).
+inline constexpr double kMaxRebound = 1e-3;
+
+// Oracle 1 for contacts: each dynamic body over a static floor makes first contact within one step
+// of its own discrete law's contact step, rebounds no higher than rest + kMaxRebound, rests within
+// the engine's declared rest_offset +- rest_tolerance, and is still over the last 2 s.
+CheckResult check_landing(const Scene& scene, const EngineFactory& make, const Timestep& h);
+
+// Every check that applies to `scene` on one engine (free flight: own law at three steps and
+// divergence; contacts: landing). An engine that cannot run the scene gives no results.
+std::vector<CheckResult> check_scene(const Scene& scene, const EngineFactory& make,
+                                     const EngineFactory& reference);
+
+}  // namespace dropcheck

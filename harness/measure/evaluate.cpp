@@ -1,0 +1,306 @@
+#include "harness/measure/evaluate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+
+#include "harness/oracles/analytic.hpp"
+#include "harness/oracles/discrete_law.hpp"
+#include "harness/core/runner.hpp"
+#include "harness/core/timestep.hpp"
+#include "harness/core/trajectory_hash.hpp"
+
+namespace dropcheck {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+void say(const Progress& progress, const std::string& what) {
+  if (progress) progress(what);
+}
+
+bool same_step(double a, double b) {
+  return std::abs(a - b) <= 1e-12 * std::max(a, b);
+}
+
+// The references every engine shares at each step of the sweep, computed once.
+class References {
+ public:
+  References(const Scene& scene, const std::vector<Timestep>& sweep)
+      : scene_(scene), sweep_(sweep) {
+    for (const Timestep& h : sweep) analytic_.push_back(analytic_trajectory(scene, h.seconds));
+  }
+  // Oracle 1 at sweep step i (nullopt without a closed form).
+  const std::optional<Trajectory>& analytic(std::size_t i) const { return analytic_[i]; }
+  // Oracle 2 for `law` at sweep step i, predicted on first use.
+  const Trajectory& law(Law law, std::size_t i) {
+    auto key = std::make_pair(law_key(law), i);
+    auto it = laws_.find(key);
+    if (it == laws_.end())
+      it = laws_.emplace(key, predict_discrete(law, scene_, sweep_[i].seconds)).first;
+    return it->second;
+  }
+
+ private:
+  const Scene& scene_;
+  const std::vector<Timestep>& sweep_;
+  std::vector<std::optional<Trajectory>> analytic_;
+  std::map<std::pair<std::string, std::size_t>, Trajectory> laws_;
+};
+
+// Oracle 3's step: the finest step of the sweep divided by `factor` (halved until it divides the
+// duration into whole steps). Written "1/(N*factor)" when the finest step is "1/N".
+std::optional<Timestep> fine_step(const Scene& scene, const Timestep& finest, int factor) {
+  for (; factor >= 2; factor /= 2) {
+    const double h = finest.seconds / factor;
+    if (!step_problem(scene.duration, h).empty()) continue;
+    char text[64];
+    if (finest.text.rfind("1/", 0) == 0)
+      std::snprintf(text, sizeof text, "1/%lld", std::atoll(finest.text.c_str() + 2) * factor);
+    else
+      std::snprintf(text, sizeof text, "%.6g", h);
+    return Timestep{h, text};
+  }
+  return std::nullopt;
+}
+
+EngineEvaluation open_engine(const Scene& scene, const EngineSlot& slot) {
+  EngineEvaluation ev;
+  ev.name = slot.name;
+  if (!slot.make) {
+    ev.skipped = slot.unavailable.empty() ? "not available" : slot.unavailable;
+    return ev;
+  }
+  std::unique_ptr<Engine> engine = slot.make();
+  if (!engine) {
+    ev.skipped = "its factory made no engine";
+    return ev;
+  }
+  ev.info = engine->info();
+  ev.skipped = engine->cannot_run(scene);
+  return ev;
+}
+
+// Runs one engine over the sweep and measures each run against oracles 1 and 2.
+void run_sweep(EngineEvaluation& ev, const EngineSlot& slot, const SceneEvaluation& se,
+               References& refs, const Progress& progress) {
+  const double tol = se.scene.tolerance;
+  for (std::size_t i = 0; i < se.sweep.size(); ++i) {
+    say(progress, ev.name + " " + se.sweep[i].text);
+    StepEvaluation s;
+    s.h = se.sweep[i];
+    s.run = run_scene(*slot.make(), se.scene, s.h.seconds);
+    if (refs.analytic(i)) s.vs_analytic = compare_worst(s.run, *refs.analytic(i), tol);
+    if (se.uses_law) {
+      s.vs_law = compare_worst(s.run, refs.law(ev.info.law, i), tol);
+      s.law_budget = rounding_budget(ev.info.scalar, refs.law(ev.info.law, i));
+    }
+    ev.sweep.push_back(std::move(s));
+  }
+  ev.default_index = se.default_index;
+  ev.hash = trajectory_hash_hex(ev.at_default().run);
+}
+
+// Oracle 3: the same engine at the fine step, compared at the sweep runs' sample times.
+void run_fine(EngineEvaluation& ev, const EngineSlot& slot, const SceneEvaluation& se,
+              const Progress& progress) {
+  say(progress, ev.name + " " + se.fine_step.text + " (fine-step reference)");
+  ev.fine = run_scene(*slot.make(), se.scene, se.fine_step.seconds);
+  for (StepEvaluation& s : ev.sweep) s.vs_fine = compare_worst(s.run, ev.fine, se.scene.tolerance);
+}
+
+// Landing figures of every run of a contact scene (harness/oracles/landing.hpp). An engine whose resting
+// surface sits above the geometry (Box2D's 0.01 m skin) touches the floor there: contact means
+// reaching floor top + rest_offset (+ its tolerance), as `dropcheck check` counts it.
+void measure_landings(EngineEvaluation& ev, const SceneEvaluation& se) {
+  std::vector<LandingSetup> setups = landing_setups(se.scene);
+  for (LandingSetup& setup : setups)
+    setup.floor_top += std::max(0.0, ev.info.rest_offset + ev.info.rest_tolerance);
+  for (StepEvaluation& s : ev.sweep) {
+    for (const LandingSetup& setup : setups) {
+      LandingResult r{setup, observe_landing(s.run, setup), kNaN};
+      const std::int64_t n = discrete_contact_step(ev.info.law, se.scene, s.h.seconds, setup);
+      if (n >= 0) r.law_contact_time = static_cast<double>(n) * s.h.seconds;
+      s.landings.push_back(r);
+    }
+  }
+}
+
+// The engine divergences are measured from: the requested one if it ran, else the first that ran.
+void choose_reference(SceneEvaluation& se, const std::string& wanted) {
+  const EngineEvaluation* w = se.find(wanted);
+  if (w && w->ran()) {
+    se.reference = wanted;
+    return;
+  }
+  for (const EngineEvaluation& ev : se.engines) {
+    if (!ev.ran()) continue;
+    se.reference = ev.name;
+    se.reference_note =
+        wanted + " did not run this scene (" + (w ? w->skipped : "not listed") + ")";
+    return;
+  }
+}
+
+// The samples of `t` recorded before step n.
+Trajectory before_step(const Trajectory& t, std::int64_t n) {
+  Trajectory out = t;
+  std::size_t keep = 0;
+  while (keep < t.samples() && t.recorded[keep] < n) ++keep;
+  out.recorded.resize(keep);
+  out.states.resize(keep * t.bodies());
+  return out;
+}
+
+// The step before the first one on which any of the trajectories has a body at or below its
+// floor (harness/oracles/landing.hpp): until then every body is in free flight. -1 when none lands.
+std::int64_t free_flight_end(const Scene& scene, std::initializer_list<const Trajectory*> runs) {
+  std::int64_t first = -1;
+  for (const LandingSetup& setup : landing_setups(scene))
+    for (const Trajectory* t : runs)
+      if (const std::int64_t n = first_contact_step(*t, setup); n >= 0 && (first < 0 || n < first))
+        first = n;
+  // One step earlier: an engine with a contact skin (Box2D, 0.01 m) meets the floor up to one
+  // step before its bottom does.
+  return first < 0 ? -1 : std::max<std::int64_t>(first - 1, 0);
+}
+
+// Divergence of `ev` from the reference at every step, and its attribution (law part, residual)
+// over the free flight: the whole run without contacts, the fall before landing with contacts.
+void measure_divergence(EngineEvaluation& ev, const EngineEvaluation& ref,
+                        const SceneEvaluation& se, References& refs) {
+  for (std::size_t i = 0; i < ev.sweep.size(); ++i) {
+    StepEvaluation& s = ev.sweep[i];
+    const Trajectory& r = ref.sweep[i].run;
+    for (std::size_t b = 0; b < s.run.bodies(); ++b)
+      s.reference_by_body.push_back(compare(s.run, r, b, se.scene.tolerance));
+    s.vs_reference = compare_worst(s.run, r, se.scene.tolerance);
+    const Trajectory& le = refs.law(ev.info.law, i);
+    const Trajectory& lr = refs.law(ref.info.law, i);
+    if (se.uses_law) {
+      s.attribution = attribute(s.run, le, ev.info.scalar, r, lr, ref.info.scalar);
+      continue;
+    }
+    const std::int64_t n = free_flight_end(se.scene, {&s.run, &r, &le, &lr});
+    if (n <= 0) continue;
+    s.attribution = attribute(before_step(s.run, n), before_step(le, n), ev.info.scalar,
+                              before_step(r, n), before_step(lr, n), ref.info.scalar);
+    s.attributed_until = s.attribution->final_t;
+  }
+}
+
+// Observed orders p = ln(e1/e2)/ln(h1/h2) of the continuous error and of the divergence. A
+// divergence within the two engines' rounding budget counts as zero: the order of noise means
+// nothing.
+void measure_orders(EngineEvaluation& ev, const SceneEvaluation& se) {
+  const EngineEvaluation* ref = se.find(se.reference);
+  const double budget =
+      ref ? rounding_budget(ev.info.scalar) + rounding_budget(ref->info.scalar) : 0.0;
+  std::vector<double> h, cont, div;
+  for (const StepEvaluation& s : ev.sweep) {
+    h.push_back(s.h.seconds);
+    cont.push_back(s.continuous_error());
+    const double d = s.vs_reference ? s.vs_reference->max_dx : kNaN;
+    div.push_back(d <= budget ? 0.0 : d);
+  }
+  if (se.uses_fine || se.no_analytic.empty()) ev.orders_continuous = observed_orders(h, cont);
+  if (ev.name != se.reference) ev.orders_reference = observed_orders(h, div);
+}
+
+// Times, at each step of the sweep, every engine whose run at that step finished.
+void time_sweep(SceneEvaluation& se, const std::vector<EngineSlot>& slots, const EvaluateOptions& o,
+                const Progress& progress) {
+  for (std::size_t i = 0; i < se.sweep.size(); ++i) {
+    std::vector<std::pair<std::string, EngineFactory>> timed;
+    std::vector<StepEvaluation*> targets;
+    for (std::size_t e = 0; e < se.engines.size(); ++e) {
+      EngineEvaluation& ev = se.engines[e];
+      if (!ev.ran() || ev.sweep[i].run.status != RunStatus::ok) continue;
+      timed.emplace_back(ev.name, slots[e].make);
+      targets.push_back(&ev.sweep[i]);
+    }
+    say(progress, "timing " + std::to_string(timed.size()) + " engines at " + se.sweep[i].text);
+    const std::vector<Timing> t =
+        time_engines(timed, se.scene, se.sweep[i].seconds, o.timing_options);
+    for (std::size_t k = 0; k < t.size(); ++k) targets[k]->timing = t[k];
+  }
+}
+
+SceneEvaluation prepare(const Scene& scene, const EvaluateOptions& options) {
+  SceneEvaluation se;
+  se.scene = scene;
+  se.sweep = sorted_sweep(scene);
+  for (std::size_t i = 0; i < se.sweep.size(); ++i)
+    if (same_step(se.sweep[i].seconds, scene.timestep.seconds)) se.default_index = i;
+  se.no_analytic = analytic_unavailable(scene);
+  se.uses_law = !scene.world.contacts;
+  if (!se.no_analytic.empty()) {
+    const std::optional<Timestep> fine = fine_step(scene, se.sweep.back(), options.fine_factor);
+    se.uses_fine = fine.has_value();
+    if (fine) se.fine_step = *fine;
+  }
+  se.analytic = analytic_trajectory(scene, scene.timestep.seconds);
+  return se;
+}
+
+}  // namespace
+
+double StepEvaluation::continuous_error() const {
+  const ErrorStats* c = continuous();
+  return c ? c->max_dx : kNaN;
+}
+
+const ErrorStats* StepEvaluation::continuous() const {
+  if (vs_analytic) return &*vs_analytic;
+  if (vs_fine) return &*vs_fine;
+  return nullptr;
+}
+
+const StepEvaluation* EngineEvaluation::first_failure() const {
+  for (const StepEvaluation& s : sweep)
+    if (s.run.status != RunStatus::ok) return &s;
+  return nullptr;
+}
+
+const EngineEvaluation* SceneEvaluation::find(const std::string& name) const {
+  for (const EngineEvaluation& ev : engines)
+    if (ev.name == name) return &ev;
+  return nullptr;
+}
+
+std::vector<Timestep> sorted_sweep(const Scene& scene) {
+  std::vector<Timestep> out = scene.timesteps;
+  out.push_back(scene.timestep);
+  std::stable_sort(out.begin(), out.end(),
+                   [](const Timestep& a, const Timestep& b) { return a.seconds > b.seconds; });
+  auto same = [](const Timestep& a, const Timestep& b) { return same_step(a.seconds, b.seconds); };
+  out.erase(std::unique(out.begin(), out.end(), same), out.end());
+  return out;
+}
+
+SceneEvaluation evaluate_scene(const Scene& scene, const std::vector<EngineSlot>& engines,
+                               const EvaluateOptions& options, const Progress& progress) {
+  SceneEvaluation se = prepare(scene, options);
+  References refs(se.scene, se.sweep);
+  for (std::size_t e = 0; e < engines.size(); ++e) {
+    se.engines.push_back(open_engine(scene, engines[e]));
+    EngineEvaluation& ev = se.engines.back();
+    if (!ev.ran()) continue;
+    run_sweep(ev, engines[e], se, refs, progress);
+    if (se.uses_fine) run_fine(ev, engines[e], se, progress);
+    if (scene.world.contacts) measure_landings(ev, se);
+  }
+  choose_reference(se, options.reference);
+  const EngineEvaluation* ref = se.find(se.reference);
+  for (EngineEvaluation& ev : se.engines) {
+    if (!ev.ran()) continue;
+    if (ref && ev.name != ref->name) measure_divergence(ev, *ref, se, refs);
+    measure_orders(ev, se);
+  }
+  if (options.timing) time_sweep(se, engines, options, progress);
+  return se;
+}
+
+}  // namespace dropcheck

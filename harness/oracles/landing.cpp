@@ -1,0 +1,192 @@
+#include "harness/oracles/landing.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <variant>
+
+#include "harness/oracles/discrete_law.hpp"
+
+namespace dropcheck {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double top(const Body& b) {
+  return b.position.y() + b.half_extents.y();
+}
+double bottom(const Body& b) {
+  return b.position.y() - b.half_extents.y();
+}
+
+// Static box `f` holds body `b`: f's top is at or below b's bottom and b's centre lies over f's
+// footprint in the x-z plane.
+bool holds(const Body& f, const Body& b) {
+  return f.is_static && top(f) <= bottom(b) &&
+         std::abs(b.position.x() - f.position.x()) <= f.half_extents.x() &&
+         std::abs(b.position.z() - f.position.z()) <= f.half_extents.z();
+}
+
+// The highest static box holding body i; -1 when there is none.
+long floor_under(const Scene& scene, std::size_t i) {
+  long best = -1;
+  for (std::size_t j = 0; j < scene.bodies.size(); ++j) {
+    if (!holds(scene.bodies[j], scene.bodies[i])) continue;
+    if (best < 0 || top(scene.bodies[j]) > top(scene.bodies[static_cast<std::size_t>(best)]))
+      best = static_cast<long>(j);
+  }
+  return best;
+}
+
+// Vertical acceleration of body i without damping: a = g_y + sum(F_y)/m over its constant forces.
+// NaN when a spring acts on it (its force depends on the state: no closed form here).
+double vertical_acceleration(const Scene& scene, std::size_t i) {
+  double f = 0.0;
+  for (const Force& force : scene.forces) {
+    if (std::find(force.bodies.begin(), force.bodies.end(), i) == force.bodies.end()) continue;
+    if (std::holds_alternative<Spring>(force.law)) return kNaN;
+    f += std::get<ConstantForce>(force.law).force.y();
+  }
+  return scene.world.gravity.y() + f / scene.bodies[i].mass;
+}
+
+// Smallest positive root of A*t^2 + B*t + C = 0 with C > 0; NaN when there is none.
+// Stable form (no cancellation): q = -(B + sign(B)*sqrt(B^2 - 4AC))/2, roots q/A and C/q.
+double first_positive_root(double A, double B, double C) {
+  if (A == 0.0) return B < 0.0 ? -C / B : kNaN;
+  const double d = B * B - 4.0 * A * C;
+  if (d < 0.0) return kNaN;
+  const double q = -0.5 * (B + std::copysign(std::sqrt(d), B));
+  double best = kNaN;
+  for (const double r : {q / A, C / q})
+    if (r > 0.0 && !(r >= best)) best = r;
+  return best;
+}
+
+// (t - (1 - exp(-k*t))/k)/k, the drift of the damped fall. It cancels for small k*t, where the
+// Taylor series of exp gives t^2/2 - k*t^3/6 + k^2*t^4/24 - k^3*t^5/120 (next term (k*t)^4/360
+// relative: below 3e-15 for k*t < 1e-3).
+double drift(double k, double t) {
+  const double kt = k * t;
+  if (std::abs(kt) < 1e-3) return t * t * (0.5 - kt / 6.0 + kt * kt / 24.0 - kt * kt * kt / 120.0);
+  return (t + std::expm1(-kt) / k) / k;
+}
+
+// End of an interval [0, t] over which y(t) - target changes sign once; NaN when y never reaches
+// target. v(t) is monotone (dv/dt = (a - k*v0)*exp(-k*t) keeps its sign), so y has at most one
+// extremum. a <= 0: y eventually falls, double t until y(t) <= target. a > 0: y only comes down
+// while v < 0; its lowest point is where v(t) = 0: exp(-k*t) = a/(a - k*v0), t = log1p(-k*v0/a)/k.
+double bracket_end(double y0, double v0, double a, double k, double target) {
+  if (a > 0.0) {
+    if (v0 >= 0.0) return kNaN;
+    const double t_low = std::log1p(-k * v0 / a) / k;
+    return height_continuous(y0, v0, a, k, t_low) <= target ? t_low : kNaN;
+  }
+  double t = 1.0;
+  for (int i = 0; i < 64; ++i, t *= 2.0)
+    if (height_continuous(y0, v0, a, k, t) <= target) return t;
+  return kNaN;
+}
+
+// Largest |v| and largest position range of `body` over the samples from step `from` on.
+void still_figures(const Trajectory& run, std::size_t body, std::int64_t from,
+                   LandingObservation& o) {
+  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+  o.still_speed = 0.0;
+  for (std::size_t s = 0; s < run.samples(); ++s) {
+    if (run.recorded[s] < from) continue;
+    const BodyState& b = run.at(s, body);
+    o.still_speed = std::max(o.still_speed, b.velocity.norm());
+    lo = lo.cwiseMin(b.position);
+    hi = hi.cwiseMax(b.position);
+  }
+  o.still_range = (hi - lo).maxCoeff();
+}
+
+}  // namespace
+
+// Model: dv/dt = a - k*v, v(0) = v0, y(0) = y0.
+// Solution (k > 0): v(t) = a/k + (v0 - a/k)*exp(-k*t)
+//   y(t) = y0 + v0*(1 - exp(-k*t))/k + a*(t - (1 - exp(-k*t))/k)/k
+// k = 0 (the limit): y(t) = y0 + v0*t + a*t^2/2.
+double height_continuous(double y0, double v0, double a, double k, double t) {
+  if (k == 0.0) return y0 + v0 * t + 0.5 * a * t * t;
+  return y0 + v0 * (-std::expm1(-k * t) / k) + a * drift(k, t);
+}
+
+// k = 0: the parabola's first positive root (a/2)*t^2 + v0*t + (y0 - target) = 0, closed form.
+// k > 0: transcendental; bisection of y(t) - target on a bracket holding only the first crossing,
+// to the last bit of the double.
+double contact_time_continuous(double y0, double v0, double a, double k, double target) {
+  if (y0 <= target) return 0.0;
+  if (k == 0.0) return first_positive_root(0.5 * a, v0, y0 - target);
+  double lo = 0.0, hi = bracket_end(y0, v0, a, k, target);
+  if (std::isnan(hi)) return kNaN;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid <= lo || mid >= hi) break;
+    (height_continuous(y0, v0, a, k, mid) > target ? lo : hi) = mid;
+  }
+  return hi;
+}
+
+std::vector<LandingSetup> landing_setups(const Scene& scene) {
+  std::vector<LandingSetup> out;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const Body& b = scene.bodies[i];
+    const long f = b.is_static ? -1 : floor_under(scene, i);
+    if (f < 0) continue;
+    LandingSetup s{.body = i, .floor = static_cast<std::size_t>(f)};
+    s.floor_top = top(scene.bodies[s.floor]);
+    s.half_height = b.half_extents.y();
+    s.rest_height = s.floor_top + s.half_height;
+    s.contact_time =
+        contact_time_continuous(b.position.y(), b.velocity.y(), vertical_acceleration(scene, i),
+                                scene.world.damping_rate, s.rest_height);
+    out.push_back(s);
+  }
+  return out;
+}
+
+std::int64_t first_contact_step(const Trajectory& run, const LandingSetup& setup) {
+  for (std::size_t s = 0; s < run.samples(); ++s)
+    if (run.at(s, setup.body).position.y() - setup.half_height <= setup.floor_top)
+      return run.recorded[s];
+  return -1;
+}
+
+std::int64_t discrete_contact_step(Law law, const Scene& scene, double h,
+                                   const LandingSetup& setup) {
+  return first_contact_step(predict_discrete(law, scene, h), setup);
+}
+
+LandingObservation observe_landing(const Trajectory& run, const LandingSetup& setup,
+                                   const StillCriteria& still) {
+  LandingObservation o{.first_contact_time = kNaN,
+                       .deepest = kNaN,
+                       .rebound = kNaN,
+                       .rest_offset = kNaN,
+                       .still_speed = kNaN,
+                       .still_range = kNaN};
+  if (run.samples() == 0) return o;
+  o.first_contact_step = first_contact_step(run, setup);
+  double lowest = INFINITY, highest_after = -INFINITY;
+  for (std::size_t s = 0; s < run.samples(); ++s) {
+    const double y = run.at(s, setup.body).position.y();
+    lowest = std::min(lowest, y);
+    if (o.first_contact_step >= 0 && run.recorded[s] >= o.first_contact_step)
+      highest_after = std::max(highest_after, y);
+  }
+  o.deepest = lowest - setup.rest_height;
+  o.rest_offset = run.final_state(setup.body).position.y() - setup.rest_height;
+  const std::int64_t window_start = run.recorded.back() - std::llround(still.seconds / run.h);
+  still_figures(run, setup.body, window_start, o);
+  if (o.first_contact_step < 0) return o;
+  o.first_contact_time = static_cast<double>(o.first_contact_step) * run.h;
+  o.rebound = highest_after - setup.rest_height;
+  o.still = o.first_contact_step <= window_start && o.still_speed <= still.max_speed &&
+            o.still_range <= still.max_range;
+  return o;
+}
+
+}  // namespace dropcheck

@@ -1,0 +1,158 @@
+#include "harness/report/plot.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "harness/core/atomic_file.hpp"
+
+namespace dropcheck {
+namespace {
+
+// Colour-blind-safe palette (Okabe-Ito), then greys; index modulo its size.
+const char* const kPalette[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7",
+                                "#E69F00", "#56B4E9", "#000000", "#999999"};
+// gnuplot dashtype patterns: solid, dashed, dotted, dash-dot.
+const char* const kDashes[] = {"solid", "(8,4)", "(2,3)", "(8,3,2,3)"};
+
+bool point_ok(const PlotSpec& s, double x, double y) {
+  if (!std::isfinite(x) || !std::isfinite(y)) return false;
+  return (!s.log_x || x > 0.0) && (!s.log_y || y > 0.0);
+}
+
+bool series_drawable(const PlotSpec& s, const PlotSeries& line) {
+  for (std::size_t i = 0; i < line.x.size(); ++i)
+    if (point_ok(s, line.x[i], line.y[i])) return true;
+  return false;
+}
+
+// A string in gnuplot single quotes, where a quote is written twice.
+std::string quoted(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+// A string for the shell in single quotes ('\'' closes, escapes and reopens).
+std::string shell_quoted(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string axes(const PlotSpec& spec) {
+  std::ostringstream s;
+  s << "set title " << quoted(spec.title) << "\n";
+  s << "set xlabel " << quoted(spec.xlabel) << "\nset ylabel " << quoted(spec.ylabel) << "\n";
+  s << "set grid\nset key outside right top vertical Left reverse\n";
+  if (spec.log_x) s << "set logscale x\nset format x '%.0e'\n";
+  if (spec.log_y) s << "set logscale y\nset format y '%.0e'\n";
+  return s.str();
+}
+
+std::string strf_width(double w) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2g", w);
+  return buf;
+}
+
+// The plot command: one element per drawable series, plus its point labels.
+std::string plot_command(const PlotSpec& spec, const std::string& data_file) {
+  std::ostringstream s;
+  s << "plot ";
+  int block = 0;
+  const char* sep = "";
+  for (const PlotSeries& line : spec.series) {
+    if (!series_drawable(spec, line)) continue;
+    const char* colour = kPalette[line.color % std::size(kPalette)];
+    const char* dash = kDashes[line.dash % std::size(kDashes)];
+    s << sep << quoted(data_file) << " index " << block << " using 1:2 with "
+      << (spec.points ? "linespoints pointtype 7 pointsize 0.6" : "lines") << " linewidth "
+      << strf_width(line.width) << " linecolor rgb '" << colour << "' dashtype " << dash
+      << " title " << quoted(line.title);
+    if (!line.labels.empty())
+      s << ", " << quoted(data_file) << " index " << block
+        << " using 1:2:3 with labels offset char 0.8,0.6 font 'sans,8' textcolor rgb '" << colour
+        << "' notitle";
+    sep = ", \\\n     ";
+    ++block;
+  }
+  return s.str() + "\n";
+}
+
+void remove_quietly(const std::filesystem::path& p) {
+  std::error_code ec;
+  std::filesystem::remove(p, ec);
+}
+
+std::string read_text(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+bool drawable(const PlotSpec& spec) {
+  for (const PlotSeries& line : spec.series)
+    if (series_drawable(spec, line)) return true;
+  return false;
+}
+
+std::string gnuplot_data(const PlotSpec& spec) {
+  std::ostringstream s;
+  char row[160];
+  for (const PlotSeries& line : spec.series) {
+    if (!series_drawable(spec, line)) continue;
+    s << "# " << line.title << "\n";
+    for (std::size_t i = 0; i < line.x.size(); ++i) {
+      if (!point_ok(spec, line.x[i], line.y[i])) continue;
+      std::snprintf(row, sizeof row, "%.9g %.9g", line.x[i], line.y[i]);
+      s << row;
+      if (!line.labels.empty()) s << " \"" << line.labels[i] << "\"";
+      s << "\n";
+    }
+    s << "\n\n";
+  }
+  return s.str();
+}
+
+std::string gnuplot_script(const PlotSpec& spec, const std::string& data_file,
+                           const std::string& svg_file) {
+  std::ostringstream s;
+  s << kPlotTerminal << "\nset termoption noenhanced\n";
+  s << "set output " << quoted(svg_file) << "\n";
+  s << axes(spec) << plot_command(spec, data_file) << "unset output\n";
+  return s.str();
+}
+
+std::string render_plot(const PlotSpec& spec, const std::string& dir, const std::string& svg_name) {
+  if (!drawable(spec)) return "no data to draw";
+  const std::filesystem::path d(dir);
+  const std::string stem = "." + svg_name;  // hidden work files, removed below
+  write_file_atomic((d / (stem + ".dat")).string(), gnuplot_data(spec));
+  write_file_atomic((d / (stem + ".gp")).string(),
+                    gnuplot_script(spec, stem + ".dat", stem + ".part"));
+  const std::string cmd = "cd " + shell_quoted(dir) + " && gnuplot " + shell_quoted(stem + ".gp") +
+                          " 2> " + shell_quoted(stem + ".log");
+  const int rc = std::system(cmd.c_str());
+  std::string why;
+  if (rc != 0) {
+    const std::string log = read_text(d / (stem + ".log"));
+    why = (rc == 127 * 256 || log.find("not found") != std::string::npos)
+              ? "gnuplot not found"
+              : "gnuplot failed: " + log;
+  } else {
+    std::error_code ec;
+    std::filesystem::rename(d / (stem + ".part"), d / svg_name, ec);
+    if (ec) why = "cannot move the SVG into place: " + ec.message();
+  }
+  for (const char* ext : {".dat", ".gp", ".log", ".part"}) remove_quietly(d / (stem + ext));
+  return why;
+}
+
+}  // namespace dropcheck

@@ -1,0 +1,48 @@
+// The Markdown comparison report (reports/README.md) and its SVG plots. It knows results, not
+// engines: everything comes in as SceneEvaluation (harness/measure/evaluate.hpp), EngineInfo and
+// Provenance. Deterministic except the columns marked as timings.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "harness/core/engine.hpp"
+#include "harness/measure/evaluate.hpp"
+#include "harness/report/plot.hpp"
+#include "harness/core/provenance.hpp"
+
+namespace dropcheck {
+
+struct ReportInput {
+  Provenance provenance;
+  std::vector<EngineInfo> engines;  // the engines compiled in, in registry order
+  std::vector<std::pair<std::string, std::string>> missing;  // engines not compiled in: name, why
+  std::vector<SceneEvaluation> scenes;
+  bool timing = true;            // timing columns, overhead and work-precision plots
+  TimingOptions timing_options;  // as used, for the note on how timings are made
+  std::string stability;         // Markdown of the stability section ("" when none)
+  std::string stability_note;    // shown when `stability` is empty
+};
+
+// One plot of the report: its file name (in the report's directory) and what to draw.
+struct ReportPlot {
+  std::string file;
+  std::string alt;  // the Markdown image's alt text
+  PlotSpec spec;
+};
+
+// Every plot the report for these scenes draws, per scene in order (report_plots.cpp).
+std::vector<std::vector<ReportPlot>> report_plots(const ReportInput& input);
+
+// Outcome of drawing each plot: file -> "" when drawn, else why not.
+using PlotOutcomes = std::vector<std::pair<std::string, std::string>>;
+
+// The whole README.md, given the outcome of every plot.
+std::string report_markdown(const ReportInput& input, const PlotOutcomes& plots);
+
+// Draws every plot into `dir` and writes `dir`/README.md. `dir` must exist (a staging directory:
+// cmd_report moves it into place). Progress lines go to `progress`.
+void write_report(const ReportInput& input, const std::string& dir, const Progress& progress = {});
+
+}  // namespace dropcheck

@@ -1,0 +1,51 @@
+// Formatting for the Markdown report: fixed number formats and tables, so that the same results
+// always give the same bytes (docs/design.md: reports byte-stable, fixed formatting, sorted rows).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace dropcheck {
+
+// A Markdown table. `align` holds 'l' or 'r' per column (numbers right-aligned); its last letter
+// applies to the columns beyond it.
+class MarkdownTable {
+ public:
+  MarkdownTable(std::vector<std::string> header, std::string align);
+  // Appends a row; cells are escaped ('|' -> '\|'); missing cells are left empty.
+  void add(std::vector<std::string> cells);
+  bool empty() const { return rows_.empty(); }
+  // The table, one line per row, ending with a newline.
+  std::string str() const;
+
+ private:
+  std::vector<std::string> header_;
+  std::string align_;
+  std::vector<std::vector<std::string>> rows_;
+};
+
+// The dash shown where a figure does not exist.
+inline constexpr const char* kNone = "—";
+
+// printf into a std::string (for one-off fixed formats).
+std::string strf(const char* format, ...) __attribute__((format(printf, 1, 2)));
+
+// "%.3g", "—" for NaN, "inf"/"-inf".
+std::string g3(double v);
+
+// A length with its unit (attribution.hpp format_length); "—" for NaN.
+std::string length(double metres);
+
+// An observed order "%.2f"; "—" for NaN (zero error, nothing to measure).
+std::string order(double p);
+
+// A fraction as a percentage "%.0f%%" ("+35%" style with sign); "—" for NaN.
+std::string percent(double fraction);
+
+// A time t (s) of a first divergence; "never" when negative.
+std::string when(double t);
+
+// A name safe for a file: letters, digits, '-', '_' and '.' kept, everything else '_'.
+std::string file_slug(const std::string& name);
+
+}  // namespace dropcheck

@@ -1,0 +1,134 @@
+// The ten-second view of a scene: engines run, the largest divergence from the reference with a
+// one-word cause, and a verdict that flags what needs a person (failed, clamped, unexplained, off
+// its own law).
+#include <cmath>
+
+#include "harness/report/report_format.hpp"
+#include "harness/report/report_scene.hpp"
+
+namespace dropcheck {
+namespace {
+
+// "5/6 (not box2d)": engines that ran out of all listed.
+std::string engines_run(const SceneEvaluation& se) {
+  std::size_t ran = 0;
+  std::string missing;
+  for (const EngineEvaluation& ev : se.engines) {
+    if (ev.ran())
+      ++ran;
+    else
+      missing += (missing.empty() ? "" : ", ") + ev.name;
+  }
+  std::string s = strf("%zu/%zu", ran, se.engines.size());
+  return missing.empty() ? s : s + " (not " + missing + ")";
+}
+
+// The engine farthest from the reference at the default step, or nullptr.
+const EngineEvaluation* farthest(const SceneEvaluation& se) {
+  const EngineEvaluation* best = nullptr;
+  double worst = -1.0;
+  for (const EngineEvaluation& ev : se.engines) {
+    if (!ev.ran() || !ev.at_default().vs_reference) continue;
+    const double d = ev.at_default().vs_reference->max_dx;
+    if (d > worst || std::isnan(d)) worst = d, best = &ev;
+  }
+  return best;
+}
+
+// Beyond rounding from its own law at some step of the sweep: an adapter bug.
+bool off_own_law(const EngineEvaluation& ev) {
+  for (const StepEvaluation& st : ev.sweep)
+    if (st.vs_law && (st.vs_law->max_dx > st.law_budget || st.vs_law->max_dv > st.law_budget))
+      return true;
+  return false;
+}
+
+bool unexplained(const EngineEvaluation& ev) {
+  for (const StepEvaluation& st : ev.sweep)
+    if (st.attribution && !st.attribution->explained()) return true;
+  return false;
+}
+
+// Landing flags at the default step: a resting offset outside the engine's band, or not still.
+bool off_rest(const EngineEvaluation& ev) {
+  for (const LandingResult& l : ev.at_default().landings)
+    if (!rest_offset_expected(ev, l)) return true;
+  return false;
+}
+
+bool restless(const EngineEvaluation& ev) {
+  for (const LandingResult& l : ev.at_default().landings)
+    if (!l.seen.still) return true;
+  return false;
+}
+
+bool clamped(const EngineEvaluation& ev) {
+  for (const StepEvaluation& st : ev.sweep)
+    if (st.run.clamped_steps) return true;
+  return false;
+}
+
+// "FAILED: box2d; UNEXPLAINED: ode", or "ok". Each flag names the engines it concerns.
+std::string verdict(const SceneEvaluation& se) {
+  std::string failed, clamps, unexp, offlaw, rest, moving;
+  auto add = [](std::string& list, const std::string& name) {
+    list += (list.empty() ? "" : ", ") + name;
+  };
+  for (const EngineEvaluation& ev : se.engines) {
+    if (!ev.ran()) continue;
+    if (ev.first_failure()) add(failed, ev.name);
+    if (clamped(ev)) add(clamps, ev.name);
+    if (unexplained(ev)) add(unexp, ev.name);
+    if (off_own_law(ev)) add(offlaw, ev.name);
+    if (off_rest(ev)) add(rest, ev.name);
+    if (restless(ev)) add(moving, ev.name);
+  }
+  std::string v;
+  auto flag = [&v](const char* what, const std::string& list) {
+    if (!list.empty()) v += (v.empty() ? "" : "; ") + std::string(what) + ": " + list;
+  };
+  flag("**FAILED**", failed);
+  flag("**UNEXPLAINED**", unexp);
+  flag("**OFF OWN LAW**", offlaw);
+  flag("**CLAMPED**", clamps);
+  flag("**REST OFFSET**", rest);
+  flag("**NOT STILL**", moving);
+  if (se.reference.empty()) flag("**NOT RUN**", "every engine");
+  return v.empty() ? "ok" : v;
+}
+
+}  // namespace
+
+std::string divergence_cause(const SceneEvaluation& se, const EngineEvaluation& ev) {
+  const StepEvaluation& st = ev.at_default();
+  if (st.run.status != RunStatus::ok) return "failed";
+  const EngineEvaluation* ref = se.find(se.reference);
+  if (ref && ref->at_default().run.status != RunStatus::ok) return "reference-failed";
+  const bool none = st.vs_reference && st.vs_reference->max_dx == 0.0;
+  if (!st.attribution) return none ? "identical" : "contacts";
+  const Attribution& a = *st.attribution;
+  if (!a.explained()) return "UNEXPLAINED";
+  // With contacts the attribution covers the fall only: when the gap over the whole run is more
+  // than the fall's by over 10%, it opened at the landing.
+  if (st.attributed_until >= 0.0 && st.vs_reference->max_dx > 1.1 * a.total + a.budget)
+    return "landing";
+  if (a.total == 0.0) return "identical";
+  // Explained: the laws' difference beyond rounding is the damping order; the rest is precision.
+  return a.law_part > a.budget ? "damping-order" : "precision";
+}
+
+SceneSummary summarize(const SceneEvaluation& se) {
+  SceneSummary s;
+  s.engines_run = engines_run(se);
+  s.divergence = kNone;
+  s.cause = kNone;
+  if (const EngineEvaluation* far = farthest(se)) {
+    s.divergence = far->name + " " + length(far->at_default().vs_reference->max_dx);
+    if (se.reference_note.size()) s.divergence += " (from " + se.reference + ")";
+    s.cause = divergence_cause(se, *far);
+  }
+  s.verdict = verdict(se);
+  return s;
+}
+
+}  // namespace dropcheck

@@ -1,0 +1,87 @@
+// The stability study of one scene: run at the scene's step, classify, compare with the analytic
+// oracle, search the largest stable step, and the spring theory of each engine's damping order.
+#include "harness/stability/stability_study.hpp"
+
+#include <cmath>
+
+#include "harness/oracles/analytic.hpp"
+#include "harness/core/registry.hpp"
+#include "harness/core/runner.hpp"
+#include "harness/stability/stability_detail.hpp"
+
+namespace dropcheck {
+namespace {
+
+using stability_detail::format;
+
+// Runs `engine` at the scene's own step and classifies the run.
+void study_default_step(Engine& engine, const Scene& scene, const StudyOptions& o,
+                        EngineStability& r) {
+  const double h = scene.timestep.seconds;
+  RunOptions run_options;
+  run_options.record_every = stability_record_every(step_count(scene, h));
+  const Trajectory run = run_scene(engine, scene, h, run_options);
+  r.status = run.status;
+  r.steps_run = run.recorded.empty() ? 0 : run.recorded.back();
+  r.verdict = classify_run(scene, run, r.scalar, o.classify);
+  if (std::optional<Trajectory> exact = analytic_trajectory(scene, h, run_options))
+    r.vs_analytic = compare_worst(run, *exact, scene.tolerance);
+}
+
+EngineStability study_engine(const std::string& name, const Scene& scene, const StudyOptions& o) {
+  EngineStability r;
+  r.engine = name;
+  std::unique_ptr<Engine> engine = make_engine(name);
+  if (!engine) {
+    r.skipped = engine_unavailable_reason(name);
+    return r;
+  }
+  const EngineInfo info = engine->info();
+  r.scalar = info.scalar;
+  r.law = info.law;
+  if (std::string why = engine->cannot_run(scene); !why.empty()) {
+    r.skipped = why;
+    return r;
+  }
+  study_default_step(*engine, scene, o, r);
+  r.theory_max_dt = spring_theory_max_dt(scene, r.law);
+  if (o.search) {
+    const EngineFactory make = [name] { return make_engine(name); };
+    r.search = search_max_stable_dt(make, r.scalar, scene, scene.timestep.seconds, o.search_options,
+                                    o.classify);
+  }
+  return r;
+}
+
+std::string progress_line(const SceneStability& s, const EngineStability& e) {
+  if (!e.ran())
+    return format("stability %s: %s skipped (%s)\n", s.name.c_str(), e.engine.c_str(),
+                  e.skipped.c_str());
+  const std::string verdict =
+      e.verdict.stable() ? std::string("stable") : to_string(e.verdict.failures.front().mode);
+  const std::string probes = e.search ? format(", %d probes", e.search->probes) : std::string();
+  return format("stability %s: %s %s%s\n", s.name.c_str(), e.label().c_str(), verdict.c_str(),
+                probes.c_str());
+}
+
+}  // namespace
+
+SceneStability study_scene(const Scene& scene, const std::vector<std::string>& engines,
+                           const StudyOptions& options, std::ostream* progress) {
+  SceneStability s;
+  s.name = scene.name;
+  s.source = scene.source;
+  s.description = scene.description;
+  s.h = scene.timestep;
+  s.duration = scene.duration;
+  s.steps = step_count(scene, scene.timestep.seconds);
+  s.no_analytic = analytic_unavailable(scene);
+  const std::vector<std::string> names = engines.empty() ? available_engine_names() : engines;
+  for (const std::string& name : names) {
+    s.engines.push_back(study_engine(name, scene, options));
+    if (progress) *progress << progress_line(s, s.engines.back()) << std::flush;
+  }
+  return s;
+}
+
+}  // namespace dropcheck

@@ -1,0 +1,69 @@
+// The stability study of one scene on a set of engines: each engine's verdict at the scene's step,
+// its error against the analytic oracle there, its largest stable step (search) and, for springs,
+// the theoretical edge of its damping order. Used by `dropcheck stability` and the report section.
+#pragma once
+
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "harness/measure/metrics.hpp"
+#include "harness/stability/stability.hpp"
+
+namespace dropcheck {
+
+// One engine on one scene.
+struct EngineStability {
+  std::string engine;
+  std::string
+      skipped;  // why it did not run the scene ("no contacts", "not compiled in"); "" if it ran
+  Scalar scalar = Scalar::f64;
+  Law law;
+  RunStatus status = RunStatus::ok;
+  std::int64_t steps_run = 0;             // last step recorded at the scene's step
+  Verdict verdict;                        // at the scene's step
+  std::optional<ErrorStats> vs_analytic;  // worst body, at the scene's step; none without oracle
+  std::optional<StepSearch> search;       // largest stable step; none when not searched
+  std::optional<double> theory_max_dt;    // spring edge of this engine's damping order
+
+  bool ran() const { return skipped.empty(); }
+  std::string label() const { return engine_label(engine, scalar); }
+};
+
+// One scene on every engine asked for.
+struct SceneStability {
+  std::string name;
+  std::string source;  // the scene file
+  std::string description;
+  Timestep h;               // the scene's step
+  double duration = 0.0;    // s
+  std::int64_t steps = 0;   // at h
+  std::string no_analytic;  // why there is no analytic oracle; "" when there is one
+  std::vector<EngineStability> engines;
+};
+
+// What the study does besides the run at the scene's step.
+struct StudyOptions {
+  bool search = true;  // search the largest stable step per engine
+  SearchOptions search_options;
+  ClassifyOptions classify;
+};
+
+// Studies `scene` on the engines named (all compiled in when empty), in the order given. Writes one
+// line per engine to `progress` when not null. Unknown or missing engines come back skipped.
+SceneStability study_scene(const Scene& scene, const std::vector<std::string>& engines,
+                           const StudyOptions& options = {}, std::ostream* progress = nullptr);
+
+// The study as JSON: {"scene", "file", "dt", ..., "engines": [{"engine", "status", "failures",
+// "max_stable_dt", ...}]}; numbers exact (%.17g), NaN as null.
+std::string stability_to_json(const SceneStability& study, const SearchOptions& search);
+
+// One line on a step search: "fails at 0.0333481 s (unbounded growth)", "no failure up to the cap
+// 0.25 s", "frozen below 8e-05 s; ...".
+std::string search_summary(const StepSearch& search);
+
+// The study as a plain-text table plus one sentence per failure, for the terminal.
+std::string stability_to_text(const SceneStability& study);
+
+}  // namespace dropcheck

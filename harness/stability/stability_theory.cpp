@@ -1,0 +1,116 @@
+// The stability edge of a linear spring under each engine's discrete law.
+//
+// Model (per axis, y = x - x_eq): y'' = -w^2*y - gamma*y' - k*y', with w^2 = S/m, gamma = C/m (the
+// spring's dashpot) and k the world damping rate. The harness evaluates the spring and dashpot
+// force from the state at the START of each step (harness/core/forces.hpp), so every engine sees an
+// explicit force a_n = -w^2*y_n - gamma*v_n; the world damping is the engine's own, applied as the
+// per-step factor phi = exp(-k*h) where its law puts it (engine.hpp, DampingOrder):
+//
+//   AfterForces  (ours, Box2D, MuJoCo): v' = phi*(v + h*a);  y' = y + h*v'
+//     [y' v'] = [[1 - phi*w^2*h^2, phi*h*(1 - gamma*h)], [-phi*w^2*h, phi*(1 - gamma*h)]] [y v]
+//   BeforeForces (Bullet):              v' = phi*v + h*a;    y' = y + h*v'
+//     [y' v'] = [[1 - w^2*h^2, h*(phi - gamma*h)], [-w^2*h, phi - gamma*h]] [y v]
+//   AfterPosition (ODE):                u = v + h*a; y' = y + h*u; v' = phi*u
+//     [y' v'] = [[1 - w^2*h^2, h*(1 - gamma*h)], [-phi*w^2*h, phi*(1 - gamma*h)]] [y v]
+//
+// With the explicit position update (y' = y + h*v, forward Euler; harness/core/law.hpp):
+//   AfterForces/AfterPosition: v' = phi*(v + h*a): A = phi*w^2*h^2, beta = phi*(1 - gamma*h + w^2*h^2)
+//   BeforeForces:              v' = phi*v + h*a:   A = w^2*h^2,     beta = phi - gamma*h + w^2*h^2
+// (trace 1 + beta - A as below): without damping beta = 1 + w^2*h^2 > 1, unstable at every h.
+//
+// Each matrix has determinant beta and trace 1 + beta - A, with
+//   AfterForces:   A = phi*w^2*h^2,  beta = phi*(1 - gamma*h)
+//   BeforeForces:  A = w^2*h^2,      beta = phi - gamma*h
+//   AfterPosition: A = w^2*h^2,      beta = phi*(1 - gamma*h)
+// so its characteristic polynomial is z^2 - (1 + beta - A)*z + beta = 0. Jury's test for
+// z^2 + a1*z + a0 (roots in the closed unit disc, distinct on its boundary): |a0| <= 1,
+// P(1) = A > 0 and P(-1) = 2*(1 + beta) - A > 0. Hence: stable iff -1 < beta <= 1 and
+// A < 2*(1 + beta). Without any damping (phi = 1, gamma = 0) every law gives w*h < 2. With world
+// damping only (gamma = 0): AfterForces is stable iff w*h < sqrt(2*(1 + phi)/phi) (the edge moves
+// up: drag helps), the other two iff w*h < sqrt(2*(1 + phi)) (the edge moves down: drag hurts).
+// phi = exp(-k*h) depends on h, so the edge is found numerically below.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <variant>
+
+#include "harness/stability/stability.hpp"
+
+namespace dropcheck {
+namespace {
+
+struct StepCoefficients {
+  double a = 0.0;     // A (see the header comment)
+  double beta = 0.0;  // determinant of the step matrix
+};
+
+StepCoefficients coefficients(Law law, const SpringModel& s, double h) {
+  const double phi = std::exp(-s.k * h), wh2 = s.omega * s.omega * h * h, gh = s.gamma * h;
+  if (law.position == PositionUpdate::Explicit)
+    return law.damping == DampingOrder::BeforeForces ? StepCoefficients{wh2, phi - gh + wh2}
+                                                     : StepCoefficients{phi * wh2, phi * (1.0 - gh + wh2)};
+  switch (law.damping) {
+    case DampingOrder::AfterForces:
+      return {phi * wh2, phi * (1.0 - gh)};
+    case DampingOrder::BeforeForces:
+      return {wh2, phi - gh};
+    case DampingOrder::AfterPosition:
+      return {wh2, phi * (1.0 - gh)};
+  }
+  return {};
+}
+
+// The linear springs (rest length 0) acting on body `index`, combined; nullopt if none or if one of
+// them has a rest length (nonlinear: no single w).
+std::optional<SpringModel> body_spring(const Scene& scene, std::size_t index) {
+  double stiffness = 0.0, dashpot = 0.0;
+  for (const Force& f : scene.forces) {
+    const Spring* s = std::get_if<Spring>(&f.law);
+    if (!s || std::find(f.bodies.begin(), f.bodies.end(), index) == f.bodies.end()) continue;
+    if (s->rest_length != 0.0) return std::nullopt;
+    stiffness += s->stiffness;
+    dashpot += s->damping;
+  }
+  if (stiffness <= 0.0) return std::nullopt;
+  const double m = scene.bodies[index].mass;
+  return SpringModel{std::sqrt(stiffness / m), dashpot / m, scene.world.damping_rate};
+}
+
+}  // namespace
+
+bool spring_step_stable(Law law, const SpringModel& spring, double h) {
+  const StepCoefficients c = coefficients(law, spring, h);
+  return c.beta > -1.0 && c.beta <= 1.0 && c.a < 2.0 * (1.0 + c.beta);
+}
+
+double spring_max_stable_dt(Law law, const SpringModel& spring) {
+  // Walk up from a step far inside the stable range in 1% increments to the first unstable h,
+  // then bisect that bracket to double precision.
+  const double rate = std::max({spring.omega, spring.gamma, spring.k, 1e-12});
+  double lo = 1e-4 / rate, hi = lo;
+  while (spring_step_stable(law, spring, hi)) {
+    lo = hi;
+    hi *= 1.01;
+    if (hi > 1e6 / rate) return std::numeric_limits<double>::infinity();
+  }
+  for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (spring_step_stable(law, spring, mid) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+std::optional<double> spring_theory_max_dt(const Scene& scene, Law law) {
+  std::optional<double> edge;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (scene.bodies[i].is_static) continue;
+    if (std::optional<SpringModel> s = body_spring(scene, i)) {
+      const double h = spring_max_stable_dt(law, *s);
+      edge = edge ? std::min(*edge, h) : h;
+    }
+  }
+  return edge;
+}
+
+}  // namespace dropcheck

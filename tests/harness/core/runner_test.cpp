@@ -1,0 +1,207 @@
+// Tests harness/core/runner.cpp: the one run loop. A scripted test double stands in for an engine so that
+// failures (NaN, EngineError) and the force hand-over can be placed at chosen steps.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "harness/oracles/discrete_law.hpp"
+#include "harness/core/registry.hpp"
+#include "harness/core/runner.hpp"
+#include "harness/core/scene_loader.hpp"
+
+using Catch::Matchers::Contains;
+
+namespace {
+
+// A scripted engine: x += h*v, v += h*F (unit mass, no gravity), one body state per scene body.
+// It can turn a body's state into NaN on one step, throw on one step or on load, clamp on steps,
+// and it logs the forces and the state each set_forces call saw.
+class ScriptedEngine final : public dropcheck::Engine {
+ public:
+  std::int64_t nan_at = -1, throw_at = -1;
+  bool throw_on_load = false;
+  std::vector<std::int64_t> clamp_at;
+  std::vector<std::vector<dropcheck::Vec3>> forces_seen;
+
+  dropcheck::EngineInfo info() const override {
+    dropcheck::EngineInfo i;
+    i.name = "scripted";
+    return i;
+  }
+  void load(const dropcheck::Scene& scene, double h) override {
+    if (throw_on_load) throw dropcheck::EngineError("cannot build the world");
+    h_ = h;
+    states_.clear();
+    for (const dropcheck::Body& b : scene.bodies) states_.push_back({b.position, b.velocity});
+  }
+  void set_forces(std::span<const dropcheck::Vec3> f) override {
+    forces_.assign(f.begin(), f.end());
+    forces_seen.push_back(forces_);
+  }
+  void step() override {
+    ++step_;
+    if (step_ == throw_at) throw dropcheck::EngineError("solver exploded");
+    for (std::size_t i = 0; i < states_.size(); ++i) {
+      states_[i].position += h_ * states_[i].velocity;
+      states_[i].velocity += h_ * forces_[i];
+    }
+    if (step_ == nan_at) states_.back().velocity.y() = std::numeric_limits<double>::quiet_NaN();
+  }
+  void read(std::span<dropcheck::BodyState> out) const override {
+    std::copy(states_.begin(), states_.end(), out.begin());
+  }
+  bool speed_clamped() const override {
+    return std::find(clamp_at.begin(), clamp_at.end(), step_) != clamp_at.end();
+  }
+
+ private:
+  double h_ = 0.0;
+  std::int64_t step_ = 0;
+  std::vector<dropcheck::BodyState> states_;
+  std::vector<dropcheck::Vec3> forces_;
+};
+
+// 10 steps of 0.1 s; two bodies, a spring on "b" so the forces depend on the state.
+dropcheck::Scene ten_steps() {
+  return dropcheck::parse_scene(R"(
+duration = 1.0
+timestep = "1/10"
+[world]
+gravity = [0.0, 0.0, 0.0]
+[[body]]
+name = "a"
+position = [0.0, 0.0, 0.0]
+velocity = [1.0, 0.0, 0.0]
+[[body]]
+name = "b"
+position = [0.0, 2.0, 0.0]
+[[force]]
+bodies = ["b"]
+spring = { anchor = [0.0, 0.0, 0.0], stiffness = 3.0, damping = 0.5 }
+)",
+                                "ten_steps.toml");
+}
+
+std::vector<std::int64_t> steps_of(const dropcheck::Trajectory& t) { return t.recorded; }
+
+}  // namespace
+
+TEST_CASE("a run that completes records every step, step 0 being the initial state", "[runner]") {
+  ScriptedEngine e;
+  const dropcheck::Scene s = ten_steps();
+  const dropcheck::Trajectory t = dropcheck::run_scene(e, s, 0.1);
+  CHECK(t.status == dropcheck::RunStatus::ok);
+  CHECK(t.engine == "scripted");
+  CHECK(t.steps == 10);
+  CHECK(t.body_names == std::vector<std::string>{"a", "b"});
+  CHECK(steps_of(t) == std::vector<std::int64_t>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10});
+  CHECK(t.at(0, 1).position == dropcheck::Vec3(0.0, 2.0, 0.0));
+  CHECK(t.at(10, 0).position.x() == Approx(1.0).epsilon(1e-15));  // x = 10 * 0.1 * 1; measured 1.1e-16
+  CHECK(t.failed_step == -1);
+}
+
+TEST_CASE("a NaN at step k ends the run as non_finite at k and keeps the samples before it", "[runner]") {
+  ScriptedEngine e;
+  e.nan_at = 4;
+  const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps(), 0.1);
+  CHECK(t.status == dropcheck::RunStatus::non_finite);
+  CHECK(t.failed_step == 4);
+  CHECK(steps_of(t) == std::vector<std::int64_t>{0, 1, 2, 3});
+  CHECK(t.states.size() == 4 * 2);
+  CHECK_THAT(t.failure, Contains("'b'") && Contains("step 4"));
+  CHECK(std::isfinite(t.final_state(1).velocity.y()));
+}
+
+TEST_CASE("an EngineError at step k ends the run as engine_error with its message", "[runner]") {
+  ScriptedEngine e;
+  e.throw_at = 7;
+  const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps(), 0.1);
+  CHECK(t.status == dropcheck::RunStatus::engine_error);
+  CHECK(t.failure == "solver exploded");
+  CHECK(t.failed_step == 7);
+  CHECK(steps_of(t) == std::vector<std::int64_t>{0, 1, 2, 3, 4, 5, 6});
+}
+
+TEST_CASE("an EngineError on load is engine_error at step 0 with no samples", "[runner]") {
+  ScriptedEngine e;
+  e.throw_on_load = true;
+  const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps(), 0.1);
+  CHECK(t.status == dropcheck::RunStatus::engine_error);
+  CHECK(t.failure == "cannot build the world");
+  CHECK(t.failed_step == 0);
+  CHECK(t.samples() == 0);
+}
+
+TEST_CASE("record_every keeps step 0, every Nth step and the last step", "[runner]") {
+  ScriptedEngine e;
+  CHECK(steps_of(dropcheck::run_scene(e, ten_steps(), 0.1, {.record_every = 4})) ==
+        std::vector<std::int64_t>{0, 4, 8, 10});
+  ScriptedEngine e2;
+  CHECK(steps_of(dropcheck::run_scene(e2, ten_steps(), 0.1, {.record_every = 5})) ==
+        std::vector<std::int64_t>{0, 5, 10});  // the last step is not recorded twice
+  ScriptedEngine e3;
+  CHECK(steps_of(dropcheck::run_scene(e3, ten_steps(), 0.1, {.record_every = 100})) ==
+        std::vector<std::int64_t>{0, 10});
+  ScriptedEngine e4;
+  CHECK(dropcheck::run_scene(e4, ten_steps(), 0.1, {.record_every = 0}).samples() == 11);  // < 1 means 1
+}
+
+TEST_CASE("speed clamps are counted with the first clamped step", "[runner]") {
+  ScriptedEngine e;
+  e.clamp_at = {3, 8};
+  const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps(), 0.1);
+  CHECK(t.clamped_steps == 2);
+  CHECK(t.first_clamped_step == 3);
+  CHECK(t.status == dropcheck::RunStatus::ok);  // a clamp is reported, not a failure
+}
+
+TEST_CASE("the force handed to step n is the spring force of the state after step n-1", "[runner]") {
+  ScriptedEngine e;
+  const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps(), 0.1);
+  REQUIRE(e.forces_seen.size() == 10);
+  for (std::size_t n = 0; n < 10; ++n) {
+    // F = -stiffness*d - damping*v with d = x - anchor (rest length 0), from sample n.
+    const dropcheck::BodyState& b = t.at(n, 1);
+    const dropcheck::Vec3 expected = -3.0 * b.position - 0.5 * b.velocity;
+    INFO("step " << n + 1);
+    CHECK(e.forces_seen[n][1] == expected);  // same operations on the same doubles: exact
+    CHECK(e.forces_seen[n][0] == dropcheck::Vec3::Zero());  // "a" has no force
+  }
+}
+
+TEST_CASE("a spring scene on ours-f64 follows its AfterForces law to 1e-12", "[runner][ours]") {
+  // Forces from the state at the start of each step in both: the runner hands the engine
+  // F(x_n, v_n); predict_discrete evaluates the same F on its own state (long double iteration).
+  const dropcheck::Scene s = dropcheck::parse_scene(R"(
+duration = 2.0
+[world]
+gravity = [0.0, -9.8, 0.0]
+linear_drag = 0.98
+[[body]]
+name = "bob"
+mass = 2.0
+position = [0.5, 4.0, 0.0]
+velocity = [0.0, 1.0, 0.0]
+[[force]]
+spring = { anchor = [0.0, 5.0, 0.0], stiffness = 400.0, damping = 1.5, rest_length = 0.25 }
+)",
+                                                    "spring.toml");
+  auto engine = dropcheck::make_engine("ours-f64");
+  REQUIRE(engine);
+  const dropcheck::Trajectory run = dropcheck::run_scene(*engine, s, s.timestep.seconds);
+  const dropcheck::Trajectory law = dropcheck::predict_discrete(dropcheck::DampingOrder::AfterForces, s, s.timestep.seconds);
+  REQUIRE(run.status == dropcheck::RunStatus::ok);
+  REQUIRE(run.samples() == law.samples());
+  double dx = 0.0, dv = 0.0;
+  for (std::size_t i = 0; i < run.samples(); ++i) {
+    dx = std::max(dx, (run.at(i, 0).position - law.at(i, 0).position).cwiseAbs().maxCoeff());
+    dv = std::max(dv, (run.at(i, 0).velocity - law.at(i, 0).velocity).cwiseAbs().maxCoeff());
+  }
+  CHECK(dx < 1e-12);  // measured 3.8e-15
+  CHECK(dv < 1e-12);  // measured 4.5e-14
+  // The spring really matters: the bob is far from a free fall after 2 s.
+  CHECK(std::abs(run.final_state(0).position.y() - 5.0) < 1.0);
+}

@@ -1,0 +1,92 @@
+// Tests harness/measure/attribution.cpp: a divergence built from the exact discrete laws is all "law part";
+// a perturbed engine leaves a residual that is flagged; lengths print in readable units.
+#include "harness/measure/attribution.hpp"
+
+#include <catch2/catch.hpp>
+
+#include "harness/oracles/discrete_law.hpp"
+
+using namespace dropcheck;
+using Catch::Matchers::Contains;
+
+namespace {
+
+// The seed's drop: 10 m, g = -9.8, drag 0.98 per step at 60 Hz (k = -ln(0.98)*60), 1 s.
+Scene drop() {
+  Scene s;
+  s.name = "drop";
+  s.duration = 1.0;
+  s.world.gravity = {0.0, -9.8, 0.0};
+  s.world.damping_rate = -std::log(0.98) * 60.0;
+  Body b;
+  b.name = "cube";
+  b.position = {0.0, 10.0, 0.0};
+  s.bodies.push_back(b);
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("the attribution of Bullet's law against ours' law is all of it from the laws",
+          "[attribution]") {
+  const Scene s = drop();
+  const double h = 1.0 / 60;
+  const Trajectory bullet = predict_discrete(DampingOrder::BeforeForces, s, h);
+  const Trajectory ours = predict_discrete(DampingOrder::AfterForces, s, h);
+  const Attribution a = attribute(bullet, bullet, Scalar::f64, ours, ours, Scalar::f64);
+  // docs/engines.md 2: 6.5878983508563724 - 6.5182636233228308 m after 60 steps.
+  CHECK(a.final_total == Approx(6.5878983508563724 - 6.5182636233228308).epsilon(1e-12));
+  CHECK(a.total == a.final_total);  // the gap grows monotonically
+  CHECK(a.law_part == a.total);
+  CHECK(a.residual == 0.0);
+  CHECK(a.budget == 2e-9);
+  CHECK(a.explained());
+  CHECK_THAT(a.sentence(),
+             Contains("6.96 cm at t = 1 s") && Contains("all of it from the two discrete laws"));
+}
+
+TEST_CASE(
+    "the attribution flags an engine that departs from its own law as an unexplained residual",
+    "[attribution]") {
+  const Scene s = drop();
+  const double h = 1.0 / 60;
+  const Trajectory law = predict_discrete(DampingOrder::BeforeForces, s, h);
+  const Trajectory ours = predict_discrete(DampingOrder::AfterForces, s, h);
+  Trajectory engine = law;  // as if gravity were -10 instead of -9.8: 0.1*t^2 m off by t = 1 s
+  for (std::size_t i = 0; i < engine.samples(); ++i)
+    engine.states[i].position.y() -= 0.1 * engine.time(i) * engine.time(i);
+  const Attribution a = attribute(engine, law, Scalar::f64, ours, ours, Scalar::f64);
+  CHECK_FALSE(a.explained());
+  CHECK(a.residual == Approx(0.1).epsilon(1e-9));
+  CHECK_THAT(a.sentence(), Contains("UNEXPLAINED residual 10 cm"));
+  // Within f32's budget (1e-4 m) the same kind of departure is rounding.
+  Trajectory f32 = law;
+  for (BodyState& st : f32.states) st.position.y() += 5e-5;
+  const Attribution b = attribute(f32, law, Scalar::f32, ours, ours, Scalar::f64);
+  CHECK(b.explained());
+  CHECK(b.budget == Approx(1e-4 + 1e-9));
+}
+
+TEST_CASE("the attribution of two engines on the same law is rounding only", "[attribution]") {
+  const Scene s = drop();
+  const Trajectory law = predict_discrete(DampingOrder::AfterForces, s, 1.0 / 60);
+  Trajectory f32 = law;
+  for (BodyState& st : f32.states) st.position.y() = static_cast<float>(st.position.y());
+  const Attribution a = attribute(f32, law, Scalar::f32, law, law, Scalar::f64);
+  CHECK(a.law_part == 0.0);
+  CHECK(a.explained());
+  CHECK_THAT(a.sentence(), Contains("the two discrete laws agree, so all of it is rounding"));
+  CHECK_THAT(attribute(law, law, Scalar::f64, law, law, Scalar::f64).sentence(),
+             Contains("identical"));
+}
+
+TEST_CASE("attribution sentences print lengths in a readable unit", "[attribution]") {
+  CHECK(format_length(0.0) == "0 m");
+  CHECK(format_length(1.5) == "1.5 m");
+  CHECK(format_length(0.0696347) == "6.96 cm");
+  CHECK(format_length(0.0025) == "2.5 mm");
+  CHECK(format_length(1.23e-5) == "12.3 um");
+  CHECK(format_length(3.1e-15) == "3.1e-15 m");
+  CHECK(format_length(-0.02) == "-2 cm");
+  CHECK(format_length(std::numeric_limits<double>::infinity()) == "inf");
+}

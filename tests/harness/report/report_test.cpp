@@ -1,0 +1,194 @@
+// Tests the comparison report end to end (harness/report*.cpp, harness/measure/evaluate.cpp and
+// harness/cli/cmd_report.cpp): byte-stable output, the sections and only the metrics that apply,
+// and atomic output (a bad scene file exits 2 and leaves the previous report as it was).
+#include "harness/report/report.hpp"
+
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "harness/cli/cli.hpp"
+#include "harness/core/registry.hpp"
+#include "harness/core/scene_loader.hpp"
+
+using namespace dropcheck;
+using Catch::Matchers::Contains;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A scratch directory under the system's temporary directory, removed at scope exit.
+struct Scratch {
+  fs::path path;
+  explicit Scratch(const std::string& name)
+      : path(fs::temp_directory_path() /
+             ("dropcheck-report-" + name + "-" + std::to_string(::getpid()))) {
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~Scratch() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+  std::string file(const std::string& name, const std::string& content = "") const {
+    if (!content.empty()) std::ofstream(path / name, std::ios::binary) << content;
+    return (path / name).string();
+  }
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Every file of a directory: name -> bytes.
+std::map<std::string, std::string> contents(const fs::path& dir) {
+  std::map<std::string, std::string> out;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir))
+    out[e.path().filename().string()] = slurp(e.path());
+  return out;
+}
+
+const char* const kThrow = R"(description = "Test scene: a cube thrown sideways with drag."
+duration = 0.5
+timestep = "1/60"
+timesteps = ["1/30", "1/60"]
+
+[world]
+gravity = [0.0, -9.8, 0.0]
+linear_damping = 1.0
+contacts = false
+
+[[body]]
+name = "cube"
+position = [0.0, 10.0, 0.0]
+velocity = [1.0, 2.0, 0.0]
+)";
+
+int report(const std::vector<std::string>& args, std::string* err_text = nullptr) {
+  std::ostringstream out, err;
+  std::vector<std::string> argv{"report"};
+  argv.insert(argv.end(), args.begin(), args.end());
+  const int rc = cli_main(argv, out, err);
+  if (err_text) *err_text = err.str();
+  return rc;
+}
+
+bool has_gnuplot() {
+  return std::system("command -v gnuplot >/dev/null 2>&1") == 0;
+}
+
+}  // namespace
+
+TEST_CASE("the report with --no-timing is byte-identical across two runs", "[report]") {
+  Scratch dir("identical");
+  const std::string scene = dir.file("throw.toml", kThrow);
+  REQUIRE(report({scene, "--out", dir.file("a"), "--no-timing"}) == kExitOk);
+  REQUIRE(report({scene, "--out", dir.file("b"), "--no-timing"}) == kExitOk);
+  const auto a = contents(dir.file("a")), b = contents(dir.file("b"));
+  CHECK(a.count("README.md") == 1);
+  if (has_gnuplot()) {
+    CHECK(a.count("throw-trajectory.svg") == 1);
+    CHECK(a.count("throw-divergence.svg") == 1);
+  }
+  CHECK(a.count("throw-work-precision.svg") == 0);  // no timings, no work-precision plot
+  CHECK(a == b);
+}
+
+TEST_CASE("the report has every section and only the metrics that apply to free flight",
+          "[report]") {
+  Scratch dir("sections");
+  const std::string scene = dir.file("throw.toml", kThrow);
+  std::string err;
+  REQUIRE(report({scene, "--out", dir.file("out"), "--no-timing"}, &err) == kExitOk);
+  CHECK_THAT(err, Contains("[1/1] throw: ours-f64 1/60 ..."));  // progress on stderr
+  const std::string md = slurp(dir.path / "out" / "README.md");
+  for (const char* section :
+       {"## Summary", "## Provenance", "## Engines", "## How this report is made", "## Scenes",
+        "### throw", "#### Divergence from ours-f64 at h = 1/60", "#### Error against each oracle",
+        "closed form: max dx (m)", "own law: max dx (m)", "#### Error against run time",
+        "#### Observed order of convergence", "## Determinism",
+        "Test scene: a cube thrown sideways with drag."})
+    CHECK_THAT(md, Contains(section));
+  CHECK_THAT(
+      md,
+      Contains("Leaves out: no contacts: no collision shapes created; contact metrics omitted"));
+  CHECK_THAT(md, !Contains("#### Landing") && !Contains("rest offset") && !Contains("⏱"));
+  CHECK_THAT(md, !Contains("## Harness overhead") && !Contains("work-precision"));
+  if (make_engine("bullet"))
+    CHECK_THAT(md, Contains("bullet vs ours-f64:") && Contains("damping-order"));
+}
+
+TEST_CASE("a scene without a closed form has no analytic columns and uses the fine-step reference",
+          "[report]") {
+  Scratch dir("nonlinear");
+  std::string text = kThrow;
+  text +=
+      "\n[[force]]\nspring = { anchor = [0.0, 9.0, 0.0], stiffness = 50.0, damping = 0.0, "
+      "rest_length = 0.5 }\n";
+  const std::string scene = dir.file("pendulum.toml", text);
+  REQUIRE(report({scene, "--out", dir.file("out"), "--no-timing", "--engine", "ours-f64",
+                  "--engine", "ours"}) == kExitOk);
+  const std::string md = slurp(dir.path / "out" / "README.md");
+  CHECK_THAT(md, !Contains("closed form: max dx"));
+  CHECK_THAT(md, Contains("no closed form (spring with a rest length (nonlinear))"));
+  CHECK_THAT(md, Contains("h = 1/480: max dx (m)"));  // oracle 3: finest step 1/60 divided by 8
+  CHECK_THAT(md, Contains("own law: max dx (m)"));    // still free flight: oracle 2 applies
+}
+
+TEST_CASE(
+    "a bad scene file exits 2 naming the file and key, and leaves the previous report untouched",
+    "[report]") {
+  Scratch dir("atomic");
+  const std::string good = dir.file("throw.toml", kThrow);
+  const std::string out = dir.file("out");
+  REQUIRE(report({good, "--out", out, "--no-timing", "--engine", "ours-f64"}) == kExitOk);
+  const auto before = contents(out);
+  const std::string bad = dir.file(
+      "bad.toml",
+      std::string(kThrow) + "\n[[body]]\nname = \"x\"\nposition = [0.0, 1.0, 0.0]\nmass = -1.0\n");
+  std::string err;
+  CHECK(report({good, bad, "--out", out, "--no-timing"}, &err) == kExitBadInput);
+  CHECK_THAT(err, Contains("bad.toml") && Contains("mass"));
+  CHECK(contents(out) == before);
+  for (const fs::directory_entry& e : fs::directory_iterator(dir.path))  // no staging left behind
+    CHECK(e.path().filename().string().find("staging") == std::string::npos);
+}
+
+TEST_CASE("the report refuses to replace a directory it did not write", "[report]") {
+  Scratch dir("refuse");
+  const std::string scene = dir.file("throw.toml", kThrow);
+  std::string err;
+  CHECK(report({scene, "--out", dir.path.string(), "--no-timing"}, &err) == kExitBadInput);
+  CHECK_THAT(err, Contains("did not write"));
+  CHECK(fs::exists(dir.path / "throw.toml"));
+}
+
+TEST_CASE("with timings the run-time table has marked columns and a work-precision plot",
+          "[report]") {
+  Scratch dir("timing");
+  EvaluateOptions options;  // as little timing work as possible: this checks the plumbing only
+  options.timing_options.min_run_seconds = 1e-5;
+  options.timing_options.warmups = 0;
+  options.timing_options.repeats = 1;
+  options.timing_options.max_replicas = 2;
+  std::vector<EngineSlot> engines;
+  for (const char* name : {"ours", "ours-f64"})
+    engines.push_back({name, [name] { return make_engine(name); }, ""});
+  ReportInput in;
+  in.scenes.push_back(evaluate_scene(load_scene(dir.file("throw.toml", kThrow)), engines, options));
+  for (const EngineSlot& e : engines) in.engines.push_back(e.make()->info());
+  write_report(in, dir.path.string());
+  const std::string md = slurp(dir.path / "README.md");
+  CHECK_THAT(md, Contains("⏱ min (ms per sim s)") && Contains("⏱ harness overhead") &&
+                     Contains("## Harness overhead"));
+  for (const EngineEvaluation& ev : in.scenes[0].engines)
+    for (const StepEvaluation& st : ev.sweep) CHECK(st.timing);
+  if (has_gnuplot()) CHECK(fs::exists(dir.path / "throw-work-precision.svg"));
+}
