@@ -10,6 +10,7 @@ DROPCHECK_PACKAGES=(
   libbullet-dev libode-dev libbox2d-dev libmujoco-dev libqhull-dev  # the engines compared
   libgl-dev                            # MuJoCo's CMake package requires OpenGL to be findable
   gnuplot-nox                          # report plots (SVG)
+  clang-format-14 git                  # scripts/format.sh and the ctest entry `format`
 )
 
 missing=()
