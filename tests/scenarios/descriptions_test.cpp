@@ -4,9 +4,8 @@
 // (half a unit in the last digit written); any other digit in a description is refused. A writer
 // who wants a new kind of figure adds its phrase here with the computation that checks it.
 // The convention is documented in docs/design.md ("Scenario files").
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -60,7 +59,8 @@ Vec3 constant_force(const Scene& s, std::size_t i) {
   Vec3 f = Vec3::Zero();
   for (const dropcheck::Force& force : s.forces)
     if (const auto* c = std::get_if<dropcheck::ConstantForce>(&force.law))
-      if (std::find(force.bodies.begin(), force.bodies.end(), i) != force.bodies.end()) f += c->force;
+      if (std::find(force.bodies.begin(), force.bodies.end(), i) != force.bodies.end())
+        f += c->force;
   return f;
 }
 
@@ -101,7 +101,9 @@ std::vector<double> over_bodies(const Scene& s, Which which,
   return out;
 }
 
-double omega(const Scene& s, std::size_t i) { return std::sqrt(springs(s, i).S / s.bodies[i].mass); }
+double omega(const Scene& s, std::size_t i) {
+  return std::sqrt(springs(s, i).S / s.bodies[i].mass);
+}
 
 // Time at which vertical velocity v0 > 0 under vertical acceleration a < 0 and drag k reaches 0:
 // v(t) = a/k + (v0 - a/k)*exp(-k*t) = 0  ->  t = ln(1 + k*v0/|a|)/k  (k = 0: v0/|a|).
@@ -164,7 +166,8 @@ const std::vector<Phrase>& phrases() {
       // Phrases that contain shorter ones ("h = X s", "at x = X m") come first.
       // Stability edge of a spring (harness/stability: theory per damping order).
       {"stability edge h = " + N +
-           " s(?: where damping (follows the forces|precedes the forces|follows the position update))?",
+           " s(?: where damping (follows the forces|precedes the forces|"
+           "follows the position update))?",
        [](const Scene& s, const std::smatch& m) {
          using dropcheck::DampingOrder;
          const std::string order = m[2];
@@ -175,7 +178,9 @@ const std::vector<Phrase>& phrases() {
          if (order == "follows the position update") orders = {DampingOrder::AfterPosition};
          for (DampingOrder o : orders) {  // without an order named, every order must agree
            const auto edge = dropcheck::spring_theory_max_dt(s, o);
-           const std::string problem = agrees(m[1], edge ? std::vector<double>{*edge} : std::vector<double>{});
+           std::vector<double> values;
+           if (edge) values.push_back(*edge);
+           const std::string problem = agrees(m[1], values);
            if (!problem.empty()) return problem;
          }
          return std::string();
@@ -215,7 +220,8 @@ const std::vector<Phrase>& phrases() {
        [](const Scene& s, const std::smatch& m) {
          std::vector<double> t;
          for (std::size_t i : thrown_up(s))
-           t.push_back(apex_time(s.bodies[i].velocity.y(), acceleration(s, i).y(), s.world.damping_rate));
+           t.push_back(
+               apex_time(s.bodies[i].velocity.y(), acceleration(s, i).y(), s.world.damping_rate));
          return agrees(m[1], t);
        }},
       {"rises " + N + " m",
@@ -325,8 +331,8 @@ const std::vector<Phrase>& phrases() {
        }},
       {"(?:drifting|moving) at " + N + " m/s",
        [](const Scene& s, const std::smatch& m) {
-         return agrees(m[1], over_bodies(s, Which::any,
-                                         [&](std::size_t i) { return s.bodies[i].velocity.norm(); }));
+         const auto speed = [&](std::size_t i) { return s.bodies[i].velocity.norm(); };
+         return agrees(m[1], over_bodies(s, Which::any, speed));
        }},
       {"travels " + N + " m per step",
        [](const Scene& s, const std::smatch& m) {
@@ -359,15 +365,18 @@ const std::vector<Phrase>& phrases() {
       // Springs (rest length 0: linear oscillators).
       {"stiffness " + N + " N/m",
        [](const Scene& s, const std::smatch& m) {
-         return agrees(m[1], over_bodies(s, Which::sprung, [&](std::size_t i) { return springs(s, i).S; }));
+         const auto stiffness = [&](std::size_t i) { return springs(s, i).S; };
+         return agrees(m[1], over_bodies(s, Which::sprung, stiffness));
        }},
       {"dashpot of " + N + R"( N\*s/m)",
        [](const Scene& s, const std::smatch& m) {
-         return agrees(m[1], over_bodies(s, Which::sprung, [&](std::size_t i) { return springs(s, i).C; }));
+         const auto dashpot = [&](std::size_t i) { return springs(s, i).C; };
+         return agrees(m[1], over_bodies(s, Which::sprung, dashpot));
        }},
       {"omega = " + N + " rad/s",
        [](const Scene& s, const std::smatch& m) {
-         return agrees(m[1], over_bodies(s, Which::sprung, [&](std::size_t i) { return omega(s, i); }));
+         const auto w = [&](std::size_t i) { return omega(s, i); };
+         return agrees(m[1], over_bodies(s, Which::sprung, w));
        }},
       {"omega\\*h from " + N + " to " + N,
        [](const Scene& s, const std::smatch& m) {
@@ -377,8 +386,8 @@ const std::vector<Phrase>& phrases() {
        }},
       {"omega\\*h = " + N,
        [](const Scene& s, const std::smatch& m) {
-         return agrees(m[1], over_bodies(s, Which::sprung,
-                                         [&](std::size_t i) { return omega(s, i) * s.timestep.seconds; }));
+         const auto wh = [&](std::size_t i) { return omega(s, i) * s.timestep.seconds; };
+         return agrees(m[1], over_bodies(s, Which::sprung, wh));
        }},
       {"anchor " + N + " m above its start",
        [](const Scene& s, const std::smatch& m) {
@@ -400,8 +409,8 @@ const std::vector<Phrase>& phrases() {
                          return s.duration * omega(s, i) / (2.0 * M_PI);
                        }));
        }},
-      // Semi-implicit Euler on an undamped oscillator turns by theta per step, 2*sin(theta/2) = w*h:
-      // its frequency is high by theta/(w*h) - 1 = (w*h)^2/24 + O(h^4).
+      // Semi-implicit Euler on an undamped oscillator turns by theta per step, with
+      // 2*sin(theta/2) = w*h: its frequency is high by theta/(w*h) - 1 = (w*h)^2/24 + O(h^4).
       {"relative frequency error " + N,
        [](const Scene& s, const std::smatch& m) {
          return agrees(m[1], over_bodies(s, Which::sprung, [&](std::size_t i) {
@@ -441,13 +450,15 @@ std::vector<std::string> description_problems(const Scene& scene) {
   text = std::regex_replace(text, std::regex("Box2D"), "<name>");  // a name, not a figure
   const std::regex digit("[^ ]*[0-9][^ ]*");
   for (std::sregex_iterator it(text.begin(), text.end(), digit), end; it != end; ++it)
-    problems.push_back("\"" + it->str() + "\": a figure in no checked phrase (tests/scenarios/descriptions_test.cpp)");
+    problems.push_back("\"" + it->str() +
+                       "\": a figure in no checked phrase (tests/scenarios/descriptions_test.cpp)");
   return problems;
 }
 
 std::vector<std::string> shipped_scenes() {
   std::vector<std::string> files;
-  for (const auto& e : std::filesystem::recursive_directory_iterator(DROPCHECK_SOURCE_DIR "/scenarios"))
+  for (const auto& e :
+       std::filesystem::recursive_directory_iterator(DROPCHECK_SOURCE_DIR "/scenarios"))
     if (e.is_regular_file() && e.path().extension() == ".toml") files.push_back(e.path().string());
   std::sort(files.begin(), files.end());
   return files;
@@ -455,8 +466,9 @@ std::vector<std::string> shipped_scenes() {
 
 }  // namespace
 
-TEST_CASE("every figure in a shipped scene's description is one the harness computes from the scene",
-          "[scenarios][descriptions]") {
+TEST_CASE(
+    "every figure in a shipped scene's description is one the harness computes from the scene",
+    "[scenarios][descriptions]") {
   const std::vector<std::string> files = shipped_scenes();
   REQUIRE(files.size() >= 19);  // 7 scenes in scenarios/, 12 in scenarios/extreme/
   for (const std::string& file : files) {
@@ -470,8 +482,9 @@ TEST_CASE("every figure in a shipped scene's description is one the harness comp
   }
 }
 
-TEST_CASE("a description's figure that disagrees with its scene, or that no phrase checks, is refused",
-          "[scenarios][descriptions]") {
+TEST_CASE(
+    "a description's figure that disagrees with its scene, or that no phrase checks, is refused",
+    "[scenarios][descriptions]") {
   Scene s = dropcheck::load_scene(DROPCHECK_SOURCE_DIR "/scenarios/drop_on_floor.toml");
   s.description = "First contact at t = 1.9195 s, rests at height 0.5 m, k = 1.2122 1/s.";
   CHECK(description_problems(s).empty());
