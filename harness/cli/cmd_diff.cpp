@@ -38,8 +38,9 @@ int cmd_diff(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   plan.read(args.positional[1]);
   if (args.has("--out")) plan.write_file("--out", args.value("--out"));
   plan.check();
-  const std::string markdown =
-      diff_markdown(load_nonempty(args.positional[0]), load_nonempty(args.positional[1]));
+  const ResultSet before = load_nonempty(args.positional[0]);  // OLD first: its errors come first
+  const ResultSet after = load_nonempty(args.positional[1]);
+  const std::string markdown = diff_markdown(before, after);
   if (args.has("--out")) {
     write_file_atomic(args.value("--out"), markdown);
   } else {

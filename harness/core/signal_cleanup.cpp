@@ -55,32 +55,34 @@ void on_signal(int sig) {
     if (state == kFile) ::unlink(s.path);
     if (state == kFolder) remove_folder(s.path);
   }
-  // Die of the same signal, as the shell expects: the default action, then re-raise.
-  ::signal(sig, SIG_DFL);
+  // Then what was there before (by default: die of the same signal, as the shell expects). The
+  // signal is blocked while this handler runs, so the raised one is delivered right after it.
+  for (int i = 0; i < 3; ++i)
+    if (kSignals[i] == sig) ::sigaction(sig, &g_previous[i], nullptr);
   ::raise(sig);
 }
 
-void install_once() {
-  static const bool installed = [] {
-    for (int i = 0; i < 3; ++i) {
-      struct sigaction now {};
-      ::sigaction(kSignals[i], nullptr, &g_previous[i]);
-      if (g_previous[i].sa_handler == SIG_IGN) continue;  // nohup and friends: stay ignored
-      now.sa_handler = on_signal;
-      sigemptyset(&now.sa_mask);
-      for (int s : kSignals) sigaddset(&now.sa_mask, s);  // one handler at a time
-      ::sigaction(kSignals[i], &now, nullptr);
-    }
-    return true;
-  }();
-  (void)installed;
+// Installs on_signal where it is not the handler now, keeping the one it replaces to chain to. Run
+// at every registration: a test framework may have put its own handler back meanwhile.
+void install() {
+  for (int i = 0; i < 3; ++i) {
+    struct sigaction current {};
+    ::sigaction(kSignals[i], nullptr, &current);
+    if (current.sa_handler == SIG_IGN || current.sa_handler == on_signal) continue;  // nohup: stay ignored
+    struct sigaction now {};
+    now.sa_handler = on_signal;
+    sigemptyset(&now.sa_mask);
+    for (int s : kSignals) sigaddset(&now.sa_mask, s);  // one handler at a time
+    g_previous[i] = current;
+    ::sigaction(kSignals[i], &now, nullptr);
+  }
 }
 
 }  // namespace
 
 CleanupOnSignal::CleanupOnSignal(const std::string& path, bool folder) {
   if (path.size() + 1 > kPathMax || path.find('\0') != std::string::npos) return;
-  install_once();
+  install();
   for (int i = 0; i < kSlots; ++i) {
     int expected = kFree;
     // Claim with an intermediate value (-1) so that the handler skips the slot while we copy.
