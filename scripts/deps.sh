@@ -7,6 +7,8 @@ DROPCHECK_PACKAGES=(
   cmake g++ make pkg-config            # build
   libeigen3-dev libtomlplusplus-dev    # ours, scene files
   catch2                               # tests
+  libcli11-dev                         # command-line parsing (header-only CLI11)
+  nlohmann-json3-dev                   # JSON output, every name escaped by construction
   libbullet-dev libode-dev libbox2d-dev libmujoco-dev libqhull-dev  # the engines compared
   libgl-dev                            # MuJoCo's CMake package requires OpenGL to be findable
   gnuplot-nox                          # report plots (SVG)

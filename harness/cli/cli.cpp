@@ -2,6 +2,7 @@
 
 #include <exception>
 
+#include "args.hpp"
 #include "harness/core/input_error.hpp"
 
 namespace dropcheck {
@@ -29,6 +30,8 @@ const CommandEntry kCommands[] = {
 void usage(std::ostream& err) {
   err << "usage:\n";
   for (const CommandEntry& c : kCommands) err << "  " << c.usage << "\n";
+  err << "Run `dropcheck COMMAND --help` for a command's options. Exit codes: 0 ok, 1 a check "
+         "failed, 2 bad input or usage.\n";
 }
 
 }  // namespace
@@ -42,6 +45,9 @@ int cli_main(const std::vector<std::string>& argv, std::ostream& out, std::ostre
     if (argv[0] != c.name) continue;
     try {
       return c.run({argv.begin() + 1, argv.end()}, out, err);
+    } catch (const HelpRequested& h) {
+      out << h.text;
+      return kExitOk;
     } catch (const InputError& e) {
       err << "dropcheck " << c.name << ": " << e.what() << "\n";
       return kExitBadInput;

@@ -12,6 +12,7 @@
 #include "harness/guard/bless.hpp"
 #include "harness/core/build_id.hpp"
 #include "harness/core/input_error.hpp"
+#include "harness/core/output_plan.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/guard/regression.hpp"
 #include "harness/core/scene_loader.hpp"
@@ -53,7 +54,7 @@ TierResult run_tier(Tier tier, const Scene& scene, const NamedFactory& engine, c
   if (tier == Tier::physics) return check_physics(*now);
   const std::string name = scene.name + " / " + engine.first + " / " + to_string(tier) + ": ";
   if (!now->skipped.empty()) return {Verdict::skipped, name + "the engine cannot run this scene: " + now->skipped};
-  const std::string path = (std::filesystem::path(dir) / baseline_file_name(scene.name, engine.first)).string();
+  const std::string path = baseline_path(dir, scene.name, engine.first);
   if (!std::filesystem::exists(path))
     return {Verdict::failed, name + "no baseline " + path + "; run `dropcheck bless " + scene.source + "` to make one"};
   const Baseline expected = read_baseline(path);
@@ -100,6 +101,19 @@ int check(const Args& args, const std::vector<Scene>& scenes, std::ostream& out)
   return failed ? kExitCheckFailed : skipped == total ? kExitSkipped : kExitOk;
 }
 
+// Before any engine runs: --out is a folder dropcheck may write in, no two baselines share a file
+// (bless.hpp), and no baseline lands on a scene file.
+void check_outputs(const Args& args, const std::vector<std::string>& files, const std::vector<Scene>& scenes) {
+  const std::string dir = args.value("--out", "tests/baselines");
+  OutputPlan plan;
+  plan.write_into("--out", dir);
+  for (const std::string& f : files) plan.read(f);
+  std::vector<std::string> engines = args.values("--engine");
+  if (engines.empty()) engines = {"ours", "ours-f64"};
+  for (const std::string& path : baseline_paths(scenes, engines, dir)) plan.write_file("--out", path);
+  plan.check();
+}
+
 int write(const Args& args, const std::vector<Scene>& scenes, std::ostream& out, std::ostream& err) {
   BlessOptions options;
   options.out_dir = args.value("--out", "tests/baselines");
@@ -118,8 +132,23 @@ int write(const Args& args, const std::vector<Scene>& scenes, std::ostream& out,
 
 }  // namespace
 
+const CommandSpec& bless_spec() {
+  static const CommandSpec spec{
+      "bless",
+      "Rewrites the golden baselines (refused, exit 1, when a fresh run fails an oracle check), or with "
+      "--check compares this build with them tier by tier (exit 77 when every tier was skipped).",
+      "scene FILE", "scene files (default: every scenarios/*.toml)", 0, -1,
+      {{"--engine", "E", "an engine (repeatable; default: ours and ours-f64)", true},
+       {"--out", "DIR", "the folder of baselines to write (default: tests/baselines)"},
+       {"--timing", "", "record wall-clock timings in the baselines"},
+       {"--check", "", "compare with the baselines instead of writing them"},
+       {"--tier", "T", "with --check: bits, tolerance, physics or determinism (repeatable)", true},
+       {"--baselines", "DIR", "with --check: the baselines to compare with (default: tests/baselines)"}}};
+  return spec;
+}
+
 int cmd_bless(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
-  const Args args = parse_args(argv, {"--engine", "--out", "--tier", "--baselines"}, {"--check", "--timing"});
+  const Args args = parse_args(bless_spec(), argv);
   const bool checking = args.has("--check");
   if (checking && (args.has("--out") || args.has("--timing")))
     throw InputError("", 0, "--check", "compares only; --out and --timing belong to blessing");
@@ -129,6 +158,7 @@ int cmd_bless(const std::vector<std::string>& argv, std::ostream& out, std::ostr
   if (files.empty()) files = shipped_scenes();
   std::vector<Scene> scenes;
   for (const std::string& f : files) scenes.push_back(load_scene(f));
+  if (!checking) check_outputs(args, files, scenes);
   return checking ? check(args, scenes, out) : write(args, scenes, out, err);
 }
 

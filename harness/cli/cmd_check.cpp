@@ -24,9 +24,16 @@ void print(const CheckResult& r, std::ostream& out) {
 
 }  // namespace
 
+const CommandSpec& check_spec() {
+  static const CommandSpec spec{
+      "check", "Runs every check that applies to each scene on each engine; exit 1 if one failed.",
+      "scene FILE", "scene files (.toml)", 1, -1,
+      {{"--engine", "E", "an engine to check (repeatable; default: every engine compiled in)", true}}};
+  return spec;
+}
+
 int cmd_check(const std::vector<std::string>& argv, std::ostream& out, std::ostream&) {
-  const Args args = parse_args(argv, {"--engine"}, {});
-  if (args.positional.empty()) throw InputError("", 0, "check", "expects one or more scene FILEs");
+  const Args args = parse_args(check_spec(), argv);
   std::vector<Scene> scenes;
   for (const std::string& file : args.positional) scenes.push_back(load_scene(file));
   if (!make_engine("ours-f64")) throw InputError("", 0, "ours-f64", "the reference engine is missing");

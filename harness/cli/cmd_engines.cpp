@@ -1,18 +1,23 @@
 // dropcheck engines: name, version, scalar, capabilities, discrete law, damping mapping.
-#include <cstdio>
-
 #include "args.hpp"
 #include "cli.hpp"
 #include "harness/core/registry.hpp"
+#include "printf.hpp"
 
 namespace dropcheck {
 
+const CommandSpec& engines_spec() {
+  static const CommandSpec spec{
+      "engines", "Lists every engine dropcheck knows: version, scalar, capabilities, discrete law and "
+                 "damping mapping, or why it is not compiled in.",
+      "", "", 0, 0, {}};
+  return spec;
+}
+
 int cmd_engines(const std::vector<std::string>& argv, std::ostream& out, std::ostream&) {
-  parse_args(argv, {}, {});
-  char line[512];
-  std::snprintf(line, sizeof line, "%-9s %-14s %-6s %-22s %-36s %s\n", "engine", "version", "scalar",
-                "capabilities", "discrete law", "damping mapping");
-  out << line;
+  parse_args(engines_spec(), argv);
+  const char* row = "%-9s %-14s %-6s %-22s %-36s %s\n";
+  out << strprintf(row, "engine", "version", "scalar", "capabilities", "discrete law", "damping mapping");
   for (const std::string& name : known_engine_names()) {
     std::unique_ptr<Engine> e = make_engine(name);
     if (!e) {
@@ -22,10 +27,8 @@ int cmd_engines(const std::vector<std::string>& argv, std::ostream& out, std::os
     const EngineInfo i = e->info();
     std::string caps = i.capabilities.contacts ? "free flight, contacts" : "free flight";
     if (i.capabilities.planar_only) caps += ", 2-D";
-    std::snprintf(line, sizeof line, "%-9s %-14s %-6s %-22s %-36s %s\n", i.name.c_str(),
-                  i.version.c_str(), to_string(i.scalar), caps.c_str(), to_string(i.law).c_str(),
-                  i.damping_mapping.c_str());
-    out << line;
+    out << strprintf(row, i.name.c_str(), i.version.c_str(), to_string(i.scalar), caps.c_str(),
+                     to_string(i.law).c_str(), i.damping_mapping.c_str());
   }
   return kExitOk;
 }

@@ -4,7 +4,8 @@
 // folder go to the stability section (harness/stability/stability_report.hpp). Every scene file is loaded
 // before any work starts, and the output is built in a staging directory and swapped into place
 // only when complete: a bad scene file exits 2 naming the file, key and problem, and leaves the
-// previous report untouched.
+// previous report untouched. DIR is replaced only when dropcheck wrote it (its .dropcheck-manifest,
+// harness/core/output_dir.hpp); that and every other output rule is checked before any engine runs.
 #include <algorithm>
 #include <filesystem>
 
@@ -12,6 +13,7 @@
 #include "cli.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/core/output_dir.hpp"
+#include "harness/core/output_plan.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/report/report.hpp"
 #include "harness/core/scene_loader.hpp"
@@ -101,11 +103,25 @@ void evaluate_all(const std::vector<Scene>& scenes, const std::vector<EngineSlot
 
 }  // namespace
 
+const CommandSpec& report_spec() {
+  static const CommandSpec spec{
+      "report", "Evaluates every scene on every engine and writes a Markdown report with SVG plots.",
+      "PATH", "scene files or folders of them (default: scenarios)", 0, -1,
+      {{"--out", "DIR", "the report folder, replaced whole (default: reports)"},
+       {"--engine", "E", "an engine to include (repeatable; default: every engine dropcheck knows)", true},
+       {"--no-timing", "", "leave out the wall-clock timings"}}};
+  return spec;
+}
+
 int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
-  const Args args = parse_args(argv, {"--out", "--engine"}, {"--no-timing"});
+  const Args args = parse_args(report_spec(), argv);
   const std::string out_dir = args.value("--out", "reports");
   const SceneFiles files = scene_files(args.positional);
-  check_replaceable(out_dir);
+  OutputPlan plan;
+  for (const std::string& f : files.scenes) plan.read(f);
+  for (const std::string& f : files.extreme) plan.read(f);
+  plan.write_folder("--out", out_dir);
+  plan.check();
   std::vector<Scene> scenes;
   for (const std::string& f : files.scenes) scenes.push_back(load_scene(f));
   for (const std::string& f : files.extreme) load_scene(f);  // validated now, run by the section

@@ -1,37 +1,34 @@
 // dropcheck run FILE [--engine E]... [--dt H] [--csv OUT] [--json OUT]
 // Runs the scene on each engine and prints a summary: final state per engine and body, steps,
-// wall time, status. Output files are written only after every run finished, atomically.
-#include <cstdio>
+// wall time, status. Every output path is checked before any engine runs (harness/core/output_plan.hpp);
+// output files are written only after every run finished, atomically.
 
 #include "args.hpp"
 #include "cli.hpp"
 #include "harness/core/atomic_file.hpp"
 #include "harness/core/input_error.hpp"
+#include "harness/core/output_plan.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/core/scene_loader.hpp"
 #include "harness/core/trajectory_io.hpp"
+#include "printf.hpp"
 #include "selection.hpp"
 
 namespace dropcheck {
 namespace {
 
 void print_header(const Scene& s, const Timestep& dt, std::ostream& out) {
-  char line[256];
-  std::snprintf(line, sizeof line,
-                "scene %s: %zu bodies, %g s at h = %s (%lld steps), gravity (%g, %g, %g), "
+  out << strprintf("scene %s: %zu bodies, %g s at h = %s (%lld steps), gravity (%g, %g, %g), "
                 "damping k = %.6g 1/s, contacts %s\n",
                 s.name.c_str(), s.bodies.size(), s.duration, dt.text.c_str(),
                 static_cast<long long>(step_count(s, dt.seconds)), s.world.gravity.x(),
                 s.world.gravity.y(), s.world.gravity.z(), s.world.damping_rate,
                 s.world.contacts ? "on" : "off");
-  out << line;
-  std::snprintf(line, sizeof line, "%-9s %-10s %13s %13s %13s %12s %12s %12s %8s %9s  %s\n", "engine",
+  out << strprintf("%-9s %-10s %13s %13s %13s %12s %12s %12s %8s %9s  %s\n", "engine",
                 "body", "x", "y", "z", "vx", "vy", "vz", "steps", "wall ms", "status");
-  out << line;
 }
 
 void print_run(const Trajectory& t, std::ostream& out) {
-  char line[320];
   if (t.samples() == 0) {  // the engine failed before step 0 (load): no state to print
     out << t.engine << "  " << to_string(t.status) << ": " << t.failure << "\n";
     return;
@@ -41,19 +38,33 @@ void print_run(const Trajectory& t, std::ostream& out) {
     std::string status = to_string(t.status);
     if (t.status != RunStatus::ok) status += ": " + t.failure;
     if (t.clamped_steps) status += " (speed clamped on " + std::to_string(t.clamped_steps) + " steps)";
-    std::snprintf(line, sizeof line, "%-9s %-10s %13.6f %13.6f %13.6f %12.6f %12.6f %12.6f %8lld %9.3f  %s\n",
+    out << strprintf("%-9s %-10s %13.6f %13.6f %13.6f %12.6f %12.6f %12.6f %8lld %9.3f  %s\n",
                   t.engine.c_str(), t.body_names[b].c_str(), s.position.x(), s.position.y(),
                   s.position.z(), s.velocity.x(), s.velocity.y(), s.velocity.z(),
                   static_cast<long long>(t.recorded.back()), t.wall_seconds * 1e3, status.c_str());
-    out << line;
   }
 }
 
 }  // namespace
 
+const CommandSpec& run_spec() {
+  static const CommandSpec spec{
+      "run", "Runs the scene on each engine and prints the final state of every body.", "scene FILE",
+      "the scene file (.toml)", 1, 1,
+      {{"--engine", "E", "an engine to run (repeatable; default: every engine compiled in)", true},
+       {"--dt", "H", "the step: seconds (0.01) or a rate (1/120); default: the scene's"},
+       {"--csv", "OUT", "write every sample to OUT as CSV"},
+       {"--json", "OUT", "write every sample to OUT as JSON"}}};
+  return spec;
+}
+
 int cmd_run(const std::vector<std::string>& argv, std::ostream& out, std::ostream&) {
-  const Args args = parse_args(argv, {"--engine", "--dt", "--csv", "--json"}, {});
-  if (args.positional.size() != 1) throw InputError("", 0, "run", "expects exactly one scene FILE");
+  const Args args = parse_args(run_spec(), argv);
+  OutputPlan plan;
+  plan.read(args.positional[0]);
+  for (const char* key : {"--csv", "--json"})
+    if (args.has(key)) plan.write_file(key, args.value(key));
+  plan.check();
   const Scene scene = load_scene(args.positional[0]);
   const Timestep dt = step_from_flag(args.value("--dt"), scene);
   std::vector<SelectedEngine> engines = select_engines(args.values("--engine"), scene);

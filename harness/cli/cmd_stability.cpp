@@ -6,16 +6,28 @@
 #include "cli.hpp"
 #include "harness/core/atomic_file.hpp"
 #include "harness/core/input_error.hpp"
+#include "harness/core/output_plan.hpp"
 #include "harness/core/scene_loader.hpp"
 #include "harness/stability/stability_study.hpp"
 #include "selection.hpp"
 
 namespace dropcheck {
 
+const CommandSpec& stability_spec() {
+  static const CommandSpec spec{
+      "stability", "Classifies each engine at the scene's step and searches its largest stable step.",
+      "scene FILE", "the scene file (.toml)", 1, 1,
+      {{"--engine", "E", "an engine to study (repeatable; default: every engine compiled in)", true},
+       {"--json", "OUT", "write the study to OUT as JSON"}}};
+  return spec;
+}
+
 int cmd_stability(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
-  const Args args = parse_args(argv, {"--engine", "--json"}, {});
-  if (args.positional.size() != 1)
-    throw InputError("", 0, "stability", "expects exactly one scene FILE");
+  const Args args = parse_args(stability_spec(), argv);
+  OutputPlan plan;
+  plan.read(args.positional[0]);
+  if (args.has("--json")) plan.write_file("--json", args.value("--json"));
+  plan.check();
   const Scene scene = load_scene(args.positional[0]);
   std::vector<std::string> names;
   for (const SelectedEngine& e : select_engines(args.values("--engine"), scene))

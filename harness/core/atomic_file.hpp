@@ -1,11 +1,21 @@
-// Output files are written whole or not at all: into a temporary beside the target, then renamed.
+// Output files are written whole or not at all: into a uniquely named temporary beside the target
+// (removed again on failure or on SIGINT/SIGTERM/SIGHUP), then renamed over it. Only a regular file
+// is ever replaced; a symbolic link is written through, to the file it points to.
 #pragma once
 
+#include <filesystem>
 #include <string>
 
 namespace dropcheck {
 
-// Writes `content` to `path` atomically. Throws InputError naming the path when it cannot.
+// Where a write to `path` lands: `path` itself, or, for a symbolic link, the file it finally
+// points to (relative links resolved from the link's folder). Throws InputError, prefixed by `key`
+// ("--csv"), when that is something other than a regular file or nothing (a folder, a device, a
+// FIFO, a socket), or a link loop.
+std::filesystem::path output_target(const std::string& path, const std::string& key = "");
+
+// Writes `content` to output_target(path) atomically, creating missing parent folders. Throws
+// InputError naming the path when it cannot; the previous file is then untouched.
 void write_file_atomic(const std::string& path, const std::string& content);
 
 }  // namespace dropcheck

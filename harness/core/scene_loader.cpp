@@ -1,5 +1,6 @@
 #include "harness/core/scene_loader.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -233,7 +234,10 @@ void load_force(const Reader& r, Scene& s) {
     for (std::size_t i = 0; i < a->size(); ++i) {
       const std::string key = "bodies[" + std::to_string(i) + "]";
       if (!a->get(i)->is_string()) r.fail(key, "expected a body name (string)", a->get(i));
-      f.bodies.push_back(body_index(r, s, key, *a->get(i)->value<std::string>()));
+      const std::size_t b = body_index(r, s, key, *a->get(i)->value<std::string>());
+      if (std::find(f.bodies.begin(), f.bodies.end(), b) != f.bodies.end())
+        r.fail(key, "body \"" + s.bodies[b].name + "\" is listed twice; the force would act on it twice", a->get(i));
+      f.bodies.push_back(b);
     }
   } else {
     for (std::size_t i = 0; i < s.bodies.size(); ++i)

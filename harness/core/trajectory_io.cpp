@@ -2,9 +2,12 @@
 
 #include <cmath>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 
 namespace dropcheck {
 namespace {
+
+using Json = nlohmann::ordered_json;
 
 // ",x,y,z" for each vector.
 void append_csv(std::string& out, const Vec3& v) {
@@ -19,26 +22,26 @@ std::string csv_field(const std::string& s) {
   return out + "\"";
 }
 
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      out += buf;
-      continue;
-    }
-    out += c;
+// JSON has no NaN or Inf: nlohmann writes null for them. Names are escaped by construction, and a
+// byte that is not UTF-8 becomes U+FFFD instead of breaking the document.
+std::string dump(const Json& j) { return j.dump(-1, ' ', false, Json::error_handler_t::replace); }
+
+Json json_vec(const Vec3& v) { return Json::array({v[0], v[1], v[2]}); }
+
+Json run_json(const Trajectory& t) {
+  Json run = {{"engine", t.engine},           {"scene", t.scene},
+              {"dt", t.h},                    {"steps", t.steps},
+              {"status", to_string(t.status)}, {"failure", t.failure},
+              {"failed_step", t.failed_step}, {"clamped_steps", t.clamped_steps}};
+  Json bodies = Json::array();
+  for (std::size_t b = 0; b < t.bodies(); ++b) {
+    Json samples = Json::array();
+    for (std::size_t s = 0; s < t.samples(); ++s)
+      samples.push_back(Json::array({t.recorded[s], json_vec(t.at(s, b).position), json_vec(t.at(s, b).velocity)}));
+    bodies.push_back(Json{{"name", t.body_names[b]}, {"samples", std::move(samples)}});
   }
-  return out + "\"";
-}
-
-// JSON has no NaN or Inf: write null for them.
-std::string json_number(double v) { return std::isfinite(v) ? exact(v) : "null"; }
-
-std::string json_vec(const Vec3& v) {
-  return "[" + json_number(v[0]) + "," + json_number(v[1]) + "," + json_number(v[2]) + "]";
+  run["bodies"] = std::move(bodies);
+  return run;
 }
 
 }  // namespace
@@ -67,26 +70,8 @@ std::string trajectories_to_csv(std::span<const Trajectory> runs) {
 }
 
 std::string trajectories_to_json(std::span<const Trajectory> runs) {
-  std::string out = "{\"runs\":[";
-  for (std::size_t r = 0; r < runs.size(); ++r) {
-    const Trajectory& t = runs[r];
-    out += r ? ",\n" : "\n";
-    out += "{\"engine\":" + json_string(t.engine) + ",\"scene\":" + json_string(t.scene) +
-           ",\"dt\":" + exact(t.h) + ",\"steps\":" + std::to_string(t.steps) +
-           ",\"status\":" + json_string(to_string(t.status)) + ",\"failure\":" + json_string(t.failure) +
-           ",\"failed_step\":" + std::to_string(t.failed_step) +
-           ",\"clamped_steps\":" + std::to_string(t.clamped_steps) + ",\"bodies\":[";
-    for (std::size_t b = 0; b < t.bodies(); ++b) {
-      out += (b ? ",{" : "{") + std::string("\"name\":") + json_string(t.body_names[b]) + ",\"samples\":[";
-      for (std::size_t s = 0; s < t.samples(); ++s) {
-        const BodyState& st = t.at(s, b);
-        out += (s ? ",[" : "[") + std::to_string(t.recorded[s]) + "," + json_vec(st.position) + "," +
-               json_vec(st.velocity) + "]";
-      }
-      out += "]}";
-    }
-    out += "]}";
-  }
+  std::string out = "{\"runs\":[";  // one run per line, as before nlohmann wrote the runs
+  for (std::size_t r = 0; r < runs.size(); ++r) out += (r ? ",\n" : "\n") + dump(run_json(runs[r]));
   return out + "\n]}\n";
 }
 

@@ -1,6 +1,10 @@
 // The baseline text format (harness/guard/baseline.hpp): writing, and parsing back to the bit.
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -75,11 +79,22 @@ bool same_data(const std::string& a, const std::string& b) {
 }
 
 Baseline read_baseline(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path, 0, "", "cannot read: it is a directory");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "", "no baseline file (run `dropcheck bless` to make it)");
+  if (!in && !std::filesystem::exists(path, ec))
+    throw InputError(path, 0, "", "no baseline file (run `dropcheck bless` to make it)");
+  if (!in) throw InputError(path, 0, "", std::string("cannot read: ") + std::strerror(errno));
   std::ostringstream text;
-  text << in.rdbuf();
-  return parse_baseline(text.str(), path);
+  if (in.peek() != std::char_traits<char>::eof()) text << in.rdbuf();
+  if (in.bad()) throw InputError(path, 0, "", "read error");
+  // A control byte (NUL, ESC, ...) never occurs in a baseline: quote no raw bytes back.
+  const std::string& t = text.str();
+  if (std::any_of(t.begin(), t.end(), [](char c) {
+        return (static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\r' && c != '\t') || c == 0x7f;
+      }))
+    throw InputError(path, 0, "", "is a binary file, not a baseline (baselines are text written by `dropcheck bless`)");
+  return parse_baseline(t, path);
 }
 
 }  // namespace dropcheck

@@ -2,13 +2,28 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "harness/core/atomic_file.hpp"
+#include "harness/core/input_error.hpp"
 #include "harness/guard/regression.hpp"
 
 namespace dropcheck {
 namespace {
+
+// The report's rule (harness/report/report_format.cpp file_slug), kept here so that guard/ does
+// not depend on report/.
+std::string slug(const std::string& name) {
+  std::string out;
+  for (char c : name) {
+    const bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                      c == '-' || c == '_' || c == '.';
+    out += keep ? c : '_';
+  }
+  if (out.empty() || out[0] == '.') out.insert(out.begin(), '_');
+  return out;
+}
 
 std::string read_or_empty(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -20,7 +35,7 @@ std::string read_or_empty(const std::string& path) {
 
 // Writes one baseline unless the file already holds the same data; returns the log line.
 std::string write_one(const Baseline& b, const std::string& dir) {
-  const std::string path = (std::filesystem::path(dir) / baseline_file_name(b.scene, b.engine)).string();
+  const std::string path = baseline_path(dir, b.scene, b.engine);
   const std::string text = baseline_to_text(b), old = read_or_empty(path);
   const std::string what = b.skipped.empty() ? "hash " + b.hash : "skipped: " + b.skipped;
   if (!old.empty() && same_data(old, text)) return "unchanged " + path + " (" + what + ")";
@@ -30,9 +45,34 @@ std::string write_one(const Baseline& b, const std::string& dir) {
 
 }  // namespace
 
+std::string baseline_path(const std::string& dir, const std::string& scene, const std::string& engine) {
+  return (std::filesystem::path(dir) / baseline_file_name(slug(scene), slug(engine))).string();
+}
+
+std::vector<std::string> baseline_paths(const std::vector<Scene>& scenes,
+                                        const std::vector<std::string>& engines, const std::string& dir) {
+  std::vector<std::string> out;
+  std::map<std::string, std::string> owner;  // path -> the scene (and its file) that claimed it
+  for (const Scene& scene : scenes) {
+    for (const std::string& engine : engines) {
+      const std::string path = baseline_path(dir, scene.name, engine);
+      const std::string who = "scene \"" + scene.name + "\" (" + scene.source + ")";
+      auto [it, fresh] = owner.emplace(path, who);
+      if (!fresh)
+        throw InputError(path, 0, "name",
+                         it->second + " and " + who + " would both be written here; give them distinct names");
+      out.push_back(path);
+    }
+  }
+  return out;
+}
+
 BlessOutcome bless(const std::vector<Scene>& scenes, const std::vector<NamedFactory>& engines,
                    const BlessOptions& options) {
   BlessOutcome out;
+  std::vector<std::string> engine_names;
+  for (const NamedFactory& e : engines) engine_names.push_back(e.first);
+  baseline_paths(scenes, engine_names, options.out_dir);  // refuses colliding names before any run
   std::vector<Baseline> made;
   for (const Scene& scene : scenes) {
     for (const NamedFactory& engine : engines) {

@@ -26,6 +26,16 @@ struct BlessOutcome {
   std::vector<std::string> lines;    // per file: "new", "updated" or "unchanged", path and hash
 };
 
+// DIR/<scene>.<engine>.txt with every character of the names outside [A-Za-z0-9._-] turned into
+// '_' and a leading '.' prefixed with '_' (as the report names its plots): "../x" cannot leave DIR,
+// an absolute name cannot either, and "/" or a NUL byte makes no path.
+std::string baseline_path(const std::string& dir, const std::string& scene, const std::string& engine);
+
+// baseline_path of every scene on every engine, in order. Throws InputError when two pairs would
+// share a file (the naming is not one-to-one: "a/b" and "a_b"), naming both scenes.
+std::vector<std::string> baseline_paths(const std::vector<Scene>& scenes,
+                                        const std::vector<std::string>& engines, const std::string& dir);
+
 // Makes the baseline of every scene on every engine, checks each with check_physics, and only if
 // all pass writes them (atomically, file by file) to out_dir. A file whose numbers are unchanged is
 // left untouched (same_data), so re-blessing at another commit or from another build keeps the bytes

@@ -52,7 +52,7 @@ std::string orders_text(const std::vector<double>& h, const std::vector<double>&
   s += " at h = ";
   for (std::size_t i = 0; i < h.size(); ++i) s += (i ? ", " : "") + fmt("%.4g", h[i]);
   s += "; observed orders";
-  for (double p : observed_orders(h, e)) s += fmt(" %.3f", p);
+  for (double p : observed_orders(h, e)) s += std::isfinite(p) ? fmt(" %.3f", p) : std::string(" undefined");
   return s;
 }
 

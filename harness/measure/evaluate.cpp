@@ -57,8 +57,10 @@ std::optional<Timestep> fine_step(const Scene& scene, const Timestep& finest, in
     const double h = finest.seconds / factor;
     if (!step_problem(scene.duration, h).empty()) continue;
     char text[64];
-    if (finest.text.rfind("1/", 0) == 0)
-      std::snprintf(text, sizeof text, "1/%lld", std::atoll(finest.text.c_str() + 2) * factor);
+    // N*factor only while it fits a long long (N = 2^62 once printed 1/-2446744073709551616).
+    const long long n = std::atoll(finest.text.c_str() + 2);
+    if (finest.text.rfind("1/", 0) == 0 && n > 0 && n <= std::numeric_limits<long long>::max() / factor)
+      std::snprintf(text, sizeof text, "1/%lld", n * factor);
     else
       std::snprintf(text, sizeof text, "%.6g", h);
     return Timestep{h, text};

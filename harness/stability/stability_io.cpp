@@ -1,6 +1,7 @@
 // A stability study out: JSON for scripts (exact numbers) and a plain-text table for people.
 #include <algorithm>
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "harness/stability/stability_detail.hpp"
 #include "harness/stability/stability_study.hpp"
@@ -11,65 +12,58 @@ namespace {
 
 using stability_detail::format;
 
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) < 0x20) {
-      out += format("\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
-      continue;
-    }
-    out += c;
-  }
-  return out + "\"";
-}
+using Json = nlohmann::ordered_json;
 
 // JSON has no NaN or Inf: null for them (and for an absent value).
-std::string json_number(std::optional<double> v) {
-  return v && std::isfinite(*v) ? exact(*v) : "null";
+Json json_number(std::optional<double> v) { return v && std::isfinite(*v) ? Json(*v) : Json(nullptr); }
+
+// Escaped by construction; a byte that is not UTF-8 becomes U+FFFD instead of breaking the file.
+std::string dump(const Json& j) { return j.dump(-1, ' ', false, Json::error_handler_t::replace); }
+
+Json failures_json(const Verdict& v) {
+  Json out = Json::array();
+  for (const Failure& f : v.failures)
+    out.push_back({{"mode", to_string(f.mode)}, {"body", f.body}, {"step", f.step}, {"message", f.what}});
+  return out;
 }
 
-std::string failures_json(const Verdict& v) {
-  std::string out = "[";
-  for (std::size_t i = 0; i < v.failures.size(); ++i) {
-    const Failure& f = v.failures[i];
-    out += (i ? ",{" : "{") + std::string("\"mode\":") + json_string(to_string(f.mode)) +
-           ",\"body\":" + json_string(f.body) + ",\"step\":" + std::to_string(f.step) +
-           ",\"message\":" + json_string(f.what) + "}";
+void add_search(Json& out, const std::optional<StepSearch>& s) {
+  if (!s) {
+    out["max_stable_dt"] = nullptr;
+    out["search"] = nullptr;
+    return;
   }
-  return out + "]";
+  out["max_stable_dt"] = json_number(s->max_stable_dt);
+  out["search"] = {{"min_unstable_dt", json_number(s->min_unstable_dt)},
+                   {"min_stable_dt", json_number(s->min_stable_dt)},
+                   {"limit", s->limit ? Json(to_string(*s->limit)) : Json(nullptr)},
+                   {"capped", std::isnan(s->min_unstable_dt) && !std::isnan(s->max_stable_dt)},
+                   {"start", json_number(s->start)},
+                   {"cap", json_number(s->cap)},
+                   {"horizon", json_number(s->horizon)},
+                   {"probes", s->probes}};
 }
 
-std::string search_json(const std::optional<StepSearch>& s) {
-  if (!s) return "\"max_stable_dt\":null,\"search\":null";
-  return "\"max_stable_dt\":" + json_number(s->max_stable_dt) + ",\"search\":{" +
-         "\"min_unstable_dt\":" + json_number(s->min_unstable_dt) +
-         ",\"min_stable_dt\":" + json_number(s->min_stable_dt) +
-         ",\"limit\":" + (s->limit ? json_string(to_string(*s->limit)) : std::string("null")) +
-         ",\"capped\":" +
-         (std::isnan(s->min_unstable_dt) && !std::isnan(s->max_stable_dt) ? "true" : "false") +
-         ",\"start\":" + json_number(s->start) + ",\"cap\":" + json_number(s->cap) +
-         ",\"horizon\":" + json_number(s->horizon) + ",\"probes\":" + std::to_string(s->probes) +
-         "}";
-}
-
-std::string engine_json(const EngineStability& e) {
-  std::string out = "{\"engine\":" + json_string(e.engine);
-  if (!e.ran()) return out + ",\"skipped\":" + json_string(e.skipped) + "}";
-  out += ",\"scalar\":" + json_string(to_string(e.scalar)) +
-         ",\"law\":" + json_string(to_string(e.law)) +
-         ",\"status\":" + json_string(to_string(e.status)) +
-         ",\"steps_run\":" + std::to_string(e.steps_run) + ",\"verdict\":" +
-         json_string(e.verdict.stable() ? "stable" : to_string(e.verdict.failures.front().mode)) +
-         ",\"failures\":" + failures_json(e.verdict) + ",\"error_vs_analytic\":";
+Json engine_json(const EngineStability& e) {
+  Json out = {{"engine", e.engine}};
+  if (!e.ran()) {
+    out["skipped"] = e.skipped;
+    return out;
+  }
+  out["scalar"] = to_string(e.scalar);
+  out["law"] = to_string(e.law);
+  out["status"] = to_string(e.status);
+  out["steps_run"] = e.steps_run;
+  out["verdict"] = e.verdict.stable() ? "stable" : to_string(e.verdict.failures.front().mode);
+  out["failures"] = failures_json(e.verdict);
+  out["error_vs_analytic"] = nullptr;
   if (e.vs_analytic)
-    out += "{\"max_dx\":" + json_number(e.vs_analytic->max_dx) +
-           ",\"final_dx\":" + json_number(e.vs_analytic->final_dx) +
-           ",\"max_dv\":" + json_number(e.vs_analytic->max_dv) + "}";
-  else
-    out += "null";
-  return out + "," + search_json(e.search) + ",\"theory_max_dt\":" + json_number(e.theory_max_dt) +
-         "}";
+    out["error_vs_analytic"] = {{"max_dx", json_number(e.vs_analytic->max_dx)},
+                                {"final_dx", json_number(e.vs_analytic->final_dx)},
+                                {"max_dv", json_number(e.vs_analytic->max_dv)}};
+  add_search(out, e.search);
+  out["theory_max_dt"] = json_number(e.theory_max_dt);
+  return out;
 }
 
 // "0.0333333" or "-" for a value that is absent.
@@ -94,17 +88,16 @@ std::string search_summary(const StepSearch& s) {
 }
 
 std::string stability_to_json(const SceneStability& s, const SearchOptions& search) {
-  std::string out =
-      "{\"scene\":" + json_string(s.name) + ",\"file\":" + json_string(s.source) +
-      ",\"dt\":" + exact(s.h.seconds) + ",\"dt_text\":" + json_string(s.h.text) +
-      ",\"duration\":" + exact(s.duration) + ",\"steps\":" + std::to_string(s.steps) +
-      ",\"no_analytic\":" + json_string(s.no_analytic) + ",\"search_rule\":" +
-      json_string(format("each probe at step h runs duration' = ceil(min(duration, %lld*dt)/h)*h; "
-                         "bisection to a relative %.3g",
-                         static_cast<long long>(search.horizon_steps), search.rel_tol)) +
-      ",\"engines\":[";
-  for (std::size_t i = 0; i < s.engines.size(); ++i)
-    out += (i ? ",\n" : "\n") + engine_json(s.engines[i]);
+  const Json head = {
+      {"scene", s.name}, {"file", s.source}, {"dt", s.h.seconds}, {"dt_text", s.h.text},
+      {"duration", s.duration}, {"steps", s.steps}, {"no_analytic", s.no_analytic},
+      {"search_rule", format("each probe at step h runs duration' = ceil(min(duration, %lld*dt)/h)*h; "
+                             "bisection to a relative %.3g",
+                             static_cast<long long>(search.horizon_steps), search.rel_tol)}};
+  std::string out = dump(head);  // then the engines, one a line, as before nlohmann wrote them
+  out.pop_back();
+  out += ",\"engines\":[";
+  for (std::size_t i = 0; i < s.engines.size(); ++i) out += (i ? ",\n" : "\n") + dump(engine_json(s.engines[i]));
   return out + "\n]}\n";
 }
 

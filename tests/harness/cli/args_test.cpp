@@ -1,4 +1,4 @@
-// Tests harness/cli/args.cpp: positionals, repeatable --name VALUE options and --flags.
+// Tests harness/cli/args.cpp: positionals, repeatable --name VALUE options and --flags, by spec.
 #include <catch2/catch.hpp>
 
 #include "harness/cli/args.hpp"
@@ -6,10 +6,20 @@
 
 using Catch::Matchers::Contains;
 
+namespace {
+
+const dropcheck::CommandSpec kSpec{"demo", "A demo command.", "FILE", "files", 0, -1,
+                                   {{"--engine", "E", "engines", true},
+                                    {"--dt", "H", "step"},
+                                    {"--csv", "OUT", "csv"},
+                                    {"--quick", "", "a flag"}}};
+
+dropcheck::Args parse(const std::vector<std::string>& argv) { return dropcheck::parse_args(kSpec, argv); }
+
+}  // namespace
+
 TEST_CASE("parse_args splits positionals, repeatable options and flags", "[cli][args]") {
-  const dropcheck::Args a = dropcheck::parse_args(
-      {"scene.toml", "--engine", "ours", "--quick", "--engine", "ode", "more", "--dt", "1/120"},
-      {"--engine", "--dt"}, {"--quick"});
+  const dropcheck::Args a = parse({"scene.toml", "--engine", "ours", "--quick", "--engine", "ode", "more", "--dt", "1/120"});
   CHECK(a.positional == std::vector<std::string>{"scene.toml", "more"});
   CHECK(a.values("--engine") == std::vector<std::string>{"ours", "ode"});
   CHECK(a.value("--engine") == "ode");  // the last one
@@ -20,20 +30,35 @@ TEST_CASE("parse_args splits positionals, repeatable options and flags", "[cli][
   CHECK_FALSE(a.has("--csv"));
 }
 
-TEST_CASE("an option's value is taken verbatim even when it looks like an option or a negative number", "[cli][args]") {
-  const dropcheck::Args a = dropcheck::parse_args({"--dt", "-0.1", "--csv", "--out"}, {"--dt", "--csv"}, {});
+TEST_CASE("a negative number is a value and --name=VALUE takes any value", "[cli][args]") {
+  const dropcheck::Args a = parse({"--dt", "-0.1", "--csv=--out"});
   CHECK(a.value("--dt") == "-0.1");
   CHECK(a.value("--csv") == "--out");
   CHECK(a.positional.empty());
 }
 
-TEST_CASE("single-dash words and a bare -- are positionals", "[cli][args]") {
-  const dropcheck::Args a = dropcheck::parse_args({"--", "-x"}, {}, {});
-  CHECK(a.positional == std::vector<std::string>{"--", "-x"});
+TEST_CASE("after a bare -- every word is a positional, and a single-dash word before it is an unknown option", "[cli][args]") {
+  const dropcheck::Args a = parse({"--", "-x"});
+  CHECK(a.positional == std::vector<std::string>{"-x"});
+  CHECK_THROWS_WITH(parse({"-x"}), Contains("-x") && Contains("unknown option"));
 }
 
 TEST_CASE("an unknown option or a missing value is an InputError naming the option", "[cli][args]") {
-  CHECK_THROWS_WITH(dropcheck::parse_args({"--nope"}, {"--dt"}, {}), Contains("--nope") && Contains("unknown option"));
-  CHECK_THROWS_WITH(dropcheck::parse_args({"f.toml", "--dt"}, {"--dt"}, {}), Contains("--dt") && Contains("expects a value"));
-  CHECK_THROWS_AS(dropcheck::parse_args({"--nope"}, {}, {}), dropcheck::InputError);
+  CHECK_THROWS_WITH(parse({"--nope"}), Contains("--nope") && Contains("unknown option"));
+  CHECK_THROWS_WITH(parse({"f.toml", "--dt"}), Contains("--dt"));
+  CHECK_THROWS_AS(parse({"--nope"}), dropcheck::InputError);
+}
+
+TEST_CASE("an empty value or a single-valued option given twice is an InputError naming it", "[cli][args]") {
+  CHECK_THROWS_WITH(parse({"--dt", ""}), Contains("--dt") && Contains("empty"));
+  CHECK_THROWS_WITH(parse({"--dt", "1", "--dt", "2"}), Contains("--dt") && Contains("2 times"));
+}
+
+TEST_CASE("--help is thrown as HelpRequested carrying the options", "[cli][args]") {
+  try {
+    parse({"--help"});
+    FAIL("no HelpRequested");
+  } catch (const dropcheck::HelpRequested& h) {
+    CHECK_THAT(h.text, Contains("--engine") && Contains("--dt") && Contains("dropcheck demo"));
+  }
 }

@@ -52,13 +52,13 @@ TEST_CASE("bless --check exits 77 when every tier is skipped and 1 when a baseli
 }
 
 TEST_CASE("diff prints Markdown to stdout or writes it with --out", "[baseline][cli]") {
-  const ScratchDir a("cli-diff-a"), b("cli-diff-b");
+  const ScratchDir a("cli-diff-a"), b("cli-diff-b"), c("cli-diff-out");
   std::string out;
   REQUIRE(run({"bless", scene_file("free_fall"), "--out", a.path.string()}, out) == 0);
   REQUIRE(run({"bless", scene_file("free_fall"), "--out", b.path.string()}, out) == 0);
   REQUIRE(run({"diff", a.path.string(), b.path.string()}, out) == 0);
   CHECK_THAT(out, Catch::StartsWith("# dropcheck diff") && Catch::Contains("0 of 2 scene/engine runs moved"));
-  REQUIRE(run({"diff", a.path.string(), b.path.string(), "--out", a.file("diff.md")}, out) == 0);
-  CHECK_THAT(slurp(a.file("diff.md")), Catch::Contains("| free_fall | ours | identical |"));
+  REQUIRE(run({"diff", a.path.string(), b.path.string(), "--out", c.file("diff.md")}, out) == 0);
+  CHECK_THAT(slurp(c.file("diff.md")), Catch::Contains("| free_fall | ours | identical |"));
   CHECK(run({"diff", a.path.string()}, out) == 2);
 }

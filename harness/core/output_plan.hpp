@@ -1,0 +1,36 @@
+// What a command reads and writes, checked before any engine runs: every output is a place the
+// user named, writable, not one of the inputs, and not shared with another output.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace dropcheck {
+
+class OutputPlan {
+ public:
+  // An input file or folder (a scene, a result set): no output may land on it or inside it.
+  void read(const std::string& path);
+  // An output file named by option `key` ("--csv"): replaced atomically when the run succeeds.
+  void write_file(const std::string& key, const std::string& path);
+  // An output folder named by `key` ("--out") that the command replaces whole (the report).
+  void write_folder(const std::string& key, const std::string& path);
+  // A folder named by `key` that the command writes files into (bless --out): created if absent.
+  void write_into(const std::string& key, const std::string& path);
+
+  // Throws InputError naming the option and the problem: an empty path, a path that names a
+  // folder where a file is expected, something that is not a regular file, a place that cannot be
+  // written (under a regular file, /proc, no permission), an output that is an input or lies inside
+  // an input folder, an input inside a replaced folder, or two outputs on one path.
+  void check() const;
+
+ private:
+  struct Output {
+    std::string key, path;
+    enum class Kind { file, folder, into } kind;
+  };
+  std::vector<std::string> inputs_;
+  std::vector<Output> outputs_;
+};
+
+}  // namespace dropcheck

@@ -1,0 +1,27 @@
+// Temporary files and staging folders are removed when dropcheck is interrupted (SIGINT, SIGTERM,
+// SIGHUP): a killed run leaves the previous output intact and nothing of its own behind.
+#pragma once
+
+#include <string>
+
+namespace dropcheck {
+
+// A path removed by the signal handler while registered: a file (unlink) or a folder (its entries,
+// one level deep, then the folder). Unregisters itself at scope exit. Not copyable.
+class CleanupOnSignal {
+ public:
+  // Registers `path` (installing the handlers on first use); a path too long for the table's slot
+  // or a full table is not registered and the object is inert (the run still works).
+  CleanupOnSignal(const std::string& path, bool folder);
+  ~CleanupOnSignal();
+  CleanupOnSignal(const CleanupOnSignal&) = delete;
+  CleanupOnSignal& operator=(const CleanupOnSignal&) = delete;
+
+  // Stops removing the path on a signal (it became the output, or was removed).
+  void release();
+
+ private:
+  int slot_ = -1;
+};
+
+}  // namespace dropcheck
