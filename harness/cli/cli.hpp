@@ -23,5 +23,6 @@ int cmd_diff(const std::vector<std::string>& argv, std::ostream& out, std::ostre
 int cmd_check(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
 int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
 int cmd_stability(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
+int cmd_identify(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
 
 }  // namespace dropcheck
