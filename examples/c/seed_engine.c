@@ -26,11 +26,12 @@ static void reply(const char* line) {
   fflush(stdout);
 }
 
-/* "state N" and x y z vx vy vz per body; %.9g prints every float exactly. */
+/* "state N" and x y z vx vy vz per body. Each float goes out as the double it converts to, with
+ * %.17g: that decimal reads back as exactly that double (%.9g would read back as a nearby double). */
 static void reply_state(const char* step) {
   printf("state %s", step);
   for (int i = 0; i < body_count; ++i)
-    for (int k = 0; k < 6; ++k) printf(" %.9g", (double)(k < 3 ? bodies[i].x[k] : bodies[i].v[k - 3]));
+    for (int k = 0; k < 6; ++k) printf(" %.17g", (double)(k < 3 ? bodies[i].x[k] : bodies[i].v[k - 3]));
   reply("");
 }
 
