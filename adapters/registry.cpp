@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "adapters.hpp"
+#include "exec.hpp"
 
 namespace dropcheck {
 namespace {
@@ -72,13 +73,20 @@ std::vector<std::string> available_engine_names() {
 }
 
 std::unique_ptr<Engine> make_engine(const std::string& name) {
+  if (is_exec_spec(name)) return make_exec_engine(parse_exec_spec(name));
   const Entry* e = find(name);
   return e && e->make ? e->make() : nullptr;
 }
 
 std::string engine_unavailable_reason(const std::string& name) {
+  if (is_exec_spec(name)) {
+    parse_exec_spec(name);  // throws InputError for a bad engine file or path
+    return {};
+  }
   const Entry* e = find(name);
-  if (!e) return "unknown engine (known: ours, ours-f64, bullet, ode, box2d, mujoco)";
+  if (!e)
+    return "unknown engine (known: ours, ours-f64, bullet, ode, box2d, mujoco, exec:PATH, "
+           "FILE.toml: docs/protocol.md)";
   if (!e->make) return std::string("not compiled in (library not found; CMake option ") + e->option + ")";
   return {};
 }

@@ -25,6 +25,7 @@ const CommandEntry kCommands[] = {
     {"check", cmd_check, "dropcheck check FILE... [--engine E]..."},
     {"report", cmd_report, "dropcheck report [FILE|DIR]... [--out DIR] [--engine E]... [--no-timing]"},
     {"stability", cmd_stability, "dropcheck stability FILE [--engine E]... [--json OUT]"},
+    {"identify", cmd_identify, "dropcheck identify FILE (--engine E [--dt H] | --trajectory CSV)"},
 };
 
 void usage(std::ostream& err) {

@@ -26,6 +26,7 @@ int cmd_diff(const std::vector<std::string>& argv, std::ostream& out, std::ostre
 int cmd_check(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
 int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
 int cmd_stability(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
+int cmd_identify(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
 
 // Each command's arguments (harness/cli/args.hpp), defined beside the command.
 const CommandSpec& engines_spec();
@@ -35,5 +36,6 @@ const CommandSpec& diff_spec();
 const CommandSpec& check_spec();
 const CommandSpec& report_spec();
 const CommandSpec& stability_spec();
+const CommandSpec& identify_spec();
 
 }  // namespace dropcheck

@@ -41,7 +41,8 @@ std::vector<NamedFactory> engines_from(const Args& args) {
   for (const std::string& name : names) {
     if (std::string why = engine_unavailable_reason(name); !why.empty())
       throw InputError("", 0, "--engine " + name, why);
-    out.push_back({name, [name] { return make_engine(name); }});
+    // Named as the engine names itself: an engine file's engine blesses and checks under its own name.
+    out.push_back({make_engine(name)->info().name, [name] { return make_engine(name); }});
   }
   return out;
 }

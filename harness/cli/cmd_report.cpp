@@ -72,6 +72,7 @@ std::vector<EngineSlot> engine_slots(const std::vector<std::string>& requested) 
     if (why.rfind("unknown", 0) == 0) throw InputError("", 0, "--engine " + name, why);
     EngineSlot s{name, {}, why};
     if (why.empty()) s.make = [name] { return make_engine(name); };
+    if (why.empty()) s.name = s.make()->info().name;  // an engine file's engine reports under its own name
     slots.push_back(std::move(s));
   }
   return slots;

@@ -37,6 +37,7 @@ EngineStability study_engine(const std::string& name, const Scene& scene, const 
     return r;
   }
   const EngineInfo info = engine->info();
+  r.engine = info.name;  // an engine file's engine is shown under its own name
   r.scalar = info.scalar;
   r.law = info.law;
   if (std::string why = engine->cannot_run(scene); !why.empty()) {

@@ -1,0 +1,119 @@
+#include "harness/oracles/identify.hpp"
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+
+#include "harness/core/forces.hpp"
+#include "harness/core/input_error.hpp"
+
+namespace dropcheck {
+namespace {
+
+bool after_forces_type(Law law) { return law.damping != DampingOrder::BeforeForces; }
+
+void require_usable(const Scene& scene, const Trajectory& run) {
+  const auto problem = [&](const std::string& what) {
+    return InputError(scene.source, 0, "identify", "trajectory of '" + run.engine + "': " + what);
+  };
+  if (scene.world.contacts) throw problem("needs a free-flight scene (contacts = false)");
+  if (run.status != RunStatus::ok) throw problem("the run failed at step " + std::to_string(run.failed_step) + ": " + run.failure);
+  if (run.body_names.size() != scene.bodies.size())
+    throw problem(std::to_string(run.body_names.size()) + " bodies, the scene has " +
+                  std::to_string(scene.bodies.size()));
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+    if (run.body_names[b] != scene.bodies[b].name)
+      throw problem("body " + std::to_string(b + 1) + " is '" + run.body_names[b] + "', the scene's is '" +
+                    scene.bodies[b].name + "'");
+  if (run.samples() < 4) throw problem("needs at least 3 steps");
+  for (std::size_t s = 0; s < run.samples(); ++s)
+    if (run.recorded[s] != static_cast<std::int64_t>(s))
+      throw problem("step " + std::to_string(s) + " is missing (every step must be recorded)");
+  if (std::none_of(scene.bodies.begin(), scene.bodies.end(), [](const Body& b) { return !b.is_static; }))
+    throw problem("the scene has no dynamic body");
+}
+
+// F/m of every body at every recorded sample (zero for static bodies).
+std::vector<Vec3> accelerations_from_forces(const Scene& scene, const Trajectory& run) {
+  std::vector<Vec3> out(run.states.size(), Vec3::Zero());
+  std::vector<Vec3> forces(run.bodies());
+  for (std::size_t s = 0; s < run.samples(); ++s) {
+    compute_forces(scene, std::span(run.states).subspan(s * run.bodies(), run.bodies()), forces);
+    for (std::size_t b = 0; b < run.bodies(); ++b) out[s * run.bodies() + b] = forces[b] / scene.bodies[b].mass;
+  }
+  return out;
+}
+
+// Least squares for (phi, c) on the velocity sequence; fills phi and gravity.
+void fit_velocity(const Scene& scene, const Trajectory& run, const std::vector<Vec3>& f, MemberFit& m) {
+  const bool af = after_forces_type(m.law);
+  std::size_t dynamic = 0;
+  for (const Body& b : scene.bodies) dynamic += b.is_static ? 0 : 1;
+  const Eigen::Index rows = static_cast<Eigen::Index>(3 * dynamic * (run.samples() - 1));
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(rows, 4);
+  Eigen::VectorXd y(rows);
+  Eigen::Index r = 0;
+  for (std::size_t s = 0; s + 1 < run.samples(); ++s) {
+    for (std::size_t b = 0; b < run.bodies(); ++b) {
+      if (scene.bodies[b].is_static) continue;
+      const Vec3& v0 = run.at(s, b).velocity;
+      const Vec3& v1 = run.at(s + 1, b).velocity;
+      const Vec3 hf = run.h * f[s * run.bodies() + b];
+      for (int j = 0; j < 3; ++j, ++r) {
+        A(r, 0) = af ? v0[j] + hf[j] : v0[j];
+        A(r, 1 + j) = 1.0;
+        y(r) = af ? v1[j] : v1[j] - hf[j];
+      }
+    }
+  }
+  const Eigen::Vector4d theta = A.colPivHouseholderQr().solve(y);
+  m.phi = theta(0);
+  const double scale = af ? m.phi * run.h : run.h;
+  m.gravity = theta.tail<3>() / scale;
+}
+
+// Iterates the member from the recorded initial state; fills max_dx and max_dv.
+void residual(const Scene& scene, const Trajectory& run, MemberFit& m) {
+  std::vector<BodyState> state(run.states.begin(), run.states.begin() + static_cast<long>(run.bodies()));
+  std::vector<Vec3> forces(run.bodies());
+  m.max_dx = m.max_dv = 0.0;
+  for (std::size_t s = 1; s < run.samples(); ++s) {
+    compute_forces(scene, state, forces);
+    for (std::size_t b = 0; b < run.bodies(); ++b) {
+      if (scene.bodies[b].is_static) continue;
+      const Vec3 a = m.gravity + forces[b] / scene.bodies[b].mass;
+      advance(m.law, m.phi, run.h, a, state[b].position, state[b].velocity);
+      const BodyState& got = run.at(s, b);
+      m.max_dx = std::max(m.max_dx, (got.position - state[b].position).cwiseAbs().maxCoeff());
+      m.max_dv = std::max(m.max_dv, (got.velocity - state[b].velocity).cwiseAbs().maxCoeff());
+    }
+  }
+  if (!std::isfinite(m.max_dx) || !std::isfinite(m.max_dv)) m.max_dx = m.max_dv = INFINITY;
+}
+
+}  // namespace
+
+Identification identify_law(const Scene& scene, const Trajectory& run) {
+  require_usable(scene, run);
+  const std::vector<Vec3> f = accelerations_from_forces(scene, run);
+  Identification id;
+  for (Law law : kLawFamily) {
+    MemberFit m;
+    m.law = law;
+    fit_velocity(scene, run, f, m);
+    residual(scene, run, m);
+    id.fits.push_back(m);
+  }
+  std::vector<std::size_t> order(id.fits.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return id.fits[a].max_dx < id.fits[b].max_dx; });
+  id.best = order[0];
+  id.runner_up = order[1];
+  const double best = id.fits[id.best].max_dx;
+  id.fits_any = best <= kIdentifyTolerance;
+  id.ambiguous = id.fits[id.runner_up].max_dx <= 2.0 * best + 1e-12;
+  return id;
+}
+
+}  // namespace dropcheck
