@@ -6,6 +6,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <optional>
 
 #include "harness/core/input_error.hpp"
 #include "harness/core/signal_cleanup.hpp"
@@ -79,9 +80,11 @@ void write_file_atomic(const std::string& path, const std::string& content) {
   std::error_code ec;
   if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
   std::string tmp = temp_template(target);
+  std::optional<SignalsDeferred> deferred(std::in_place);  // create + register as one step
   const int fd = ::mkstemp(tmp.data());
   if (fd < 0) throw InputError(path, 0, "", std::string("cannot write: ") + std::strerror(errno));
   CleanupOnSignal cleanup(tmp, false);
+  deferred.reset();
   const bool written = ::fchmod(fd, new_file_mode(target)) == 0 && write_all(fd, content);
   const int write_errno = errno;
   if (::close(fd) != 0 || !written) {

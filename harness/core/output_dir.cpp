@@ -95,6 +95,7 @@ void write_manifest(const fs::path& staging) {
 
 // The old way, for a file system without RENAME_EXCHANGE: target -> backup, staging -> target.
 void swap_by_backup(const fs::path& staging, const fs::path& target) {
+  const SignalsDeferred deferred;  // a kill mid-swap would leave the old output aside
   const fs::path backup = unique_sibling(target, "previous");
   std::error_code ec;
   fs::rename(target, backup, ec);  // onto the empty backup folder
@@ -131,6 +132,7 @@ StagingDir::StagingDir(const std::string& target) : target_(resolved(target).str
   const fs::path t(target_);
   std::error_code ec;
   if (t.has_parent_path()) fs::create_directories(t.parent_path(), ec);
+  const SignalsDeferred deferred;  // create + register as one step
   path_ = unique_sibling(t, "staging");
   cleanup_ = std::make_unique<CleanupOnSignal>(path_, true);
 }

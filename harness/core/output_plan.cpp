@@ -1,4 +1,5 @@
 #include "harness/core/output_plan.hpp"
+#include "harness/core/signal_cleanup.hpp"
 
 #include <stdlib.h>
 #include <unistd.h>
@@ -54,6 +55,7 @@ fs::path existing_ancestor(const fs::path& p, const std::string& key, const std:
 // (access() says yes to root, even on /proc or a read-only mount).
 void probe_writable(const fs::path& dir, const std::string& key, const std::string& shown) {
   std::string probe = (dir / ".dropcheck-probe-XXXXXX").string();
+  const SignalsDeferred deferred;  // a kill between mkstemp and unlink must not leave the probe
   const int fd = ::mkstemp(probe.data());
   if (fd < 0)
     throw InputError(shown, 0, key, "cannot write in '" + dir.string() + "': " + std::strerror(errno));

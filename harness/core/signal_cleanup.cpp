@@ -101,4 +101,13 @@ void CleanupOnSignal::release() {
   slot_ = -1;
 }
 
+SignalsDeferred::SignalsDeferred() {
+  sigset_t block;
+  sigemptyset(&block);
+  for (int sig : kSignals) sigaddset(&block, sig);
+  ::sigprocmask(SIG_BLOCK, &block, &previous_);
+}
+
+SignalsDeferred::~SignalsDeferred() { ::sigprocmask(SIG_SETMASK, &previous_, nullptr); }
+
 }  // namespace dropcheck

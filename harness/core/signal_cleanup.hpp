@@ -2,6 +2,8 @@
 // SIGHUP): a killed run leaves the previous output intact and nothing of its own behind.
 #pragma once
 
+#include <signal.h>
+
 #include <string>
 
 namespace dropcheck {
@@ -22,6 +24,19 @@ class CleanupOnSignal {
 
  private:
   int slot_ = -1;
+};
+
+// Holds SIGINT, SIGTERM and SIGHUP back for its lifetime (delivered when it ends): makes "create a
+// temporary path and register it" one step, so a signal between the two leaves nothing behind.
+class SignalsDeferred {
+ public:
+  SignalsDeferred();
+  ~SignalsDeferred();
+  SignalsDeferred(const SignalsDeferred&) = delete;
+  SignalsDeferred& operator=(const SignalsDeferred&) = delete;
+
+ private:
+  sigset_t previous_;
 };
 
 }  // namespace dropcheck
