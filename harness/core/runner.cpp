@@ -1,7 +1,9 @@
 #include "harness/core/runner.hpp"
 
+#include <bit>
 #include <chrono>
 #include <string>
+#include <variant>
 
 #include "harness/core/forces.hpp"
 
@@ -10,59 +12,124 @@ namespace {
 
 bool finite(const BodyState& s) { return s.position.allFinite() && s.velocity.allFinite(); }
 
-Trajectory empty_trajectory(const Engine& engine, const Scene& scene, double h) {
+// True when every number of every state is finite, in one branch-free pass over the raw doubles
+// (a BodyState is six contiguous doubles). A double is NaN or Inf exactly when its 11 exponent
+// bits are all ones; adding one to the exponent field then carries into the sign bit, so the OR of
+// (bits & exponent mask) + (one exponent unit) over all numbers has the sign bit set iff some
+// number is not finite. Integer AND, ADD and OR vectorise; the per-body check runs only on failure.
+bool all_finite(std::span<const BodyState> states) {
+  static_assert(sizeof(BodyState) == 6 * sizeof(double));
+  constexpr std::uint64_t kExponent = 0x7ff0000000000000u, kUnit = 0x0010000000000000u;
+  const auto* d = reinterpret_cast<const double*>(states.data());
+  std::uint64_t any = 0;
+  for (std::size_t k = 0; k < 6 * states.size(); ++k)
+    any |= (std::bit_cast<std::uint64_t>(d[k]) & kExponent) + kUnit;
+  return (any >> 63) == 0;
+}
+
+bool has_springs(const Scene& scene) {
+  for (const Force& f : scene.forces)
+    if (std::holds_alternative<Spring>(f.law)) return true;
+  return false;
+}
+
+// Samples a run of `steps` steps keeps: step 0, every `every`-th step and the last step.
+std::size_t sample_count(std::int64_t steps, std::int64_t every) {
+  return static_cast<std::size_t>(1 + steps / every + (steps % every != 0 ? 1 : 0));
+}
+
+Trajectory empty_trajectory(const Engine& engine, const Scene& scene, double h, std::int64_t every) {
   Trajectory t;
   t.engine = engine.info().name;
   t.scene = scene.name;
   t.h = h;
   t.steps = step_count(scene, h);
   for (const Body& b : scene.bodies) t.body_names.push_back(b.name);
+  // Sized once: the sample count is known before the first step.
+  const std::size_t samples = sample_count(t.steps < 0 ? 0 : t.steps, every);
+  t.recorded.reserve(samples);
+  t.states.reserve(samples * scene.bodies.size());
   return t;
 }
 
-void record(Trajectory& t, std::int64_t step, std::span<const BodyState> states) {
+// Appends a sample slot for `step` and returns it, for the engine to read into directly.
+std::span<BodyState> new_sample(Trajectory& t, std::int64_t step) {
   t.recorded.push_back(step);
-  t.states.insert(t.states.end(), states.begin(), states.end());
+  const std::size_t first = t.states.size();
+  t.states.resize(first + t.bodies());
+  return {t.states.data() + first, t.bodies()};
 }
 
-// Steps until the end or the first failure; returns normally in both cases.
-// `n` is the step under way, for the caller to report an exception thrown by the engine.
+// Names the first body with a NaN/Inf state and ends the run there.
+void fail_non_finite(Trajectory& t, std::span<const BodyState> states, std::int64_t n) {
+  std::size_t i = 0;
+  while (i + 1 < states.size() && finite(states[i])) ++i;
+  t.status = RunStatus::non_finite;
+  t.failed_step = n;
+  t.failure = "body '" + t.body_names[i] + "' has a NaN/Inf state at step " + std::to_string(n);
+}
+
+// Drops the last sample slot (its step failed before the engine filled it).
+void drop_last_sample(Trajectory& t) {
+  t.recorded.pop_back();
+  t.states.resize(t.states.size() - t.bodies());
+}
+
+// Reads the engine's state into `out`; a slot it was to fill is dropped if the read throws.
+void read_into(const Engine& engine, Trajectory& t, std::span<BodyState> out, bool slot) {
+  try {
+    engine.read(out);
+  } catch (...) {
+    if (slot) drop_last_sample(t);
+    throw;
+  }
+}
+
+// Steps until the end or the first failure; returns normally in both cases. `start` is the state
+// at step 0 (sample 0 of t). `n` is the step under way, for the caller to report an exception
+// thrown by the engine. Sample slots are reserved exactly (empty_trajectory), so `now`, a view of
+// the last sample, never dangles.
 void step_loop(Engine& engine, const Scene& scene, Trajectory& t, std::int64_t every,
-               std::vector<BodyState>& states, std::int64_t& n) {
-  std::vector<Vec3> forces(states.size());
+               std::span<const BodyState> start, std::int64_t& n) {
+  std::vector<BodyState> scratch(start.begin(), start.end());
+  std::vector<Vec3> forces(start.size());
+  // Constant forces do not depend on the state: summed once, in the same order as every step would.
+  const bool state_dependent = has_springs(scene);
+  compute_forces(scene, start, forces);
+  std::span<const BodyState> now = start;  // the state at the start of step n
   for (n = 1; n <= t.steps; ++n) {
-    compute_forces(scene, states, forces);
+    if (state_dependent) compute_forces(scene, now, forces);
     engine.set_forces(forces);
     engine.step();
-    engine.read(states);
+    const bool keep = n % every == 0 || n == t.steps;
+    // A kept step is read straight into its sample slot; the others into a scratch buffer.
+    const std::span<BodyState> next = keep ? new_sample(t, n) : std::span<BodyState>(scratch);
+    read_into(engine, t, next, keep);
     if (engine.speed_clamped()) {
       if (t.clamped_steps++ == 0) t.first_clamped_step = n;
     }
-    for (std::size_t i = 0; i < states.size(); ++i) {
-      if (!finite(states[i])) {
-        t.status = RunStatus::non_finite;
-        t.failed_step = n;
-        t.failure = "body '" + t.body_names[i] + "' has a NaN/Inf state at step " + std::to_string(n);
-        return;
-      }
+    if (!all_finite(next)) {
+      fail_non_finite(t, next, n);
+      if (keep) drop_last_sample(t);  // the failed step is not a sample
+      return;
     }
-    if (n % every == 0 || n == t.steps) record(t, n, states);
+    now = next;
   }
 }
 
 }  // namespace
 
 Trajectory run_scene(Engine& engine, const Scene& scene, double h, const RunOptions& options) {
-  Trajectory t = empty_trajectory(engine, scene, h);
-  std::vector<BodyState> states(scene.bodies.size());
+  const std::int64_t every = options.record_every < 1 ? 1 : options.record_every;
+  Trajectory t = empty_trajectory(engine, scene, h, every);
   std::int64_t n = 0;
   auto start = std::chrono::steady_clock::now();
   try {
     engine.load(scene, h);
-    engine.read(states);
-    record(t, 0, states);
+    const std::span<BodyState> initial = new_sample(t, 0);
+    read_into(engine, t, initial, true);
     start = std::chrono::steady_clock::now();  // time the stepping loop, not the setup
-    step_loop(engine, scene, t, options.record_every < 1 ? 1 : options.record_every, states, n);
+    step_loop(engine, scene, t, every, initial, n);
   } catch (const std::exception& e) {
     t.status = RunStatus::engine_error;
     t.failed_step = n;
