@@ -2,6 +2,9 @@
 // (gravity and damping, no contacts, no external forces) at h = 1/60:
 //   bare/<engine>/<N>     the engine's own step call only (bare_step_loop, adapters/adapters.hpp)
 //   harness/<engine>/<N>  run_scene: forces, set_forces, step, read, NaN check, a sample every step
+//                         (what `dropcheck run` does)
+//   sparse/<engine>/<N>   run_scene sampling only step 0 and the last step (record_every = steps):
+//                         the loop without the memory traffic of keeping every state
 // Loading is untimed in both (manual time = the stepping loop's own wall time). The counter
 // ns_per_body_step is total loop time / (N * steps); scripts/bench.sh pairs the two into a ratio.
 #include <benchmark/benchmark.h>
@@ -58,24 +61,26 @@ void bare(benchmark::State& state, const std::string& engine, int n) {
   measure(state, n, [&] { return bare_step_loop(engine, scene, kH); });
 }
 
-void harness(benchmark::State& state, const std::string& engine, int n) {
+void harness(benchmark::State& state, const std::string& engine, int n, std::int64_t every) {
   const Scene scene = free_cubes(n);
   measure(state, n, [&] {
     const std::unique_ptr<Engine> e = make_engine(engine);
-    const Trajectory t = run_scene(*e, scene, kH);
+    const Trajectory t = run_scene(*e, scene, kH, {.record_every = every});
     if (t.status != RunStatus::ok) state.SkipWithError(t.failure.c_str());
     return t.wall_seconds;
   });
 }
 
-// Registers bare and harness for every engine compiled in and every N, interleaved per N.
+// Registers bare, harness and sparse for every engine compiled in and every N, interleaved per N.
 const bool registered = [] {
   for (const int n : {1, 100, 1000, 10000}) {
     for (const std::string& engine : available_engine_names()) {
       const std::string tail = engine + "/" + std::to_string(n);
       benchmark::RegisterBenchmark(("bare/" + tail).c_str(), bare, engine, n)
           ->UseManualTime()->Unit(benchmark::kMillisecond);
-      benchmark::RegisterBenchmark(("harness/" + tail).c_str(), harness, engine, n)
+      benchmark::RegisterBenchmark(("harness/" + tail).c_str(), harness, engine, n, 1)
+          ->UseManualTime()->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark(("sparse/" + tail).c_str(), harness, engine, n, steps_for(n))
           ->UseManualTime()->Unit(benchmark::kMillisecond);
     }
   }
