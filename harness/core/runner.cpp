@@ -52,12 +52,11 @@ Trajectory empty_trajectory(const Engine& engine, const Scene& scene, double h, 
   return t;
 }
 
-// Appends a sample slot for `step` and returns it, for the engine to read into directly.
-std::span<BodyState> new_sample(Trajectory& t, std::int64_t step) {
+// Appends a sample: one copy of the states (a memmove into the reserved space; a slot read into
+// directly would first have to be zeroed, which costs a second pass over memory).
+void record(Trajectory& t, std::int64_t step, std::span<const BodyState> states) {
   t.recorded.push_back(step);
-  const std::size_t first = t.states.size();
-  t.states.resize(first + t.bodies());
-  return {t.states.data() + first, t.bodies()};
+  t.states.insert(t.states.end(), states.begin(), states.end());
 }
 
 // Names the first body with a NaN/Inf state and ends the run there.
@@ -69,51 +68,26 @@ void fail_non_finite(Trajectory& t, std::span<const BodyState> states, std::int6
   t.failure = "body '" + t.body_names[i] + "' has a NaN/Inf state at step " + std::to_string(n);
 }
 
-// Drops the last sample slot (its step failed before the engine filled it).
-void drop_last_sample(Trajectory& t) {
-  t.recorded.pop_back();
-  t.states.resize(t.states.size() - t.bodies());
-}
-
-// Reads the engine's state into `out`; a slot it was to fill is dropped if the read throws.
-void read_into(const Engine& engine, Trajectory& t, std::span<BodyState> out, bool slot) {
-  try {
-    engine.read(out);
-  } catch (...) {
-    if (slot) drop_last_sample(t);
-    throw;
-  }
-}
-
-// Steps until the end or the first failure; returns normally in both cases. `start` is the state
-// at step 0 (sample 0 of t). `n` is the step under way, for the caller to report an exception
-// thrown by the engine. Sample slots are reserved exactly (empty_trajectory), so `now`, a view of
-// the last sample, never dangles.
+// Steps until the end or the first failure; returns normally in both cases. `states` holds the
+// state at step 0 and is reused for every step's read (it stays in cache; only kept steps are
+// copied out). `n` is the step under way, for the caller to report an exception thrown by the
+// engine.
 void step_loop(Engine& engine, const Scene& scene, Trajectory& t, std::int64_t every,
-               std::span<const BodyState> start, std::int64_t& n) {
-  std::vector<BodyState> scratch(start.begin(), start.end());
-  std::vector<Vec3> forces(start.size());
+               std::vector<BodyState>& states, std::int64_t& n) {
+  std::vector<Vec3> forces(states.size());
   // Constant forces do not depend on the state: summed once, in the same order as every step would.
   const bool state_dependent = has_springs(scene);
-  compute_forces(scene, start, forces);
-  std::span<const BodyState> now = start;  // the state at the start of step n
+  compute_forces(scene, states, forces);
   for (n = 1; n <= t.steps; ++n) {
-    if (state_dependent) compute_forces(scene, now, forces);
+    if (state_dependent) compute_forces(scene, states, forces);
     engine.set_forces(forces);
     engine.step();
-    const bool keep = n % every == 0 || n == t.steps;
-    // A kept step is read straight into its sample slot; the others into a scratch buffer.
-    const std::span<BodyState> next = keep ? new_sample(t, n) : std::span<BodyState>(scratch);
-    read_into(engine, t, next, keep);
+    engine.read(states);
     if (engine.speed_clamped()) {
       if (t.clamped_steps++ == 0) t.first_clamped_step = n;
     }
-    if (!all_finite(next)) {
-      fail_non_finite(t, next, n);
-      if (keep) drop_last_sample(t);  // the failed step is not a sample
-      return;
-    }
-    now = next;
+    if (!all_finite(states)) return fail_non_finite(t, states, n);
+    if (n % every == 0 || n == t.steps) record(t, n, states);
   }
 }
 
@@ -122,14 +96,15 @@ void step_loop(Engine& engine, const Scene& scene, Trajectory& t, std::int64_t e
 Trajectory run_scene(Engine& engine, const Scene& scene, double h, const RunOptions& options) {
   const std::int64_t every = options.record_every < 1 ? 1 : options.record_every;
   Trajectory t = empty_trajectory(engine, scene, h, every);
+  std::vector<BodyState> states(scene.bodies.size());
   std::int64_t n = 0;
   auto start = std::chrono::steady_clock::now();
   try {
     engine.load(scene, h);
-    const std::span<BodyState> initial = new_sample(t, 0);
-    read_into(engine, t, initial, true);
+    engine.read(states);
+    record(t, 0, states);
     start = std::chrono::steady_clock::now();  // time the stepping loop, not the setup
-    step_loop(engine, scene, t, every, initial, n);
+    step_loop(engine, scene, t, every, states, n);
   } catch (const std::exception& e) {
     t.status = RunStatus::engine_error;
     t.failed_step = n;
