@@ -27,10 +27,12 @@ double quantile(std::vector<double> v, double q) {
 
 double median(const std::vector<double>& v) { return quantile(v, 0.5); }
 
-// Every other element of v, from `first`.
-std::vector<double> half(const std::vector<double>& v, std::size_t first) {
+// The samples of one half: rounds 0, 1, 4, 5, 8, 9, ... (which = 0) or 2, 3, 6, 7, ... (which = 1).
+// By pairs of rounds, so that each half holds as many forward as reversed rounds.
+std::vector<double> half(const std::vector<double>& v, std::size_t which) {
   std::vector<double> out;
-  for (std::size_t i = first; i < v.size(); i += 2) out.push_back(v[i]);
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if ((i / 2) % 2 == which) out.push_back(v[i]);
   return out;
 }
 
@@ -114,6 +116,9 @@ std::vector<Timing> time_engines(const std::vector<std::pair<std::string, Engine
     for (std::size_t k = 0; k < ne; ++k) {
       const std::size_t e = (r % 2 == 0) ? k : ne - 1 - k;  // alternate the order every round
       std::unique_ptr<Engine> engine = engines[e].second();
+      // Untimed first: the engine's code and data back in cache after the other engines ran, so
+      // that no figure depends on which engine ran before it.
+      time_bare(*engine, copies, h);
       const double f = time_full(*engine, copies, h);
       const double b = time_bare(*engine, copies, h);
       if (r >= 0) full[e].push_back(f), bare[e].push_back(b);

@@ -17,10 +17,10 @@ namespace dropcheck {
 struct TimingOptions {
   // Body-steps one timed run should hold at least: the scene is replicated (a power of two copies,
   // at most max_replicas) until copies * dynamic bodies * steps reaches it.
-  double body_steps_per_run = 20000;
+  double body_steps_per_run = 8000;
   int max_replicas = 4096;
-  int warmups = 1;   // untimed rounds first (caches, page faults, lazy initialisation)
-  int samples = 10;  // timed rounds; even, split into two interleaved halves of samples / 2
+  int warmups = 1;  // untimed rounds first (page faults, lazy initialisation)
+  int samples = 8;  // timed rounds; a multiple of 4, split into two halves by pairs of rounds
 };
 
 struct Timing {
@@ -33,8 +33,8 @@ struct Timing {
   double median_per_sim_s = 0.0;
   double q1_per_sim_s = 0.0;     // first and third quartile: the interquartile range is the spread
   double q3_per_sim_s = 0.0;
-  double half_a_median = 0.0;    // median of samples 0, 2, 4, ... (per sim s)
-  double half_b_median = 0.0;    // median of samples 1, 3, 5, ...
+  double half_a_median = 0.0;    // median of rounds 0, 1, 4, 5, ... (per sim s)
+  double half_b_median = 0.0;    // median of rounds 2, 3, 6, 7, ...
   double bare_min_per_sim_s = 0.0;     // the engine's bare step() loop, no forces/reads/sampling
   double bare_median_per_sim_s = 0.0;
   // Harness overhead: (full loop - bare loop) / bare loop, from the medians.
@@ -56,9 +56,10 @@ int replicas_for(const Scene& scene, double h, const TimingOptions& options);
 // spring's anchor shifted with its body).
 Scene replicate(const Scene& scene, int copies);
 
-// Times each engine on `scene` at step h. Each round runs every engine once (full loop, then bare
-// loop), in alternating order from round to round, so that drift of the machine (frequency,
-// cache, other load) hits all alike and each engine's samples are spread over the whole window.
+// Times each engine on `scene` at step h. Each round runs every engine once (an untimed bare loop
+// to warm its code and data, then the timed full loop and the timed bare loop), in alternating
+// order from round to round, so that drift of the machine (frequency, other load) hits all alike
+// and each engine's samples are spread over the whole window.
 std::vector<Timing> time_engines(const std::vector<std::pair<std::string, EngineFactory>>& engines,
                                  const Scene& scene, double h, const TimingOptions& options = {});
 

@@ -110,8 +110,9 @@ std::string method(const ReportInput& in) {
         "range and minimum) of %d timed runs after %d warm-up round. The work of one run is "
         "fixed by the scene and h alone: the scene replicated side by side, the smallest power "
         "of two copies (at most %d) that holds %.0f body-steps (harness/measure/timing.hpp). "
-        "Every round runs each engine once, in alternating order. The runs alternate between "
-        "two halves; \"halves differ\" compares their medians (see Timing reproducibility). "
+        "Every round runs each engine once, in alternating order: an untimed bare loop to warm "
+        "it, then the timed full and bare loops. The rounds go by pairs into two halves; "
+        "\"halves differ\" compares their medians (see Timing reproducibility). "
         "Harness overhead = full loop (forces, step, read, NaN check, sampling) / bare step() "
         "loop - 1, from the medians.\n",
         o.samples, o.warmups, o.max_replicas, o.body_steps_per_run);

@@ -230,8 +230,9 @@ std::string run_time(const SceneEvaluation& se, const std::vector<ReportPlot>& p
   std::string md = timing ? "#### Error against run time (⏱ wall time)\n\n"
                           : "#### Error against run time\n\n";
   md += timing ? "Columns marked ⏱ and the work-precision plot are wall-clock timings (the only "
-                 "figures that change between runs). \"halves differ\": the medians of the even "
-                 "and of the odd samples, max/min - 1.\n\n"
+                 "figures that change between runs). \"halves differ\": the medians of the two "
+                 "halves of the samples (rounds 0, 1, 4, 5, ... and 2, 3, 6, 7, ...), max/min - "
+                 "1.\n\n"
                : "Timings omitted (--no-timing).\n\n";
   md += sweep_table(se, timing) + "\n";
   for (const ReportPlot& p : plots)
