@@ -21,6 +21,9 @@ struct TimingOptions {
   int max_replicas = 4096;
   int warmups = 1;  // untimed rounds first (page faults, lazy initialisation)
   int samples = 8;  // timed rounds; a multiple of 4, split into two halves by pairs of rounds
+  // A run during which another process took the core (wall time beyond the thread's CPU time) is
+  // run again, at most this many times.
+  int retries = 1;
 };
 
 struct Timing {
@@ -28,6 +31,7 @@ struct Timing {
   double h = 0.0;
   int replicas = 1;              // copies of the scene's dynamic bodies in one timed run
   int samples = 0;               // timed runs behind each figure below
+  int disturbed = 0;             // runs measured again because another process took the core
   // Full harness loop (run_scene), wall seconds per simulated second, per copy of the scene.
   double min_per_sim_s = 0.0;
   double median_per_sim_s = 0.0;

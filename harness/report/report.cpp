@@ -148,10 +148,15 @@ std::string overhead(const ReportInput& in) {
 std::string reproducibility(const ReportInput& in) {
   if (!in.timing) return {};
   std::vector<double> spreads;
+  long disturbed = 0, runs = 0;
   for (const SceneEvaluation& se : in.scenes)
     for (const EngineEvaluation& ev : se.engines)
-      for (const StepEvaluation& st : ev.sweep)
-        if (st.timing && st.timing->samples > 1) spreads.push_back(st.timing->half_spread());
+      for (const StepEvaluation& st : ev.sweep) {
+        if (!st.timing) continue;
+        disturbed += st.timing->disturbed;
+        runs += 2 * (st.timing->samples + in.timing_options.warmups);
+        if (st.timing->samples > 1) spreads.push_back(st.timing->half_spread());
+      }
   if (spreads.empty()) return {};
   std::sort(spreads.begin(), spreads.end());
   const auto within = [&](double f) {
@@ -160,13 +165,15 @@ std::string reproducibility(const ReportInput& in) {
   const std::size_t n = spreads.size();
   return strf(
       "## Timing reproducibility (⏱ wall time)\n\nEach timing cell is measured as two "
-      "interleaved halves of its samples, so the report measures its own run-to-run spread: of "
+      "halves of its samples, so the report measures its own run-to-run spread: of "
       "%zu cells, the two halves' medians agree within 5 %% in %ld (%.0f %%), within 10 %% in "
       "%ld (%.0f %%); median difference %.1f %%, worst %.1f %%. A difference between two "
-      "reports' medians is of this order; a larger one is more than the machine's noise.\n\n",
+      "reports' medians is of this order; a larger one is more than the machine's noise. "
+      "%ld of %ld timed runs were measured again because another process took the core "
+      "(wall time beyond the thread's CPU time).\n\n",
       n, static_cast<long>(within(0.05)), 100.0 * within(0.05) / n,
       static_cast<long>(within(0.10)), 100.0 * within(0.10) / n, 100.0 * spreads[n / 2],
-      100.0 * spreads.back());
+      100.0 * spreads.back(), disturbed, runs);
 }
 
 std::string determinism(const ReportInput& in) {
