@@ -10,6 +10,7 @@ DROPCHECK_PACKAGES=(
   libbullet-dev libode-dev libbox2d-dev libmujoco-dev libqhull-dev  # the engines compared
   libgl-dev                            # MuJoCo's CMake package requires OpenGL to be findable
   gnuplot-nox                          # report plots (SVG)
+  libbenchmark-dev                     # benchmarks (bench/, scripts/bench.sh)
 )
 
 missing=()

@@ -163,10 +163,25 @@ TEST_CASE("sampling every few steps hands the engine the same forces as sampling
 }
 
 TEST_CASE("constant forces reach the engine on every step, summed per body", "[runner]") {
-  dropcheck::Scene s = ten_steps();
-  s.forces.clear();
-  s.forces.push_back({{0}, dropcheck::ConstantForce{{1.0, 2.0, 0.0}}});
-  s.forces.push_back({{0, 1}, dropcheck::ConstantForce{{0.5, 0.0, -1.0}}});
+  const dropcheck::Scene s = dropcheck::parse_scene(R"(
+duration = 1.0
+timestep = "1/10"
+[world]
+gravity = [0.0, 0.0, 0.0]
+[[body]]
+name = "a"
+position = [0.0, 0.0, 0.0]
+[[body]]
+name = "b"
+position = [0.0, 2.0, 0.0]
+[[force]]
+bodies = ["a"]
+constant = [1.0, 2.0, 0.0]
+[[force]]
+bodies = ["a", "b"]
+constant = [0.5, 0.0, -1.0]
+)",
+                                                    "constant.toml");
   ScriptedEngine e;
   const dropcheck::Trajectory t = dropcheck::run_scene(e, s, 0.1);
   REQUIRE(t.status == dropcheck::RunStatus::ok);
