@@ -25,6 +25,7 @@
 // resting box's centre sits about 0.015 m above the geometric rest height (docs/engines.md 5).
 #include <box2d/box2d.h>
 
+#include <chrono>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -62,6 +63,9 @@ class Box2dEngine final : public Engine {
   void step() override;
   void read(std::span<BodyState> out) const override;
   bool speed_clamped() const override { return clamped_; }
+
+  // Seconds of `steps` calls of b2World::Step alone (bare_step_loop in adapters.hpp).
+  double bare_seconds(std::int64_t steps);
 
   // Box2D's mass of body i (kg per unit depth), for tests.
   float mass_of(std::size_t i) const { return bodies_.at(i)->GetMass(); }
@@ -210,6 +214,12 @@ bool Box2dEngine::clamped_after() const {
   return false;
 }
 
+double Box2dEngine::bare_seconds(std::int64_t steps) {
+  const auto start = std::chrono::steady_clock::now();
+  for (std::int64_t n = 0; n < steps; ++n) world_->Step(h_, kVelocityIterations, kPositionIterations);
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 void Box2dEngine::read(std::span<BodyState> out) const {
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     const b2Vec2 p = bodies_[i]->GetPosition();
@@ -222,6 +232,12 @@ void Box2dEngine::read(std::span<BodyState> out) const {
 }  // namespace
 
 std::unique_ptr<Engine> make_box2d() { return std::make_unique<Box2dEngine>(); }
+
+double bare_seconds_box2d(const Scene& scene, double h) {
+  Box2dEngine e;
+  e.load(scene, h);
+  return e.bare_seconds(step_count(scene, h));
+}
 
 // For tests (tests/adapters/box2d_test.cpp): Box2D's GetMass() of body i of a loaded box2d engine.
 double box2d_body_mass(const Engine& engine, std::size_t body) {

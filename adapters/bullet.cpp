@@ -19,8 +19,9 @@
 //   position, velocity  -> start world transform, setLinearVelocity. No motion state at all: the
 //                          state is read from getWorldTransform / getLinearVelocity, never from an
 //                          interpolated btMotionState (one step stale with an accumulator).
-//   force this step     -> applyCentralForce before the step; clearForces after it (stepSimulation
-//                          also clears them; the explicit call documents "this step only").
+//   force this step     -> applyCentralForce before the step; stepSimulation ends with
+//                          btDiscreteDynamicsWorld::clearForces on every dynamic body, so each
+//                          force acts on this step only.
 //   one step            -> stepSimulation(h, 0): maxSubSteps = 0 is Bullet's variable-step mode,
 //                          exactly one internal step of h, no accumulator, no interpolation.
 //   sleeping            -> setActivationState(DISABLE_DEACTIVATION) on every body.
@@ -37,6 +38,7 @@
 //            and mask 0, so the broadphase never pairs anything: no contact shapes, no contacts.
 #include <btBulletDynamicsCommon.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -157,7 +159,13 @@ class BulletEngine final : public Engine {
   void step() override {
     // maxSubSteps = 0: exactly one internal step of h_ (no accumulator, no interpolation).
     w_->world.stepSimulation(h_, 0);
-    for (auto& b : w_->bodies) b->clearForces();
+  }
+
+  // Seconds of `steps` calls of stepSimulation alone (bare_step_loop in adapters.hpp).
+  double bare_seconds(std::int64_t steps) {
+    const auto start = std::chrono::steady_clock::now();
+    for (std::int64_t n = 0; n < steps; ++n) w_->world.stepSimulation(h_, 0);
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
 
   void read(std::span<BodyState> out) const override {
@@ -205,6 +213,12 @@ class BulletEngine final : public Engine {
 
 std::unique_ptr<Engine> make_bullet() {
   return std::make_unique<BulletEngine>();
+}
+
+double bare_seconds_bullet(const Scene& scene, double h) {
+  BulletEngine e;
+  e.load(scene, h);
+  return e.bare_seconds(step_count(scene, h));
 }
 
 }  // namespace dropcheck

@@ -34,6 +34,7 @@
 #include <mujoco/mujoco.h>
 
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <locale>
@@ -176,6 +177,13 @@ class MujocoEngine final : public Engine {
   void step() override;
   void read(std::span<BodyState> out) const override;
 
+  // Seconds of `steps` calls of mj_step alone (bare_step_loop in adapters.hpp).
+  double bare_seconds(std::int64_t steps) {
+    const auto start = std::chrono::steady_clock::now();
+    for (std::int64_t n = 0; n < steps; ++n) mj_step(m_.get(), d_.get());
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
   // MuJoCo's body_mass of scene body i (dynamic bodies only), for tests.
   double mass_of(std::size_t i) const { return m_->body_mass[m_->jnt_bodyid[joint_.at(i)]]; }
 
@@ -297,6 +305,12 @@ void MujocoEngine::read(std::span<BodyState> out) const {
 }  // namespace
 
 std::unique_ptr<Engine> make_mujoco() { return std::make_unique<MujocoEngine>(); }
+
+double bare_seconds_mujoco(const Scene& scene, double h) {
+  MujocoEngine e;
+  e.load(scene, h);
+  return e.bare_seconds(step_count(scene, h));
+}
 
 // For tests (tests/adapters/mujoco_test.cpp): body_mass of scene body i of a loaded mujoco engine.
 double mujoco_body_mass(const Engine& engine, std::size_t body) {

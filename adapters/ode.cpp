@@ -46,6 +46,7 @@
 // than destroyed, because destroying it can re-enter ODE's checks during unwinding.
 #include <ode/ode.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -221,6 +222,18 @@ class OdeEngine final : public Engine {
     if (!stepped) throw EngineError("ODE: dWorldStep failed (out of step memory)");
   }
 
+  // Seconds of `steps` ODE steps (dSpaceCollide with contacts, dWorldStep, dJointGroupEmpty)
+  // without the adapter's checks (bare_step_loop in adapters.hpp).
+  double bare_seconds(std::int64_t steps) {
+    const auto start = std::chrono::steady_clock::now();
+    for (std::int64_t n = 0; n < steps; ++n) {
+      if (w_->space) dSpaceCollide(w_->space, w_.get(), near_callback);
+      dWorldStep(w_->world, h_);
+      if (w_->contacts) dJointGroupEmpty(w_->contacts);
+    }
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
   void read(std::span<BodyState> out) const override {
     for (std::size_t i = 0; i < w_->bodies.size(); ++i) {
       const dBodyID b = w_->bodies[i];
@@ -309,6 +322,12 @@ class OdeEngine final : public Engine {
 
 std::unique_ptr<Engine> make_ode() {
   return std::make_unique<OdeEngine>();
+}
+
+double bare_seconds_ode(const Scene& scene, double h) {
+  OdeEngine e;
+  e.load(scene, h);
+  return e.bare_seconds(step_count(scene, h));
 }
 
 }  // namespace dropcheck

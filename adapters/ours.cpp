@@ -6,6 +6,7 @@
 //   mass, position, v  -> Model::translation, RigidBody::{mass, velocity}; static -> isStatic
 //   force this step    -> RigidBody::force (IntegrateLinearForce clears it)
 // Contacts: ours has none yet (the seed's Part IV adds them), so contact scenes are refused.
+#include <chrono>
 #include <vector>
 
 #include "adapters.hpp"
@@ -48,6 +49,13 @@ class OursEngine final : public Engine {
 
   void step() override { ours::ApplyPhysics<T>(models_, world_, h_); }
 
+  // Seconds of `steps` calls of ours::ApplyPhysics alone (bare_step_loop in adapters.hpp).
+  double bare_seconds(std::int64_t steps) {
+    const auto start = std::chrono::steady_clock::now();
+    for (std::int64_t n = 0; n < steps; ++n) ours::ApplyPhysics<T>(models_, world_, h_);
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
   void read(std::span<BodyState> out) const override {
     for (std::size_t i = 0; i < models_.size(); ++i) {
       out[i].position = models_[i].translation.template cast<double>();
@@ -65,5 +73,17 @@ class OursEngine final : public Engine {
 
 std::unique_ptr<Engine> make_ours_f32() { return std::make_unique<OursEngine<float>>(); }
 std::unique_ptr<Engine> make_ours_f64() { return std::make_unique<OursEngine<double>>(); }
+
+double bare_seconds_ours_f32(const Scene& scene, double h) {
+  OursEngine<float> e;
+  e.load(scene, h);
+  return e.bare_seconds(step_count(scene, h));
+}
+
+double bare_seconds_ours_f64(const Scene& scene, double h) {
+  OursEngine<double> e;
+  e.load(scene, h);
+  return e.bare_seconds(step_count(scene, h));
+}
 
 }  // namespace dropcheck

@@ -13,6 +13,7 @@ DROPCHECK_PACKAGES=(
   libgl-dev                            # MuJoCo's CMake package requires OpenGL to be findable
   gnuplot-nox                          # report plots (SVG)
   clang-format-14 git                  # scripts/format.sh and the ctest entry `format`
+  libbenchmark-dev                     # benchmarks (bench/, scripts/bench.sh)
 )
 
 missing=()

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <variant>
 
 #include "harness/core/runner.hpp"
@@ -15,13 +16,28 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-double median(std::vector<double> v) {
+// The q-quantile of v (0 <= q <= 1), linear between order statistics; 0 for an empty v.
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+  const double at = q * static_cast<double>(v.size() - 1);
+  const std::size_t i = static_cast<std::size_t>(at);
+  if (i + 1 >= v.size()) return v.back();
+  return v[i] + (at - static_cast<double>(i)) * (v[i + 1] - v[i]);
 }
 
-// The full harness loop (forces, step, read, sampling every step) as run_scene does it.
+double median(const std::vector<double>& v) { return quantile(v, 0.5); }
+
+// The samples of one half: rounds 0, 1, 4, 5, 8, 9, ... (which = 0) or 2, 3, 6, 7, ... (which = 1).
+// By pairs of rounds, so that each half holds as many forward as reversed rounds.
+std::vector<double> half(const std::vector<double>& v, std::size_t which) {
+  std::vector<double> out;
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if ((i / 2) % 2 == which) out.push_back(v[i]);
+  return out;
+}
+
+// The full harness loop (forces, step, read, NaN check, a sample every step) as run_scene does it.
 double time_full(Engine& engine, const Scene& scene, double h) {
   return run_scene(engine, scene, h).wall_seconds;
 }
@@ -43,17 +59,31 @@ double time_bare(Engine& engine, const Scene& scene, double h) {
   return seconds_since(start);
 }
 
-// Doubles the copies until one full run lasts min_run_seconds; a failed run stops the search (a
-// failure takes no time and would otherwise drive the copies to max_replicas).
-int replicas_needed(const EngineFactory& make, const Scene& scene, double h, const TimingOptions& o) {
-  int copies = 1;
-  while (copies < o.max_replicas) {
-    std::unique_ptr<Engine> e = make();
-    const Trajectory run = run_scene(*e, replicate(scene, copies), h);
-    if (run.status != RunStatus::ok || run.wall_seconds >= o.min_run_seconds) break;
-    copies *= 2;
+// CPU time this thread has used (s): it does not advance while another process has the core.
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+// Runs `timed` (load + loop; returns the loop's wall seconds) until this thread ran it
+// undisturbed: the call's wall time exceeds its CPU time by at most 5 % of the loop's time plus
+// 100 us (on this 2-core VM an undisturbed call shows 40 to 150 us of such excess: interrupts,
+// the hypervisor). A sample during which another process took the core is measured again, at
+// most `retries` times; then the least disturbed one is kept. Counts the repeats in `disturbed`.
+template <typename F>
+double undisturbed(F&& timed, int retries, int& disturbed) {
+  double best = 0.0, best_excess = 0.0;
+  for (int attempt = 0; attempt <= retries; ++attempt) {
+    const auto wall0 = Clock::now();
+    const double cpu0 = thread_cpu_seconds();
+    const double loop = timed();
+    const double excess = seconds_since(wall0) - (thread_cpu_seconds() - cpu0);
+    if (attempt == 0 || excess < best_excess) best = loop, best_excess = excess;
+    if (excess <= 0.05 * loop + 100e-6) break;
+    ++disturbed;
   }
-  return std::min(copies, o.max_replicas);
+  return best;
 }
 
 // Width of the scene along x (m), from the lowest to the highest box face of any body.
@@ -90,32 +120,58 @@ Scene replicate(const Scene& scene, int copies) {
   return out;
 }
 
+double Timing::half_spread() const {
+  const double lo = std::min(half_a_median, half_b_median), hi = std::max(half_a_median, half_b_median);
+  return lo > 0.0 ? hi / lo - 1.0 : 0.0;
+}
+
+int replicas_for(const Scene& scene, double h, const TimingOptions& options) {
+  double dynamic = 0.0;
+  for (const Body& b : scene.bodies) dynamic += b.is_static ? 0.0 : 1.0;
+  const double per_copy = std::max(dynamic, 1.0) * static_cast<double>(std::max<std::int64_t>(step_count(scene, h), 1));
+  int copies = 1;
+  while (copies < options.max_replicas && copies * per_copy < options.body_steps_per_run) copies *= 2;
+  return std::min(copies, std::max(options.max_replicas, 1));
+}
+
 std::vector<Timing> time_engines(const std::vector<std::pair<std::string, EngineFactory>>& engines,
                                  const Scene& scene, double h, const TimingOptions& options) {
   const std::size_t ne = engines.size();
-  std::vector<Timing> out(ne);
-  std::vector<Scene> scenes(ne);
+  const int replicas = replicas_for(scene, h, options);
+  const Scene copies = replicate(scene, replicas);
   std::vector<std::vector<double>> full(ne), bare(ne);
-  for (std::size_t e = 0; e < ne; ++e) {
-    out[e].engine = engines[e].first;
-    out[e].h = h;
-    out[e].replicas = replicas_needed(engines[e].second, scene, h, options);
-    scenes[e] = replicate(scene, out[e].replicas);
-  }
-  for (int r = -options.warmups; r < options.repeats; ++r) {
+  std::vector<int> disturbed(ne, 0);
+  for (int r = -options.warmups; r < options.samples; ++r) {
     for (std::size_t k = 0; k < ne; ++k) {
-      const std::size_t e = (r % 2 == 0) ? k : ne - 1 - k;  // alternate the order every repeat
+      const std::size_t e = (r % 2 == 0) ? k : ne - 1 - k;  // alternate the order every round
       std::unique_ptr<Engine> engine = engines[e].second();
-      const double f = time_full(*engine, scenes[e], h);
-      const double b = time_bare(*engine, scenes[e], h);
+      // Untimed first: the engine's code and data back in cache after the other engines ran, so
+      // that no figure depends on which engine ran before it.
+      time_bare(*engine, copies, h);
+      int& d = disturbed[e];
+      const double f = undisturbed([&] { return time_full(*engine, copies, h); }, options.retries, d);
+      const double b = undisturbed([&] { return time_bare(*engine, copies, h); }, options.retries, d);
       if (r >= 0) full[e].push_back(f), bare[e].push_back(b);
     }
   }
+  std::vector<Timing> out(ne);
+  const double per = 1.0 / (scene.duration * replicas);
   for (std::size_t e = 0; e < ne; ++e) {
-    const double per = 1.0 / (scene.duration * out[e].replicas);
-    out[e].min_per_sim_s = *std::min_element(full[e].begin(), full[e].end()) * per;
-    out[e].median_per_sim_s = median(full[e]) * per;
-    out[e].bare_min_per_sim_s = *std::min_element(bare[e].begin(), bare[e].end()) * per;
+    Timing& t = out[e];
+    t.engine = engines[e].first;
+    t.h = h;
+    t.replicas = replicas;
+    t.samples = static_cast<int>(full[e].size());
+    t.disturbed = disturbed[e];
+    if (full[e].empty()) continue;
+    t.min_per_sim_s = *std::min_element(full[e].begin(), full[e].end()) * per;
+    t.median_per_sim_s = median(full[e]) * per;
+    t.q1_per_sim_s = quantile(full[e], 0.25) * per;
+    t.q3_per_sim_s = quantile(full[e], 0.75) * per;
+    t.half_a_median = median(half(full[e], 0)) * per;
+    t.half_b_median = median(half(full[e], 1)) * per;
+    t.bare_min_per_sim_s = *std::min_element(bare[e].begin(), bare[e].end()) * per;
+    t.bare_median_per_sim_s = median(bare[e]) * per;
   }
   return out;
 }

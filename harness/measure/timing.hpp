@@ -1,5 +1,8 @@
-// Run-time measurement: wall time per simulated second, as the minimum and median of repeated runs
-// after a warm-up, on a scene replicated until one run is long enough to time.
+// Run-time measurement: wall time per simulated second, as the median (with quartiles and minimum)
+// of repeated runs after a warm-up. The work timed in one run is fixed by the scene and h alone
+// (replicas_for): never re-chosen from a measurement, so two runs of the report time the same work.
+// Every run is timed in one of two interleaved halves, whose medians are compared: the report
+// states that agreement as its own run-to-run spread.
 #pragma once
 
 #include <functional>
@@ -12,22 +15,44 @@
 namespace dropcheck {
 
 struct TimingOptions {
-  double min_run_seconds = 0.02;  // replicate the scene until one run takes at least this long
-  int warmups = 1;
-  int repeats = 5;
+  // Body-steps one timed run should hold at least: the scene is replicated (a power of two copies,
+  // at most max_replicas) until copies * dynamic bodies * steps reaches it.
+  double body_steps_per_run = 8000;
   int max_replicas = 4096;
+  int warmups = 1;  // untimed rounds first (page faults, lazy initialisation)
+  int samples = 8;  // timed rounds; a multiple of 4, split into two halves by pairs of rounds
+  // A run during which another process took the core (wall time beyond the thread's CPU time) is
+  // run again, at most this many times.
+  int retries = 1;
 };
 
 struct Timing {
   std::string engine;
   double h = 0.0;
   int replicas = 1;              // copies of the scene's dynamic bodies in one timed run
-  double min_per_sim_s = 0.0;    // wall seconds per simulated second, per copy of the scene
+  int samples = 0;               // timed runs behind each figure below
+  int disturbed = 0;             // runs measured again because another process took the core
+  // Full harness loop (run_scene), wall seconds per simulated second, per copy of the scene.
+  double min_per_sim_s = 0.0;
   double median_per_sim_s = 0.0;
-  double bare_min_per_sim_s = 0.0;  // the engine's bare step() loop, no forces/reads/sampling
-  // Harness overhead: (full loop - bare loop) / bare loop, from the minima.
-  double overhead() const { return bare_min_per_sim_s > 0 ? min_per_sim_s / bare_min_per_sim_s - 1 : 0; }
+  double q1_per_sim_s = 0.0;     // first and third quartile: the interquartile range is the spread
+  double q3_per_sim_s = 0.0;
+  double half_a_median = 0.0;    // median of rounds 0, 1, 4, 5, ... (per sim s)
+  double half_b_median = 0.0;    // median of rounds 2, 3, 6, 7, ...
+  double bare_min_per_sim_s = 0.0;     // the engine's bare step() loop, no forces/reads/sampling
+  double bare_median_per_sim_s = 0.0;
+  // Harness overhead: (full loop - bare loop) / bare loop, from the medians.
+  double overhead() const {
+    return bare_median_per_sim_s > 0 ? median_per_sim_s / bare_median_per_sim_s - 1 : 0;
+  }
+  // How far the two halves' medians differ: max/min - 1 (0.1 = 10 %); 0 when either is 0.
+  double half_spread() const;
 };
+
+// Copies of `scene` one timed run holds at step h: the smallest power of two with
+// copies * (dynamic bodies, at least 1) * step_count(scene, h) >= options.body_steps_per_run,
+// at most options.max_replicas. A function of the scene and h only.
+int replicas_for(const Scene& scene, double h, const TimingOptions& options);
 
 // The scene copied `copies` times side by side: every body (static floors too, so that each copy
 // lands on its own floor), copy c shifted by c*(x extent of the scene + 10 m) along x, so that the
@@ -35,8 +60,10 @@ struct Timing {
 // spring's anchor shifted with its body).
 Scene replicate(const Scene& scene, int copies);
 
-// Times each engine on `scene` at step h. Engines run in alternating order within each repeat so
-// that drift of the machine (frequency, cache, other load) hits all alike.
+// Times each engine on `scene` at step h. Each round runs every engine once (an untimed bare loop
+// to warm its code and data, then the timed full loop and the timed bare loop), in alternating
+// order from round to round, so that drift of the machine (frequency, other load) hits all alike
+// and each engine's samples are spread over the whole window.
 std::vector<Timing> time_engines(const std::vector<std::pair<std::string, EngineFactory>>& engines,
                                  const Scene& scene, double h, const TimingOptions& options = {});
 

@@ -22,6 +22,7 @@ namespace {
 class ScriptedEngine final : public dropcheck::Engine {
  public:
   std::int64_t nan_at = -1, throw_at = -1;
+  double bad_value = std::numeric_limits<double>::quiet_NaN();  // what nan_at writes
   bool throw_on_load = false;
   std::vector<std::int64_t> clamp_at;
   std::vector<std::vector<dropcheck::Vec3>> forces_seen;
@@ -48,7 +49,7 @@ class ScriptedEngine final : public dropcheck::Engine {
       states_[i].position += h_ * states_[i].velocity;
       states_[i].velocity += h_ * forces_[i];
     }
-    if (step_ == nan_at) states_.back().velocity.y() = std::numeric_limits<double>::quiet_NaN();
+    if (step_ == nan_at) states_.back().velocity.y() = bad_value;
   }
   void read(std::span<dropcheck::BodyState> out) const override {
     std::copy(states_.begin(), states_.end(), out.begin());
@@ -113,6 +114,82 @@ TEST_CASE("a NaN at step k ends the run as non_finite at k and keeps the samples
   CHECK(t.states.size() == 4 * 2);
   CHECK_THAT(t.failure, Contains("'b'") && Contains("step 4"));
   CHECK(std::isfinite(t.final_state(1).velocity.y()));
+}
+
+TEST_CASE("a NaN on a step that is not sampled ends the run at that step", "[runner]") {
+  ScriptedEngine e;
+  e.nan_at = 6;
+  const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps(), 0.1, {.record_every = 4});
+  CHECK(t.status == dropcheck::RunStatus::non_finite);
+  CHECK(t.failed_step == 6);
+  CHECK(steps_of(t) == std::vector<std::int64_t>{0, 4});
+  CHECK(t.states.size() == 2 * 2);
+  CHECK_THAT(t.failure, Contains("'b'") && Contains("step 6"));
+}
+
+TEST_CASE("an infinite state counts as non_finite like a NaN, on a sampled step too", "[runner]") {
+  for (const double bad : {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()}) {
+    ScriptedEngine e;
+    e.nan_at = 8;
+    e.bad_value = bad;
+    const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps(), 0.1, {.record_every = 4});
+    CHECK(t.status == dropcheck::RunStatus::non_finite);
+    CHECK(t.failed_step == 8);
+    CHECK(steps_of(t) == std::vector<std::int64_t>{0, 4});  // step 8 is not kept
+  }
+  ScriptedEngine big;  // the largest finite double is finite
+  big.nan_at = 8;
+  big.bad_value = std::numeric_limits<double>::max();
+  CHECK(dropcheck::run_scene(big, ten_steps(), 0.1).status == dropcheck::RunStatus::ok);
+}
+
+TEST_CASE("a run's samples are sized once, to exactly the samples it keeps", "[runner]") {
+  for (const std::int64_t every : {1, 3, 4, 5, 10, 100}) {
+    ScriptedEngine e;
+    const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps(), 0.1, {.record_every = every});
+    INFO("record_every " << every);
+    CHECK(t.recorded.capacity() == t.recorded.size());
+    CHECK(t.states.capacity() == t.states.size());
+    CHECK(t.states.size() == t.samples() * 2);
+  }
+}
+
+TEST_CASE("sampling every few steps hands the engine the same forces as sampling every step", "[runner]") {
+  ScriptedEngine every_step, every_third;
+  const dropcheck::Trajectory a = dropcheck::run_scene(every_step, ten_steps(), 0.1);
+  const dropcheck::Trajectory b = dropcheck::run_scene(every_third, ten_steps(), 0.1, {.record_every = 3});
+  CHECK(every_third.forces_seen == every_step.forces_seen);  // exact: same doubles
+  CHECK(b.final_state(1).position == a.final_state(1).position);
+}
+
+TEST_CASE("constant forces reach the engine on every step, summed per body", "[runner]") {
+  const dropcheck::Scene s = dropcheck::parse_scene(R"(
+duration = 1.0
+timestep = "1/10"
+[world]
+gravity = [0.0, 0.0, 0.0]
+[[body]]
+name = "a"
+position = [0.0, 0.0, 0.0]
+[[body]]
+name = "b"
+position = [0.0, 2.0, 0.0]
+[[force]]
+bodies = ["a"]
+constant = [1.0, 2.0, 0.0]
+[[force]]
+bodies = ["a", "b"]
+constant = [0.5, 0.0, -1.0]
+)",
+                                                    "constant.toml");
+  ScriptedEngine e;
+  const dropcheck::Trajectory t = dropcheck::run_scene(e, s, 0.1);
+  REQUIRE(t.status == dropcheck::RunStatus::ok);
+  REQUIRE(e.forces_seen.size() == 10);
+  for (const std::vector<dropcheck::Vec3>& f : e.forces_seen) {
+    CHECK(f[0] == dropcheck::Vec3(1.5, 2.0, -1.0));
+    CHECK(f[1] == dropcheck::Vec3(0.5, 0.0, -1.0));
+  }
 }
 
 TEST_CASE("an EngineError at step k ends the run as engine_error with its message", "[runner]") {

@@ -174,10 +174,9 @@ TEST_CASE("with timings the run-time table has marked columns and a work-precisi
           "[report]") {
   Scratch dir("timing");
   EvaluateOptions options;  // as little timing work as possible: this checks the plumbing only
-  options.timing_options.min_run_seconds = 1e-5;
+  options.timing_options.body_steps_per_run = 1;
   options.timing_options.warmups = 0;
-  options.timing_options.repeats = 1;
-  options.timing_options.max_replicas = 2;
+  options.timing_options.samples = 2;
   std::vector<EngineSlot> engines;
   for (const char* name : {"ours", "ours-f64"})
     engines.push_back({name, [name] { return make_engine(name); }, ""});
@@ -186,8 +185,12 @@ TEST_CASE("with timings the run-time table has marked columns and a work-precisi
   for (const EngineSlot& e : engines) in.engines.push_back(e.make()->info());
   write_report(in, dir.path.string());
   const std::string md = slurp(dir.path / "README.md");
-  CHECK_THAT(md, Contains("⏱ min (ms per sim s)") && Contains("⏱ harness overhead") &&
-                     Contains("## Harness overhead"));
+  CHECK_THAT(md, Contains("⏱ median (ms per sim s)") && Contains("⏱ IQR (ms per sim s)") &&
+                     Contains("⏱ halves differ") && Contains("⏱ harness overhead") &&
+                     Contains("## Harness overhead (⏱ wall time)") &&
+                     Contains("## Timing reproducibility (⏱ wall time)") &&
+                     Contains("#### Error against run time (⏱ wall time)") &&
+                     Contains("work-precision (⏱ wall time)"));
   for (const EngineEvaluation& ev : in.scenes[0].engines)
     for (const StepEvaluation& st : ev.sweep) CHECK(st.timing);
   if (has_gnuplot()) CHECK(fs::exists(dir.path / "throw-work-precision.svg"));
