@@ -198,3 +198,20 @@ TEST_CASE("the process default decides where a run without an explicit choice go
   CHECK(runs_isolated({.isolation = Isolation::child_process}));
   CHECK_FALSE(runs_isolated({}));
 }
+
+// The cost of isolation, for the README (hidden: run with `dropcheck_tests "[.isolation-cost]"`).
+TEST_CASE("isolation cost per run: fork, pipe transfer and reaping", "[.isolation-cost]") {
+  const Scene scene = load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/free_fall.toml");
+  for (const Scene& s : {ten_steps(), scene}) {
+    double secs[2] = {0, 0};
+    for (int mode = 0; mode < 2; ++mode) {
+      const RunOptions o{.isolation = mode ? Isolation::child_process : Isolation::in_process};
+      const auto start = std::chrono::steady_clock::now();
+      for (int i = 0; i < 200; ++i) run_scene(*make_engine("ours-f64"), s, s.timestep.seconds, o);
+      secs[mode] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / 200;
+    }
+    std::printf("%s (%lld steps): in process %.1f us, isolated %.1f us, cost %.1f us per run\n",
+                s.name.c_str(), static_cast<long long>(step_count(s, s.timestep.seconds)), secs[0] * 1e6,
+                secs[1] * 1e6, (secs[1] - secs[0]) * 1e6);
+  }
+}
