@@ -1,7 +1,10 @@
 #include <iostream>
 
 #include "cli.hpp"
+#include "harness/core/isolated_run.hpp"
 
 int main(int argc, char** argv) {
+  // Every engine run in its own process: an engine's crash or hang is that run's result.
+  dropcheck::set_default_isolation(dropcheck::Isolation::child_process);
   return dropcheck::cli_main({argv + 1, argv + argc}, std::cout, std::cerr);
 }

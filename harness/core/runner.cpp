@@ -2,10 +2,14 @@
 
 #include <bit>
 #include <chrono>
+#include <new>
+#include <optional>
 #include <string>
 #include <variant>
 
 #include "harness/core/forces.hpp"
+#include "harness/core/isolated_run.hpp"
+#include "harness/core/run_limits.hpp"
 
 namespace dropcheck {
 namespace {
@@ -53,10 +57,12 @@ Trajectory empty_trajectory(const Engine& engine, const Scene& scene, double h, 
 }
 
 // Appends a sample: one copy of the states (a memmove into the reserved space; a slot read into
-// directly would first have to be zeroed, which costs a second pass over memory).
+// directly would first have to be zeroed, which costs a second pass over memory). States first: if
+// either allocation fails, samples() never counts a row that was not stored (recorded before states
+// once let an out-of-memory run print unset rows, zeros, as final states).
 void record(Trajectory& t, std::int64_t step, std::span<const BodyState> states) {
-  t.recorded.push_back(step);
   t.states.insert(t.states.end(), states.begin(), states.end());
+  t.recorded.push_back(step);
 }
 
 // Names the first body with a NaN/Inf state and ends the run there.
@@ -94,6 +100,13 @@ void step_loop(Engine& engine, const Scene& scene, Trajectory& t, std::int64_t e
 }  // namespace
 
 Trajectory run_scene(Engine& engine, const Scene& scene, double h, const RunOptions& options) {
+  if (std::optional<Trajectory> refused = refuse_run(engine.info(), scene, h, options)) return *refused;
+  if (runs_isolated(options)) return run_isolated(engine, scene, h, options);
+  return run_scene_in_process(engine, scene, h, options);
+}
+
+Trajectory run_scene_in_process(Engine& engine, const Scene& scene, double h,
+                                const RunOptions& options) {
   const std::int64_t every = options.record_every < 1 ? 1 : options.record_every;
   Trajectory t = empty_trajectory(engine, scene, h, every);
   std::vector<BodyState> states(scene.bodies.size());
@@ -105,6 +118,10 @@ Trajectory run_scene(Engine& engine, const Scene& scene, double h, const RunOpti
     record(t, 0, states);
     start = std::chrono::steady_clock::now();  // time the stepping loop, not the setup
     step_loop(engine, scene, t, every, states, n);
+  } catch (const std::bad_alloc&) {
+    t.status = RunStatus::out_of_memory;
+    t.failed_step = n;
+    t.failure = "allocation failed at step " + std::to_string(n);
   } catch (const std::exception& e) {
     t.status = RunStatus::engine_error;
     t.failed_step = n;

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <toml++/toml.h>
 
+#include "harness/core/bounded_read.hpp"
 #include "harness/core/timestep.hpp"
 
 namespace dropcheck {
@@ -285,14 +286,11 @@ Scene parse_scene(const std::string& text, const std::string& path) {
 }
 
 Scene load_scene(const std::string& path) {
-  // A directory opens as a stream on Linux and then reads as empty text: refuse it by name.
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError(path, 0, "", "cannot read the file: it is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "", "cannot read the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_scene(text.str(), path);
+  return parse_scene(read_scene_text(path), path);
+}
+
+std::string read_scene_text(const std::string& path) {
+  return read_regular_file(path, kMaxSceneBytes, "1 MiB, for a scene");
 }
 
 }  // namespace dropcheck

@@ -13,6 +13,10 @@ enum class RunStatus {
   ok,            // ran every step
   non_finite,    // a position or velocity became NaN or Inf (recorded up to the step before)
   engine_error,  // the engine threw or reported an error
+  out_of_memory, // an allocation failed (std::bad_alloc); samples up to then are kept
+  crashed,       // the isolated engine process died (signal or exit); no samples
+  timed_out,     // the isolated engine process exceeded the wall-clock limit and was killed
+  refused,       // not started: the run exceeds a limit (harness/core/run_limits.hpp)
 };
 
 struct Trajectory {
@@ -40,5 +44,12 @@ struct Trajectory {
 };
 
 const char* to_string(RunStatus status);
+
+// A trajectory with no samples yet: the names, h and step count of `scene` run on `engine`.
+Trajectory unstarted_trajectory(const std::string& engine, const Scene& scene, double h);
+
+// The same, ended before it began with `status` and `failure` (failed_step = `step`).
+Trajectory failed_trajectory(const std::string& engine, const Scene& scene, double h, RunStatus status,
+                             const std::string& failure, std::int64_t step = 0);
 
 }  // namespace dropcheck

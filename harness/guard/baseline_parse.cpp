@@ -95,6 +95,9 @@ struct Parser {
   }
 
   void bodies(const std::string& rest) {
+    // A second list would change the body count of samples already read (found by fuzzing:
+    // baseline_to_text then read past the stored states).
+    if (!b.samples.body_names.empty()) fail("bodies", "a second 'bodies' line");
     std::istringstream in(rest);
     std::string name;
     while (in >> name) b.samples.body_names.push_back(name);
@@ -152,6 +155,8 @@ struct Parser {
     if (!b.skipped.empty()) return;
     if (b.hash.empty() || b.samples.recorded.empty()) fail("", "no 'hash' or no samples");
     if (next_body != 0) fail("sample", "the last step does not list every body");
+    if (b.samples.states.size() != b.samples.recorded.size() * b.samples.body_names.size())
+      fail("sample", "the samples do not list every body at every step");
     b.samples.engine = b.engine;
     b.samples.scene = b.scene;
     b.samples.h = b.dt.seconds;

@@ -29,11 +29,33 @@ bool series_drawable(const PlotSpec& s, const PlotSeries& line) {
   return false;
 }
 
-// A string in gnuplot single quotes, where a quote is written twice.
+// A string in gnuplot single quotes, where a quote is written twice. Single quotes expand neither
+// backticks nor escapes; plot_text() has already removed the line breaks that would end the command.
 std::string quoted(const std::string& text) {
   std::string out = "'";
-  for (char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
+  for (char c : plot_text(text)) out += c == '\'' ? std::string("''") : std::string(1, c);
   return out + "'";
+}
+
+// Length in bytes of the valid UTF-8 sequence starting at s[i], or 0 when it is not one
+// (overlong forms, surrogates and code points above U+10FFFF are invalid too).
+std::size_t utf8_length(const std::string& s, std::size_t i) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
+  const unsigned char c = byte(i);
+  std::size_t n = 0;
+  unsigned min = 0, cp = 0;
+  if (c < 0x80) return 1;
+  if ((c & 0xE0) == 0xC0) n = 2, min = 0x80, cp = c & 0x1F;
+  else if ((c & 0xF0) == 0xE0) n = 3, min = 0x800, cp = c & 0x0F;
+  else if ((c & 0xF8) == 0xF0) n = 4, min = 0x10000, cp = c & 0x07;
+  else return 0;
+  if (i + n > s.size()) return 0;
+  for (std::size_t k = 1; k < n; ++k) {
+    if ((byte(i + k) & 0xC0) != 0x80) return 0;
+    cp = (cp << 6) | (byte(i + k) & 0x3F);
+  }
+  if (cp < min || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return 0;
+  return n;
 }
 
 // A string for the shell in single quotes ('\'' closes, escapes and reopens).
@@ -95,7 +117,35 @@ std::string read_text(const std::filesystem::path& p) {
   return s.str();
 }
 
+// A point label inside the data file's double quotes: plot_text() without the double quote, which
+// would end the field (data files are never evaluated, so backticks there are plain text).
+std::string data_label(const std::string& label) {
+  std::string out = plot_text(label);
+  for (char& c : out)
+    if (c == '"') c = '\'';
+  return out;
+}
+
 }  // namespace
+
+std::string plot_text(const std::string& text) {
+  std::string out;
+  std::size_t chars = 0;
+  for (std::size_t i = 0; i < text.size();) {
+    if (chars == kPlotTextMax) {
+      out += "...";
+      break;
+    }
+    const std::size_t n = utf8_length(text, i);
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (n == 0) out += "?";                             // a byte that is not UTF-8
+    else if (c < 0x20 || c == 0x7F) out += " ";         // line breaks, NUL, other controls
+    else out.append(text, i, n);
+    i += n ? n : 1;
+    ++chars;
+  }
+  return out;
+}
 
 bool drawable(const PlotSpec& spec) {
   for (const PlotSeries& line : spec.series)
@@ -108,12 +158,12 @@ std::string gnuplot_data(const PlotSpec& spec) {
   char row[160];
   for (const PlotSeries& line : spec.series) {
     if (!series_drawable(spec, line)) continue;
-    s << "# " << line.title << "\n";
+    s << "# " << plot_text(line.title) << "\n";
     for (std::size_t i = 0; i < line.x.size(); ++i) {
       if (!point_ok(spec, line.x[i], line.y[i])) continue;
       std::snprintf(row, sizeof row, "%.9g %.9g", line.x[i], line.y[i]);
       s << row;
-      if (!line.labels.empty()) s << " \"" << line.labels[i] << "\"";
+      if (!line.labels.empty()) s << " \"" << data_label(line.labels[i]) << "\"";
       s << "\n";
     }
     s << "\n\n";

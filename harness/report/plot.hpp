@@ -4,6 +4,7 @@
 // formats, no dates), so the same data give byte-identical SVGs.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,15 @@ struct PlotSpec {
 
 // The terminal every plot uses, for the report's note on how plots are made.
 inline constexpr const char* kPlotTerminal = "set terminal svg size 800,480 dynamic font 'sans,11'";
+
+// Longest user text (characters) a plot shows; longer text is cut and ends in "...".
+inline constexpr std::size_t kPlotTextMax = 200;
+
+// User text (scene, body and engine names, step labels) made safe to show in a plot: every control
+// character (line breaks, NUL, ...) becomes a space, each byte that is not valid UTF-8 becomes '?',
+// and text longer than kPlotTextMax characters is cut. With gnuplot's single quotes (backticks and
+// escapes are not expanded there) no character of the result can end a string or start a command.
+std::string plot_text(const std::string& text);
 
 // The data file: one block per drawable series (two blank lines apart), rows "x y [\"label\"]" in
 // %.9g; points that cannot be drawn (non-finite, or <= 0 on a log axis) are left out.

@@ -54,6 +54,9 @@ void add_status(const Trajectory& run, std::vector<Failure>& out) {
                           run.failure.c_str())});
   else if (run.status == RunStatus::non_finite)
     out.push_back({FailureMode::non_finite, "", run.failed_step, run.failure});
+  else if (run.status != RunStatus::ok)  // crashed, timed out, refused, out of memory
+    out.push_back({FailureMode::engine_error, "", run.failed_step,
+                   std::string(to_string(run.status)) + ": " + run.failure});
 }
 
 // The sample at or after `step` (the last one if none).
