@@ -90,8 +90,7 @@ Baseline read_baseline(const std::string& path) {
   const std::string t = read_regular_file(path, kMaxBaselineBytes, "512 MiB, for a baseline");
   // A control byte (NUL, ESC, ...) never occurs in a baseline: quote no raw bytes back.
   if (std::any_of(t.begin(), t.end(), [](char c) {
-        return (static_cast<unsigned char>(c) < 0x20 && c != '
-' && c != '' && c != '	') || c == 0x7f;
+        return (static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\r' && c != '\t') || c == 0x7f;
       }))
     throw InputError(path, 0, "", "is a binary file, not a baseline (baselines are text written by `dropcheck bless`)");
   return parse_baseline(t, path);
