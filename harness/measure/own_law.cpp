@@ -38,8 +38,11 @@ OwnLawTolerance tolerance_for(Scalar scalar, bool copied, const Trajectory& law)
   const Scales s = scales(law);
   const double ulps = copied ? tolerance::kCopiedUlps
                              : tolerance::kStepUlps * static_cast<double>(std::max<std::int64_t>(law.steps, 1));
-  OwnLawTolerance t{ulps * epsilon(scalar) * s.x, ulps * epsilon(scalar) * s.v, {}};
-  t.rule = g3(ulps) + " ulps of " + g3(s.x) + " m (" + to_string(scalar) +
+  // One scale for positions and velocities: the largest magnitude the run carries (a body at rest
+  // still rounds its position, a body near the origin its velocity).
+  const double scale = std::max(s.x, s.v);
+  OwnLawTolerance t{ulps * epsilon(scalar) * scale, ulps * epsilon(scalar) * scale, {}};
+  t.rule = g3(ulps) + " ulps of " + g3(scale) + " (" + to_string(scalar) +
            (copied ? ", operation order copied)" : ", long-double law: " + g3(tolerance::kStepUlps) + " ulp per step)");
   return t;
 }

@@ -25,7 +25,7 @@ struct OwnLawTolerance {
 
 // THE answer to "what is the own-law tolerance of engine E at step h": from E's arithmetic and its
 // law's trajectory at h (`own_law` = predict_own_arithmetic(info, scene, h)). Copied order:
-// tolerance::kCopiedUlps ulps of the largest |x| (|v|); otherwise tolerance::kStepUlps ulps of it
+// tolerance::kCopiedUlps ulps of the largest |x| or |v|; otherwise tolerance::kStepUlps ulps of it
 // per step.
 OwnLawTolerance own_law_tolerance(const EngineInfo& info, const Trajectory& own_law);
 
