@@ -50,7 +50,8 @@ std::string departure_cause(const Baseline& b, const SweepPoint& p) {
   }() : "order not measured (no closed form)";
   if (p.fits)
     return "; the run follows another member of the law family instead: " + law_family_name(*p.fits) +
-           " (" + to_string(*p.fits) + "), a consistent scheme (" + orders +
+           " (" + to_string(*p.fits) + "), a consistent" +
+           (o && o->first_order ? ", first-order" : "") + " scheme (" + orders +
            "). If intended, declare that law in the engine's adapter (EngineInfo::law)";
   if (o && !o->consistent) {
     double worst = INFINITY;
