@@ -15,6 +15,7 @@ const char* to_string(DampingForm form) {
   switch (form) {
     case DampingForm::phi_multiply: return "phi multiply";
     case DampingForm::pade: return "Pade 1/(1 + h*c)";
+    case DampingForm::per_second_power: return "(1 - d)^h per second";
     case DampingForm::other: break;
   }
   return "not copied";

@@ -26,6 +26,8 @@ enum class DampingForm {
   other,         // not copied: the harness predicts the law in long double only
   phi_multiply,  // ours: v += g*h; v += (F/m)*h; v *= phi (phi = exp(-k*h) rounded to the scalar)
   pade,          // Box2D 2.4: v += (h*(1/m))*(m*g + F); v *= 1/(1 + h*c), c = expm1(k*h)/h rounded
+  per_second_power,  // Bullet: v *= (1 - d)^h with d = 1 - exp(-k) rounded (its digits lost in
+                     // 1 - d are copied; the rest of its order is not: per-step ulps tolerance)
 };
 
 struct EngineInfo {

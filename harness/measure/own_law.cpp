@@ -50,7 +50,7 @@ OwnLawTolerance tolerance_for(Scalar scalar, bool copied, const Trajectory& law)
 }  // namespace
 
 OwnLawTolerance own_law_tolerance(const EngineInfo& info, const Trajectory& own_law) {
-  return tolerance_for(info.scalar, arithmetic_copied(info), own_law);
+  return tolerance_for(info.scalar, order_copied(info), own_law);
 }
 
 Trajectory before_step(const Trajectory& t, std::int64_t n) {

@@ -31,6 +31,10 @@ StepConstants<T> constants(DampingForm form, const Scene& scene, double h) {
   StepConstants<T> c{static_cast<T>(h), T(1), scene.world.gravity.cast<T>()};
   if (form == DampingForm::phi_multiply) {
     c.damp = static_cast<T>(decay_per_step(scene, h));
+  } else if (form == DampingForm::per_second_power) {
+    // Bullet: d = 1 - exp(-k) rounded to its scalar, then btRigidBody::applyDamping's (1 - d)^h.
+    const T d = static_cast<T>(1.0 - std::exp(-scene.world.damping_rate));
+    c.damp = std::pow(T(1) - d, c.h);
   } else {
     // Box2D: c = expm1(k*h)/h in double, rounded to float; Box2D itself forms 1/(1 + h*c).
     const T rate = static_cast<T>(std::expm1(scene.world.damping_rate * h) / h);
@@ -45,6 +49,10 @@ void add_forces(DampingForm form, const StepConstants<T>& c, const V3<T>& f, Sta
   if (form == DampingForm::phi_multiply) {
     s.v = s.v + c.g * c.h;           // ApplyGravity
     s.v = s.v + (f / s.m) * c.h;     // IntegrateLinearForce
+    return;
+  }
+  if (form == DampingForm::per_second_power) {
+    s.v = s.v + (c.g + f / s.m) * c.h;
     return;
   }
   const T inv_mass = T(1) / s.m;                 // b2Body::SetMassData: m_invMass = 1/m
@@ -104,6 +112,10 @@ Trajectory iterate(const EngineInfo& info, const Scene& scene, double h, const R
 }  // namespace
 
 bool arithmetic_copied(const EngineInfo& info) { return info.arithmetic != DampingForm::other; }
+
+bool order_copied(const EngineInfo& info) {
+  return info.arithmetic == DampingForm::phi_multiply || info.arithmetic == DampingForm::pade;
+}
 
 Trajectory predict_own_arithmetic(const EngineInfo& info, const Scene& scene, double h,
                                   const RunOptions& options) {

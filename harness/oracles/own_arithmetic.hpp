@@ -7,7 +7,8 @@
 //   phi_multiply (ours, ours/physics.hpp):      v = v + g*h; v = v + (F/m)*h; v = v*phi; x = x + v*h
 //   pade (Box2D 2.4.1, b2Island::Solve):        v = v + (h*(1/m))*((1*m)*g + F);
 //                                               v = v*(1/(1 + h*c)); x = x + h*v
-// with phi = exp(-k*h) and c = expm1(k*h)/h computed in double and rounded once to the scalar, as
+//   per_second_power (Bullet, double):         v = v*(1 - d)^h (before forces); v = v + (g + F/m)*h
+// with phi = exp(-k*h), c = expm1(k*h)/h and d = 1 - exp(-k) computed in double and rounded once to the scalar, as
 // the adapters do. The damping factor sits where the engine's Law puts it. Free flight only.
 #pragma once
 
@@ -17,8 +18,11 @@
 
 namespace dropcheck {
 
-// True when the harness copies `info`'s operation order (arithmetic != other).
+// True when the harness predicts `info` in its own arithmetic (arithmetic != other).
 bool arithmetic_copied(const EngineInfo& info);
+
+// True when that prediction copies the engine's whole operation order, to the bit (ours, Box2D).
+bool order_copied(const EngineInfo& info);
 
 // The engine's law in its own arithmetic when copied; otherwise the long-double law
 // (predict_discrete), which is then the closest prediction the harness has.
