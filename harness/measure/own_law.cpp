@@ -43,7 +43,7 @@ OwnLawTolerance tolerance_for(Scalar scalar, bool copied, const Trajectory& law)
   const double scale = std::max(s.x, s.v);
   OwnLawTolerance t{ulps * epsilon(scalar) * scale, ulps * epsilon(scalar) * scale, {}};
   t.rule = g3(ulps) + " ulps of " + g3(scale) + " (" + to_string(scalar) +
-           (copied ? ", operation order copied)" : ", long-double law: " + g3(tolerance::kStepUlps) + " ulp per step)");
+           (copied ? ", operation order copied)" : ", order not copied: " + g3(tolerance::kStepUlps) + " ulps per step)");
   return t;
 }
 
