@@ -36,36 +36,6 @@ bool measuring() {
 // 1.1e-13 m/s (seed_part3 at 1/240); at 1/60 2.1e-14 m, at 1/30 1.4e-14 m.
 constexpr double kLawTolerance = 1e-9;
 
-// The largest |engine - law| component of any body at any sample, and where it happened.
-struct Worst {
-  double dx = 0.0, dv = 0.0;
-  std::string where = "nowhere";
-};
-
-std::string describe(const Trajectory& run, const Trajectory& law, std::size_t s, std::size_t b) {
-  std::ostringstream m;
-  m.precision(17);
-  const BodyState &e = run.at(s, b), &l = law.at(s, b);
-  m << "scene " << run.scene << ", engine " << run.engine << ", body " << run.body_names[b]
-    << ", step " << run.recorded[s] << " (h = " << run.h << "): engine x = ("
-    << e.position.transpose() << ") v = (" << e.velocity.transpose() << "), law x = ("
-    << l.position.transpose() << ") v = (" << l.velocity.transpose() << ")";
-  return m.str();
-}
-
-Worst worst_vs_law(const Trajectory& run, const Trajectory& law) {
-  Worst w;
-  for (std::size_t s = 0; s < run.samples(); ++s) {
-    for (std::size_t b = 0; b < run.bodies(); ++b) {
-      const double dx = (run.at(s, b).position - law.at(s, b).position).cwiseAbs().maxCoeff();
-      const double dv = (run.at(s, b).velocity - law.at(s, b).velocity).cwiseAbs().maxCoeff();
-      if (std::max(dx, dv) > std::max(w.dx, w.dv)) w.where = describe(run, law, s, b);
-      w.dx = std::max(w.dx, dx);
-      w.dv = std::max(w.dv, dv);
-    }
-  }
-  return w;
-}
 
 // Wraps the real adapter and misreports one thing, as a careless adapter would.
 class MisreportingEngine final : public Engine {
