@@ -32,9 +32,6 @@ bool measuring() {
   return std::getenv("DROPCHECK_MEASURE") != nullptr;
 }
 
-// Rounding of a run against its own law (m, m/s); ODE is double. Measured worst 1.8e-13 m and
-// 1.1e-13 m/s (seed_part3 at 1/240); at 1/60 2.1e-14 m, at 1/30 1.4e-14 m.
-constexpr double kLawTolerance = 1e-9;
 
 
 // Wraps the real adapter and misreports one thing, as a careless adapter would.
