@@ -96,6 +96,7 @@ EngineInfo Box2dEngine::info() const {
   i.scalar = Scalar::f32;
   i.capabilities = {.contacts = true, .planar_only = true};
   i.law = DampingOrder::AfterForces;
+  i.arithmetic = DampingForm::pade;  // b2Island::Solve's float order, copied by own_arithmetic.cpp
   i.damping_mapping = "SetLinearDamping(c), c = (exp(k*h) - 1)/h; v = (v + a*h)/(1 + h*c)";
   i.contact_settings =
       "polygon boxes (0.01 m skin, 0.005 m slop), restitution 0, friction 0.5 (sqrt mix), "

@@ -41,11 +41,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "adapters.hpp"
+#include "harness/measure/tolerances.hpp"
 
 namespace dropcheck {
 namespace {
@@ -100,14 +102,28 @@ btScalar damping_fraction(double k) {
   return btScalar(1.0 - std::exp(-k));
 }
 
-// Why Bullet cannot represent damping rate k (1 - d rounds to 0 in btScalar); empty when it can.
+// Digits of exp(-k) that survive in Bullet's 1 - d: d = 1 - exp(-k) is stored with an absolute
+// error of up to eps/2 (d < 1), so 1 - d = exp(-k) carries a relative error up to
+// (eps/2)/exp(-k), i.e. log10(2*exp(-k)/eps) digits. Double: 16 - 0.434*k digits, so k = 36.7 keeps
+// none (d rounds to 1) and k = 30 only 2.9 (measured: 9.2 um off exp(-k*h) over free_fall_drag).
+double damping_digits(double k) {
+  const double eps = std::numeric_limits<btScalar>::epsilon();
+  return std::log10(2.0 / eps) - k / std::log(10.0);
+}
+
+// Why Bullet cannot represent damping rate k to tolerance::kMinParameterDigits digits; empty when it
+// can. Double: k <= 22.9 1/s (float: about 2.2 1/s).
 std::string damping_problem(double k) {
-  if (btScalar(1) - damping_fraction(k) > btScalar(0)) return {};
-  char why[160];
+  const double digits = damping_digits(k);
+  if (digits >= tolerance::kMinParameterDigits) return {};
+  const double k_max = (std::log10(2.0 / std::numeric_limits<btScalar>::epsilon()) -
+                        tolerance::kMinParameterDigits) * std::log(10.0);
+  char why[320];
   std::snprintf(why, sizeof why,
-                "damping rate k = %g 1/s: Bullet's per-second damping d = 1 - exp(-k) rounds to 1 "
-                "in %s, which would zero every velocity each step",
-                k, kPrecision);
+                "engine limit: damping rate k = %g 1/s: Bullet's per-second damping keeps 1 - d = "
+                "exp(-k) to %.1f digits in %s (%g required: k <= %.1f 1/s), so its decay per step "
+                "would not be exp(-k*h)",
+                k, std::max(digits, 0.0), kPrecision, tolerance::kMinParameterDigits, k_max);
   return why;
 }
 
@@ -120,6 +136,7 @@ class BulletEngine final : public Engine {
     i.scalar = kScalar;
     i.capabilities = {.contacts = true, .planar_only = false};
     i.law = DampingOrder::BeforeForces;
+    i.arithmetic = DampingForm::per_second_power;  // its d = 1 - exp(-k), copied by own_arithmetic.cpp
     i.damping_mapping = "setDamping(d = 1 - exp(-k), 0); v *= (1-d)^h";
     i.contact_settings =
         "btBoxShape per body (margin 0.04 inside), restitution 0, friction sqrt(0.5) each "

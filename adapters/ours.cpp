@@ -25,6 +25,7 @@ class OursEngine final : public Engine {
     i.scalar = sizeof(T) == 4 ? Scalar::f32 : Scalar::f64;
     i.capabilities = {.contacts = false, .planar_only = false};
     i.law = DampingOrder::AfterForces;
+    i.arithmetic = DampingForm::phi_multiply;  // ours/physics.hpp, copied by own_arithmetic.cpp
     i.damping_mapping = "linearDrag f = exp(-k*h) per step";
     return i;
   }

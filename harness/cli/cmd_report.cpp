@@ -137,7 +137,7 @@ int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ost
   if (!files.extreme.empty()) {
     err << "[" << total << "/" << total << "] stability: " << files.extreme.size()
         << " extreme scenes ...\n";
-    in.stability = stability_report_section(files.extreme, err);
+    in.stability = stability_report_section(files.extreme, slots, err);
   }
 
   StagingDir staging(out_dir);

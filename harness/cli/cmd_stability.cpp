@@ -7,6 +7,7 @@
 #include "harness/core/atomic_file.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/core/output_plan.hpp"
+#include "harness/core/registry.hpp"
 #include "harness/core/scene_loader.hpp"
 #include "harness/stability/stability_study.hpp"
 #include "selection.hpp"
@@ -29,11 +30,13 @@ int cmd_stability(const std::vector<std::string>& argv, std::ostream& out, std::
   if (args.has("--json")) plan.write_file("--json", args.value("--json"));
   plan.check();
   const Scene scene = load_scene(args.positional[0]);
-  std::vector<std::string> names;
-  for (const SelectedEngine& e : select_engines(args.values("--engine"), scene))
-    names.push_back(e.name);
+  std::vector<EngineSlot> slots;
+  for (const SelectedEngine& e : select_engines(args.values("--engine"), scene)) {
+    const std::string name = e.name, why = engine_unavailable_reason(name);
+    slots.push_back({name, why.empty() ? EngineFactory([name] { return make_engine(name); }) : EngineFactory(), why});
+  }
   StudyOptions options;
-  const SceneStability study = study_scene(scene, names, options, &err);
+  const SceneStability study = study_scene(scene, slots, options, &err);
   out << stability_to_text(study);
   if (args.has("--json"))
     write_file_atomic(args.value("--json"), stability_to_json(study, options.search_options));

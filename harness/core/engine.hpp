@@ -20,12 +20,23 @@ struct Capabilities {
   bool planar_only = false;   // 2-D engine: runs x-y plane scenes only
 };
 
+// How an engine rounds one step of its law, so that the harness can repeat that step in the same
+// arithmetic and operation order (harness/oracles/own_arithmetic.hpp). Declared by each adapter.
+enum class DampingForm {
+  other,         // not copied: the harness predicts the law in long double only
+  phi_multiply,  // ours: v += g*h; v += (F/m)*h; v *= phi (phi = exp(-k*h) rounded to the scalar)
+  pade,          // Box2D 2.4: v += (h*(1/m))*(m*g + F); v *= 1/(1 + h*c), c = expm1(k*h)/h rounded
+  per_second_power,  // Bullet: v *= (1 - d)^h with d = 1 - exp(-k) rounded (its digits lost in
+                     // 1 - d are copied; the rest of its order is not: per-step ulps tolerance)
+};
+
 struct EngineInfo {
   std::string name;      // registry name: ours, ours-f64, bullet, ode, box2d, mujoco
   std::string version;   // the engine library's version
   Scalar scalar = Scalar::f64;
   Capabilities capabilities;
   Law law;  // its member of the discrete-law family (harness/core/law.hpp)
+  DampingForm arithmetic = DampingForm::other;  // its operation order, when the harness copies it
   std::string damping_mapping;  // how k becomes the engine's parameter, e.g. "d = 1 - exp(-k)"
   std::string contact_settings; // contact model and parameters used when contacts = true
   // Landing on a static floor: where the centre of a resting box sits relative to the geometric
@@ -75,5 +86,7 @@ struct EngineError : std::runtime_error {
 using EngineFactory = std::function<std::unique_ptr<Engine>()>;
 
 const char* to_string(Scalar scalar);
+// "phi multiply", "Pade 1/(1 + h*c)", "not copied".
+const char* to_string(DampingForm form);
 
 }  // namespace dropcheck

@@ -4,14 +4,16 @@
 
 #include <cmath>
 
-#include "harness/oracles/analytic.hpp"
-#include "harness/measure/attribution.hpp"
 #include "harness/core/build_id.hpp"
-#include "harness/oracles/discrete_law.hpp"
-#include "harness/measure/metrics.hpp"
 #include "harness/core/runner.hpp"
-#include "harness/measure/timing.hpp"
 #include "harness/core/trajectory_hash.hpp"
+#include "harness/measure/metrics.hpp"
+#include "harness/measure/own_law.hpp"
+#include "harness/measure/sweep.hpp"
+#include "harness/measure/timing.hpp"
+#include "harness/oracles/analytic.hpp"
+#include "harness/oracles/discrete_law.hpp"
+#include "harness/oracles/own_arithmetic.hpp"
 
 namespace dropcheck {
 namespace {
@@ -36,7 +38,7 @@ std::string status_text(const Trajectory& t) {
 }
 
 // Oracle 2: the engine's departure from its own discrete law, worst dynamic body, and the first
-// step at which any body leaves the rounding budget.
+// step at which any body leaves the own-law tolerance.
 void measure_law(const Scene& scene, const Trajectory& run, const Trajectory& law, double budget,
                  SweepPoint& p) {
   for (std::size_t b = 0; b < run.bodies(); ++b) {
@@ -64,7 +66,12 @@ SweepPoint measure(const Scene& scene, const EngineInfo& info, const Trajectory&
     p.analytic_max_dx = e.max_dx;
     p.analytic_final_dx = e.final_dx;
   }
-  measure_law(scene, run, predict_discrete(info.law, scene, dt.seconds), rounding_budget(info.scalar), p);
+  const Trajectory own = predict_own_arithmetic(info, scene, dt.seconds);
+  const OwnLawVerdict verdict = judge_own_law(info, run, own, predict_discrete(info.law, scene, dt.seconds));
+  measure_law(scene, run, own, verdict.tolerance.x, p);
+  if (scene.world.contacts) return p;  // the laws know no contacts: no verdict
+  p.own_law = verdict;
+  if (!verdict.follows()) p.fits = fitting_law(info, scene, run);
   return p;
 }
 
@@ -95,11 +102,11 @@ Baseline make_baseline(const Scene& scene, const EngineFactory& make, const Base
   if (!out.skipped.empty()) return out;
 
   bool default_in_sweep = false;
-  for (const Timestep& dt : scene.timesteps) {
+  for (const Timestep& dt : scene_sweep(scene)) {
     const Trajectory run = run_scene(*make(), scene, dt.seconds);
     out.sweep.push_back(measure(scene, info, run, dt));
     if (options.timing) add_timing(scene, make, info.name, out.sweep.back());
-    if (dt.seconds != scene.timestep.seconds) continue;
+    if (!same_step(dt.seconds, scene.timestep.seconds)) continue;
     default_in_sweep = true;
     out.status = status_text(run);
     out.hash = trajectory_hash_hex(run);

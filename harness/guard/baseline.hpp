@@ -20,11 +20,13 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "harness/core/engine.hpp"
 #include "harness/core/trajectory.hpp"
+#include "harness/measure/own_law.hpp"
 
 namespace dropcheck {
 
@@ -38,9 +40,14 @@ struct SweepPoint {
   std::string status = "ok";            // to_string(RunStatus) at this h (one word)
   double analytic_max_dx = kNoValue;    // max over steps and bodies of |x - oracle 1| (m); NaN: none
   double analytic_final_dx = kNoValue;  // the same at the last step (m)
-  double law_max_dx = 0.0;              // max over steps and bodies of |x - oracle 2| (m)
+  double law_max_dx = 0.0;              // max over steps and bodies of |x - oracle 2| (m), oracle 2
+                                        // in the engine's own arithmetic (own_arithmetic.hpp)
   std::string law_worst_body;           // the body with that maximum
-  std::int64_t law_first_over = -1;     // first step where it exceeds the rounding budget; -1 never
+  std::int64_t law_first_over = -1;     // first step where it exceeds the own-law tolerance; -1 never
+  // Judged on a fresh run only (not in the file): the own-law verdict at this h, and the member of
+  // the law family the run follows instead when it leaves its declared law.
+  std::optional<OwnLawVerdict> own_law;
+  std::optional<Law> fits;
   double wall_min = kNoValue;           // wall seconds per simulated second (--timing only)
   double wall_median = kNoValue;
   int replicas = 0;                     // copies of the scene in one timed run (--timing only)
@@ -60,7 +67,8 @@ struct Baseline {
   std::string status = "ok";  // run status at dt, with the failure when not ok
   std::string hash;        // trajectory_hash_hex of the run at dt, every step recorded
   Trajectory samples;      // the run at dt, every record_every-th step and the last
-  std::vector<SweepPoint> sweep;  // the scene's timesteps, in the scene's order
+  std::vector<SweepPoint> sweep;  // scene_sweep(scene) (harness/measure/sweep.hpp): largest step first
+  std::string failed_tiers;  // written as a "# FAILED ..." comment by `bless --out` (not parsed)
 };
 
 // How make_baseline samples and whether it times.

@@ -61,6 +61,7 @@ std::string baseline_to_text(const Baseline& b) {
   out += "dt " + b.dt.text + " " + exact(b.dt.seconds) + "\nsteps " + std::to_string(b.samples.steps) +
          "\nrecord_every " + std::to_string(b.record_every) + "\nstatus " + b.status + "\nhash " +
          b.hash + "\n";
+  if (!b.failed_tiers.empty()) out += "# FAILED " + b.failed_tiers + "\n";
   out += "# sweep: |dx| against oracle 1 (analytic) and oracle 2 (own discrete law), worst body, m\n";
   for (const SweepPoint& p : b.sweep) out += sweep_line(p);
   for (const SweepPoint& p : b.sweep)

@@ -1,5 +1,6 @@
-// Blessing: turning fresh runs into the golden baselines (or any result set), but only when they
-// pass the oracle checks. A baseline that is wrong physics must never become the truth.
+// Blessing: turning fresh runs into the golden baselines, but only when they pass the oracle checks
+// (a baseline that is wrong physics must never become the truth), or into any other result set,
+// always, with failed tiers marked in the files, so that `dropcheck diff` can compare a new scheme.
 #pragma once
 
 #include <string>
@@ -18,11 +19,15 @@ struct BlessOptions {
   std::string out_dir = "tests/baselines";  // the result set to (re)write
   std::string commit = "unknown commit";    // recorded in each file's provenance line
   BaselineOptions baseline;                 // sampling; --timing
+  bool refuse_failed = false;               // refuse as for the golden set, wherever out_dir is
 };
+
+// True when `dir` is the golden set, tests/baselines under the working directory.
+bool is_golden_set(const std::string& dir);
 
 // What bless did, for the command to print.
 struct BlessOutcome {
-  std::vector<std::string> refused;  // each failed oracle check (tier 3); nothing written if any
+  std::vector<std::string> refused;  // golden set: each failed oracle check (tier 3); nothing written
   std::vector<std::string> lines;    // per file: "new", "updated" or "unchanged", path and hash
 };
 
@@ -36,8 +41,9 @@ std::string baseline_path(const std::string& dir, const std::string& scene, cons
 std::vector<std::string> baseline_paths(const std::vector<Scene>& scenes,
                                         const std::vector<std::string>& engines, const std::string& dir);
 
-// Makes the baseline of every scene on every engine, checks each with check_physics, and only if
-// all pass writes them (atomically, file by file) to out_dir. A file whose numbers are unchanged is
+// Makes the baseline of every scene on every engine and checks each with check_physics. Into the
+// golden set (or with refuse_failed) it writes only if all pass; anywhere else it writes every file,
+// a failed check recorded in it ("# FAILED physics: ...") and in its log line. A file whose numbers are unchanged is
 // left untouched (same_data), so re-blessing at another commit or from another build keeps the bytes
 // and the build key of the build that first wrote them. Throws InputError on a write error.
 BlessOutcome bless(const std::vector<Scene>& scenes, const std::vector<NamedFactory>& engines,

@@ -7,6 +7,7 @@
 #include "harness/core/runner.hpp"
 #include "harness/core/trajectory_hash.hpp"
 #include "harness/core/trajectory_io.hpp"
+#include "harness/measure/tolerances.hpp"
 
 namespace dropcheck {
 namespace {
@@ -75,15 +76,8 @@ std::string sweep_problem(const Baseline& expected, const Baseline& now, double 
 }  // namespace
 
 double regression_tolerance(Scalar scalar) {
-  // Measured, GCC 12.2 on x86_64, every shipped scene and sweep step: Debug (-O0) against the CI
-  // preset (-O2, ASan/UBSan): ours' samples max |dx| = 0, identical hashes, f32 and f64 (ours has
-  // -ffp-contract=off); errors against oracle 1 differ by up to 8.9e-16 m (throw_up: the closed
-  // form itself rounds differently at -O0 and -O2). With FMA contraction forced on (-O3 -march=native -ffp-contract=fast, a
-  // build that defeats that flag), 3 s of a thrown, damped, pushed cube moved by 1.1e-14 m (f64)
-  // and 4.8e-7 m (f32). The tolerances leave 5 and 2 orders of magnitude above that and stay below
-  // what any change of scheme does (moving the damping: 2.8e-3 m after 10 steps):
-  // f64 1e-9 m, f32 1e-4 m, the same as the rounding budgets of oracle 2 (attribution.hpp).
-  return scalar == Scalar::f32 ? 1e-4 : 1e-9;
+  // harness/measure/tolerances.hpp has the measurements behind both values.
+  return scalar == Scalar::f32 ? tolerance::kRegressionF32 : tolerance::kRegressionF64;
 }
 
 SampleDiff diff_samples(const Trajectory& before, const Trajectory& after, double tolerance) {

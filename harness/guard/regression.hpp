@@ -30,8 +30,6 @@ struct TierResult {
 // Tier 2's absolute tolerance on positions (m) and velocities (m/s) for an engine's scalar.
 double regression_tolerance(Scalar scalar);
 
-// Oracle 1's convergence check: observed order between consecutive halvings of h within this band.
-inline constexpr double kOrderLow = 0.9, kOrderHigh = 1.1;
 
 // Where two sampled trajectories of one scene and engine differ.
 struct SampleDiff {
@@ -55,8 +53,10 @@ TierResult check_bits(const Baseline& expected, const Baseline& now);
 // Tier 2: samples and sweep errors within regression_tolerance of `expected`.
 TierResult check_tolerance(const Baseline& expected, const Baseline& now);
 
-// Tier 3: `now` follows its own discrete law to rounding_budget at every h of the sweep, and its
-// error against the analytic solution shrinks at first order as h halves.
+// Tier 3: `now` (a fresh make_baseline, not a parsed file) follows its own discrete law within its
+// own-law tolerance at every h of the sweep, and its error against the analytic solution shrinks
+// at first order as h halves (harness/measure/tolerances.hpp). A departure names what the run
+// follows instead (a member of the law family) or "not consistent".
 TierResult check_physics(const Baseline& now);
 
 // Runs `scene` twice at its default step on fresh engines; identical CSV bytes and hash required.

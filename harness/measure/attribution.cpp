@@ -5,35 +5,66 @@
 #include <cstdio>
 
 namespace dropcheck {
+namespace {
 
-double rounding_budget(Scalar scalar) { return scalar == Scalar::f32 ? 1e-4 : 1e-9; }
-
-double rounding_budget(Scalar scalar, const Trajectory& law) {
-  const double eps = scalar == Scalar::f32 ? 0x1p-23 : 0x1p-52;  // spacing of numbers in [1, 2)
-  double scale = 0.0;
-  for (const BodyState& s : law.states) scale = std::max(scale, s.position.cwiseAbs().maxCoeff());
-  return std::max(rounding_budget(scalar), 0.5 * eps * scale * static_cast<double>(law.steps));
+bool departs(const OwnLawVerdict& v) {
+  return v.residual_x > v.tolerance.x || v.residual_v > v.tolerance.v;
 }
 
-Attribution attribute(const Trajectory& e, const Trajectory& le, Scalar se, const Trajectory& r,
-                      const Trajectory& lr, Scalar sr) {
+std::int64_t first_clamp(std::int64_t a, std::int64_t b) {
+  if (a < 0) return b;
+  if (b < 0) return a;
+  return std::min(a, b);
+}
+
+// "ours departs from its own law (v = ...) by 32.7 cm (tolerance 1.2e-6 m)".
+std::string departure(const OwnLawVerdict& v) {
+  return v.engine + " departs from its own law (" + v.law + ") by " + format_length(v.residual_x) +
+         " (tolerance " + format_length(v.tolerance.x) + ")";
+}
+
+std::string follows(const OwnLawVerdict& v) {
+  return v.engine + " follows its own law to " + format_length(v.residual_x);
+}
+
+}  // namespace
+
+bool Attribution::explained() const { return !departs(engine_law) && !departs(reference_law); }
+
+std::string Attribution::blamed() const {
+  std::string out;
+  for (const OwnLawVerdict* v : {&engine_law, &reference_law})
+    if (departs(*v)) out += (out.empty() ? "" : ", ") + v->engine;
+  return out;
+}
+
+Attribution attribute(const RunWithLaws& e, const RunWithLaws& r) {
   Attribution a;
-  a.engine = e.engine;
-  a.reference = r.engine;
-  a.budget = rounding_budget(se, le) + rounding_budget(sr, lr);
-  const std::size_t samples = std::min({e.samples(), r.samples(), le.samples(), lr.samples()});
+  a.engine = e.run.engine;
+  a.reference = r.run.engine;
+  a.clamped_from = first_clamp(e.run.first_clamped_step, r.run.first_clamped_step);
+  Trajectory er = e.run, rr = r.run;
+  er.first_clamped_step = rr.first_clamped_step = a.clamped_from;  // both stop at either clamp
+  a.engine_law = judge_own_law(e.info, er, e.own, e.exact);
+  a.reference_law = judge_own_law(r.info, rr, r.own, r.exact);
+  a.budget = a.engine_law.tolerance.x + a.reference_law.tolerance.x;
+  const std::size_t samples = std::min({e.run.samples(), r.run.samples(), e.own.samples(),
+                                        r.own.samples(), e.exact.samples(), r.exact.samples()});
   for (std::size_t s = 0; s < samples; ++s) {
+    if (a.clamped_from >= 0 && e.run.recorded[s] >= a.clamped_from) break;
     double final_dx = 0.0;
-    for (std::size_t b = 0; b < e.bodies(); ++b) {
-      const Vec3 diff = e.at(s, b).position - r.at(s, b).position;
-      const Vec3 law = le.at(s, b).position - lr.at(s, b).position;
+    for (std::size_t b = 0; b < e.run.bodies(); ++b) {
+      const Vec3 diff = e.run.at(s, b).position - r.run.at(s, b).position;
+      const Vec3 law = e.exact.at(s, b).position - r.exact.at(s, b).position;
+      const Vec3 own = e.own.at(s, b).position - r.own.at(s, b).position;
       a.total = std::max(a.total, diff.norm());
       a.law_part = std::max(a.law_part, law.norm());
-      a.residual = std::max(a.residual, (diff - law).norm());
+      a.precision_part = std::max(a.precision_part, (own - law).norm());
+      a.residual = std::max(a.residual, (diff - own).norm());
       final_dx = std::max(final_dx, diff.norm());
     }
     a.final_total = final_dx;
-    a.final_t = e.time(s);
+    a.final_t = e.run.time(s);
   }
   return a;
 }
@@ -54,29 +85,38 @@ std::string format_length(double m) {
 std::string Attribution::sentence() const {
   char buf[512];
   std::string why;
+  const std::string precision = "precision part " + format_length(precision_part);
   if (total == 0.0) {
     why = "identical";
-  } else if (explained() && law_part <= budget) {
-    // Same discrete law (or laws that differ by less than rounding): nothing for the laws to split.
-    std::snprintf(buf, sizeof buf, "the two discrete laws agree, so all of it is rounding (residual %s, budget %s)",
-                  format_length(residual).c_str(), format_length(budget).c_str());
+  } else if (!explained()) {
+    // Blame only the engine(s) beyond their own tolerance; say that the other follows its law.
+    std::string who;
+    for (const OwnLawVerdict* v : {&engine_law, &reference_law})
+      who += (who.empty() ? "" : "; ") + (departs(*v) ? departure(*v) : follows(*v));
+    std::snprintf(buf, sizeof buf, "UNEXPLAINED residual %s: %s; the laws explain %s, %s",
+                  format_length(residual).c_str(), who.c_str(), format_length(law_part).c_str(),
+                  precision.c_str());
     why = buf;
-  } else if (explained()) {
-    const double share = law_part >= total ? 100.0 : 100.0 * law_part / total;
-    std::snprintf(buf, sizeof buf, "%s from the two discrete laws (damping order); residual %s, within rounding",
-                  share >= 99.95 ? "all of it" : (std::to_string(static_cast<int>(share)) + "%").c_str(),
-                  format_length(residual).c_str());
+  } else if (law_part <= budget) {
+    // Same discrete law (or laws that differ by less than rounding): nothing for the laws to split.
+    std::snprintf(buf, sizeof buf, "the two discrete laws agree, so all of it is rounding (%s; residual %s, budget %s)",
+                  precision.c_str(), format_length(residual).c_str(), format_length(budget).c_str());
     why = buf;
   } else {
-    std::snprintf(buf, sizeof buf, "the laws explain %s; UNEXPLAINED residual %s (rounding allows %s)",
-                  format_length(law_part).c_str(), format_length(residual).c_str(),
-                  format_length(budget).c_str());
+    const double share = law_part >= total ? 100.0 : 100.0 * law_part / total;
+    std::snprintf(buf, sizeof buf, "%s from the two discrete laws (damping order); %s; residual %s, within rounding",
+                  share >= 99.95 ? "all of it" : (std::to_string(static_cast<int>(share)) + "%").c_str(),
+                  precision.c_str(), format_length(residual).c_str());
     why = buf;
   }
-  std::snprintf(buf, sizeof buf, "%s vs %s: %s at t = %g s (max %s), %s.", engine.c_str(),
+  std::snprintf(buf, sizeof buf, "%s vs %s: %s at t = %g s (max %s), %s", engine.c_str(),
                 reference.c_str(), format_length(final_total).c_str(), final_t,
                 format_length(total).c_str(), why.c_str());
-  return buf;
+  std::string out = buf;
+  if (clamped_from >= 0)
+    out += "; a speed clamp reported by the engine at step " + std::to_string(clamped_from) +
+           " ends the comparison there (clamp, not a departure)";
+  return out + ".";
 }
 
 }  // namespace dropcheck

@@ -1,51 +1,55 @@
-// Attribution: why two engines' trajectories of one free-flight scene differ.
+// Attribution: why two engines' trajectories of one free-flight scene differ, and which engine is
+// at fault when the laws do not explain it.
 //
-// Write x_E, x_R for the two engines' positions and L_E, L_R for their exact discrete laws
-// (harness/oracles/discrete_law.hpp) at the same step. Then, sample by sample,
-//   x_E - x_R = (L_E - L_R)  +  [(x_E - L_E) - (x_R - L_R)]
-//               law part        residual: each engine's departure from its own law
-// The law part is the scheme difference (damping order: O(h), vanishes as h -> 0). The residual is
-// rounding when it stays within the two scalars' rounding budget; beyond it, it is unexplained and
-// deserves a person's attention (an adapter bug, a hidden default, a clamp).
+// Write x_E, x_R for the two engines' positions, L_E, L_R for their exact discrete laws (long
+// double, harness/oracles/discrete_law.hpp) and A_E, A_R for the same laws in each engine's own
+// arithmetic (harness/oracles/own_arithmetic.hpp), all at the same step. Then, sample by sample,
+//   x_E - x_R = (L_E - L_R)                       law part: the scheme difference (O(h))
+//             + [(A_E - L_E) - (A_R - L_R)]       precision part: what the scalars cost
+//             + [(x_E - A_E) - (x_R - A_R)]       residual: each engine's departure from its law
+// Each engine's departure is judged on its own (harness/measure/own_law.hpp); the engine whose
+// departure exceeds its own-law tolerance is blamed, never an engine that follows its law.
 #pragma once
 
 #include <string>
 
 #include "harness/core/engine.hpp"
 #include "harness/core/trajectory.hpp"
+#include "harness/measure/own_law.hpp"
 
 namespace dropcheck {
 
-// Rounding budget for an engine's departure from its own law over a scene (m): f32 1e-4, f64 1e-9.
-// The floor of the bounds the conformance checks use (measured worst on the shipped scenes at the
-// default step: f32 2.0e-5 m, f64 2.0e-14 m).
-double rounding_budget(Scalar scalar);
-
-// The budget for a run that follows `law`: the floor above, or the worst case of rounding the
-// position to the scalar once per step (half an ulp, eps/2 * |x|) accumulated over n steps,
-// n * eps/2 * max|x|, whichever is larger. Long runs far from the origin earn a larger budget
-// (seed_part3 in f32 at h = 1/240: 720 steps, |x| <= 12.3 m: 5.3e-4 m; measured 1.4e-4 m).
-double rounding_budget(Scalar scalar, const Trajectory& law);
+// One engine's run with its two laws at the run's step.
+struct RunWithLaws {
+  const EngineInfo& info;
+  const Trajectory& run;
+  const Trajectory& own;    // predict_own_arithmetic(info, scene, h)
+  const Trajectory& exact;  // predict_discrete(info.law, scene, h)
+};
 
 struct Attribution {
   std::string engine, reference;
-  double total = 0.0;     // max over samples and bodies of |x_E - x_R| (m)
+  double total = 0.0;           // max over samples and bodies of |x_E - x_R| (m)
   double final_total = 0.0;
   double final_t = 0.0;
-  double law_part = 0.0;  // max |L_E - L_R|
-  double residual = 0.0;  // max |(x_E - x_R) - (L_E - L_R)|
-  double budget = 0.0;    // rounding_budget(E, L_E) + rounding_budget(R, L_R)
-  bool explained() const { return residual <= budget; }
+  double law_part = 0.0;        // max |L_E - L_R|
+  double precision_part = 0.0;  // max |(A_E - L_E) - (A_R - L_R)|
+  double residual = 0.0;        // max |(x_E - x_R) - (A_E - A_R)|
+  double budget = 0.0;          // the two own-law tolerances (positions), added
+  OwnLawVerdict engine_law, reference_law;  // each engine against its own law
+  std::int64_t clamped_from = -1;  // first step either engine clamped a speed; compared before it
 
+  // Neither engine departs from its own law beyond its tolerance.
+  bool explained() const;
+  // The engines that left their own law, "ours" or "ours, bullet"; "" when none did.
+  std::string blamed() const;
   // One sentence, e.g. "bullet vs ours-f64: 6.96 cm at t = 1 s (max 6.96 cm), all of it from the
-  // two discrete laws (damping order); residual 3e-15 m, within f64 rounding."
+  // two discrete laws (damping order); precision part 0 m; residual 3e-15 m, within rounding."
   std::string sentence() const;
 };
 
-// Both trajectories at the same h and recorded steps, with their engines' laws.
-Attribution attribute(const Trajectory& engine, const Trajectory& engine_law, Scalar engine_scalar,
-                      const Trajectory& reference, const Trajectory& reference_law,
-                      Scalar reference_scalar);
+// Both runs at the same h and recorded steps.
+Attribution attribute(const RunWithLaws& engine, const RunWithLaws& reference);
 
 // A length in readable units: "6.96 cm", "3.1e-15 m", "0 m".
 std::string format_length(double metres);

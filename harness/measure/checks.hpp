@@ -16,11 +16,11 @@ struct CheckResult {
   std::string message;  // the measured figures; on failure, what differs and where
 };
 
-// The steps the own-law check runs at: the scene's step and two others from its sweep (or h/2, h/4).
+// The steps the own-law check runs at: own_law_steps (harness/measure/sweep.hpp).
 std::vector<Timestep> conformance_steps(const Scene& scene);
 
 // Oracle 2: on a free-flight scene, the engine follows its own declared discrete law at step h to
-// within rounding_budget(scalar) in every position and velocity component.
+// within its own-law tolerance (harness/measure/own_law.hpp); a reported clamp ends the comparison.
 CheckResult check_own_law(const Scene& scene, const EngineFactory& make, const Timestep& h);
 
 // Cross-engine: over the scene's sweep, the engine's divergence from `reference` is explained by
@@ -30,11 +30,8 @@ CheckResult check_own_law(const Scene& scene, const EngineFactory& make, const T
 CheckResult check_divergence(const Scene& scene, const EngineFactory& make,
                              const EngineFactory& reference);
 
-// A landing may rise at most this far above its rest height after first contact (m).
-inline constexpr double kMaxRebound = 1e-3;
-
 // Oracle 1 for contacts: each dynamic body over a static floor makes first contact within one step
-// of its own discrete law's contact step, rebounds no higher than rest + kMaxRebound, rests within
+// of its own discrete law's contact step, rebounds no higher than rest + tolerance::kMaxRebound, rests within
 // the engine's declared rest_offset +- rest_tolerance, and is still over the last 2 s.
 CheckResult check_landing(const Scene& scene, const EngineFactory& make, const Timestep& h);
 

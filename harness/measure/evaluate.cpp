@@ -7,7 +7,10 @@
 #include <map>
 
 #include "harness/oracles/analytic.hpp"
+#include "harness/measure/own_law.hpp"
+#include "harness/measure/sweep.hpp"
 #include "harness/oracles/discrete_law.hpp"
+#include "harness/oracles/own_arithmetic.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/core/timestep.hpp"
 #include "harness/core/trajectory_hash.hpp"
@@ -19,10 +22,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 void say(const Progress& progress, const std::string& what) {
   if (progress) progress(what);
-}
-
-bool same_step(double a, double b) {
-  return std::abs(a - b) <= 1e-12 * std::max(a, b);
 }
 
 // The references every engine shares at each step of the sweep, computed once.
@@ -42,12 +41,21 @@ class References {
       it = laws_.emplace(key, predict_discrete(law, scene_, sweep_[i].seconds)).first;
     return it->second;
   }
+  // Oracle 2 in the engine's own arithmetic at sweep step i, predicted on first use.
+  const Trajectory& own(const EngineInfo& info, std::size_t i) {
+    if (!arithmetic_copied(info)) return law(info.law, i);
+    auto key = std::make_pair(info.name, i);
+    auto it = own_.find(key);
+    if (it == own_.end())
+      it = own_.emplace(key, predict_own_arithmetic(info, scene_, sweep_[i].seconds)).first;
+    return it->second;
+  }
 
  private:
   const Scene& scene_;
   const std::vector<Timestep>& sweep_;
   std::vector<std::optional<Trajectory>> analytic_;
-  std::map<std::pair<std::string, std::size_t>, Trajectory> laws_;
+  std::map<std::pair<std::string, std::size_t>, Trajectory> laws_, own_;
 };
 
 // Oracle 3's step: the finest step of the sweep divided by `factor` (halved until it divides the
@@ -96,8 +104,10 @@ void run_sweep(EngineEvaluation& ev, const EngineSlot& slot, const SceneEvaluati
     s.run = run_scene(*slot.make(), se.scene, s.h.seconds);
     if (refs.analytic(i)) s.vs_analytic = compare_worst(s.run, *refs.analytic(i), tol);
     if (se.uses_law) {
-      s.vs_law = compare_worst(s.run, refs.law(ev.info.law, i), tol);
-      s.law_budget = rounding_budget(ev.info.scalar, refs.law(ev.info.law, i));
+      const Trajectory& own = refs.own(ev.info, i);
+      s.vs_law = compare_worst(s.run, own, tol);
+      s.own_law = judge_own_law(ev.info, s.run, own, refs.law(ev.info.law, i));
+      s.law_budget = s.own_law->tolerance.x;
     }
     ev.sweep.push_back(std::move(s));
   }
@@ -117,9 +127,7 @@ void run_fine(EngineEvaluation& ev, const EngineSlot& slot, const SceneEvaluatio
 // surface sits above the geometry (Box2D's 0.01 m skin) touches the floor there: contact means
 // reaching floor top + rest_offset (+ its tolerance), as `dropcheck check` counts it.
 void measure_landings(EngineEvaluation& ev, const SceneEvaluation& se) {
-  std::vector<LandingSetup> setups = landing_setups(se.scene);
-  for (LandingSetup& setup : setups)
-    setup.floor_top += std::max(0.0, ev.info.rest_offset + ev.info.rest_tolerance);
+  const std::vector<LandingSetup> setups = engine_landing_setups(se.scene, ev.info);
   for (StepEvaluation& s : ev.sweep) {
     for (const LandingSetup& setup : setups) {
       LandingResult r{setup, observe_landing(s.run, setup), kNaN};
@@ -144,16 +152,6 @@ void choose_reference(SceneEvaluation& se, const std::string& wanted) {
         wanted + " did not run this scene (" + (w ? w->skipped : "not listed") + ")";
     return;
   }
-}
-
-// The samples of `t` recorded before step n.
-Trajectory before_step(const Trajectory& t, std::int64_t n) {
-  Trajectory out = t;
-  std::size_t keep = 0;
-  while (keep < t.samples() && t.recorded[keep] < n) ++keep;
-  out.recorded.resize(keep);
-  out.states.resize(keep * t.bodies());
-  return out;
 }
 
 // The step before the first one on which any of the trajectories has a body at or below its
@@ -181,14 +179,18 @@ void measure_divergence(EngineEvaluation& ev, const EngineEvaluation& ref,
     s.vs_reference = compare_worst(s.run, r, se.scene.tolerance);
     const Trajectory& le = refs.law(ev.info.law, i);
     const Trajectory& lr = refs.law(ref.info.law, i);
+    const Trajectory& ae = refs.own(ev.info, i);
+    const Trajectory& ar = refs.own(ref.info, i);
     if (se.uses_law) {
-      s.attribution = attribute(s.run, le, ev.info.scalar, r, lr, ref.info.scalar);
+      s.attribution = attribute({ev.info, s.run, ae, le}, {ref.info, r, ar, lr});
       continue;
     }
     const std::int64_t n = free_flight_end(se.scene, {&s.run, &r, &le, &lr});
     if (n <= 0) continue;
-    s.attribution = attribute(before_step(s.run, n), before_step(le, n), ev.info.scalar,
-                              before_step(r, n), before_step(lr, n), ref.info.scalar);
+    const Trajectory es = before_step(s.run, n), rs = before_step(r, n);
+    const Trajectory aes = before_step(ae, n), ars = before_step(ar, n);
+    const Trajectory les = before_step(le, n), lrs = before_step(lr, n);
+    s.attribution = attribute({ev.info, es, aes, les}, {ref.info, rs, ars, lrs});
     s.attributed_until = s.attribution->final_t;
   }
 }
@@ -197,13 +199,11 @@ void measure_divergence(EngineEvaluation& ev, const EngineEvaluation& ref,
 // divergence within the two engines' rounding budget counts as zero: the order of noise means
 // nothing.
 void measure_orders(EngineEvaluation& ev, const SceneEvaluation& se) {
-  const EngineEvaluation* ref = se.find(se.reference);
-  const double budget =
-      ref ? rounding_budget(ev.info.scalar) + rounding_budget(ref->info.scalar) : 0.0;
   std::vector<double> h, cont, div;
   for (const StepEvaluation& s : ev.sweep) {
     h.push_back(s.h.seconds);
     cont.push_back(s.continuous_error());
+    const double budget = s.attribution ? s.attribution->budget : 0.0;
     const double d = s.vs_reference ? s.vs_reference->max_dx : kNaN;
     div.push_back(d <= budget ? 0.0 : d);
   }
@@ -234,8 +234,7 @@ SceneEvaluation prepare(const Scene& scene, const EvaluateOptions& options) {
   SceneEvaluation se;
   se.scene = scene;
   se.sweep = sorted_sweep(scene);
-  for (std::size_t i = 0; i < se.sweep.size(); ++i)
-    if (same_step(se.sweep[i].seconds, scene.timestep.seconds)) se.default_index = i;
+  se.default_index = default_index(se.sweep, scene);
   se.no_analytic = analytic_unavailable(scene);
   se.uses_law = !scene.world.contacts;
   if (!se.no_analytic.empty()) {
@@ -272,15 +271,7 @@ const EngineEvaluation* SceneEvaluation::find(const std::string& name) const {
   return nullptr;
 }
 
-std::vector<Timestep> sorted_sweep(const Scene& scene) {
-  std::vector<Timestep> out = scene.timesteps;
-  out.push_back(scene.timestep);
-  std::stable_sort(out.begin(), out.end(),
-                   [](const Timestep& a, const Timestep& b) { return a.seconds > b.seconds; });
-  auto same = [](const Timestep& a, const Timestep& b) { return same_step(a.seconds, b.seconds); };
-  out.erase(std::unique(out.begin(), out.end(), same), out.end());
-  return out;
-}
+std::vector<Timestep> sorted_sweep(const Scene& scene) { return scene_sweep(scene); }
 
 SceneEvaluation evaluate_scene(const Scene& scene, const std::vector<EngineSlot>& engines,
                                const EvaluateOptions& options, const Progress& progress) {

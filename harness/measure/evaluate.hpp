@@ -17,6 +17,7 @@
 #include "harness/core/engine.hpp"
 #include "harness/oracles/landing.hpp"
 #include "harness/measure/metrics.hpp"
+#include "harness/measure/own_law.hpp"
 #include "harness/measure/timing.hpp"
 #include "harness/core/trajectory.hpp"
 
@@ -51,7 +52,8 @@ struct StepEvaluation {
   Trajectory run;
   std::optional<ErrorStats> vs_analytic;      // oracle 1, worst body
   std::optional<ErrorStats> vs_law;           // oracle 2, worst body
-  double law_budget = 0.0;                    // rounding_budget(scalar, law): how far vs_law may go
+  double law_budget = 0.0;                    // own_law_tolerance(...).x: how far vs_law may go
+  std::optional<OwnLawVerdict> own_law;       // the own-law verdict (harness/measure/own_law.hpp)
   std::optional<ErrorStats> vs_fine;          // oracle 3, worst body
   std::optional<ErrorStats> vs_reference;     // divergence from the reference engine, worst body
   std::vector<ErrorStats> reference_by_body;  // the same per body, indexed like Scene::bodies
@@ -107,7 +109,7 @@ struct SceneEvaluation {
 // Progress lines ("bullet 1/120", "timing 1/60") for a person watching a long run.
 using Progress = std::function<void(const std::string&)>;
 
-// The scene's sweep with the default step added, duplicates removed, sorted largest step first.
+// scene_sweep(scene) (harness/measure/sweep.hpp): the one sweep every command measures over.
 std::vector<Timestep> sorted_sweep(const Scene& scene);
 
 // Runs every engine of `engines` that can run `scene` over the sweep and measures it.

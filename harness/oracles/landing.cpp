@@ -148,6 +148,12 @@ std::vector<LandingSetup> landing_setups(const Scene& scene) {
   return out;
 }
 
+std::vector<LandingSetup> engine_landing_setups(const Scene& scene, const EngineInfo& info) {
+  std::vector<LandingSetup> setups = landing_setups(scene);
+  for (LandingSetup& setup : setups) setup.floor_top += std::max(0.0, info.rest_offset + info.rest_tolerance);
+  return setups;
+}
+
 std::int64_t first_contact_step(const Trajectory& run, const LandingSetup& setup) {
   for (std::size_t s = 0; s < run.samples(); ++s)
     if (run.at(s, setup.body).position.y() - setup.half_height <= setup.floor_top)

@@ -49,6 +49,11 @@ struct LandingObservation {
 // body's bottom and whose x-z footprint contains the body's x-z position), in body order.
 std::vector<LandingSetup> landing_setups(const Scene& scene);
 
+// landing_setups as one engine meets the floor: an engine whose resting surface sits above the
+// geometry (Box2D's 0.01 m skin) touches it there, so contact means reaching the floor top plus
+// max(0, rest_offset + rest_tolerance). The one place that shift is made (check and report).
+std::vector<LandingSetup> engine_landing_setups(const Scene& scene, const EngineInfo& info);
+
 // Centre height y(t) of the continuous model from y0, v0 (m, m/s) with acceleration a (m/s^2) and
 // damping rate k (1/s).
 double height_continuous(double y0, double v0, double a, double k, double t);

@@ -168,7 +168,7 @@ std::vector<std::string> oracle_row(const EngineEvaluation& ev) {
   if (const auto& a = st.vs_analytic)
     r.insert(r.end(), {g3(a->max_dx), g3(a->final_dx), g3(a->max_dv)});
   if (const auto& l = st.vs_law) {
-    const bool ok = l->max_dx <= st.law_budget && l->max_dv <= st.law_budget;
+    const bool ok = st.own_law && st.own_law->follows();
     r.insert(r.end(), {g3(l->max_dx), g3(l->max_dv), g3(st.law_budget), ok ? "yes" : "**NO**"});
   }
   if (const auto& f = st.vs_fine)

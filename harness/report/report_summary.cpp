@@ -38,7 +38,7 @@ const EngineEvaluation* farthest(const SceneEvaluation& se) {
 // Beyond rounding from its own law at some step of the sweep: an adapter bug.
 bool off_own_law(const EngineEvaluation& ev) {
   for (const StepEvaluation& st : ev.sweep)
-    if (st.vs_law && (st.vs_law->max_dx > st.law_budget || st.vs_law->max_dv > st.law_budget))
+    if (st.own_law && !st.own_law->follows())
       return true;
   return false;
 }
@@ -107,7 +107,7 @@ std::string divergence_cause(const SceneEvaluation& se, const EngineEvaluation& 
   const bool none = st.vs_reference && st.vs_reference->max_dx == 0.0;
   if (!st.attribution) return none ? "identical" : "contacts";
   const Attribution& a = *st.attribution;
-  if (!a.explained()) return "UNEXPLAINED";
+  if (!a.explained()) return "UNEXPLAINED (" + a.blamed() + " left its law)";
   // With contacts the attribution covers the fall only: when the gap over the whole run is more
   // than the fall's by over 10%, it opened at the landing.
   if (st.attributed_until >= 0.0 && st.vs_reference->max_dx > 1.1 * a.total + a.budget)

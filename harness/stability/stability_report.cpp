@@ -6,7 +6,6 @@
 #include <cmath>
 #include <filesystem>
 
-#include "harness/core/registry.hpp"
 #include "harness/core/scene_loader.hpp"
 #include "harness/stability/stability_detail.hpp"
 #include "harness/stability/stability_study.hpp"
@@ -24,9 +23,10 @@ std::string row(const std::vector<std::string>& cells) {
 }
 
 // Header row, then the separator; the first two columns left-aligned, the engines right-aligned.
-std::string header(const std::vector<std::string>& first, bool right_align_rest) {
+std::string header(const std::vector<std::string>& first, const std::vector<std::string>& engines,
+                   bool right_align_rest) {
   std::vector<std::string> cells = first;
-  for (const std::string& e : known_engine_names()) cells.push_back(e);
+  for (const std::string& e : engines) cells.push_back(e);
   std::string out = row(cells) + "|";
   for (std::size_t i = 0; i < cells.size(); ++i)
     out += i >= first.size() && right_align_rest ? "---:|" : "---|";
@@ -73,11 +73,15 @@ std::string error_cell(const EngineStability* e) {
 
 template <typename Cell>
 std::string table(const std::vector<SceneStability>& studies, Cell cell, bool with_step) {
-  std::string out = with_step ? header({"scene", "h"}, true) : header({"scene"}, true);
+  // The engines passed in, in their order: every study has the same list.
+  std::vector<std::string> engines;
+  if (!studies.empty())
+    for (const EngineStability& e : studies.front().engines) engines.push_back(e.engine);
+  std::string out = with_step ? header({"scene", "h"}, engines, true) : header({"scene"}, engines, true);
   for (const SceneStability& s : studies) {
     std::vector<std::string> cells{"`" + s.name + "`"};
     if (with_step) cells.push_back(s.h.text);
-    for (const std::string& name : known_engine_names()) cells.push_back(cell(find(s, name)));
+    for (const std::string& name : engines) cells.push_back(cell(find(s, name)));
     out += row(cells);
   }
   return out;
@@ -109,14 +113,14 @@ std::string failure_list(const std::vector<SceneStability>& studies) {
 }  // namespace
 
 std::string stability_report_section(const std::vector<std::string>& extreme_scene_files,
-                                     std::ostream& progress) {
+                                     const std::vector<EngineSlot>& engines, std::ostream& progress) {
   std::vector<Scene> scenes;
   for (const std::string& file : extreme_scene_files) scenes.push_back(load_scene(file));
   std::sort(scenes.begin(), scenes.end(),
             [](const Scene& a, const Scene& b) { return a.name < b.name; });
   const StudyOptions options;
   std::vector<SceneStability> studies;
-  for (const Scene& scene : scenes) studies.push_back(study_scene(scene, {}, options, &progress));
+  for (const Scene& scene : scenes) studies.push_back(study_scene(scene, engines, options, &progress));
 
   const SearchOptions& so = options.search_options;
   std::string out = "## Stability: stiff and extreme cases\n\n";

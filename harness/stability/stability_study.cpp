@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "harness/oracles/analytic.hpp"
-#include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/stability/stability_detail.hpp"
 
@@ -28,12 +27,12 @@ void study_default_step(Engine& engine, const Scene& scene, const StudyOptions& 
     r.vs_analytic = compare_worst(run, *exact, scene.tolerance);
 }
 
-EngineStability study_engine(const std::string& name, const Scene& scene, const StudyOptions& o) {
+EngineStability study_engine(const EngineSlot& slot, const Scene& scene, const StudyOptions& o) {
   EngineStability r;
-  r.engine = name;
-  std::unique_ptr<Engine> engine = make_engine(name);
+  r.engine = slot.name;
+  std::unique_ptr<Engine> engine = slot.make ? slot.make() : nullptr;
   if (!engine) {
-    r.skipped = engine_unavailable_reason(name);
+    r.skipped = slot.unavailable.empty() ? "not available" : slot.unavailable;
     return r;
   }
   const EngineInfo info = engine->info();
@@ -47,8 +46,7 @@ EngineStability study_engine(const std::string& name, const Scene& scene, const 
   study_default_step(*engine, scene, o, r);
   r.theory_max_dt = spring_theory_max_dt(scene, r.law);
   if (o.search) {
-    const EngineFactory make = [name] { return make_engine(name); };
-    r.search = search_max_stable_dt(make, r.scalar, scene, scene.timestep.seconds, o.search_options,
+    r.search = search_max_stable_dt(slot.make, r.scalar, scene, scene.timestep.seconds, o.search_options,
                                     o.classify);
   }
   return r;
@@ -67,7 +65,7 @@ std::string progress_line(const SceneStability& s, const EngineStability& e) {
 
 }  // namespace
 
-SceneStability study_scene(const Scene& scene, const std::vector<std::string>& engines,
+SceneStability study_scene(const Scene& scene, const std::vector<EngineSlot>& engines,
                            const StudyOptions& options, std::ostream* progress) {
   SceneStability s;
   s.name = scene.name;
@@ -77,9 +75,8 @@ SceneStability study_scene(const Scene& scene, const std::vector<std::string>& e
   s.duration = scene.duration;
   s.steps = step_count(scene, scene.timestep.seconds);
   s.no_analytic = analytic_unavailable(scene);
-  const std::vector<std::string> names = engines.empty() ? available_engine_names() : engines;
-  for (const std::string& name : names) {
-    s.engines.push_back(study_engine(name, scene, options));
+  for (const EngineSlot& slot : engines) {
+    s.engines.push_back(study_engine(slot, scene, options));
     if (progress) *progress << progress_line(s, s.engines.back()) << std::flush;
   }
   return s;

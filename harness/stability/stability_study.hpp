@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/measure/evaluate.hpp"
 #include "harness/measure/metrics.hpp"
 #include "harness/stability/stability.hpp"
 
@@ -50,9 +51,10 @@ struct StudyOptions {
   ClassifyOptions classify;
 };
 
-// Studies `scene` on the engines named (all compiled in when empty), in the order given. Writes one
-// line per engine to `progress` when not null. Unknown or missing engines come back skipped.
-SceneStability study_scene(const Scene& scene, const std::vector<std::string>& engines,
+// Studies `scene` on the engines passed in (engine slots: the caller makes them, so only those
+// run), in the order given. Writes one line per engine to `progress` when not null. A slot without
+// a factory comes back skipped with its reason.
+SceneStability study_scene(const Scene& scene, const std::vector<EngineSlot>& engines,
                            const StudyOptions& options = {}, std::ostream* progress = nullptr);
 
 // The study as JSON: {"scene", "file", "dt", ..., "engines": [{"engine", "status", "failures",

@@ -96,10 +96,12 @@ TEST_CASE("An engine that cannot run a scene leaves a skipped baseline with its 
   CHECK(read.samples.samples() == 0);
 }
 
-TEST_CASE("Bless refuses a run that breaks its own discrete law and writes nothing", "[baseline][bless]") {
+TEST_CASE("Bless into the golden set refuses a run that breaks its own discrete law and writes nothing",
+          "[baseline][bless]") {
   const ScratchDir dir("bless-refuses");
   BlessOptions options;
   options.out_dir = dir.path.string();
+  options.refuse_failed = true;  // as for tests/baselines
   const BlessOutcome out = bless({shipped_scene("free_fall_drag")}, {{"ours-f64", make_moved_drag_f64}}, options);
   REQUIRE(out.refused.size() == 1);
   INFO(out.refused[0]);
@@ -108,6 +110,22 @@ TEST_CASE("Bless refuses a run that breaks its own discrete law and writes nothi
   CHECK_THAT(out.refused[0], Catch::Contains("from step 1 on"));
   CHECK(out.lines.empty());
   CHECK(std::filesystem::is_empty(dir.path));
+}
+
+TEST_CASE("Bless --out elsewhere writes a run that breaks its law, the failed tier marked in the file",
+          "[baseline][bless]") {
+  const ScratchDir dir("bless-marks");
+  BlessOptions options;
+  options.out_dir = dir.path.string();
+  CHECK_FALSE(is_golden_set(options.out_dir));
+  CHECK(is_golden_set("tests/baselines"));
+  const BlessOutcome out = bless({shipped_scene("free_fall_drag")}, {{"ours-f64", make_moved_drag_f64}}, options);
+  CHECK(out.refused.empty());
+  REQUIRE(out.lines.size() == 1);
+  CHECK_THAT(out.lines[0], Catch::Contains("FAILED physics: free_fall_drag / ours-f64 / physics: oracle 2"));
+  const std::string text = slurp(dir.file("free_fall_drag.ours-f64.txt"));
+  CHECK_THAT(text, Catch::Contains("\n# FAILED physics: "));
+  CHECK(parse_baseline(text, "x").hash.size() > 0);  // still a baseline `diff` can read
 }
 
 TEST_CASE("Bless writes every baseline and leaves unchanged data byte for byte", "[baseline][bless]") {

@@ -18,13 +18,31 @@ namespace {
 const std::string kTiny = DROPCHECK_SOURCE_DIR "/scenarios/extreme/tiny_step.toml";
 const std::string kSpring = DROPCHECK_SOURCE_DIR "/scenarios/extreme/stiff_spring.toml";
 
+// Engine slots for `names`, as the command line makes them (harness/cli/cmd_report.cpp).
+std::vector<EngineSlot> slots(const std::vector<std::string>& names) {
+  std::vector<EngineSlot> out;
+  for (const std::string& name : names) {
+    const std::string why = engine_unavailable_reason(name);
+    out.push_back({name, why.empty() ? EngineFactory([name] { return make_engine(name); }) : EngineFactory(), why});
+  }
+  return out;
+}
+
 }  // namespace
+
+TEST_CASE("The stability section runs only the engines passed in", "[stability][report]") {
+  std::ostringstream progress;
+  stability_report_section({kTiny}, slots({"ours"}), progress);
+  CHECK(progress.str().find("ours") != std::string::npos);
+  for (const std::string& other : available_engine_names())
+    if (other.rfind("ours", 0) != 0) CHECK(progress.str().find(" " + other + " ") == std::string::npos);
+}
 
 TEST_CASE("The stability section is deterministic Markdown naming every failure",
           "[stability][report]") {
   std::ostringstream progress;
-  const std::string a = stability_report_section({kTiny, kSpring}, progress);
-  const std::string b = stability_report_section({kSpring, kTiny}, progress);
+  const std::string a = stability_report_section({kTiny, kSpring}, slots(available_engine_names()), progress);
+  const std::string b = stability_report_section({kSpring, kTiny}, slots(available_engine_names()), progress);
   CHECK(a == b);  // scenes sorted by name, no timings
   CHECK_THAT(a, Contains("## Stability: stiff and extreme cases"));
   std::string header = "| scene | h |";
@@ -40,13 +58,13 @@ TEST_CASE("The stability section is deterministic Markdown naming every failure"
 
 TEST_CASE("Stability: a bad scene file is an InputError naming it", "[stability][report]") {
   std::ostringstream progress;
-  CHECK_THROWS_AS(stability_report_section({"/nonexistent/x.toml"}, progress), InputError);
+  CHECK_THROWS_AS(stability_report_section({"/nonexistent/x.toml"}, slots({"ours"}), progress), InputError);
 }
 
 TEST_CASE("Stability: the study's JSON and text carry verdicts, the search and skipped engines",
           "[stability][report]") {
   const Scene scene = load_scene(kTiny);
-  const SceneStability s = study_scene(scene, {"ours", "ours-f64"});
+  const SceneStability s = study_scene(scene, slots({"ours", "ours-f64"}));
   const std::string json = stability_to_json(s, StudyOptions{}.search_options);
   CHECK_THAT(json, Contains("\"engine\":\"ours\",\"scalar\":\"f32\"") &&
                        Contains("\"verdict\":\"frozen\""));
@@ -54,7 +72,7 @@ TEST_CASE("Stability: the study's JSON and text carry verdicts, the search and s
   const std::string text = stability_to_text(s);
   CHECK_THAT(text, Contains("ours (f32)       frozen") && Contains("frozen below"));
   const SceneStability floor =
-      study_scene(load_scene(DROPCHECK_SOURCE_DIR "/scenarios/extreme/thin_floor.toml"), {"ours"},
+      study_scene(load_scene(DROPCHECK_SOURCE_DIR "/scenarios/extreme/thin_floor.toml"), slots({"ours"}),
                   StudyOptions{});
   CHECK(floor.engines.front().skipped == "no contacts");
   CHECK_THAT(stability_to_json(floor, {}),

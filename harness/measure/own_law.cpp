@@ -1,0 +1,140 @@
+#include "harness/measure/own_law.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "harness/measure/attribution.hpp"
+#include "harness/measure/tolerances.hpp"
+#include "harness/oracles/discrete_law.hpp"
+#include "harness/oracles/own_arithmetic.hpp"
+
+namespace dropcheck {
+namespace {
+
+// Machine epsilon of the scalar: the spacing of numbers in [1, 2).
+double epsilon(Scalar s) { return s == Scalar::f32 ? 0x1p-23 : 0x1p-52; }
+
+std::string g3(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+struct Scales {
+  double x = 0.0, v = 0.0;
+};
+
+Scales scales(const Trajectory& law) {
+  Scales s;
+  for (const BodyState& b : law.states) {
+    s.x = std::max(s.x, b.position.norm());
+    s.v = std::max(s.v, b.velocity.norm());
+  }
+  return s;
+}
+
+OwnLawTolerance tolerance_for(Scalar scalar, bool copied, const Trajectory& law) {
+  const Scales s = scales(law);
+  const double ulps = copied ? tolerance::kCopiedUlps
+                             : tolerance::kStepUlps * static_cast<double>(std::max<std::int64_t>(law.steps, 1));
+  // One scale for positions and velocities: the largest magnitude the run carries (a body at rest
+  // still rounds its position, a body near the origin its velocity).
+  const double scale = std::max(s.x, s.v);
+  OwnLawTolerance t{ulps * epsilon(scalar) * scale, ulps * epsilon(scalar) * scale, {}};
+  t.rule = g3(ulps) + " ulps of " + g3(scale) + " (" + to_string(scalar) +
+           (copied ? ", operation order copied)" : ", order not copied: " + g3(tolerance::kStepUlps) + " ulps per step)");
+  return t;
+}
+
+}  // namespace
+
+OwnLawTolerance own_law_tolerance(const EngineInfo& info, const Trajectory& own_law) {
+  return tolerance_for(info.scalar, order_copied(info), own_law);
+}
+
+Trajectory before_step(const Trajectory& t, std::int64_t n) {
+  if (n < 0) return t;
+  Trajectory out = t;
+  std::size_t keep = 0;
+  while (keep < t.samples() && t.recorded[keep] < n) ++keep;
+  out.recorded.resize(keep);
+  out.states.resize(keep * t.bodies());
+  return out;
+}
+
+bool OwnLawVerdict::follows() const {
+  return failure.empty() && residual_x <= tolerance.x && residual_v <= tolerance.v;
+}
+
+OwnLawVerdict judge_own_law(const EngineInfo& info, const Trajectory& run, const Trajectory& own,
+                            const Trajectory& exact) {
+  OwnLawVerdict r;
+  r.engine = info.name;
+  r.law = to_string(info.law);
+  r.tolerance = own_law_tolerance(info, own);
+  if (run.status != RunStatus::ok)
+    r.failure = std::string(to_string(run.status)) + ": " + run.failure;
+  r.clamped_from = run.first_clamped_step;
+  const std::size_t n = std::min({run.samples(), own.samples(), exact.samples()});
+  double worst = -1.0;
+  for (std::size_t s = 0; s < n; ++s) {
+    if (r.clamped_from >= 0 && run.recorded[s] >= r.clamped_from) break;
+    r.compared_steps = run.recorded[s];
+    for (std::size_t b = 0; b < run.bodies(); ++b) {
+      const double dx = (run.at(s, b).position - own.at(s, b).position).norm();
+      const double dv = (run.at(s, b).velocity - own.at(s, b).velocity).norm();
+      r.residual_x = std::max(r.residual_x, dx);
+      r.residual_v = std::max(r.residual_v, dv);
+      r.precision = std::max(r.precision, (own.at(s, b).position - exact.at(s, b).position).norm());
+      const double rel = std::max(dx / std::max(r.tolerance.x, 1e-300), dv / std::max(r.tolerance.v, 1e-300));
+      if (rel > worst) worst = rel, r.worst_sample = s, r.worst_body = b;
+    }
+  }
+  return r;
+}
+
+OwnLawVerdict judge_own_law(const EngineInfo& info, const Scene& scene, const Trajectory& run) {
+  return judge_own_law(info, run, predict_own_arithmetic(info, scene, run.h),
+                       predict_discrete(info.law, scene, run.h));
+}
+
+std::string OwnLawVerdict::sentence() const {
+  std::string s = "max |x - law| " + g3(residual_x) + " m, |v - law| " + g3(residual_v) +
+                  " m/s (tolerance " + g3(tolerance.x) + " m, " + g3(tolerance.v) + " m/s: " +
+                  tolerance.rule + "; law " + law + ")";
+  s += "; precision part " + format_length(precision) + " (own arithmetic vs long-double law)";
+  if (clamped_from >= 0)
+    s += "; the engine clamped a speed at step " + std::to_string(clamped_from) +
+         " (clamp, reported by the engine): compared up to step " + std::to_string(compared_steps);
+  if (!failure.empty()) s += "; run failed: " + failure;
+  return s;
+}
+
+std::string law_family_name(Law law) {
+  const bool explicit_x = law.position == PositionUpdate::Explicit;
+  std::string name = explicit_x ? "explicit Euler" : "semi-implicit Euler";
+  switch (law.damping) {
+    case DampingOrder::AfterForces:
+      return name + (explicit_x ? ", damping after the forces" : ", damping after the forces (ours, Box2D, MuJoCo)");
+    case DampingOrder::BeforeForces: return name + ", damping before the forces (Bullet's order)";
+    case DampingOrder::AfterPosition: return name + ", damping after the position update (ODE's order)";
+  }
+  return name;
+}
+
+std::optional<Law> fitting_law(const EngineInfo& info, const Scene& scene, const Trajectory& run) {
+  if (run.status != RunStatus::ok) return std::nullopt;
+  for (const Law& law : kLawFamily) {
+    EngineInfo as = info;
+    as.law = law;
+    as.arithmetic = DampingForm::other;  // any order: the long-double law, per-step ulps
+    const Trajectory exact = predict_discrete(law, scene, run.h);
+    Trajectory unclamped = run;
+    unclamped.first_clamped_step = -1;
+    if (judge_own_law(as, unclamped, exact, exact).follows()) return law;
+  }
+  return std::nullopt;
+}
+
+}  // namespace dropcheck

@@ -1,0 +1,59 @@
+// Every tolerance dropcheck judges with, in one place, each with the measured value it was set
+// from (commands in the comments; "measured" figures are GCC 12.2, x86_64, Debian 12 packages).
+#pragma once
+
+namespace dropcheck::tolerance {
+
+// --- Own law (oracle 2), harness/measure/own_law.hpp -------------------------------------------
+// An engine whose operation order the harness copies (EngineInfo::arithmetic) must match its law
+// iterated in its own arithmetic to within this many ulps of the largest |x| or |v| the law reaches.
+// Measured: 0 ulps (bit for bit) for ours, ours-f64 and box2d on every shipped scene at every step
+// of its sweep, and box2d at 150 m/s, h = 1/120 (tests/adapters/conformance_test.cpp). Before, the
+// same runs against the long-double law were 6.45e-5 m off (ours and box2d, f32, seed_part3 1/120).
+inline constexpr double kCopiedUlps = 4.0;
+
+// An engine whose order is not copied is predicted in long double; each step may round each
+// coordinate differently from the law, and a spring feeds those roundings back, so its departure may
+// grow by up to this many ulps of the largest |x| or |v| per step (n steps: n * kStepUlps ulps).
+// Measured worst (`dropcheck check scenarios/*.toml`): ode 1.23e-13 m on seed_part3 (h = 1/120,
+// 360 steps, 12.1 m: 0.13 ulp per step), mujoco 1.07e-14 m; bullet 0 m since its damping parameter
+// is copied (DampingForm::per_second_power). On scenarios/extreme/stiff_spring a spring feeds the
+// roundings back: 5.7 ulps per step (bullet, ode, mujoco: 4.06e-12 m/s after 286 steps at h = 1/32).
+inline constexpr double kStepUlps = 16.0;
+
+// --- Orders of convergence, harness/measure/sweep.hpp ------------------------------------------
+// A damping-order difference, or semi-implicit Euler against the analytic solution, shrinks at
+// first order as h halves. Measured on the shipped scenes, sweep 1/30..1/240: 0.971..1.02.
+inline constexpr double kFirstOrderLow = 0.9, kFirstOrderHigh = 1.1;
+// Below this order a scheme does not converge to the model at all (inconsistent): drag applied
+// twice measures 0.03 on free_fall_drag; every member of the law family measures >= 0.97.
+inline constexpr double kConsistentOrder = 0.5;
+// An error within this many own-law tolerances of zero has no measurable order (rounding bends the
+// curve): the smallest shipped analytic error is 5e-3 m against f32 tolerances of ~1e-5 m.
+inline constexpr double kOrderMeasurableFactor = 10.0;
+// Two laws "differ" when their trajectories are this many own-law tolerances apart.
+inline constexpr double kLawsDifferFactor = 10.0;
+
+// --- Landing, harness/measure/sweep.hpp (landing) ----------------------------------------------
+// A landing may rise at most this far above the engine's rest height after first contact (m).
+// Measured: <= 2e-7 m on every contact scene and engine except MuJoCo's defaults (docs/engines.md).
+inline constexpr double kMaxRebound = 1e-3;
+// First contact may come this many steps from the step the engine's own law predicts (the contact
+// itself rounds the crossing to a step; Box2D's skin meets the floor one step early).
+inline constexpr long kContactStepSlack = 1;
+
+// --- Regression tier 2, harness/guard/regression.cpp --------------------------------------------
+// Absolute tolerance on samples of a fresh run against its baseline, by scalar. Measured: Debug
+// against CI builds max |dx| = 0 (ours has -ffp-contract=off); with FMA contraction forced on
+// 1.1e-14 m (f64) and 4.8e-7 m (f32) after 3 s. Below what any change of scheme does (moving the
+// damping: 2.8e-3 m after 10 steps).
+inline constexpr double kRegressionF32 = 1e-4, kRegressionF64 = 1e-9;
+
+// --- Engine limits, adapters ---------------------------------------------------------------------
+// Digits a damping parameter must keep after the engine forms it (Bullet: 1 - d, d = 1 - exp(-k)).
+// Fewer and the engine's decay per step is a different physical rate than the scene's k:
+// at k = 30 1/s Bullet keeps 2.9 digits and departs from exp(-k*h) by 9.2 um over free_fall_drag.
+// Bullet in double then accepts k <= 22.9 1/s (the extreme stiff_spring_drag, k = 20, keeps 7.3).
+inline constexpr double kMinParameterDigits = 6.0;
+
+}  // namespace dropcheck::tolerance

@@ -1,0 +1,127 @@
+#include "harness/oracles/own_arithmetic.hpp"
+
+#include <cmath>
+#include <vector>
+
+#include "harness/core/forces.hpp"
+#include "harness/oracles/discrete_law.hpp"
+
+namespace dropcheck {
+namespace {
+
+template <typename T>
+using V3 = Eigen::Matrix<T, 3, 1>;
+
+// One body in the engine's scalar.
+template <typename T>
+struct StateT {
+  V3<T> x, v;
+  T m;
+};
+
+// The engine's per-step constants, rounded once to its scalar as its adapter rounds them.
+template <typename T>
+struct StepConstants {
+  T h, damp;  // damp: phi (phi_multiply) or 1/(1 + h*c) evaluated in T (pade)
+  V3<T> g;
+};
+
+template <typename T>
+StepConstants<T> constants(DampingForm form, const Scene& scene, double h) {
+  StepConstants<T> c{static_cast<T>(h), T(1), scene.world.gravity.cast<T>()};
+  if (form == DampingForm::phi_multiply) {
+    c.damp = static_cast<T>(decay_per_step(scene, h));
+  } else if (form == DampingForm::per_second_power) {
+    // Bullet: d = 1 - exp(-k) rounded to its scalar, then btRigidBody::applyDamping's (1 - d)^h.
+    const T d = static_cast<T>(1.0 - std::exp(-scene.world.damping_rate));
+    c.damp = std::pow(T(1) - d, c.h);
+  } else {
+    // Box2D: c = expm1(k*h)/h in double, rounded to float; Box2D itself forms 1/(1 + h*c).
+    const T rate = static_cast<T>(std::expm1(scene.world.damping_rate * h) / h);
+    c.damp = T(1) / (T(1) + c.h * rate);
+  }
+  return c;
+}
+
+// v += the step's velocity increment, in the engine's order.
+template <typename T>
+void add_forces(DampingForm form, const StepConstants<T>& c, const V3<T>& f, StateT<T>& s) {
+  if (form == DampingForm::phi_multiply) {
+    s.v = s.v + c.g * c.h;           // ApplyGravity
+    s.v = s.v + (f / s.m) * c.h;     // IntegrateLinearForce
+    return;
+  }
+  if (form == DampingForm::per_second_power) {
+    s.v = s.v + (c.g + f / s.m) * c.h;
+    return;
+  }
+  const T inv_mass = T(1) / s.m;                 // b2Body::SetMassData: m_invMass = 1/m
+  const V3<T> total = (T(1) * s.m) * c.g + f;    // gravityScale*mass*gravity + m_force
+  s.v = s.v + (c.h * inv_mass) * total;
+}
+
+// One step of `law` with the damping factor where the law puts it.
+template <typename T>
+void step_body(Law law, DampingForm form, const StepConstants<T>& c, const V3<T>& f, StateT<T>& s) {
+  const V3<T> v_old = s.v;
+  if (law.damping == DampingOrder::BeforeForces) s.v = s.v * c.damp;
+  add_forces(form, c, f, s);
+  if (law.damping == DampingOrder::AfterForces) s.v = s.v * c.damp;
+  const V3<T>& moves = law.position == PositionUpdate::Explicit ? v_old : s.v;
+  s.x = s.x + c.h * moves;
+  if (law.damping == DampingOrder::AfterPosition) s.v = s.v * c.damp;
+}
+
+template <typename T>
+Trajectory iterate(const EngineInfo& info, const Scene& scene, double h, const RunOptions& options) {
+  Trajectory t;
+  t.engine = "law in " + std::string(to_string(info.scalar)) + ": " + to_string(info.law);
+  t.scene = scene.name;
+  t.h = h;
+  t.steps = step_count(scene, h);
+  for (const Body& b : scene.bodies) t.body_names.push_back(b.name);
+  const std::int64_t every = options.record_every < 1 ? 1 : options.record_every;
+  const StepConstants<T> c = constants<T>(info.arithmetic, scene, h);
+  const std::size_t nb = scene.bodies.size();
+  std::vector<StateT<T>> s(nb);
+  for (std::size_t i = 0; i < nb; ++i)
+    s[i] = {scene.bodies[i].position.cast<T>(), scene.bodies[i].velocity.cast<T>(),
+            static_cast<T>(scene.bodies[i].mass)};
+  // The runner hands the engine forces computed in double from the state it read back.
+  std::vector<BodyState> start(nb);
+  std::vector<Vec3> forces(nb);
+  auto read = [&] {
+    for (std::size_t i = 0; i < nb; ++i) start[i] = {s[i].x.template cast<double>(), s[i].v.template cast<double>()};
+  };
+  auto snapshot = [&](std::int64_t n) {
+    t.recorded.push_back(n);
+    t.states.insert(t.states.end(), start.begin(), start.end());
+  };
+  read();
+  snapshot(0);
+  for (std::int64_t n = 1; n <= t.steps; ++n) {
+    compute_forces(scene, start, forces);
+    for (std::size_t i = 0; i < nb; ++i)
+      if (!scene.bodies[i].is_static) step_body<T>(info.law, info.arithmetic, c, forces[i].cast<T>(), s[i]);
+    read();
+    if (n % every == 0 || n == t.steps) snapshot(n);
+  }
+  return t;
+}
+
+}  // namespace
+
+bool arithmetic_copied(const EngineInfo& info) { return info.arithmetic != DampingForm::other; }
+
+bool order_copied(const EngineInfo& info) {
+  return info.arithmetic == DampingForm::phi_multiply || info.arithmetic == DampingForm::pade;
+}
+
+Trajectory predict_own_arithmetic(const EngineInfo& info, const Scene& scene, double h,
+                                  const RunOptions& options) {
+  if (!arithmetic_copied(info)) return predict_discrete(info.law, scene, h, options);
+  return info.scalar == Scalar::f32 ? iterate<float>(info, scene, h, options)
+                                    : iterate<double>(info, scene, h, options);
+}
+
+}  // namespace dropcheck

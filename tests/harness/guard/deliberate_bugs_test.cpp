@@ -1,0 +1,84 @@
+// The guard sees everything: five deliberate bugs in a copy of ours (deliberate_bugs.hpp), each
+// caught by tier 3 on the shipped 3-D throw with the right cause, and each blamed on ours by the
+// cross-engine attribution, never on the engine that follows its law. A ctest entry of its own
+// (regression.guard_catches_deliberate_bugs, label regression).
+#include <catch2/catch.hpp>
+
+#include <iostream>
+
+#include "deliberate_bugs.hpp"
+#include "harness/core/registry.hpp"
+#include "harness/guard/baseline.hpp"
+#include "harness/guard/regression.hpp"
+#include "harness/measure/checks.hpp"
+#include "../test_dirs.hpp"
+
+using namespace dropcheck;
+using namespace dropcheck::testing;
+using Catch::Matchers::Contains;
+
+namespace {
+
+EngineFactory factory(const std::string& name) {
+  return [name] { return make_engine(name); };
+}
+
+struct Case {
+  Bug bug;
+  const char* name;
+  const char* cause;  // what tier 3 must say the run does instead
+};
+
+const Case kCases[] = {
+    {Bug::z_frozen, "z frozen", "not consistent"},
+    {Bug::drag_twice, "drag applied twice", "not consistent"},
+    {Bug::gravity_half_step, "gravity at half a step", "not consistent"},
+    {Bug::explicit_euler, "explicit Euler",
+     "follows another member of the law family instead: explicit Euler, damping after the forces"},
+    {Bug::drag_after_position, "drag after the position update",
+     "follows another member of the law family instead: semi-implicit Euler, damping after the "
+     "position update (ODE's order)"},
+};
+
+}  // namespace
+
+TEST_CASE("Every deliberate bug in ours is caught by tier 3 with its cause", "[regression][bugs]") {
+  const Scene scene = shipped_scene("throw_3d");
+  REQUIRE(check_physics(make_baseline(scene, buggy_ours(Bug::none))).verdict == Verdict::passed);
+  for (const Case& c : kCases) {
+    const TierResult r = check_physics(make_baseline(scene, buggy_ours(c.bug)));
+    std::cout << c.name << ":\n  " << r.message << "\n";
+    INFO(c.name << ": " << r.message);
+    CHECK(r.verdict == Verdict::failed);
+    CHECK_THAT(r.message, Contains("throw_3d / ours / physics: oracle 2 (own discrete law"));
+    CHECK_THAT(r.message, Contains(c.cause));
+  }
+}
+
+TEST_CASE("A consistent new scheme and a broken one get different tier-3 messages", "[regression][bugs]") {
+  const Scene scene = shipped_scene("free_fall_drag");
+  const TierResult twice = check_physics(make_baseline(scene, buggy_ours(Bug::drag_twice)));
+  const TierResult euler = check_physics(make_baseline(scene, buggy_ours(Bug::explicit_euler)));
+  CHECK_THAT(twice.message, Contains("order 0.0") && Contains("not consistent"));
+  CHECK_THAT(euler.message, Contains("explicit Euler") && Contains("a consistent, first-order scheme"));
+  CHECK(twice.message != euler.message);
+}
+
+TEST_CASE("The attribution blames ours for every deliberate bug, never the engine that follows its law",
+          "[regression][bugs]") {
+  const Scene scene = shipped_scene("throw_3d");
+  for (const Case& c : kCases) {
+    // ours (buggy) against the reference ours-f64 (correct).
+    const CheckResult as_engine = check_divergence(scene, buggy_ours(c.bug), factory("ours-f64"));
+    INFO(c.name << ": " << as_engine.message);
+    CHECK_FALSE(as_engine.passed);
+    CHECK_THAT(as_engine.message, Contains("UNEXPLAINED") && Contains("ours departs from its own law") &&
+                                      Contains("ours-f64 follows its own law to 0 m"));
+    // A correct engine (ours, f32) against a buggy reference: the reference is blamed.
+    const CheckResult as_reference = check_divergence(scene, factory("ours"), buggy_ours_f64(c.bug));
+    INFO(as_reference.message);
+    CHECK_FALSE(as_reference.passed);
+    CHECK_THAT(as_reference.message, Contains("ours-f64 departs from its own law") &&
+                                         Contains("ours follows its own law to 0 m"));
+  }
+}
