@@ -45,7 +45,7 @@ std::string departure_cause(const Baseline& b, const SweepPoint& p) {
   const std::optional<OrderEstimate> o = analytic_order(b);
   const std::string orders = o ? "observed orders" + [&] {
     std::string s;
-    for (double x : o->orders) s += " " + g3(x);
+    for (double x : o->orders) s += std::isfinite(x) ? " " + g3(x) : std::string(" undefined");
     return s;
   }() : "order not measured (no closed form)";
   if (p.fits)

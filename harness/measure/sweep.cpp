@@ -66,7 +66,7 @@ OrderEstimate estimate_order(std::span<const double> h, std::span<const double> 
   o.text += " at h = ";
   for (std::size_t i = 0; i < h.size(); ++i) o.text += (i ? ", " : "") + g("%.4g", h[i]);
   o.text += "; observed orders";
-  for (double p : o.orders) o.text += g(" %.3f", p);
+  for (double p : o.orders) o.text += std::isfinite(p) ? g(" %.3f", p) : std::string(" undefined");
   return o;
 }
 
