@@ -6,7 +6,8 @@
 //                          b2Island::Solve: v = (v + h*a)*1/(1 + h*c) and 1/(1 + h*c) = exp(-k*h),
 //                          the same order as ours (DampingOrder::AfterForces)
 //   cube, half extents  -> a square body of half extents (hx, hy); the scene's mass is the mass per
-//                          unit depth: fixture density = m/(4*hx*hy), so that GetMass() = m (checked)
+//                          unit depth: fixture density = m/(4*hx*hy), so that GetMass() = m
+//                          (checked)
 //   contacts = false    -> no fixture at all; b2Body::SetMassData gives mass m (a body without
 //                          fixtures would have mass 1) and the box's inertia m*(hx^2 + hy^2)/3
 //   static body         -> b2_staticBody (a polygon fixture only with contacts)
@@ -53,7 +54,9 @@ constexpr double kRestTolerance = 1e-4;
 // whose |h*v| lies within this band below the limit is reported too (speeds within 1e-5 of it).
 constexpr float kClampBand = 1e-5f;
 
-b2Vec2 to_b2(const Vec3& v) { return {static_cast<float>(v.x()), static_cast<float>(v.y())}; }
+b2Vec2 to_b2(const Vec3& v) {
+  return {static_cast<float>(v.x()), static_cast<float>(v.y())};
+}
 
 class Box2dEngine final : public Engine {
  public:
@@ -137,12 +140,13 @@ b2Body* Box2dEngine::create_body(const Body& body, float damping) {
   b2Body* b = world_->CreateBody(&def);
   if (contacts_) {
     b2PolygonShape box;
-    box.SetAsBox(static_cast<float>(body.half_extents.x()), static_cast<float>(body.half_extents.y()));
+    box.SetAsBox(static_cast<float>(body.half_extents.x()),
+                 static_cast<float>(body.half_extents.y()));
     b2FixtureDef fixture;
     fixture.shape = &box;
     // Mass per unit depth m over the square's area 4*hx*hy.
-    fixture.density = static_cast<float>(
-        body.mass / (4.0 * body.half_extents.x() * body.half_extents.y()));
+    fixture.density =
+        static_cast<float>(body.mass / (4.0 * body.half_extents.x() * body.half_extents.y()));
     fixture.friction = kFriction;
     fixture.restitution = 0.0f;
     b->CreateFixture(&fixture);
@@ -217,7 +221,8 @@ bool Box2dEngine::clamped_after() const {
 
 double Box2dEngine::bare_seconds(std::int64_t steps) {
   const auto start = std::chrono::steady_clock::now();
-  for (std::int64_t n = 0; n < steps; ++n) world_->Step(h_, kVelocityIterations, kPositionIterations);
+  for (std::int64_t n = 0; n < steps; ++n)
+    world_->Step(h_, kVelocityIterations, kPositionIterations);
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -232,7 +237,9 @@ void Box2dEngine::read(std::span<BodyState> out) const {
 
 }  // namespace
 
-std::unique_ptr<Engine> make_box2d() { return std::make_unique<Box2dEngine>(); }
+std::unique_ptr<Engine> make_box2d() {
+  return std::make_unique<Box2dEngine>();
+}
 
 double bare_seconds_box2d(const Scene& scene, double h) {
   Box2dEngine e;

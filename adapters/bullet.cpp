@@ -111,13 +111,14 @@ double damping_digits(double k) {
   return std::log10(2.0 / eps) - k / std::log(10.0);
 }
 
-// Why Bullet cannot represent damping rate k to tolerance::kMinParameterDigits digits; empty when it
-// can. Double: k <= 22.9 1/s (float: about 2.2 1/s).
+// Why Bullet cannot represent damping rate k to tolerance::kMinParameterDigits digits; empty when
+// it can. Double: k <= 22.9 1/s (float: about 2.2 1/s).
 std::string damping_problem(double k) {
   const double digits = damping_digits(k);
   if (digits >= tolerance::kMinParameterDigits) return {};
   const double k_max = (std::log10(2.0 / std::numeric_limits<btScalar>::epsilon()) -
-                        tolerance::kMinParameterDigits) * std::log(10.0);
+                        tolerance::kMinParameterDigits) *
+                       std::log(10.0);
   char why[320];
   std::snprintf(why, sizeof why,
                 "engine limit: damping rate k = %g 1/s: Bullet's per-second damping keeps 1 - d = "
@@ -136,7 +137,8 @@ class BulletEngine final : public Engine {
     i.scalar = kScalar;
     i.capabilities = {.contacts = true, .planar_only = false};
     i.law = DampingOrder::BeforeForces;
-    i.arithmetic = DampingForm::per_second_power;  // its d = 1 - exp(-k), copied by own_arithmetic.cpp
+    i.arithmetic =
+        DampingForm::per_second_power;  // its d = 1 - exp(-k), copied by own_arithmetic.cpp
     i.damping_mapping = "setDamping(d = 1 - exp(-k), 0); v *= (1-d)^h";
     i.contact_settings =
         "btBoxShape per body (margin 0.04 inside), restitution 0, friction sqrt(0.5) each "

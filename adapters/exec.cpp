@@ -1,20 +1,21 @@
 // Adapter for external engines: a child process speaking docs/protocol.md over stdin/stdout.
 //
 // Mapping (scene -> protocol): the scene is sent once per load() ("scene" ... "end": h, gravity,
-// damping rate k with phi = exp(-k*h), contacts flag, one "body" line per body); each step sends the
-// harness's forces and reads back every body's position and velocity. Numbers go out with %.17g and
-// come back through std::from_chars, so nothing is lost at the boundary.
-// Every failure of the engine (cannot start, crash, hang, garbage, wrong body count, early exit,
-// "error TEXT") is an EngineError naming the step; the child is then killed and reaped.
+// damping rate k with phi = exp(-k*h), contacts flag, one "body" line per body); each step sends
+// the harness's forces and reads back every body's position and velocity. Numbers go out with %.17g
+// and come back through std::from_chars, so nothing is lost at the boundary. Every failure of the
+// engine (cannot start, crash, hang, garbage, wrong body count, early exit, "error TEXT") is an
+// EngineError naming the step; the child is then killed and reaped.
 #include "exec.hpp"
+
+#include <sys/stat.h>
+#include <toml++/toml.h>
+#include <unistd.h>
 
 #include <cctype>
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
-#include <sys/stat.h>
-#include <toml++/toml.h>
-#include <unistd.h>
 
 #include "harness/core/child_process.hpp"
 #include "harness/core/input_error.hpp"
@@ -64,14 +65,16 @@ bool parse_number(const std::string& token, double& out) {
 bool valid_name(const std::string& name) {
   if (name.empty() || name.size() > 64) return false;
   for (char c : name)
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.' && c != '+')
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.' &&
+        c != '+')
       return false;
   return true;
 }
 
 // Why `name` cannot name an external engine; empty when it can.
 std::string name_problem(const std::string& name) {
-  if (!valid_name(name)) return "'" + name + "' is not a valid engine name (1-64 of A-Z a-z 0-9 . _ + -)";
+  if (!valid_name(name))
+    return "'" + name + "' is not a valid engine name (1-64 of A-Z a-z 0-9 . _ + -)";
   for (const std::string& builtin : known_engine_names())
     if (name == builtin) return "'" + name + "' is the name of a built-in engine; choose another";
   return {};
@@ -86,8 +89,8 @@ std::string format_seconds(double s) {
 class ExecEngine final : public Engine {
  public:
   explicit ExecEngine(ExecSpec spec) : spec_(std::move(spec)) {
-    info_.name = spec_.name.empty() ? std::filesystem::path(spec_.command[0]).stem().string()
-                                    : spec_.name;
+    info_.name =
+        spec_.name.empty() ? std::filesystem::path(spec_.command[0]).stem().string() : spec_.name;
     info_.version = "?";
     info_.damping_mapping = "the engine's own (external, docs/protocol.md)";
     try {
@@ -133,7 +136,8 @@ class ExecEngine final : public Engine {
     ++step_;
     where_ = "at step " + std::to_string(step_);
     std::string line = "step " + std::to_string(step_);
-    for (const Vec3& f : forces_) line += " " + exact(f.x()) + " " + exact(f.y()) + " " + exact(f.z());
+    for (const Vec3& f : forces_)
+      line += " " + exact(f.x()) + " " + exact(f.y()) + " " + exact(f.z());
     send(line);
     read_state(step_);
   }
@@ -144,7 +148,8 @@ class ExecEngine final : public Engine {
 
  private:
   static std::string body_line(const Body& b) {
-    std::string s = std::string("body ") + (b.is_static ? "static" : "dynamic") + " " + exact(b.mass);
+    std::string s =
+        std::string("body ") + (b.is_static ? "static" : "dynamic") + " " + exact(b.mass);
     for (const Vec3* v : {&b.half_extents, &b.position, &b.velocity})
       s += " " + exact(v->x()) + " " + exact(v->y()) + " " + exact(v->z());
     return s;
@@ -166,11 +171,13 @@ class ExecEngine final : public Engine {
 
   void send(const std::string& line) {
     switch (child_->write_line(line, spec_.timeout_s)) {
-      case IoStatus::ok: return;
+      case IoStatus::ok:
+        return;
       case IoStatus::timeout:
         fail("the engine did not read its input within " + format_seconds(spec_.timeout_s) +
              " (timeout; engine killed)");
-      default: fail(gone());
+      default:
+        fail(gone());
     }
   }
 
@@ -178,11 +185,14 @@ class ExecEngine final : public Engine {
   std::string receive() {
     std::string line;
     switch (child_->read_line(line, spec_.timeout_s)) {
-      case IoStatus::ok: break;
+      case IoStatus::ok:
+        break;
       case IoStatus::timeout:
         fail("no answer within " + format_seconds(spec_.timeout_s) + " (timeout; engine killed)");
-      case IoStatus::too_long: fail("garbage from the engine: a line longer than 1 MiB");
-      case IoStatus::closed: fail(gone());
+      case IoStatus::too_long:
+        fail("garbage from the engine: a line longer than 1 MiB");
+      case IoStatus::closed:
+        fail(gone());
     }
     if (line.rfind("error", 0) == 0 && (line.size() == 5 || line[5] == ' ' || line[5] == '\t'))
       fail("the engine reported an error: " + rest_of(line));
@@ -204,8 +214,9 @@ class ExecEngine final : public Engine {
     const std::size_t got = t.size() - 2;
     if (got != want) {
       const std::string per_body = got % 6 == 0 ? " (" + std::to_string(got / 6) + " bodies)" : "";
-      fail("the engine answered " + std::to_string(got) + " numbers" + per_body + ", the scene has " +
-           std::to_string(states_.size()) + " bodies (" + std::to_string(want) + " numbers)");
+      fail("the engine answered " + std::to_string(got) + " numbers" + per_body +
+           ", the scene has " + std::to_string(states_.size()) + " bodies (" +
+           std::to_string(want) + " numbers)");
     }
     for (std::size_t i = 0; i < got; ++i) {
       double v = 0.0;
@@ -247,21 +258,28 @@ class ExecEngine final : public Engine {
         law = true;
       } else if (k[0] == "capabilities") {
         for (std::size_t i = 1; i < k.size(); ++i) {
-          if (k[i] == "contacts") info_.capabilities.contacts = true;
-          else if (k[i] == "planar-only") info_.capabilities.planar_only = true;
-          else garbage("capabilities 'contacts' or 'planar-only'", line);
+          if (k[i] == "contacts")
+            info_.capabilities.contacts = true;
+          else if (k[i] == "planar-only")
+            info_.capabilities.planar_only = true;
+          else
+            garbage("capabilities 'contacts' or 'planar-only'", line);
         }
       } else if (k[0] == "damping-mapping" && k.size() >= 2) {
         info_.damping_mapping = value;
       } else {
-        garbage("name, version, scalar f32|f64, law KEY, capabilities, damping-mapping or ready "
-                "(law keys: after-forces, before-forces, after-position, after-forces/explicit, "
-                "before-forces/explicit)",
-                line);
+        garbage(
+            "name, version, scalar f32|f64, law KEY, capabilities, damping-mapping or ready "
+            "(law keys: after-forces, before-forces, after-position, after-forces/explicit, "
+            "before-forces/explicit)",
+            line);
       }
     }
     if (!name || !version || !scalar || !law)
-      fail("the handshake lacks " + std::string(!name ? "name" : !version ? "version" : !scalar ? "scalar" : "law"));
+      fail("the handshake lacks " + std::string(!name      ? "name"
+                                                : !version ? "version"
+                                                : !scalar  ? "scalar"
+                                                           : "law"));
   }
 
   ExecSpec spec_;
@@ -283,7 +301,9 @@ bool executable_file(const std::string& path) {
   return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && ::access(path.c_str(), X_OK) == 0;
 }
 
-int line_of(const toml::node& n) { return static_cast<int>(n.source().begin.line); }
+int line_of(const toml::node& n) {
+  return static_cast<int>(n.source().begin.line);
+}
 
 ExecSpec parse_engine_file(const std::string& file) {
   toml::table table;
@@ -302,10 +322,12 @@ ExecSpec parse_engine_file(const std::string& file) {
       const auto* s = node.as_string();
       if (!s) throw InputError(file, line_of(node), k, "must be a string");
       spec.name = s->get();
-      if (std::string p = name_problem(spec.name); !p.empty()) throw InputError(file, line_of(node), k, p);
+      if (std::string p = name_problem(spec.name); !p.empty())
+        throw InputError(file, line_of(node), k, p);
     } else if (k == "command") {
       const auto* a = node.as_array();
-      if (!a || a->empty()) throw InputError(file, line_of(node), k, "must be a non-empty array of strings");
+      if (!a || a->empty())
+        throw InputError(file, line_of(node), k, "must be a non-empty array of strings");
       for (const toml::node& arg : *a) {
         const auto* s = arg.as_string();
         if (!s || (spec.command.empty() && s->get().empty()))
@@ -321,7 +343,8 @@ ExecSpec parse_engine_file(const std::string& file) {
       throw InputError(file, line_of(node), k, "unknown key (known: name, command, timeout)");
     }
   }
-  if (spec.command.empty()) throw InputError(file, 0, "command", "missing (the program and its arguments)");
+  if (spec.command.empty())
+    throw InputError(file, 0, "command", "missing (the program and its arguments)");
   return spec;
 }
 

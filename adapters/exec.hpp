@@ -3,7 +3,8 @@
 //   name = "seed-python"                       # optional: overrides the name the engine announces
 //   command = ["python3", "seed_engine.py"]    # required: program and arguments
 //   timeout = 5.0                              # optional: seconds allowed per answer (default 5)
-// The command runs in the engine file's directory, so relative paths in it are relative to the file.
+// The command runs in the engine file's directory, so relative paths in it are relative to the
+// file.
 #pragma once
 
 #include <memory>

@@ -17,20 +17,20 @@
 //                          read after mj_step (xpos is one step stale after mj_step)
 //   force this step     -> qfrc_applied of the 3 translational dofs (world frame for a free joint),
 //                          written before mj_step and zeroed after it (MuJoCo never clears it)
-// Errors: mju_user_error throws EngineError (MuJoCo would print and exit); a mj_loadXML failure is an
-// EngineError with MuJoCo's message; a warning counted in d->warning during a step (bad qpos, qvel,
-// qacc: MuJoCo then resets the state, hiding the instability) is an EngineError "MuJoCo warning: ...".
-// The warning handler only records the text: throwing from it would leave mj_step half done.
-// Contacts (soft, docs/engines.md 5): box geoms, solimp "0.9999 0.9999 0.001" (impedance ~1: stiff),
-// solref "2h 1" (time constant 2h, the smallest MuJoCo accepts without disabling refsafe; critically
-// damped), friction 0.5 (MuJoCo mixes by max).
-// Landing, measured (unit cube from 10 m onto a box floor, no drag, 60 Hz): collisions are found at
-// the start of a step (no continuous collision), so the step that crosses the floor ends 0.218 m
-// inside it (step 84, t_c = 1.392 s) and the contact acts from step 85. The penetration then shrinks
-// by a factor 1 - h^2*k/2 = 0.875 per step (k = 1/(2h)^2; the box-box collider reports half the
-// depth), with no rebound (highest 0.49999993 m); still (|v| <= 1e-3 m/s) from t = 2.38 s (1.82 s
-// at 1/120, 3.43 s at 1/30). A dampratio below 1 recovers faster but pops the cube up: 0.14 m at
-// 0.8, 2 m at 0.5. Rest offset -7.9e-8 m.
+// Errors: mju_user_error throws EngineError (MuJoCo would print and exit); a mj_loadXML failure is
+// an EngineError with MuJoCo's message; a warning counted in d->warning during a step (bad qpos,
+// qvel, qacc: MuJoCo then resets the state, hiding the instability) is an EngineError "MuJoCo
+// warning: ...". The warning handler only records the text: throwing from it would leave mj_step
+// half done. Contacts (soft, docs/engines.md 5): box geoms, solimp "0.9999 0.9999 0.001" (impedance
+// ~1: stiff), solref "2h 1" (time constant 2h, the smallest MuJoCo accepts without disabling
+// refsafe; critically damped), friction 0.5 (MuJoCo mixes by max). Landing, measured (unit cube
+// from 10 m onto a box floor, no drag, 60 Hz): collisions are found at the start of a step (no
+// continuous collision), so the step that crosses the floor ends 0.218 m inside it (step 84, t_c
+// = 1.392 s) and the contact acts from step 85. The penetration then shrinks by a factor 1 -
+// h^2*k/2 = 0.875 per step (k = 1/(2h)^2; the box-box collider reports half the depth), with no
+// rebound (highest 0.49999993 m); still (|v| <= 1e-3 m/s) from t = 2.38 s (1.82 s at 1/120, 3.43 s
+// at 1/30). A dampratio below 1 recovers faster but pops the cube up: 0.14 m at 0.8, 2 m at 0.5.
+// Rest offset -7.9e-8 m.
 #include <mujoco/mujoco.h>
 
 #include <array>
@@ -54,7 +54,8 @@ constexpr double kRestOffset = 0.0;
 // Measured worst |rest| 5.2e-7 m (1/30); the band leaves room for coarser steps (sag ~ h^2).
 constexpr double kRestTolerance = 1e-4;
 
-// mju_error must not return (MuJoCo would go on with a broken state): throw through MuJoCo's frames.
+// mju_error must not return (MuJoCo would go on with a broken state): throw through MuJoCo's
+// frames.
 [[noreturn]] void throw_mujoco_error(const char* msg) {
   throw EngineError(std::string("MuJoCo error: ") + msg);
 }
@@ -62,7 +63,9 @@ constexpr double kRestTolerance = 1e-4;
 // The text of the last warning MuJoCo printed on this thread; the step turns it into an error.
 thread_local std::string t_last_warning;
 
-void record_mujoco_warning(const char* msg) { t_last_warning = msg; }
+void record_mujoco_warning(const char* msg) {
+  t_last_warning = msg;
+}
 
 // MuJoCo's handlers are process-wide function pointers; installed once, never restored.
 void install_handlers() {
@@ -85,7 +88,9 @@ std::string num(double x) {
   return s.str();
 }
 
-std::string vec(const Vec3& v) { return num(v.x()) + " " + num(v.y()) + " " + num(v.z()); }
+std::string vec(const Vec3& v) {
+  return num(v.x()) + " " + num(v.y()) + " " + num(v.z());
+}
 
 // Solid box of half extents (hx, hy, hz): Ixx = m*((2hy)^2 + (2hz)^2)/12 = m*(hy^2 + hz^2)/3, ...
 Vec3 box_inertia(const Body& b) {
@@ -105,11 +110,20 @@ std::string xml_escaped(const std::string& text) {
   std::string out;
   for (const char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -133,8 +147,8 @@ std::string body_xml(const Body& b, double damping) {
 // The scene as MJCF. damping is (exp(k*h) - 1)/h per unit mass.
 std::string model_xml(const Scene& scene, double h) {
   const double damping = std::expm1(scene.world.damping_rate * h) / h;
-  std::string xml = R"(<mujoco model="dropcheck"><option timestep=")" + num(h) +
-                    R"(" gravity=")" + vec(scene.world.gravity) + R"(" integrator="Euler"/>)" +
+  std::string xml = R"(<mujoco model="dropcheck"><option timestep=")" + num(h) + R"(" gravity=")" +
+                    vec(scene.world.gravity) + R"(" integrator="Euler"/>)" +
                     geom_defaults(scene, h) + "<worldbody>";
   for (const Body& b : scene.bodies) xml += body_xml(b, damping);
   return xml + "</worldbody></mujoco>";
@@ -256,7 +270,8 @@ void MujocoEngine::set_forces(std::span<const Vec3> forces) {
   if (!d_) return;  // step() reports it
   for (std::size_t i = 0; i < joint_.size(); ++i)
     if (joint_[i] >= 0)
-      std::memcpy(d_->qfrc_applied + m_->jnt_dofadr[joint_[i]], forces[i].data(), 3 * sizeof(mjtNum));
+      std::memcpy(d_->qfrc_applied + m_->jnt_dofadr[joint_[i]], forces[i].data(),
+                  3 * sizeof(mjtNum));
 }
 
 void MujocoEngine::step() {
@@ -304,7 +319,9 @@ void MujocoEngine::read(std::span<BodyState> out) const {
 
 }  // namespace
 
-std::unique_ptr<Engine> make_mujoco() { return std::make_unique<MujocoEngine>(); }
+std::unique_ptr<Engine> make_mujoco() {
+  return std::make_unique<MujocoEngine>();
+}
 
 double bare_seconds_mujoco(const Scene& scene, double h) {
   MujocoEngine e;

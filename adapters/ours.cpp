@@ -1,4 +1,5 @@
-// Adapter for ours/ (the seed's engine), in f32 (`ours`, the seed's own scalar) and f64 (`ours-f64`).
+// Adapter for ours/ (the seed's engine), in f32 (`ours`, the seed's own scalar) and f64
+// (`ours-f64`).
 //
 // Mapping (scene -> ours):
 //   gravity g          -> World::gravity
@@ -45,7 +46,8 @@ class OursEngine final : public Engine {
   }
 
   void set_forces(std::span<const Vec3> forces) override {
-    for (std::size_t i = 0; i < models_.size(); ++i) models_[i].rigidBody.force = forces[i].cast<T>();
+    for (std::size_t i = 0; i < models_.size(); ++i)
+      models_[i].rigidBody.force = forces[i].cast<T>();
   }
 
   void step() override { ours::ApplyPhysics<T>(models_, world_, h_); }
@@ -72,8 +74,12 @@ class OursEngine final : public Engine {
 
 }  // namespace
 
-std::unique_ptr<Engine> make_ours_f32() { return std::make_unique<OursEngine<float>>(); }
-std::unique_ptr<Engine> make_ours_f64() { return std::make_unique<OursEngine<double>>(); }
+std::unique_ptr<Engine> make_ours_f32() {
+  return std::make_unique<OursEngine<float>>();
+}
+std::unique_ptr<Engine> make_ours_f64() {
+  return std::make_unique<OursEngine<double>>();
+}
 
 double bare_seconds_ours_f32(const Scene& scene, double h) {
   OursEngine<float> e;

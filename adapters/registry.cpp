@@ -87,7 +87,8 @@ std::string engine_unavailable_reason(const std::string& name) {
   if (!e)
     return "unknown engine (known: ours, ours-f64, bullet, ode, box2d, mujoco, exec:PATH, "
            "FILE.toml: docs/protocol.md)";
-  if (!e->make) return std::string("not compiled in (library not found; CMake option ") + e->option + ")";
+  if (!e->make)
+    return std::string("not compiled in (library not found; CMake option ") + e->option + ")";
   return {};
 }
 

@@ -67,7 +67,8 @@ void BM_OursStep(benchmark::State& state) {
 void BM_ExecCStep(benchmark::State& state) {
   const std::string path = seed_engine_c();
   if (!std::filesystem::exists(path)) {
-    state.SkipWithError(("no C example engine at " + path + " (set DROPCHECK_SEED_ENGINE_C)").c_str());
+    state.SkipWithError(
+        ("no C example engine at " + path + " (set DROPCHECK_SEED_ENGINE_C)").c_str());
     return;
   }
   auto engine = make_exec_engine(parse_exec_spec("exec:" + path));

@@ -22,7 +22,9 @@ namespace {
 constexpr double kH = 1.0 / 60.0;
 
 // Steps per run: 600 (10 s) up to N = 1000, fewer above so that a run stays near 6e5 body-steps.
-std::int64_t steps_for(int n) { return std::clamp<std::int64_t>(600000 / n, 60, 600); }
+std::int64_t steps_for(int n) {
+  return std::clamp<std::int64_t>(600000 / n, 60, 600);
+}
 
 // N unit cubes 2 m apart along x at y = 10 m, in the x-y plane (Box2D runs it), falling freely.
 Scene free_cubes(int n) {
@@ -77,11 +79,14 @@ const bool registered = [] {
     for (const std::string& engine : available_engine_names()) {
       const std::string tail = engine + "/" + std::to_string(n);
       benchmark::RegisterBenchmark(("bare/" + tail).c_str(), bare, engine, n)
-          ->UseManualTime()->Unit(benchmark::kMillisecond);
+          ->UseManualTime()
+          ->Unit(benchmark::kMillisecond);
       benchmark::RegisterBenchmark(("harness/" + tail).c_str(), harness, engine, n, 1)
-          ->UseManualTime()->Unit(benchmark::kMillisecond);
+          ->UseManualTime()
+          ->Unit(benchmark::kMillisecond);
       benchmark::RegisterBenchmark(("sparse/" + tail).c_str(), harness, engine, n, steps_for(n))
-          ->UseManualTime()->Unit(benchmark::kMillisecond);
+          ->UseManualTime()
+          ->Unit(benchmark::kMillisecond);
     }
   }
   return true;

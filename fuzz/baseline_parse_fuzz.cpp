@@ -19,7 +19,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   const std::string once = dropcheck::baseline_to_text(b);
-  const std::string twice = dropcheck::baseline_to_text(dropcheck::parse_baseline(once, "fuzz.txt"));
+  const std::string twice =
+      dropcheck::baseline_to_text(dropcheck::parse_baseline(once, "fuzz.txt"));
   if (once != twice) std::abort();  // the round trip changed the baseline
   return 0;
 }

@@ -35,10 +35,24 @@ struct Rng {
 
 // Text that scene and baseline parsers treat specially: extreme numbers, structure, quoting.
 const char* const kTokens[] = {
-    "1e308",  "-1.7976931348623157e308", "5e-324", "nan", "inf", "-0.0", "0", "1/0", "1/60",
-    "99999999999999999999", "\"", "'", "\\", "\\u0000", "\n", "\r\n", "[[body]]\n", "[world]\n",
-    "[[force]]\n", "name = ", " = ", "[", "]", "{", "}", ",", "#", "sample ", "bodies ", "dt ",
-    "sweep h=", " / ", "status ", "\xff", "\xc3\x28", "`touch x`",
+    "1e308",       "-1.7976931348623157e308",
+    "5e-324",      "nan",
+    "inf",         "-0.0",
+    "0",           "1/0",
+    "1/60",        "99999999999999999999",
+    "\"",          "'",
+    "\\",          "\\u0000",
+    "\n",          "\r\n",
+    "[[body]]\n",  "[world]\n",
+    "[[force]]\n", "name = ",
+    " = ",         "[",
+    "]",           "{",
+    "}",           ",",
+    "#",           "sample ",
+    "bodies ",     "dt ",
+    "sweep h=",    " / ",
+    "status ",     "\xff",
+    "\xc3\x28",    "`touch x`",
 };
 
 std::string read_file(const std::filesystem::path& p) {
@@ -64,10 +78,18 @@ void mutate(std::string& s, const std::string& other, Rng& rng) {
       if (!s.empty()) s[rng.below(s.size())] = bytes[rng.below(sizeof bytes)];
       break;
     }
-    case 2: s.insert(at, kTokens[rng.below(std::size(kTokens))]); break;
-    case 3: s.erase(at, rng.below(16)); break;
-    case 4: s.insert(at, s.substr(rng.below(s.size() + 1), rng.below(64))); break;
-    default: s.insert(at, other.substr(rng.below(other.size() + 1), rng.below(256))); break;
+    case 2:
+      s.insert(at, kTokens[rng.below(std::size(kTokens))]);
+      break;
+    case 3:
+      s.erase(at, rng.below(16));
+      break;
+    case 4:
+      s.insert(at, s.substr(rng.below(s.size() + 1), rng.below(64)));
+      break;
+    default:
+      s.insert(at, other.substr(rng.below(other.size() + 1), rng.below(256)));
+      break;
   }
 }
 
@@ -79,8 +101,10 @@ int main(int argc, char** argv) {
   std::vector<std::string> corpus;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--mutations" && i + 1 < argc) mutations = std::atol(argv[++i]);
-    else if (a == "--seconds" && i + 1 < argc) seconds = std::atof(argv[++i]);
+    if (a == "--mutations" && i + 1 < argc)
+      mutations = std::atol(argv[++i]);
+    else if (a == "--seconds" && i + 1 < argc)
+      seconds = std::atof(argv[++i]);
     else {
       std::vector<std::filesystem::path> files;
       for (const auto& e : std::filesystem::recursive_directory_iterator(a))
@@ -103,6 +127,7 @@ int main(int argc, char** argv) {
     for (std::size_t k = 1 + rng.below(4); k > 0; --k) mutate(input, other, rng);
     run(input);
   }
-  std::printf("replay: %zu corpus files and %ld mutations ran without a finding\n", corpus.size(), done);
+  std::printf("replay: %zu corpus files and %ld mutations ran without a finding\n", corpus.size(),
+              done);
   return 0;
 }

@@ -10,8 +10,8 @@
 // alpha = accumulator / step in [0, 1) is what a renderer interpolates with.
 //
 // The seed runs as many steps as the accumulator holds. After a long hitch (a 0.5 s frame) that is
-// 30 steps in one frame, which makes the next frame slower still: the "spiral of death". Here at most
-// `maxStepsPerFrame` steps run per frame; the time beyond that is dropped and reported in
+// 30 steps in one frame, which makes the next frame slower still: the "spiral of death". Here at
+// most `maxStepsPerFrame` steps run per frame; the time beyond that is dropped and reported in
 // `droppedTime`, never run silently.
 #pragma once
 
@@ -26,9 +26,9 @@ inline constexpr int MAX_STEPS_PER_FRAME = 8;
 
 template <typename T>
 struct FrameSteps {
-  int steps = 0;          // whole physics steps to run this frame
-  T droppedTime = T(0);   // seconds discarded by the cap (0 unless the frame hitched)
-  T alpha = T(0);         // leftover fraction of a step, for render interpolation
+  int steps = 0;         // whole physics steps to run this frame
+  T droppedTime = T(0);  // seconds discarded by the cap (0 unless the frame hitched)
+  T alpha = T(0);        // leftover fraction of a step, for render interpolation
 };
 
 template <typename T>

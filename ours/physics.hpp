@@ -23,7 +23,7 @@ struct RigidBody {
   Vector3<T> force = Vector3<T>::Zero();     // accumulator, cleared every step (N)
   Vector3<T> velocity = Vector3<T>::Zero();  // m/s
   bool isStatic = false;
-  T mass = T(1);                             // kg; the seed assumes 1
+  T mass = T(1);  // kg; the seed assumes 1
 };
 
 // The seed's Model keeps mesh, texture and rotation too; physics reads only these two members.

@@ -1,8 +1,7 @@
 // Tests scenarios/: every shipped scene file loads. The directory is globbed at test time, so a
 // new scene (in any subdirectory) is covered without editing this file.
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -14,7 +13,8 @@ namespace {
 
 std::vector<std::string> shipped_scenes() {
   std::vector<std::string> files;
-  for (const auto& e : std::filesystem::recursive_directory_iterator(DROPCHECK_SOURCE_DIR "/scenarios"))
+  for (const auto& e :
+       std::filesystem::recursive_directory_iterator(DROPCHECK_SOURCE_DIR "/scenarios"))
     if (e.is_regular_file() && e.path().extension() == ".toml") files.push_back(e.path().string());
   std::sort(files.begin(), files.end());
   return files;
@@ -40,7 +40,8 @@ TEST_CASE("every scene file shipped in scenarios/ loads without error", "[scenar
   }
 }
 
-TEST_CASE("shipped scene names are unique, since tests and reports are keyed by them", "[scenarios]") {
+TEST_CASE("shipped scene names are unique, since tests and reports are keyed by them",
+          "[scenarios]") {
   std::map<std::string, std::string> seen;  // name -> first file
   for (const std::string& file : shipped_scenes()) {
     const std::string name = dropcheck::load_scene(file).name;
@@ -50,8 +51,11 @@ TEST_CASE("shipped scene names are unique, since tests and reports are keyed by 
   }
 }
 
-TEST_CASE("seed_part3.toml is the seed's Part III scene: 1/60 s, g = -9.8, drag 0.98, a static floor", "[scenarios]") {
-  const dropcheck::Scene s = dropcheck::load_scene(DROPCHECK_SOURCE_DIR "/scenarios/seed_part3.toml");
+TEST_CASE(
+    "seed_part3.toml is the seed's Part III scene: 1/60 s, g = -9.8, drag 0.98, a static floor",
+    "[scenarios]") {
+  const dropcheck::Scene s =
+      dropcheck::load_scene(DROPCHECK_SOURCE_DIR "/scenarios/seed_part3.toml");
   CHECK(s.timestep.seconds == 1.0 / 60.0);
   CHECK(s.world.gravity == dropcheck::Vec3(0.0, -9.8, 0.0));
   CHECK(std::abs(dropcheck::decay_per_step(s, 1.0 / 60.0) - 0.98) < 1e-15);  // measured 0 (equal)

@@ -17,7 +17,8 @@ std::string count_words(const CommandSpec& spec) {
 
 // The parser of `spec`; values are collected per occurrence. Positionals are not declared to CLI11:
 // they come back in remaining() with unknown options and a bare "--", sorted out by parse_args.
-std::unique_ptr<CLI::App> make_app(const CommandSpec& spec, std::map<std::string, std::vector<std::string>>& values) {
+std::unique_ptr<CLI::App> make_app(const CommandSpec& spec,
+                                   std::map<std::string, std::vector<std::string>>& values) {
   auto app = std::make_unique<CLI::App>(spec.summary, "dropcheck " + spec.name);
   app->allow_extras();  // reported below with our own sentences
   app->get_formatter()->column_width(24);
@@ -31,7 +32,8 @@ std::unique_ptr<CLI::App> make_app(const CommandSpec& spec, std::map<std::string
     opt->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   }
   if (!spec.positional_name.empty())
-    app->footer(spec.positional_name + ": " + spec.positional_help + " (" + count_words(spec) + ")");
+    app->footer(spec.positional_name + ": " + spec.positional_help + " (" + count_words(spec) +
+                ")");
   return app;
 }
 
@@ -48,7 +50,8 @@ void check_values(const CommandSpec& spec, const CLI::App& app, Args& args,
     if (!o.repeatable && v.size() > 1)
       throw InputError("", 0, o.name, "given " + std::to_string(v.size()) + " times; give it once");
     for (const std::string& s : v)
-      if (s.empty()) throw InputError("", 0, o.name, "expects " + o.value_name + ", got an empty string");
+      if (s.empty())
+        throw InputError("", 0, o.name, "expects " + o.value_name + ", got an empty string");
     args.options[o.name] = v;
   }
 }
@@ -93,10 +96,12 @@ Args parse_args(const CommandSpec& spec, const std::vector<std::string>& argv) {
   }
   const int n = static_cast<int>(args.positional.size());
   if (spec.positional_name.empty() && n > 0)
-    throw InputError("", 0, "", "unexpected argument '" + args.positional[0] + "': " + spec.name +
-                                    " takes no arguments" + hint);
+    throw InputError("", 0, "",
+                     "unexpected argument '" + args.positional[0] + "': " + spec.name +
+                         " takes no arguments" + hint);
   if (n < spec.min_positional || (spec.max_positional >= 0 && n > spec.max_positional))
-    throw InputError("", 0, spec.name, "expects " + count_words(spec) + ", got " + std::to_string(n) + hint);
+    throw InputError("", 0, spec.name,
+                     "expects " + count_words(spec) + ", got " + std::to_string(n) + hint);
   check_values(spec, *app, args, values);
   return args;
 }

@@ -11,10 +11,10 @@ namespace dropcheck {
 
 // One --option: a value option when `value_name` is set ("FILE"), else a flag.
 struct OptionSpec {
-  std::string name;        // "--engine"
-  std::string value_name;  // "E"; empty for a flag
-  std::string help;        // one line for --help
-  bool repeatable = false; // --engine A --engine B keeps both; otherwise given at most once
+  std::string name;         // "--engine"
+  std::string value_name;   // "E"; empty for a flag
+  std::string help;         // one line for --help
+  bool repeatable = false;  // --engine A --engine B keeps both; otherwise given at most once
 };
 
 // A command's arguments: its positionals and options, for parsing and for --help.

@@ -19,11 +19,13 @@ struct CommandEntry {
 const CommandEntry kCommands[] = {
     {"engines", cmd_engines, "dropcheck engines"},
     {"run", cmd_run, "dropcheck run FILE [--engine E]... [--dt H] [--csv OUT] [--json OUT]"},
-    {"bless", cmd_bless, "dropcheck bless [FILE]... [--engine E]... [--out DIR] [--timing]\n"
-                         "  dropcheck bless --check FILE... [--engine E]... [--tier T]... [--baselines DIR]"},
+    {"bless", cmd_bless,
+     "dropcheck bless [FILE]... [--engine E]... [--out DIR] [--timing]\n"
+     "  dropcheck bless --check FILE... [--engine E]... [--tier T]... [--baselines DIR]"},
     {"diff", cmd_diff, "dropcheck diff OLD NEW [--out FILE]"},
     {"check", cmd_check, "dropcheck check FILE... [--engine E]..."},
-    {"report", cmd_report, "dropcheck report [FILE|DIR]... [--out DIR] [--engine E]... [--no-timing]"},
+    {"report", cmd_report,
+     "dropcheck report [FILE|DIR]... [--out DIR] [--engine E]... [--no-timing]"},
     {"stability", cmd_stability, "dropcheck stability FILE [--engine E]... [--json OUT]"},
     {"identify", cmd_identify, "dropcheck identify FILE (--engine E [--dt H] | --trajectory CSV)"},
 };

@@ -2,20 +2,21 @@
 //   Rewrites the golden baselines (default: every scenarios/*.toml on ours and ours-f64, into
 //   tests/baselines/) and refuses, exit 1, when a fresh run fails an oracle check.
 // dropcheck bless --check FILE... [--engine E]... [--tier T]... [--baselines DIR]
-//   Compares this build with the baselines, tier by tier (harness/guard/regression.hpp): exit 0 when every
-//   tier passed, 1 when one failed, 77 when every tier was skipped (ctest's SKIP_RETURN_CODE).
+//   Compares this build with the baselines, tier by tier (harness/guard/regression.hpp): exit 0
+//   when every tier passed, 1 when one failed, 77 when every tier was skipped (ctest's
+//   SKIP_RETURN_CODE).
 #include <algorithm>
 #include <filesystem>
 
 #include "args.hpp"
 #include "cli.hpp"
-#include "harness/guard/bless.hpp"
 #include "harness/core/build_id.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/core/output_plan.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/guard/regression.hpp"
 #include "harness/core/scene_loader.hpp"
+#include "harness/guard/bless.hpp"
+#include "harness/guard/regression.hpp"
 
 namespace dropcheck {
 namespace {
@@ -27,9 +28,11 @@ std::vector<std::string> shipped_scenes() {
   std::vector<std::string> files;
   std::error_code ec;
   for (const auto& entry : std::filesystem::directory_iterator("scenarios", ec))
-    if (entry.is_regular_file() && entry.path().extension() == ".toml") files.push_back(entry.path().string());
+    if (entry.is_regular_file() && entry.path().extension() == ".toml")
+      files.push_back(entry.path().string());
   if (ec || files.empty())
-    throw InputError("scenarios", 0, "", "no scene files here; run from the source tree or name FILEs");
+    throw InputError("scenarios", 0, "",
+                     "no scene files here; run from the source tree or name FILEs");
   std::sort(files.begin(), files.end());
   return files;
 }
@@ -41,23 +44,26 @@ std::vector<NamedFactory> engines_from(const Args& args) {
   for (const std::string& name : names) {
     if (std::string why = engine_unavailable_reason(name); !why.empty())
       throw InputError("", 0, "--engine " + name, why);
-    // Named as the engine names itself: an engine file's engine blesses and checks under its own name.
+    // Named as the engine names itself: an engine file's engine blesses and checks under its own
+    // name.
     out.push_back({make_engine(name)->info().name, [name] { return make_engine(name); }});
   }
   return out;
 }
 
 // One tier on one scene and engine; `now` is made on first use.
-TierResult run_tier(Tier tier, const Scene& scene, const NamedFactory& engine, const std::string& dir,
-                    std::optional<Baseline>& now) {
+TierResult run_tier(Tier tier, const Scene& scene, const NamedFactory& engine,
+                    const std::string& dir, std::optional<Baseline>& now) {
   if (tier == Tier::determinism) return check_determinism(scene, engine.second);
   if (!now) now = make_baseline(scene, engine.second);
   if (tier == Tier::physics) return check_physics(*now);
   const std::string name = scene.name + " / " + engine.first + " / " + to_string(tier) + ": ";
-  if (!now->skipped.empty()) return {Verdict::skipped, name + "the engine cannot run this scene: " + now->skipped};
+  if (!now->skipped.empty())
+    return {Verdict::skipped, name + "the engine cannot run this scene: " + now->skipped};
   const std::string path = baseline_path(dir, scene.name, engine.first);
   if (!std::filesystem::exists(path))
-    return {Verdict::failed, name + "no baseline " + path + "; run `dropcheck bless " + scene.source + "` to make one"};
+    return {Verdict::failed, name + "no baseline " + path + "; run `dropcheck bless " +
+                                 scene.source + "` to make one"};
   const Baseline expected = read_baseline(path);
   return tier == Tier::bits ? check_bits(expected, *now) : check_tolerance(expected, *now);
 }
@@ -66,7 +72,8 @@ std::vector<Tier> tiers_from(const Args& args) {
   std::vector<Tier> tiers;
   for (const std::string& name : args.values("--tier")) {
     const std::optional<Tier> t = parse_tier(name);
-    if (!t) throw InputError("", 0, "--tier " + name, "expected bits, tolerance, physics or determinism");
+    if (!t)
+      throw InputError("", 0, "--tier " + name, "expected bits, tolerance, physics or determinism");
     tiers.push_back(*t);
   }
   if (tiers.empty()) tiers = {Tier::bits, Tier::tolerance, Tier::physics, Tier::determinism};
@@ -75,10 +82,11 @@ std::vector<Tier> tiers_from(const Args& args) {
 
 // What to do about failed checks (docs/regression.md walks through both cases).
 const char* next_step(bool physics_failed) {
-  return physics_failed ? "the run breaks an oracle: fix the integrator, or declare its new law in its "
-                          "adapter; `dropcheck bless` refuses until then (docs/regression.md)"
-                        : "if the change is intended, run `dropcheck bless` and commit tests/baselines/ "
-                          "(docs/regression.md)";
+  return physics_failed
+             ? "the run breaks an oracle: fix the integrator, or declare its new law in its "
+               "adapter; `dropcheck bless` refuses until then (docs/regression.md)"
+             : "if the change is intended, run `dropcheck bless` and commit tests/baselines/ "
+               "(docs/regression.md)";
 }
 
 int check(const Args& args, const std::vector<Scene>& scenes, std::ostream& out) {
@@ -98,24 +106,29 @@ int check(const Args& args, const std::vector<Scene>& scenes, std::ostream& out)
       }
     }
   }
-  if (failed) out << failed << " of " << total << " regression checks FAILED; " << next_step(physics_failed > 0) << "\n";
+  if (failed)
+    out << failed << " of " << total << " regression checks FAILED; "
+        << next_step(physics_failed > 0) << "\n";
   return failed ? kExitCheckFailed : skipped == total ? kExitSkipped : kExitOk;
 }
 
 // Before any engine runs: --out is a folder dropcheck may write in, no two baselines share a file
 // (bless.hpp), and no baseline lands on a scene file.
-void check_outputs(const Args& args, const std::vector<std::string>& files, const std::vector<Scene>& scenes) {
+void check_outputs(const Args& args, const std::vector<std::string>& files,
+                   const std::vector<Scene>& scenes) {
   const std::string dir = args.value("--out", "tests/baselines");
   OutputPlan plan;
   plan.write_into("--out", dir);
   for (const std::string& f : files) plan.read(f);
   std::vector<std::string> engines = args.values("--engine");
   if (engines.empty()) engines = {"ours", "ours-f64"};
-  for (const std::string& path : baseline_paths(scenes, engines, dir)) plan.write_file("--out", path);
+  for (const std::string& path : baseline_paths(scenes, engines, dir))
+    plan.write_file("--out", path);
   plan.check();
 }
 
-int write(const Args& args, const std::vector<Scene>& scenes, std::ostream& out, std::ostream& err) {
+int write(const Args& args, const std::vector<Scene>& scenes, std::ostream& out,
+          std::ostream& err) {
   BlessOptions options;
   options.out_dir = args.value("--out", "tests/baselines");
   options.commit = source_commit();
@@ -123,7 +136,8 @@ int write(const Args& args, const std::vector<Scene>& scenes, std::ostream& out,
   const BlessOutcome outcome = bless(scenes, engines_from(args), options);
   for (const std::string& why : outcome.refused) err << "dropcheck bless: refused: " << why << "\n";
   if (!outcome.refused.empty()) {
-    err << "dropcheck bless: nothing written: a baseline that fails an oracle check would make wrong "
+    err << "dropcheck bless: nothing written: a baseline that fails an oracle check would make "
+           "wrong "
            "physics the truth. Fix the integrator, or the law its adapter declares.\n";
     return kExitCheckFailed;
   }
@@ -136,15 +150,20 @@ int write(const Args& args, const std::vector<Scene>& scenes, std::ostream& out,
 const CommandSpec& bless_spec() {
   static const CommandSpec spec{
       "bless",
-      "Rewrites the golden baselines (refused, exit 1, when a fresh run fails an oracle check), or with "
+      "Rewrites the golden baselines (refused, exit 1, when a fresh run fails an oracle check), or "
+      "with "
       "--check compares this build with them tier by tier (exit 77 when every tier was skipped).",
-      "scene FILE", "scene files (default: every scenarios/*.toml)", 0, -1,
+      "scene FILE",
+      "scene files (default: every scenarios/*.toml)",
+      0,
+      -1,
       {{"--engine", "E", "an engine (repeatable; default: ours and ours-f64)", true},
        {"--out", "DIR", "the folder of baselines to write (default: tests/baselines)"},
        {"--timing", "", "record wall-clock timings in the baselines"},
        {"--check", "", "compare with the baselines instead of writing them"},
        {"--tier", "T", "with --check: bits, tolerance, physics or determinism (repeatable)", true},
-       {"--baselines", "DIR", "with --check: the baselines to compare with (default: tests/baselines)"}}};
+       {"--baselines", "DIR",
+        "with --check: the baselines to compare with (default: tests/baselines)"}}};
   return spec;
 }
 

@@ -1,13 +1,14 @@
 // dropcheck check FILE... [--engine E]...
-// Runs every check that applies to each scene on each engine (harness/measure/checks.hpp) and prints one
-// line per check: PASS/FAIL, scene, engine, check, measured figures. Exit 1 if any check failed.
-// An engine that cannot run a scene is printed as "skipped: <reason>" (ctest reports it skipped).
+// Runs every check that applies to each scene on each engine (harness/measure/checks.hpp) and
+// prints one line per check: PASS/FAIL, scene, engine, check, measured figures. Exit 1 if any check
+// failed. An engine that cannot run a scene is printed as "skipped: <reason>" (ctest reports it
+// skipped).
 #include "args.hpp"
 #include "cli.hpp"
-#include "harness/measure/checks.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/scene_loader.hpp"
+#include "harness/measure/checks.hpp"
 #include "selection.hpp"
 
 namespace dropcheck {
@@ -26,9 +27,14 @@ void print(const CheckResult& r, std::ostream& out) {
 
 const CommandSpec& check_spec() {
   static const CommandSpec spec{
-      "check", "Runs every check that applies to each scene on each engine; exit 1 if one failed.",
-      "scene FILE", "scene files (.toml)", 1, -1,
-      {{"--engine", "E", "an engine to check (repeatable; default: every engine compiled in)", true}}};
+      "check",
+      "Runs every check that applies to each scene on each engine; exit 1 if one failed.",
+      "scene FILE",
+      "scene files (.toml)",
+      1,
+      -1,
+      {{"--engine", "E", "an engine to check (repeatable; default: every engine compiled in)",
+        true}}};
   return spec;
 }
 
@@ -36,7 +42,8 @@ int cmd_check(const std::vector<std::string>& argv, std::ostream& out, std::ostr
   const Args args = parse_args(check_spec(), argv);
   std::vector<Scene> scenes;
   for (const std::string& file : args.positional) scenes.push_back(load_scene(file));
-  if (!make_engine("ours-f64")) throw InputError("", 0, "ours-f64", "the reference engine is missing");
+  if (!make_engine("ours-f64"))
+    throw InputError("", 0, "ours-f64", "the reference engine is missing");
 
   int failed = 0, passed = 0;
   for (const Scene& scene : scenes) {

@@ -1,8 +1,8 @@
 // dropcheck diff OLD NEW [--out FILE]
 // Compares two result sets (directories of baseline files: tests/baselines/, or what
-// `dropcheck bless --out DIR` wrote) and prints a Markdown summary (harness/guard/result_diff.hpp) to
-// stdout or, atomically, to FILE. Exit 0 whatever moved: it reports, it does not judge;
-// 2 when a folder holds no baseline file, or --out would land on or inside OLD or NEW.
+// `dropcheck bless --out DIR` wrote) and prints a Markdown summary (harness/guard/result_diff.hpp)
+// to stdout or, atomically, to FILE. Exit 0 whatever moved: it reports, it does not judge; 2 when a
+// folder holds no baseline file, or --out would land on or inside OLD or NEW.
 #include "args.hpp"
 #include "cli.hpp"
 #include "harness/core/atomic_file.hpp"
@@ -18,7 +18,8 @@ namespace {
 ResultSet load_nonempty(const std::string& dir) {
   ResultSet set = load_result_set(dir);
   if (set.runs.empty())
-    throw InputError(dir, 0, "", "holds no baseline files (*.txt written by `dropcheck bless --out DIR`)");
+    throw InputError(dir, 0, "",
+                     "holds no baseline files (*.txt written by `dropcheck bless --out DIR`)");
   return set;
 }
 
@@ -26,8 +27,13 @@ ResultSet load_nonempty(const std::string& dir) {
 
 const CommandSpec& diff_spec() {
   static const CommandSpec spec{
-      "diff", "Compares two result sets (folders of baseline files) and prints a Markdown summary.",
-      "result sets OLD NEW", "folders of baseline files", 2, 2, {{"--out", "FILE", "write the summary to FILE instead"}}};
+      "diff",
+      "Compares two result sets (folders of baseline files) and prints a Markdown summary.",
+      "result sets OLD NEW",
+      "folders of baseline files",
+      2,
+      2,
+      {{"--out", "FILE", "write the summary to FILE instead"}}};
   return spec;
 }
 

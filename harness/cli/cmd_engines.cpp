@@ -8,16 +8,22 @@ namespace dropcheck {
 
 const CommandSpec& engines_spec() {
   static const CommandSpec spec{
-      "engines", "Lists every engine dropcheck knows: version, scalar, capabilities, discrete law and "
-                 "damping mapping, or why it is not compiled in.",
-      "", "", 0, 0, {}};
+      "engines",
+      "Lists every engine dropcheck knows: version, scalar, capabilities, discrete law and "
+      "damping mapping, or why it is not compiled in.",
+      "",
+      "",
+      0,
+      0,
+      {}};
   return spec;
 }
 
 int cmd_engines(const std::vector<std::string>& argv, std::ostream& out, std::ostream&) {
   parse_args(engines_spec(), argv);
   const char* row = "%-9s %-14s %-6s %-22s %-36s %s\n";
-  out << strprintf(row, "engine", "version", "scalar", "capabilities", "discrete law", "damping mapping");
+  out << strprintf(row, "engine", "version", "scalar", "capabilities", "discrete law",
+                   "damping mapping");
   for (const std::string& name : known_engine_names()) {
     std::unique_ptr<Engine> e = make_engine(name);
     if (!e) {

@@ -13,13 +13,13 @@
 
 #include "args.hpp"
 #include "cli.hpp"
-#include "printf.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/core/scene_loader.hpp"
 #include "harness/core/trajectory_csv.hpp"
 #include "harness/oracles/identify.hpp"
+#include "printf.hpp"
 #include "selection.hpp"
 
 namespace dropcheck {
@@ -27,10 +27,15 @@ namespace dropcheck {
 const CommandSpec& identify_spec() {
   static const CommandSpec spec{
       "identify",
-      "Names the fixed-step Euler law behind a free-flight trajectory: fits every member of the law "
-      "family (where damping sits, semi-implicit or explicit position update) with its own per-step "
+      "Names the fixed-step Euler law behind a free-flight trajectory: fits every member of the "
+      "law "
+      "family (where damping sits, semi-implicit or explicit position update) with its own "
+      "per-step "
       "damping factor and gravity, and prints each member's residual and the best fit.",
-      "scene FILE", "the scene file (.toml) the trajectory comes from", 1, 1,
+      "scene FILE",
+      "the scene file (.toml) the trajectory comes from",
+      1,
+      1,
       {{"--engine", "E", "run engine E on the scene and identify its law"},
        {"--trajectory", "CSV", "identify the one run in CSV (dropcheck's trajectory CSV format)"},
        {"--dt", "H", "with --engine: the step (default: the scene's)"}}};
@@ -48,33 +53,37 @@ struct IdentifyRequest {
 
 IdentifyRequest parse_identify_request(const std::vector<std::string>& argv) {
   const Args args = parse_args(identify_spec(), argv);
-  IdentifyRequest r{args.positional[0], args.value("--engine"), args.value("--trajectory"), args.value("--dt")};
+  IdentifyRequest r{args.positional[0], args.value("--engine"), args.value("--trajectory"),
+                    args.value("--dt")};
   if (r.engine.empty() == r.trajectory.empty())
     throw InputError("", 0, "identify", "expects exactly one of --engine E and --trajectory CSV");
-  if (!r.dt.empty() && r.engine.empty()) throw InputError("", 0, "--dt", "applies to --engine only");
+  if (!r.dt.empty() && r.engine.empty())
+    throw InputError("", 0, "--dt", "applies to --engine only");
   return r;
 }
-
 
 // The one run in a trajectory file, checked against the scene's name.
 Trajectory trajectory_from_file(const std::string& file) {
   std::vector<Trajectory> runs = read_trajectories_csv(file);
   if (runs.size() != 1) {
     std::string list;
-    for (const Trajectory& t : runs) list += (list.empty() ? "" : ", ") + t.engine + strprintf(" at dt %.6g", t.h);
-    throw InputError(file, 0, "", "holds " + std::to_string(runs.size()) + " runs (" + list +
-                                      "); identify reads one: dropcheck run SCENE --engine E --csv OUT");
+    for (const Trajectory& t : runs)
+      list += (list.empty() ? "" : ", ") + t.engine + strprintf(" at dt %.6g", t.h);
+    throw InputError(file, 0, "",
+                     "holds " + std::to_string(runs.size()) + " runs (" + list +
+                         "); identify reads one: dropcheck run SCENE --engine E --csv OUT");
   }
   return runs[0];
 }
 
 void print_fits(const Identification& id, std::ostream& out) {
   out << strprintf("  %-24s %-38s %12s  %-32s %14s %14s\n", "member", "update", "phi",
-                "gravity (m/s^2)", "max|x-fit| m", "max|v-fit| m/s");
+                   "gravity (m/s^2)", "max|x-fit| m", "max|v-fit| m/s");
   for (const MemberFit& m : id.fits) {
-    const std::string g = strprintf("(%.6g, %.6g, %.6g)", m.gravity.x(), m.gravity.y(), m.gravity.z());
+    const std::string g =
+        strprintf("(%.6g, %.6g, %.6g)", m.gravity.x(), m.gravity.y(), m.gravity.z());
     out << strprintf("  %-24s %-38s %12.9f  %-32s %14.3g %14.3g\n", law_key(m.law).c_str(),
-                  to_string(m.law).c_str(), m.phi, g.c_str(), m.max_dx, m.max_dv);
+                     to_string(m.law).c_str(), m.phi, g.c_str(), m.max_dx, m.max_dv);
   }
 }
 
@@ -82,11 +91,13 @@ void print_fits(const Identification& id, std::ostream& out) {
 std::string hint(const Identification& id) {
   const Law a = id.fits[id.best].law, b = id.fits[id.runner_up].law;
   if (std::abs(id.fits[id.best].phi - 1.0) < 1e-6)
-    return " (without damping, phi = 1, where the damping sits leaves no trace: use a scene with damping)";
+    return " (without damping, phi = 1, where the damping sits leaves no trace: use a scene with "
+           "damping)";
   const auto semi = [](Law l, DampingOrder d) { return l == Law{d, PositionUpdate::SemiImplicit}; };
   if ((semi(a, DampingOrder::AfterForces) && semi(b, DampingOrder::BeforeForces)) ||
       (semi(b, DampingOrder::AfterForces) && semi(a, DampingOrder::BeforeForces)))
-    return " (with g fitted, after-forces with gravity g is before-forces with gravity phi*g unless a "
+    return " (with g fitted, after-forces with gravity g is before-forces with gravity phi*g "
+           "unless a "
            "force differs between bodies: use e.g. scenarios/wind.toml)";
   return "";
 }
@@ -96,18 +107,21 @@ bool print_verdict(const Identification& id, std::ostream& out) {
   const MemberFit& best = id.fits[id.best];
   const MemberFit& next = id.fits[id.runner_up];
   if (!id.fits_any) {
-    out << "no member fits better than 2 cm: not a fixed-step Euler scheme (closest: " << law_key(best.law)
-        << strprintf(" at %.3g m)\n", best.max_dx);
+    out << "no member fits better than 2 cm: not a fixed-step Euler scheme (closest: "
+        << law_key(best.law) << strprintf(" at %.3g m)\n", best.max_dx);
     return false;
   }
   if (id.ambiguous) {
-    out << "ambiguous: " << law_key(best.law) << strprintf(" (%.3g m) and ", best.max_dx) << law_key(next.law)
-        << strprintf(" (%.3g m) fit equally well: this scene cannot tell them apart", next.max_dx) << hint(id) << "\n";
+    out << "ambiguous: " << law_key(best.law) << strprintf(" (%.3g m) and ", best.max_dx)
+        << law_key(next.law)
+        << strprintf(" (%.3g m) fit equally well: this scene cannot tell them apart", next.max_dx)
+        << hint(id) << "\n";
     return false;
   }
   out << "best fit: " << law_key(best.law) << " (" << to_string(best.law) << ")"
       << strprintf(": residual %.3g m, phi = %.9g, ", best.max_dx, best.phi)
-      << strprintf("g = (%.6g, %.6g, %.6g); runner-up ", best.gravity.x(), best.gravity.y(), best.gravity.z())
+      << strprintf("g = (%.6g, %.6g, %.6g); runner-up ", best.gravity.x(), best.gravity.y(),
+                   best.gravity.z())
       << law_key(next.law) << strprintf(" at %.3g m\n", next.max_dx);
   return true;
 }
@@ -118,7 +132,8 @@ int run_identify(const IdentifyRequest& r, std::ostream& out) {
   std::optional<Law> declared;
   if (!r.engine.empty()) {
     std::vector<SelectedEngine> engines = select_engines({r.engine}, scene);
-    if (!engines[0].engine) throw InputError("", 0, "--engine " + r.engine, engines[0].skipped_because);
+    if (!engines[0].engine)
+      throw InputError("", 0, "--engine " + r.engine, engines[0].skipped_because);
     declared = engines[0].engine->info().law;
     run = run_scene(*engines[0].engine, scene, step_from_flag(r.dt, scene).seconds);
     if (run.status != RunStatus::ok) {
@@ -130,15 +145,19 @@ int run_identify(const IdentifyRequest& r, std::ostream& out) {
     run = trajectory_from_file(r.trajectory);
   }
   const Identification id = identify_law(scene, run);
-  out << "identify " << scene.name << ": trajectory of " << run.engine << ", " << run.bodies() << " bodies, "
-      << run.steps << " steps" << strprintf(" at h = %.9g s\n", run.h);
+  out << "identify " << scene.name << ": trajectory of " << run.engine << ", " << run.bodies()
+      << " bodies, " << run.steps << " steps" << strprintf(" at h = %.9g s\n", run.h);
   print_fits(id, out);
   bool ok = print_verdict(id, out);
   if (declared) {
     const bool match = ok && id.fits[id.best].law == *declared;
-    const bool tied = id.ambiguous && (id.fits[id.best].law == *declared || id.fits[id.runner_up].law == *declared);
+    const bool tied = id.ambiguous &&
+                      (id.fits[id.best].law == *declared || id.fits[id.runner_up].law == *declared);
     out << "declared " << law_key(*declared) << ": "
-        << (match ? "matches" : tied ? "one of the equal fits (not confirmed)" : "MISMATCH") << "\n";
+        << (match  ? "matches"
+            : tied ? "one of the equal fits (not confirmed)"
+                   : "MISMATCH")
+        << "\n";
     ok = ok && match;
   }
   return ok ? kExitOk : kExitCheckFailed;

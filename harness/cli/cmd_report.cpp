@@ -1,11 +1,12 @@
 // dropcheck report [FILE|DIR]... [--out DIR] [--engine E]... [--no-timing]
-// Evaluates every scene on every engine (harness/measure/evaluate.hpp) and writes DIR/README.md plus SVG
-// plots (harness/report/report.hpp). Default: every *.toml directly in scenarios/; scenes in an extreme/
-// folder go to the stability section (harness/stability/stability_report.hpp). Every scene file is loaded
-// before any work starts, and the output is built in a staging directory and swapped into place
-// only when complete: a bad scene file exits 2 naming the file, key and problem, and leaves the
-// previous report untouched. DIR is replaced only when dropcheck wrote it (its .dropcheck-manifest,
-// harness/core/output_dir.hpp); that and every other output rule is checked before any engine runs.
+// Evaluates every scene on every engine (harness/measure/evaluate.hpp) and writes DIR/README.md
+// plus SVG plots (harness/report/report.hpp). Default: every *.toml directly in scenarios/; scenes
+// in an extreme/ folder go to the stability section (harness/stability/stability_report.hpp). Every
+// scene file is loaded before any work starts, and the output is built in a staging directory and
+// swapped into place only when complete: a bad scene file exits 2 naming the file, key and problem,
+// and leaves the previous report untouched. DIR is replaced only when dropcheck wrote it (its
+// .dropcheck-manifest, harness/core/output_dir.hpp); that and every other output rule is checked
+// before any engine runs.
 #include <algorithm>
 #include <filesystem>
 
@@ -15,8 +16,8 @@
 #include "harness/core/output_dir.hpp"
 #include "harness/core/output_plan.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/report/report.hpp"
 #include "harness/core/scene_loader.hpp"
+#include "harness/report/report.hpp"
 #include "harness/stability/stability_report.hpp"
 
 namespace fs = std::filesystem;
@@ -72,7 +73,8 @@ std::vector<EngineSlot> engine_slots(const std::vector<std::string>& requested) 
     if (why.rfind("unknown", 0) == 0) throw InputError("", 0, "--engine " + name, why);
     EngineSlot s{name, {}, why};
     if (why.empty()) s.make = [name] { return make_engine(name); };
-    if (why.empty()) s.name = s.make()->info().name;  // an engine file's engine reports under its own name
+    if (why.empty())
+      s.name = s.make()->info().name;  // an engine file's engine reports under its own name
     slots.push_back(std::move(s));
   }
   return slots;
@@ -106,10 +108,15 @@ void evaluate_all(const std::vector<Scene>& scenes, const std::vector<EngineSlot
 
 const CommandSpec& report_spec() {
   static const CommandSpec spec{
-      "report", "Evaluates every scene on every engine and writes a Markdown report with SVG plots.",
-      "PATH", "scene files or folders of them (default: scenarios)", 0, -1,
+      "report",
+      "Evaluates every scene on every engine and writes a Markdown report with SVG plots.",
+      "PATH",
+      "scene files or folders of them (default: scenarios)",
+      0,
+      -1,
       {{"--out", "DIR", "the report folder, replaced whole (default: reports)"},
-       {"--engine", "E", "an engine to include (repeatable; default: every engine dropcheck knows)", true},
+       {"--engine", "E", "an engine to include (repeatable; default: every engine dropcheck knows)",
+        true},
        {"--no-timing", "", "leave out the wall-clock timings"}}};
   return spec;
 }

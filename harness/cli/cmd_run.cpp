@@ -1,7 +1,8 @@
 // dropcheck run FILE [--engine E]... [--dt H] [--csv OUT] [--json OUT]
 // Runs the scene on each engine and prints a summary: final state per engine and body, steps,
-// wall time, status. Every output path is checked before any engine runs (harness/core/output_plan.hpp);
-// output files are written only after every run finished, atomically.
+// wall time, status. Every output path is checked before any engine runs
+// (harness/core/output_plan.hpp); output files are written only after every run finished,
+// atomically.
 
 #include "args.hpp"
 #include "cli.hpp"
@@ -18,14 +19,14 @@ namespace dropcheck {
 namespace {
 
 void print_header(const Scene& s, const Timestep& dt, std::ostream& out) {
-  out << strprintf("scene %s: %zu bodies, %g s at h = %s (%lld steps), gravity (%g, %g, %g), "
-                "damping k = %.6g 1/s, contacts %s\n",
-                s.name.c_str(), s.bodies.size(), s.duration, dt.text.c_str(),
-                static_cast<long long>(step_count(s, dt.seconds)), s.world.gravity.x(),
-                s.world.gravity.y(), s.world.gravity.z(), s.world.damping_rate,
-                s.world.contacts ? "on" : "off");
-  out << strprintf("%-9s %-10s %13s %13s %13s %12s %12s %12s %8s %9s  %s\n", "engine",
-                "body", "x", "y", "z", "vx", "vy", "vz", "steps", "wall ms", "status");
+  out << strprintf(
+      "scene %s: %zu bodies, %g s at h = %s (%lld steps), gravity (%g, %g, %g), "
+      "damping k = %.6g 1/s, contacts %s\n",
+      s.name.c_str(), s.bodies.size(), s.duration, dt.text.c_str(),
+      static_cast<long long>(step_count(s, dt.seconds)), s.world.gravity.x(), s.world.gravity.y(),
+      s.world.gravity.z(), s.world.damping_rate, s.world.contacts ? "on" : "off");
+  out << strprintf("%-9s %-10s %13s %13s %13s %12s %12s %12s %8s %9s  %s\n", "engine", "body", "x",
+                   "y", "z", "vx", "vy", "vz", "steps", "wall ms", "status");
 }
 
 void print_run(const Trajectory& t, std::ostream& out) {
@@ -37,11 +38,13 @@ void print_run(const Trajectory& t, std::ostream& out) {
     const BodyState& s = t.final_state(b);
     std::string status = to_string(t.status);
     if (t.status != RunStatus::ok) status += ": " + t.failure;
-    if (t.clamped_steps) status += " (speed clamped on " + std::to_string(t.clamped_steps) + " steps)";
+    if (t.clamped_steps)
+      status += " (speed clamped on " + std::to_string(t.clamped_steps) + " steps)";
     out << strprintf("%-9s %-10s %13.6f %13.6f %13.6f %12.6f %12.6f %12.6f %8lld %9.3f  %s\n",
-                  t.engine.c_str(), t.body_names[b].c_str(), s.position.x(), s.position.y(),
-                  s.position.z(), s.velocity.x(), s.velocity.y(), s.velocity.z(),
-                  static_cast<long long>(t.recorded.back()), t.wall_seconds * 1e3, status.c_str());
+                     t.engine.c_str(), t.body_names[b].c_str(), s.position.x(), s.position.y(),
+                     s.position.z(), s.velocity.x(), s.velocity.y(), s.velocity.z(),
+                     static_cast<long long>(t.recorded.back()), t.wall_seconds * 1e3,
+                     status.c_str());
   }
 }
 
@@ -49,8 +52,12 @@ void print_run(const Trajectory& t, std::ostream& out) {
 
 const CommandSpec& run_spec() {
   static const CommandSpec spec{
-      "run", "Runs the scene on each engine and prints the final state of every body.", "scene FILE",
-      "the scene file (.toml)", 1, 1,
+      "run",
+      "Runs the scene on each engine and prints the final state of every body.",
+      "scene FILE",
+      "the scene file (.toml)",
+      1,
+      1,
       {{"--engine", "E", "an engine to run (repeatable; default: every engine compiled in)", true},
        {"--dt", "H", "the step: seconds (0.01) or a rate (1/120); default: the scene's"},
        {"--csv", "OUT", "write every sample to OUT as CSV"},

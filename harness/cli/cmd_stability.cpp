@@ -16,9 +16,14 @@ namespace dropcheck {
 
 const CommandSpec& stability_spec() {
   static const CommandSpec spec{
-      "stability", "Classifies each engine at the scene's step and searches its largest stable step.",
-      "scene FILE", "the scene file (.toml)", 1, 1,
-      {{"--engine", "E", "an engine to study (repeatable; default: every engine compiled in)", true},
+      "stability",
+      "Classifies each engine at the scene's step and searches its largest stable step.",
+      "scene FILE",
+      "the scene file (.toml)",
+      1,
+      1,
+      {{"--engine", "E", "an engine to study (repeatable; default: every engine compiled in)",
+        true},
        {"--json", "OUT", "write the study to OUT as JSON"}}};
   return spec;
 }
@@ -33,7 +38,9 @@ int cmd_stability(const std::vector<std::string>& argv, std::ostream& out, std::
   std::vector<EngineSlot> slots;
   for (const SelectedEngine& e : select_engines(args.values("--engine"), scene)) {
     const std::string name = e.name, why = engine_unavailable_reason(name);
-    slots.push_back({name, why.empty() ? EngineFactory([name] { return make_engine(name); }) : EngineFactory(), why});
+    slots.push_back(
+        {name, why.empty() ? EngineFactory([name] { return make_engine(name); }) : EngineFactory(),
+         why});
   }
   StudyOptions options;
   const SceneStability study = study_scene(scene, slots, options, &err);

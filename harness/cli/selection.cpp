@@ -6,7 +6,8 @@
 
 namespace dropcheck {
 
-std::vector<SelectedEngine> select_engines(const std::vector<std::string>& requested, const Scene& scene) {
+std::vector<SelectedEngine> select_engines(const std::vector<std::string>& requested,
+                                           const Scene& scene) {
   const std::vector<std::string> names = requested.empty() ? available_engine_names() : requested;
   std::vector<SelectedEngine> out;
   for (const std::string& name : names) {

@@ -17,7 +17,8 @@ struct SelectedEngine {
 
 // Validates `requested` (InputError for an unknown name, key "--engine"). With none requested,
 // every engine compiled in; engines that cannot run `scene` come back with their reason.
-std::vector<SelectedEngine> select_engines(const std::vector<std::string>& requested, const Scene& scene);
+std::vector<SelectedEngine> select_engines(const std::vector<std::string>& requested,
+                                           const Scene& scene);
 
 // --dt as seconds or "1/N", checked against the scene's duration; the scene's step when empty.
 Timestep step_from_flag(const std::string& flag_value, const Scene& scene);

@@ -32,13 +32,15 @@ std::string read_regular_file(const std::string& path, std::int64_t max_bytes,
   if (fd < 0) refuse(path, std::string("cannot read the file: ") + std::strerror(errno));
   const FdCloser closer{fd};
   struct stat st {};
-  if (::fstat(fd, &st) != 0) refuse(path, std::string("cannot read the file: ") + std::strerror(errno));
+  if (::fstat(fd, &st) != 0)
+    refuse(path, std::string("cannot read the file: ") + std::strerror(errno));
   if (S_ISDIR(st.st_mode)) refuse(path, "cannot read the file: it is a directory");
   if (!S_ISREG(st.st_mode))
     refuse(path, "cannot read the file: not a regular file (a device, FIFO or socket)");
   const std::string limit = std::to_string(max_bytes) + " bytes (" + limit_text + ")";
   if (st.st_size > max_bytes)
-    refuse(path, "the file is " + std::to_string(st.st_size) + " bytes, more than the limit of " + limit);
+    refuse(path,
+           "the file is " + std::to_string(st.st_size) + " bytes, more than the limit of " + limit);
   std::string text;
   char buf[65536];
   for (;;) {

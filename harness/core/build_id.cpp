@@ -27,10 +27,23 @@ namespace {
 
 // Flags that change the results of IEEE arithmetic or of the math library (GCC and Clang names).
 bool fp_relevant(const std::string& flag) {
-  static const char* const kPrefixes[] = {
-      "-ffast-math", "-ffp-", "-funsafe-math", "-fassociative-math", "-freciprocal-math",
-      "-fno-signed-zeros", "-ffinite-math", "-frounding-math", "-fexcess-precision",
-      "-ffloat-store", "-march=", "-mfma", "-mno-fma", "-mavx", "-msse", "-mfpmath", "-m32"};
+  static const char* const kPrefixes[] = {"-ffast-math",
+                                          "-ffp-",
+                                          "-funsafe-math",
+                                          "-fassociative-math",
+                                          "-freciprocal-math",
+                                          "-fno-signed-zeros",
+                                          "-ffinite-math",
+                                          "-frounding-math",
+                                          "-fexcess-precision",
+                                          "-ffloat-store",
+                                          "-march=",
+                                          "-mfma",
+                                          "-mno-fma",
+                                          "-mavx",
+                                          "-msse",
+                                          "-mfpmath",
+                                          "-m32"};
   for (const char* p : kPrefixes)
     if (flag.rfind(p, 0) == 0) return true;
   return false;
@@ -84,13 +97,16 @@ BuildId current_build() {
   id.build_type = DROPCHECK_BUILD_TYPE;
   id.flags = squeeze(DROPCHECK_CXX_FLAGS);
   const std::string eigen = "Eigen " + std::to_string(EIGEN_WORLD_VERSION) + "." +
-                            std::to_string(EIGEN_MAJOR_VERSION) + "." + std::to_string(EIGEN_MINOR_VERSION);
+                            std::to_string(EIGEN_MAJOR_VERSION) + "." +
+                            std::to_string(EIGEN_MINOR_VERSION);
   id.key = std::string(architecture()) + ", " + DROPCHECK_COMPILER + ", " + eigen + ", " +
            libm_version() + ", " + fp_flags(id.flags + " " + DROPCHECK_OURS_FLAGS);
   return id;
 }
 
-std::string source_commit() { return commit_stamp(DROPCHECK_SOURCE_TREE); }
+std::string source_commit() {
+  return commit_stamp(DROPCHECK_SOURCE_TREE);
+}
 
 std::string commit_stamp(const std::string& dir) {
   std::string quoted = "'";

@@ -1,5 +1,6 @@
 // What built this binary, as far as it can change the bits of a trajectory: the key of the
-// bit-identical regression tier (harness/guard/regression.hpp) and the header line of every baseline.
+// bit-identical regression tier (harness/guard/regression.hpp) and the header line of every
+// baseline.
 #pragma once
 
 #include <string>

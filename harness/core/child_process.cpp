@@ -1,16 +1,17 @@
 #include "harness/core/child_process.hpp"
 
+#include <fcntl.h>
+#include <poll.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <cstring>
-#include <fcntl.h>
-#include <poll.h>
-#include <spawn.h>
 #include <stdexcept>
-#include <sys/wait.h>
 #include <thread>
-#include <unistd.h>
 
 extern char** environ;
 
@@ -45,7 +46,8 @@ void close_fd(int& fd) {
 }
 
 // Starts the program; its stdin reads `in_read`, its stdout writes `out_write`.
-pid_t spawn(const std::vector<std::string>& argv, const std::string& cwd, int in_read, int out_write) {
+pid_t spawn(const std::vector<std::string>& argv, const std::string& cwd, int in_read,
+            int out_write) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_adddup2(&actions, in_read, STDIN_FILENO);
@@ -79,7 +81,8 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::stri
   if (argv.empty() || argv[0].empty()) throw std::runtime_error("empty command");
   ignore_sigpipe();
   int in[2], out[2];
-  if (::pipe2(in, O_CLOEXEC) != 0) throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
+  if (::pipe2(in, O_CLOEXEC) != 0)
+    throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
   if (::pipe2(out, O_CLOEXEC) != 0) {
     ::close(in[0]);
     ::close(in[1]);
@@ -99,7 +102,9 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::stri
   ::fcntl(from_child_, F_SETFL, ::fcntl(from_child_, F_GETFL) | O_NONBLOCK);
 }
 
-ChildProcess::~ChildProcess() { stop(); }
+ChildProcess::~ChildProcess() {
+  stop();
+}
 
 IoStatus ChildProcess::write_line(const std::string& line, double timeout_s) {
   if (to_child_ < 0) return IoStatus::closed;

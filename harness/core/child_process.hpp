@@ -1,10 +1,11 @@
-// ChildProcess: a program started with its stdin and stdout on pipes, for talking to it line by line
-// in lockstep (adapters/exec.cpp). Every wait is bounded, a dead child never kills the caller
+// ChildProcess: a program started with its stdin and stdout on pipes, for talking to it line by
+// line in lockstep (adapters/exec.cpp). Every wait is bounded, a dead child never kills the caller
 // (SIGPIPE is ignored; a broken pipe is an error value), and the child never outlives the object.
 #pragma once
 
-#include <string>
 #include <sys/types.h>
+
+#include <string>
 #include <vector>
 
 namespace dropcheck {
@@ -22,8 +23,9 @@ class ChildProcess {
   // Longest line read_line accepts (bytes, newline excluded): a bound on garbage.
   static constexpr std::size_t kMaxLine = 1 << 20;
 
-  // Starts argv[0] (searched in PATH when it has no '/') with `argv` in directory `cwd` ("" = ours).
-  // stderr is inherited. Throws std::runtime_error naming the program when it cannot be started.
+  // Starts argv[0] (searched in PATH when it has no '/') with `argv` in directory `cwd` ("" =
+  // ours). stderr is inherited. Throws std::runtime_error naming the program when it cannot be
+  // started.
   ChildProcess(const std::vector<std::string>& argv, const std::string& cwd);
   // Closes the pipes, gives the child 0.2 s to exit, then kills it; always reaps it.
   ~ChildProcess();
@@ -55,7 +57,8 @@ class ChildProcess {
   std::string buffer_;   // bytes read past the last line returned
 };
 
-// "exited with status 3", "crashed: SIGSEGV" (signal name from the C library), from a waitpid status.
+// "exited with status 3", "crashed: SIGSEGV" (signal name from the C library), from a waitpid
+// status.
 std::string describe_wait_status(int status);
 
 }  // namespace dropcheck

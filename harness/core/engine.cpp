@@ -9,14 +9,20 @@ std::string Engine::cannot_run(const Scene& scene) const {
   return {};
 }
 
-const char* to_string(Scalar scalar) { return scalar == Scalar::f32 ? "f32" : "f64"; }
+const char* to_string(Scalar scalar) {
+  return scalar == Scalar::f32 ? "f32" : "f64";
+}
 
 const char* to_string(DampingForm form) {
   switch (form) {
-    case DampingForm::phi_multiply: return "phi multiply";
-    case DampingForm::pade: return "Pade 1/(1 + h*c)";
-    case DampingForm::per_second_power: return "(1 - d)^h per second";
-    case DampingForm::other: break;
+    case DampingForm::phi_multiply:
+      return "phi multiply";
+    case DampingForm::pade:
+      return "Pade 1/(1 + h*c)";
+    case DampingForm::per_second_power:
+      return "(1 - d)^h per second";
+    case DampingForm::other:
+      break;
   }
   return "not copied";
 }

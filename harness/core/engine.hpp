@@ -16,8 +16,8 @@ namespace dropcheck {
 enum class Scalar { f32, f64 };
 
 struct Capabilities {
-  bool contacts = false;      // can collide boxes with a static floor
-  bool planar_only = false;   // 2-D engine: runs x-y plane scenes only
+  bool contacts = false;     // can collide boxes with a static floor
+  bool planar_only = false;  // 2-D engine: runs x-y plane scenes only
 };
 
 // How an engine rounds one step of its law, so that the harness can repeat that step in the same
@@ -31,14 +31,14 @@ enum class DampingForm {
 };
 
 struct EngineInfo {
-  std::string name;      // registry name: ours, ours-f64, bullet, ode, box2d, mujoco
-  std::string version;   // the engine library's version
+  std::string name;     // registry name: ours, ours-f64, bullet, ode, box2d, mujoco
+  std::string version;  // the engine library's version
   Scalar scalar = Scalar::f64;
   Capabilities capabilities;
   Law law;  // its member of the discrete-law family (harness/core/law.hpp)
   DampingForm arithmetic = DampingForm::other;  // its operation order, when the harness copies it
-  std::string damping_mapping;  // how k becomes the engine's parameter, e.g. "d = 1 - exp(-k)"
-  std::string contact_settings; // contact model and parameters used when contacts = true
+  std::string damping_mapping;   // how k becomes the engine's parameter, e.g. "d = 1 - exp(-k)"
+  std::string contact_settings;  // contact model and parameters used when contacts = true
   // Landing on a static floor: where the centre of a resting box sits relative to the geometric
   // rest height (floor top + half extent), in m, and how far from that still counts as expected.
   // Documented per engine in docs/engines.md section 5 (Box2D: +0.015 from skin and slop).

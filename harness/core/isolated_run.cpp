@@ -39,14 +39,16 @@ struct Progress {
   std::atomic<std::int64_t> completed{0};  // steps completed
   std::atomic<int> phase{0};               // 0 loading the scene, 1 stepping, 2 sending the result
 };
-static_assert(std::atomic<std::int64_t>::is_always_lock_free && std::atomic<int>::is_always_lock_free,
+static_assert(std::atomic<std::int64_t>::is_always_lock_free &&
+                  std::atomic<int>::is_always_lock_free,
               "lock-free atomics work across processes in shared memory");
 
 // An anonymous shared mapping holding one Progress, unmapped at scope exit.
 class SharedProgress {
  public:
   SharedProgress() {
-    void* m = ::mmap(nullptr, sizeof(Progress), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+    void* m = ::mmap(nullptr, sizeof(Progress), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS,
+                     -1, 0);
     if (m == MAP_FAILED) throw std::bad_alloc();
     p_ = new (m) Progress;
   }
@@ -97,9 +99,11 @@ bool write_all(int fd, const void* data, std::size_t bytes) {
 
 // The child: default signal actions (a test framework's or sanitizer's crash handlers must not run
 // here: the parent reports the crash), stderr into the pipe, the ordinary loop, the result out.
-[[noreturn]] void child_main(Engine& engine, const Scene& scene, double h, const RunOptions& options,
-                             Progress& progress, int result_fd, int err_fd) {
-  for (int sig : {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGPIPE, SIGTERM}) std::signal(sig, SIG_DFL);
+[[noreturn]] void child_main(Engine& engine, const Scene& scene, double h,
+                             const RunOptions& options, Progress& progress, int result_fd,
+                             int err_fd) {
+  for (int sig : {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGPIPE, SIGTERM})
+    std::signal(sig, SIG_DFL);
   ::dup2(err_fd, STDERR_FILENO);
   int code = 0;
   try {
@@ -186,7 +190,8 @@ class ChildPipes {
   // Polls both open pipes until one is ready or the deadline passes; stderr is passed on at once.
   bool wait() {
     for (;;) {
-      const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline_ - Clock::now()).count();
+      const auto left =
+          std::chrono::ceil<std::chrono::milliseconds>(deadline_ - Clock::now()).count();
       if (left <= 0) {
         timed_out_ = true;
         return false;
@@ -278,11 +283,13 @@ void set_default_isolation(Isolation isolation) {
   g_default_isolation = isolation == Isolation::process_default ? Isolation::in_process : isolation;
 }
 
-Isolation default_isolation() { return g_default_isolation; }
+Isolation default_isolation() {
+  return g_default_isolation;
+}
 
 bool runs_isolated(const RunOptions& options) {
-  const Isolation i = options.isolation == Isolation::process_default ? g_default_isolation
-                                                                      : options.isolation;
+  const Isolation i =
+      options.isolation == Isolation::process_default ? g_default_isolation : options.isolation;
   return i == Isolation::child_process;
 }
 
@@ -293,7 +300,8 @@ Trajectory run_isolated(Engine& engine, const Scene& scene, double h, const RunO
   Trajectory failed = unstarted_trajectory(engine.info().name, scene, h);
   SharedProgress progress;
   int result[2], err[2];
-  if (::pipe2(result, O_CLOEXEC) != 0) throw std::system_error(errno, std::generic_category(), "pipe");
+  if (::pipe2(result, O_CLOEXEC) != 0)
+    throw std::system_error(errno, std::generic_category(), "pipe");
   if (::pipe2(err, O_CLOEXEC) != 0) {
     ::close(result[0]);
     ::close(result[1]);

@@ -7,9 +7,9 @@
 //   BeforeForces:  v = phi*v + a*h                   SemiImplicit: x += h*v_new  (symplectic Euler)
 //   AfterForces:   v = phi*(v + a*h)                 Explicit:     x += h*v_old  (forward Euler)
 //   AfterPosition: v' = v + a*h; ...; v = phi*v'
-// With Explicit, AfterPosition and AfterForces give the same trajectory (the position never sees the
-// damped velocity before the next step), so the family has five distinct members.
-// Adding an engine or a scheme means naming its member here; every oracle then predicts it.
+// With Explicit, AfterPosition and AfterForces give the same trajectory (the position never sees
+// the damped velocity before the next step), so the family has five distinct members. Adding an
+// engine or a scheme means naming its member here; every oracle then predicts it.
 #pragma once
 
 #include <optional>
@@ -32,7 +32,8 @@ enum class PositionUpdate {
   Explicit,      // x += h*v_n: forward Euler
 };
 
-// One member of the family. Implicit from DampingOrder: a semi-implicit engine names only its order.
+// One member of the family. Implicit from DampingOrder: a semi-implicit engine names only its
+// order.
 struct Law {
   DampingOrder damping = DampingOrder::AfterForces;
   PositionUpdate position = PositionUpdate::SemiImplicit;
@@ -59,9 +60,13 @@ constexpr void advance(Law law, Real phi, Real h, const Vec& a, Vec& x, Vec& v) 
   if (law.position == PositionUpdate::Explicit) {
     x += h * v;
     switch (law.damping) {
-      case DampingOrder::BeforeForces: v = phi * v + a * h; return;
+      case DampingOrder::BeforeForces:
+        v = phi * v + a * h;
+        return;
       case DampingOrder::AfterForces:
-      case DampingOrder::AfterPosition: v = phi * (v + a * h); return;
+      case DampingOrder::AfterPosition:
+        v = phi * (v + a * h);
+        return;
     }
     return;
   }

@@ -1,7 +1,7 @@
 #include "harness/core/output_dir.hpp"
 
-#include <stdio.h>  // renameat2
 #include <fcntl.h>
+#include <stdio.h>  // renameat2
 #include <stdlib.h>
 
 #include <algorithm>
@@ -22,7 +22,8 @@ namespace fs = std::filesystem;
 namespace dropcheck {
 namespace {
 
-constexpr const char* kManifestHeader = "# files written by dropcheck report; it replaces only these";
+constexpr const char* kManifestHeader =
+    "# files written by dropcheck report; it replaces only these";
 constexpr const char* kReportTitle = "# dropcheck comparison report";
 
 std::string read_text(const fs::path& p) {
@@ -59,24 +60,30 @@ std::set<std::string> manifest_names(const fs::path& dir, bool& present) {
 }
 
 // Why `e` is not one dropcheck wrote ("" when it is).
-std::string foreign(const fs::directory_entry& e, bool has_manifest, const std::set<std::string>& listed,
-                    const std::string& readme) {
+std::string foreign(const fs::directory_entry& e, bool has_manifest,
+                    const std::set<std::string>& listed, const std::string& readme) {
   const std::string name = e.path().filename().string();
   std::error_code ec;
   if (name == kManifestName) return {};
-  if (e.is_symlink(ec) || !e.is_regular_file(ec)) return "holds '" + name + "', which is not a regular file";
-  if (has_manifest) return listed.count(name) ? "" : "holds '" + name + "', which its " + kManifestName + " does not list";
+  if (e.is_symlink(ec) || !e.is_regular_file(ec))
+    return "holds '" + name + "', which is not a regular file";
+  if (has_manifest)
+    return listed.count(name)
+               ? ""
+               : "holds '" + name + "', which its " + kManifestName + " does not list";
   if (name == "README.md")
-    return readme.rfind(kReportTitle, 0) == 0 ? "" : "holds a README.md that is not a dropcheck report";
-  if (e.path().extension() == ".svg" && readme.find("(" + name + ")") != std::string::npos) return {};
+    return readme.rfind(kReportTitle, 0) == 0 ? ""
+                                              : "holds a README.md that is not a dropcheck report";
+  if (e.path().extension() == ".svg" && readme.find("(" + name + ")") != std::string::npos)
+    return {};
   return "holds '" + name + "', which dropcheck report did not write";
 }
 
 // Creates a unique folder ".<name>.<what>-XXXXXX" beside `target`.
 std::string unique_sibling(const fs::path& target, const std::string& what) {
-  std::string tmpl =
-      (target.parent_path() / ("." + target.filename().string().substr(0, 180) + "." + what + "-XXXXXX"))
-          .string();
+  std::string tmpl = (target.parent_path() /
+                      ("." + target.filename().string().substr(0, 180) + "." + what + "-XXXXXX"))
+                         .string();
   if (!::mkdtemp(tmpl.data()))
     throw InputError(target.string(), 0, "--out",
                      "cannot create the " + what + " folder beside it: " + std::strerror(errno));
@@ -101,13 +108,15 @@ void swap_by_backup(const fs::path& staging, const fs::path& target) {
   fs::rename(target, backup, ec);  // onto the empty backup folder
   if (ec) {
     fs::remove(backup, ec);
-    throw InputError(target.string(), 0, "", "cannot move the previous output aside: " + ec.message());
+    throw InputError(target.string(), 0, "",
+                     "cannot move the previous output aside: " + ec.message());
   }
   fs::rename(staging, target, ec);
   if (ec) {
     std::error_code ignored;
     fs::rename(backup, target, ignored);
-    throw InputError(target.string(), 0, "", "cannot move the new output into place: " + ec.message());
+    throw InputError(target.string(), 0, "",
+                     "cannot move the new output into place: " + ec.message());
   }
   fs::remove_all(backup, ec);
 }
@@ -124,7 +133,8 @@ void check_replaceable(const std::string& dir) {
   const std::string readme = has_manifest ? "" : read_text(p / "README.md");
   for (const fs::directory_entry& e : fs::directory_iterator(p, ec))
     if (const std::string why = foreign(e, has_manifest, listed, readme); !why.empty())
-      throw InputError(dir, 0, "--out", why + "; refusing to replace a folder dropcheck did not write");
+      throw InputError(dir, 0, "--out",
+                       why + "; refusing to replace a folder dropcheck did not write");
   if (ec) throw InputError(dir, 0, "--out", "cannot list: " + ec.message());
 }
 
@@ -155,17 +165,20 @@ void StagingDir::commit() {
       if (::renameat2(AT_FDCWD, path_.c_str(), AT_FDCWD, target_.c_str(), RENAME_NOREPLACE) == 0)
         committed_ = true;
       else if (errno != EEXIST)  // EEXIST: another run created it meanwhile; exchange with it
-        throw InputError(target_, 0, "", std::string("cannot move the new output into place: ") +
-                                             std::strerror(errno));
+        throw InputError(
+            target_, 0, "",
+            std::string("cannot move the new output into place: ") + std::strerror(errno));
     } else if (errno == EINVAL || errno == ENOSYS) {
       swap_by_backup(path_, target_);
       committed_ = true;
     } else {
-      throw InputError(target_, 0, "", std::string("cannot swap the new output into place: ") +
-                                           std::strerror(errno));
+      throw InputError(
+          target_, 0, "",
+          std::string("cannot swap the new output into place: ") + std::strerror(errno));
     }
   }
-  if (!committed_) throw InputError(target_, 0, "", "cannot move the new output into place: it keeps changing");
+  if (!committed_)
+    throw InputError(target_, 0, "", "cannot move the new output into place: it keeps changing");
   cleanup_->release();
 }
 

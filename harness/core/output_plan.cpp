@@ -1,5 +1,4 @@
 #include "harness/core/output_plan.hpp"
-#include "harness/core/signal_cleanup.hpp"
 
 #include <stdlib.h>
 #include <unistd.h>
@@ -11,6 +10,7 @@
 #include "harness/core/atomic_file.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/core/output_dir.hpp"
+#include "harness/core/signal_cleanup.hpp"
 
 namespace fs = std::filesystem;
 
@@ -47,7 +47,8 @@ fs::path existing_ancestor(const fs::path& p, const std::string& key, const std:
   while (!a.empty() && !fs::exists(a, ec)) a = a.parent_path();
   if (a.empty()) a = ".";
   if (!fs::is_directory(a, ec))
-    throw InputError(shown, 0, key, "cannot be created: '" + a.string() + "' is a file, not a folder");
+    throw InputError(shown, 0, key,
+                     "cannot be created: '" + a.string() + "' is a file, not a folder");
   return a;
 }
 
@@ -58,14 +59,16 @@ void probe_writable(const fs::path& dir, const std::string& key, const std::stri
   const SignalsDeferred deferred;  // a kill between mkstemp and unlink must not leave the probe
   const int fd = ::mkstemp(probe.data());
   if (fd < 0)
-    throw InputError(shown, 0, key, "cannot write in '" + dir.string() + "': " + std::strerror(errno));
+    throw InputError(shown, 0, key,
+                     "cannot write in '" + dir.string() + "': " + std::strerror(errno));
   ::close(fd);
   ::unlink(probe.c_str());
 }
 
 void check_not_empty(const std::string& key, const std::string& path) {
   if (path.empty()) throw InputError("", 0, key, "expects a path, got an empty string");
-  if (path.find('\0') != std::string::npos) throw InputError("", 0, key, "the path holds a NUL byte");
+  if (path.find('\0') != std::string::npos)
+    throw InputError("", 0, key, "the path holds a NUL byte");
 }
 
 void check_file(const std::string& key, const std::string& path) {
@@ -95,7 +98,9 @@ void check_folder(const std::string& key, const std::string& path, bool replaced
 
 }  // namespace
 
-void OutputPlan::read(const std::string& path) { inputs_.push_back(path); }
+void OutputPlan::read(const std::string& path) {
+  inputs_.push_back(path);
+}
 
 void OutputPlan::write_file(const std::string& key, const std::string& path) {
   outputs_.push_back({key, path, Output::Kind::file});
@@ -122,13 +127,17 @@ void OutputPlan::check() const {
     for (const std::string& in : inputs_) {
       const fs::path c = canonical_path(in);
       if (o.kind == Output::Kind::file && (same_file(target, in) || within(out, c)))
-        throw InputError(o.path, 0, o.key, "is an input ('" + in + "') or lies inside one; refusing to write over it");
+        throw InputError(
+            o.path, 0, o.key,
+            "is an input ('" + in + "') or lies inside one; refusing to write over it");
       if (o.kind == Output::Kind::folder && within(c, out))
         throw InputError(o.path, 0, o.key, "holds the input '" + in + "', and would be replaced");
     }
     for (std::size_t j = 0; j < i; ++j)
-      if (outputs_[j].kind == Output::Kind::file && o.kind == Output::Kind::file && same_file(output_target(outputs_[j].path), target))
-        throw InputError(o.path, 0, o.key, "is also the path of " + outputs_[j].key + "; name two different files");
+      if (outputs_[j].kind == Output::Kind::file && o.kind == Output::Kind::file &&
+          same_file(output_target(outputs_[j].path), target))
+        throw InputError(o.path, 0, o.key,
+                         "is also the path of " + outputs_[j].key + "; name two different files");
   }
 }
 

@@ -67,7 +67,8 @@ std::string memory_refusal(const Scene& scene, double h, const RunOptions& optio
   if (bytes <= static_cast<double>(kTrajectoryBudgetBytes)) return "";
   return "the recorded trajectory would take " + short_number(bytes / (1 << 30)) + " GiB (" +
          short_number(samples) + " samples x " + std::to_string(scene.bodies.size()) +
-         " bodies), over the budget of " + short_number(double(kTrajectoryBudgetBytes) / (1 << 30)) +
+         " bodies), over the budget of " +
+         short_number(double(kTrajectoryBudgetBytes) / (1 << 30)) +
          " GiB per run; shorten the duration, use a larger step or record fewer steps";
 }
 

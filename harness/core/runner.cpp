@@ -14,7 +14,9 @@
 namespace dropcheck {
 namespace {
 
-bool finite(const BodyState& s) { return s.position.allFinite() && s.velocity.allFinite(); }
+bool finite(const BodyState& s) {
+  return s.position.allFinite() && s.velocity.allFinite();
+}
 
 // True when every number of every state is finite, in one branch-free pass over the raw doubles
 // (a BodyState is six contiguous doubles). A double is NaN or Inf exactly when its 11 exponent
@@ -42,7 +44,8 @@ std::size_t sample_count(std::int64_t steps, std::int64_t every) {
   return static_cast<std::size_t>(1 + steps / every + (steps % every != 0 ? 1 : 0));
 }
 
-Trajectory empty_trajectory(const Engine& engine, const Scene& scene, double h, std::int64_t every) {
+Trajectory empty_trajectory(const Engine& engine, const Scene& scene, double h,
+                            std::int64_t every) {
   Trajectory t;
   t.engine = engine.info().name;
   t.scene = scene.name;
@@ -100,7 +103,8 @@ void step_loop(Engine& engine, const Scene& scene, Trajectory& t, std::int64_t e
 }  // namespace
 
 Trajectory run_scene(Engine& engine, const Scene& scene, double h, const RunOptions& options) {
-  if (std::optional<Trajectory> refused = refuse_run(engine.info(), scene, h, options)) return *refused;
+  if (std::optional<Trajectory> refused = refuse_run(engine.info(), scene, h, options))
+    return *refused;
   if (runs_isolated(options)) return run_isolated(engine, scene, h, options);
   return run_scene_in_process(engine, scene, h, options);
 }

@@ -10,9 +10,10 @@ namespace dropcheck {
 
 // Where a run's engine steps (harness/core/isolated_run.hpp).
 enum class Isolation {
-  process_default,  // whatever set_default_isolation() chose for this process (in_process unless set)
+  process_default,  // whatever set_default_isolation() chose for this process (in_process unless
+                    // set)
   in_process,       // in this process: fastest; an engine's abort ends the program
-  child_process,    // in a forked child: a crash, hang or runaway allocation becomes the run's status
+  child_process,  // in a forked child: a crash, hang or runaway allocation becomes the run's status
 };
 
 struct RunOptions {
@@ -22,9 +23,10 @@ struct RunOptions {
 };
 
 // Runs `scene` on `engine` at step h for step_count(scene, h) steps. Each step: forces from the
-// state at the start of the step (harness/core/forces.hpp), set_forces, step, read. A NaN/Inf state,
-// an EngineError, an allocation failure, a refusal (harness/core/run_limits.hpp) and, isolated, a
-// crash or time-out end the run and are recorded in the trajectory's status; it never throws for them.
+// state at the start of the step (harness/core/forces.hpp), set_forces, step, read. A NaN/Inf
+// state, an EngineError, an allocation failure, a refusal (harness/core/run_limits.hpp) and,
+// isolated, a crash or time-out end the run and are recorded in the trajectory's status; it never
+// throws for them.
 Trajectory run_scene(Engine& engine, const Scene& scene, double h, const RunOptions& options = {});
 
 // The same loop in this process, without the pre-checks: what run_scene and an isolated child run.

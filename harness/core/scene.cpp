@@ -9,7 +9,9 @@ std::int64_t step_count(const Scene& scene, double h) {
 }
 
 // dv/dt = -k*v over one step: v(t+h) = v(t)*exp(-k*h).
-double decay_per_step(const Scene& scene, double h) { return std::exp(-scene.world.damping_rate * h); }
+double decay_per_step(const Scene& scene, double h) {
+  return std::exp(-scene.world.damping_rate * h);
+}
 
 bool is_planar(const Scene& scene) {
   if (scene.world.gravity.z() != 0.0) return false;

@@ -56,14 +56,14 @@ struct World {
 struct Scene {
   std::string name;
   std::string description;
-  std::string source;            // file the scene came from ("" when built in code)
-  double duration = 0.0;         // simulated seconds
-  Timestep timestep;             // default step
+  std::string source;               // file the scene came from ("" when built in code)
+  double duration = 0.0;            // simulated seconds
+  Timestep timestep;                // default step
   std::vector<Timestep> timesteps;  // sweep; never empty after loading (holds at least `timestep`)
   World world;
   std::vector<Body> bodies;
   std::vector<Force> forces;
-  double tolerance = 1e-3;       // m: |dx| above this counts as diverged (time to divergence)
+  double tolerance = 1e-3;  // m: |dx| above this counts as diverged (time to divergence)
 };
 
 // Whole steps of size h in the scene's duration: round(duration / h).

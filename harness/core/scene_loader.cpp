@@ -1,5 +1,7 @@
 #include "harness/core/scene_loader.hpp"
 
+#include <toml++/toml.h>
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -8,7 +10,6 @@
 #include <initializer_list>
 #include <set>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "harness/core/bounded_read.hpp"
 #include "harness/core/timestep.hpp"
@@ -25,12 +26,14 @@ class Reader {
   [[noreturn]] void fail(const std::string& key, const std::string& problem,
                          const toml::node* at = nullptr) const {
     const toml::node* n = at ? at : table_.get(key);
-    const int line = n ? static_cast<int>(n->source().begin.line)
-                       : static_cast<int>(table_.source().begin.line);
+    const int line =
+        n ? static_cast<int>(n->source().begin.line) : static_cast<int>(table_.source().begin.line);
     throw InputError(file_, line, path(key), problem);
   }
 
-  std::string path(const std::string& key) const { return prefix_.empty() ? key : prefix_ + "." + key; }
+  std::string path(const std::string& key) const {
+    return prefix_.empty() ? key : prefix_ + "." + key;
+  }
   bool has(const std::string& key) const { return table_.contains(key); }
   const toml::node* node(const std::string& key) const { return table_.get(key); }
 
@@ -66,7 +69,8 @@ class Reader {
     const toml::array* a = n->as_array();
     if (!a || a->size() != 3) fail(key, "expected an array of 3 numbers [x, y, z]", n);
     Vec3 out;
-    for (std::size_t i = 0; i < 3; ++i) out[i] = number(key + "[" + std::to_string(i) + "]", *a->get(i));
+    for (std::size_t i = 0; i < 3; ++i)
+      out[i] = number(key + "[" + std::to_string(i) + "]", *a->get(i));
     return out;
   }
 
@@ -104,13 +108,20 @@ class Reader {
 
   static const char* type_name(const toml::node& n) {
     switch (n.type()) {
-      case toml::node_type::string: return "a string";
-      case toml::node_type::integer: return "an integer";
-      case toml::node_type::floating_point: return "a number";
-      case toml::node_type::boolean: return "a boolean";
-      case toml::node_type::array: return "an array";
-      case toml::node_type::table: return "a table";
-      default: return "a date or time";
+      case toml::node_type::string:
+        return "a string";
+      case toml::node_type::integer:
+        return "an integer";
+      case toml::node_type::floating_point:
+        return "a number";
+      case toml::node_type::boolean:
+        return "a boolean";
+      case toml::node_type::array:
+        return "an array";
+      case toml::node_type::table:
+        return "a table";
+      default:
+        return "a date or time";
     }
   }
   static std::string format(double v) {
@@ -152,7 +163,8 @@ void load_times(const Reader& r, Scene& s) {
     for (std::size_t i = 0; i < a->size(); ++i) {
       const std::string key = "timesteps[" + std::to_string(i) + "]";
       Timestep t = r.timestep(key, *a->get(i));
-      if (std::string why = step_problem(s.duration, t.seconds); !why.empty()) r.fail(key, why, a->get(i));
+      if (std::string why = step_problem(s.duration, t.seconds); !why.empty())
+        r.fail(key, why, a->get(i));
       s.timesteps.push_back(t);
     }
   } else {
@@ -193,7 +205,8 @@ void load_body(const Reader& r, Scene& s) {
   for (const Body& other : s.bodies)
     if (other.name == b.name) r.fail("name", "duplicate body name \"" + b.name + "\"");
   b.half_extents = r.vec3("half_extents", b.half_extents);
-  if (!(b.half_extents.array() > 0.0).all()) r.fail("half_extents", "every half extent must be > 0 m");
+  if (!(b.half_extents.array() > 0.0).all())
+    r.fail("half_extents", "every half extent must be > 0 m");
   b.mass = r.number("mass", b.mass);
   check_range(r, "mass", b.mass > 0.0, "must be > 0 kg");
   b.position = r.vec3("position", Vec3::Zero(), true);
@@ -202,17 +215,20 @@ void load_body(const Reader& r, Scene& s) {
   s.bodies.push_back(b);
 }
 
-std::size_t body_index(const Reader& r, const Scene& s, const std::string& key, const std::string& name) {
+std::size_t body_index(const Reader& r, const Scene& s, const std::string& key,
+                       const std::string& name) {
   for (std::size_t i = 0; i < s.bodies.size(); ++i) {
     if (s.bodies[i].name != name) continue;
-    if (s.bodies[i].is_static) r.fail(key, "body \"" + name + "\" is static; forces act on dynamic bodies");
+    if (s.bodies[i].is_static)
+      r.fail(key, "body \"" + name + "\" is static; forces act on dynamic bodies");
     return i;
   }
   r.fail(key, "no body named \"" + name + "\"");
 }
 
 Spring load_spring(const Reader& parent, const toml::node& n) {
-  if (!n.is_table()) parent.fail("spring", "expected an inline table { anchor = [...], stiffness = ... }", &n);
+  if (!n.is_table())
+    parent.fail("spring", "expected an inline table { anchor = [...], stiffness = ... }", &n);
   Reader r(parent.file(), *n.as_table(), parent.path("spring"));
   r.only({"anchor", "stiffness", "damping", "rest_length"});
   Spring sp;
@@ -237,14 +253,17 @@ void load_force(const Reader& r, Scene& s) {
       if (!a->get(i)->is_string()) r.fail(key, "expected a body name (string)", a->get(i));
       const std::size_t b = body_index(r, s, key, *a->get(i)->value<std::string>());
       if (std::find(f.bodies.begin(), f.bodies.end(), b) != f.bodies.end())
-        r.fail(key, "body \"" + s.bodies[b].name + "\" is listed twice; the force would act on it twice", a->get(i));
+        r.fail(key,
+               "body \"" + s.bodies[b].name + "\" is listed twice; the force would act on it twice",
+               a->get(i));
       f.bodies.push_back(b);
     }
   } else {
     for (std::size_t i = 0; i < s.bodies.size(); ++i)
       if (!s.bodies[i].is_static) f.bodies.push_back(i);
   }
-  if (r.has("constant") == r.has("spring")) r.fail("constant", "give exactly one of constant or spring");
+  if (r.has("constant") == r.has("spring"))
+    r.fail("constant", "give exactly one of constant or spring");
   if (r.has("constant"))
     f.law = ConstantForce{r.vec3("constant", Vec3::Zero())};
   else

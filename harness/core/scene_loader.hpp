@@ -1,4 +1,5 @@
-// Loads a scene file (TOML; the contract is in docs/design.md "Scenario files") into a validated Scene.
+// Loads a scene file (TOML; the contract is in docs/design.md "Scenario files") into a validated
+// Scene.
 #pragma once
 
 #include <string>

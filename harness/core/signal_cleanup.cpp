@@ -68,7 +68,8 @@ void install() {
   for (int i = 0; i < 3; ++i) {
     struct sigaction current {};
     ::sigaction(kSignals[i], nullptr, &current);
-    if (current.sa_handler == SIG_IGN || current.sa_handler == on_signal) continue;  // nohup: stay ignored
+    if (current.sa_handler == SIG_IGN || current.sa_handler == on_signal)
+      continue;  // nohup: stay ignored
     struct sigaction now {};
     now.sa_handler = on_signal;
     sigemptyset(&now.sa_mask);
@@ -94,7 +95,9 @@ CleanupOnSignal::CleanupOnSignal(const std::string& path, bool folder) {
   }
 }
 
-CleanupOnSignal::~CleanupOnSignal() { release(); }
+CleanupOnSignal::~CleanupOnSignal() {
+  release();
+}
 
 void CleanupOnSignal::release() {
   if (slot_ >= 0) g_slots[slot_].state.store(kFree);
@@ -108,6 +111,8 @@ SignalsDeferred::SignalsDeferred() {
   ::sigprocmask(SIG_BLOCK, &block, &previous_);
 }
 
-SignalsDeferred::~SignalsDeferred() { ::sigprocmask(SIG_SETMASK, &previous_, nullptr); }
+SignalsDeferred::~SignalsDeferred() {
+  ::sigprocmask(SIG_SETMASK, &previous_, nullptr);
+}
 
 }  // namespace dropcheck

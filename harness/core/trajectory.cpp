@@ -6,13 +6,20 @@ namespace dropcheck {
 
 const char* to_string(RunStatus status) {
   switch (status) {
-    case RunStatus::ok: return "ok";
-    case RunStatus::non_finite: return "non-finite state";
-    case RunStatus::engine_error: return "engine error";
-    case RunStatus::out_of_memory: return "out of memory";
-    case RunStatus::crashed: return "crashed";
-    case RunStatus::timed_out: return "timed out";
-    case RunStatus::refused: return "refused";
+    case RunStatus::ok:
+      return "ok";
+    case RunStatus::non_finite:
+      return "non-finite state";
+    case RunStatus::engine_error:
+      return "engine error";
+    case RunStatus::out_of_memory:
+      return "out of memory";
+    case RunStatus::crashed:
+      return "crashed";
+    case RunStatus::timed_out:
+      return "timed out";
+    case RunStatus::refused:
+      return "refused";
   }
   return "?";
 }
@@ -28,8 +35,8 @@ Trajectory unstarted_trajectory(const std::string& engine, const Scene& scene, d
   return t;
 }
 
-Trajectory failed_trajectory(const std::string& engine, const Scene& scene, double h, RunStatus status,
-                             const std::string& failure, std::int64_t step) {
+Trajectory failed_trajectory(const std::string& engine, const Scene& scene, double h,
+                             RunStatus status, const std::string& failure, std::int64_t step) {
   Trajectory t = unstarted_trajectory(engine, scene, h);
   t.status = status;
   t.failure = failure;

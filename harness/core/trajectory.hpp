@@ -10,13 +10,13 @@
 namespace dropcheck {
 
 enum class RunStatus {
-  ok,            // ran every step
-  non_finite,    // a position or velocity became NaN or Inf (recorded up to the step before)
-  engine_error,  // the engine threw or reported an error
-  out_of_memory, // an allocation failed (std::bad_alloc); samples up to then are kept
-  crashed,       // the isolated engine process died (signal or exit); no samples
-  timed_out,     // the isolated engine process exceeded the wall-clock limit and was killed
-  refused,       // not started: the run exceeds a limit (harness/core/run_limits.hpp)
+  ok,             // ran every step
+  non_finite,     // a position or velocity became NaN or Inf (recorded up to the step before)
+  engine_error,   // the engine threw or reported an error
+  out_of_memory,  // an allocation failed (std::bad_alloc); samples up to then are kept
+  crashed,        // the isolated engine process died (signal or exit); no samples
+  timed_out,      // the isolated engine process exceeded the wall-clock limit and was killed
+  refused,        // not started: the run exceeds a limit (harness/core/run_limits.hpp)
 };
 
 struct Trajectory {
@@ -28,11 +28,11 @@ struct Trajectory {
   std::vector<std::int64_t> recorded;   // step index of each sample; sample 0 is step 0
   std::vector<BodyState> states;        // recorded.size() x body_names.size(), sample-major
   RunStatus status = RunStatus::ok;
-  std::string failure;                  // what went wrong, for non-ok status
-  std::int64_t failed_step = -1;        // first step that failed
-  std::int64_t clamped_steps = 0;       // steps on which the engine clamped a speed
+  std::string failure;             // what went wrong, for non-ok status
+  std::int64_t failed_step = -1;   // first step that failed
+  std::int64_t clamped_steps = 0;  // steps on which the engine clamped a speed
   std::int64_t first_clamped_step = -1;
-  double wall_seconds = 0.0;            // stepping loop (forces, step, read, sampling), not load
+  double wall_seconds = 0.0;  // stepping loop (forces, step, read, sampling), not load
 
   std::size_t samples() const { return recorded.size(); }
   std::size_t bodies() const { return body_names.size(); }
@@ -49,7 +49,7 @@ const char* to_string(RunStatus status);
 Trajectory unstarted_trajectory(const std::string& engine, const Scene& scene, double h);
 
 // The same, ended before it began with `status` and `failure` (failed_step = `step`).
-Trajectory failed_trajectory(const std::string& engine, const Scene& scene, double h, RunStatus status,
-                             const std::string& failure, std::int64_t step = 0);
+Trajectory failed_trajectory(const std::string& engine, const Scene& scene, double h,
+                             RunStatus status, const std::string& failure, std::int64_t step = 0);
 
 }  // namespace dropcheck

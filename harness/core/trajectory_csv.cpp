@@ -10,7 +10,8 @@ namespace dropcheck {
 namespace {
 
 constexpr const char* kHeader = "engine,dt,step,t,body,x,y,z,vx,vy,vz";
-constexpr const char* kColumns[] = {"engine", "dt", "step", "t", "body", "x", "y", "z", "vx", "vy", "vz"};
+constexpr const char* kColumns[] = {"engine", "dt", "step", "t",  "body", "x",
+                                    "y",      "z",  "vx",   "vy", "vz"};
 
 // Splits one CSV record (RFC 4180 quoting, as trajectory_io.cpp writes it).
 std::vector<std::string> csv_fields(const std::string& line) {
@@ -19,9 +20,12 @@ std::vector<std::string> csv_fields(const std::string& line) {
   for (std::size_t i = 0; i < line.size(); ++i) {
     const char c = line[i];
     if (quoted) {
-      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') out.back() += '"', ++i;
-      else if (c == '"') quoted = false;
-      else out.back() += c;
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"')
+        out.back() += '"', ++i;
+      else if (c == '"')
+        quoted = false;
+      else
+        out.back() += c;
     } else if (c == '"') {
       quoted = true;
     } else if (c == ',') {
@@ -60,17 +64,19 @@ void add_row(Trajectory& t, std::int64_t step, const std::string& body, const Bo
     if (!t.recorded.empty() && step <= t.recorded.back())
       throw InputError(file, line, "step", "steps of engine '" + t.engine + "' must increase");
     if (t.recorded.size() >= 1 && t.states.size() != t.recorded.size() * t.body_names.size())
-      throw InputError(file, line, "body", "step " + std::to_string(t.recorded.back()) +
-                                               " lacks bodies of step " + std::to_string(t.recorded[0]));
+      throw InputError(file, line, "body",
+                       "step " + std::to_string(t.recorded.back()) + " lacks bodies of step " +
+                           std::to_string(t.recorded[0]));
     t.recorded.push_back(step);
   }
   const std::size_t index = t.states.size() - (t.recorded.size() - 1) * t.body_names.size();
   if (t.recorded.size() == 1) {
     t.body_names.push_back(body);
   } else if (index >= t.body_names.size() || t.body_names[index] != body) {
-    throw InputError(file, line, "body",
-                     "'" + body + "' where step " + std::to_string(t.recorded[0]) + " has " +
-                         (index < t.body_names.size() ? "'" + t.body_names[index] + "'" : "no more bodies"));
+    throw InputError(
+        file, line, "body",
+        "'" + body + "' where step " + std::to_string(t.recorded[0]) + " has " +
+            (index < t.body_names.size() ? "'" + t.body_names[index] + "'" : "no more bodies"));
   }
   t.states.push_back(s);
 }
@@ -91,8 +97,9 @@ std::vector<Trajectory> read_trajectories_csv(const std::string& file) {
     if (line.empty()) continue;
     const std::vector<std::string> f = csv_fields(line);
     if (f.size() != 11)
-      throw InputError(file, n, "", "expected 11 columns (" + std::string(kHeader) + "), got " +
-                                        std::to_string(f.size()));
+      throw InputError(
+          file, n, "",
+          "expected 11 columns (" + std::string(kHeader) + "), got " + std::to_string(f.size()));
     const double dt = number(f[1], file, n, kColumns[1]);
     const double step = number(f[2], file, n, kColumns[2]);
     if (!(dt > 0.0)) throw InputError(file, n, "dt", "must be > 0");

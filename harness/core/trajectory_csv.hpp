@@ -10,8 +10,9 @@
 namespace dropcheck {
 
 // The runs in `file`, one per (engine, dt), in order of first appearance; each sample holds every
-// body named in that run's first step. Throws InputError (file, line, column, problem) for a missing
-// file, a wrong header, a malformed number or a step whose bodies differ from the first step's.
+// body named in that run's first step. Throws InputError (file, line, column, problem) for a
+// missing file, a wrong header, a malformed number or a step whose bodies differ from the first
+// step's.
 std::vector<Trajectory> read_trajectories_csv(const std::string& file);
 
 }  // namespace dropcheck

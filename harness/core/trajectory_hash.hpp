@@ -1,4 +1,5 @@
-// A fingerprint of a trajectory's exact numbers, for determinism checks and bit-identical baselines.
+// A fingerprint of a trajectory's exact numbers, for determinism checks and bit-identical
+// baselines.
 #pragma once
 
 #include <cstdint>

@@ -24,20 +24,29 @@ std::string csv_field(const std::string& s) {
 
 // JSON has no NaN or Inf: nlohmann writes null for them. Names are escaped by construction, and a
 // byte that is not UTF-8 becomes U+FFFD instead of breaking the document.
-std::string dump(const Json& j) { return j.dump(-1, ' ', false, Json::error_handler_t::replace); }
+std::string dump(const Json& j) {
+  return j.dump(-1, ' ', false, Json::error_handler_t::replace);
+}
 
-Json json_vec(const Vec3& v) { return Json::array({v[0], v[1], v[2]}); }
+Json json_vec(const Vec3& v) {
+  return Json::array({v[0], v[1], v[2]});
+}
 
 Json run_json(const Trajectory& t) {
-  Json run = {{"engine", t.engine},           {"scene", t.scene},
-              {"dt", t.h},                    {"steps", t.steps},
-              {"status", to_string(t.status)}, {"failure", t.failure},
-              {"failed_step", t.failed_step}, {"clamped_steps", t.clamped_steps}};
+  Json run = {{"engine", t.engine},
+              {"scene", t.scene},
+              {"dt", t.h},
+              {"steps", t.steps},
+              {"status", to_string(t.status)},
+              {"failure", t.failure},
+              {"failed_step", t.failed_step},
+              {"clamped_steps", t.clamped_steps}};
   Json bodies = Json::array();
   for (std::size_t b = 0; b < t.bodies(); ++b) {
     Json samples = Json::array();
     for (std::size_t s = 0; s < t.samples(); ++s)
-      samples.push_back(Json::array({t.recorded[s], json_vec(t.at(s, b).position), json_vec(t.at(s, b).velocity)}));
+      samples.push_back(Json::array(
+          {t.recorded[s], json_vec(t.at(s, b).position), json_vec(t.at(s, b).velocity)}));
     bodies.push_back(Json{{"name", t.body_names[b]}, {"samples", std::move(samples)}});
   }
   run["bodies"] = std::move(bodies);

@@ -7,8 +7,9 @@ namespace dropcheck {
 namespace {
 
 constexpr std::uint32_t kMagic = 0x31544344;  // "DCT1"
-constexpr std::uint64_t kMaxString = std::uint64_t{16} << 20;  // longer than any name a loader accepts
-constexpr std::size_t kChunk = 8192;  // doubles converted per write/read of the states
+constexpr std::uint64_t kMaxString = std::uint64_t{16}
+                                     << 20;  // longer than any name a loader accepts
+constexpr std::size_t kChunk = 8192;         // doubles converted per write/read of the states
 
 template <typename T>
 bool put(const WireWrite& write, const T& v) {
@@ -66,8 +67,9 @@ bool get_states(const WireRead& read, Trajectory& t, std::size_t rows) {
 
 bool write_trajectory(const Trajectory& t, const WireWrite& write) {
   bool ok = put(write, kMagic) && put_string(write, t.engine) && put_string(write, t.scene) &&
-            put(write, t.h) && put(write, t.steps) && put(write, static_cast<std::int32_t>(t.status)) &&
-            put_string(write, t.failure) && put(write, t.failed_step) && put(write, t.clamped_steps) &&
+            put(write, t.h) && put(write, t.steps) &&
+            put(write, static_cast<std::int32_t>(t.status)) && put_string(write, t.failure) &&
+            put(write, t.failed_step) && put(write, t.clamped_steps) &&
             put(write, t.first_clamped_step) && put(write, t.wall_seconds) &&
             put(write, std::uint64_t{t.bodies()});
   for (std::size_t b = 0; ok && b < t.bodies(); ++b) ok = put_string(write, t.body_names[b]);
@@ -84,7 +86,8 @@ bool read_trajectory(Trajectory& t, std::size_t bodies, std::int64_t max_samples
   if (!get(read, magic) || magic != kMagic || !get_string(read, t.engine) ||
       !get_string(read, t.scene) || !get(read, t.h) || !get(read, t.steps) || !get(read, status) ||
       !get_string(read, t.failure) || !get(read, t.failed_step) || !get(read, t.clamped_steps) ||
-      !get(read, t.first_clamped_step) || !get(read, t.wall_seconds) || !get(read, n) || n != bodies)
+      !get(read, t.first_clamped_step) || !get(read, t.wall_seconds) || !get(read, n) ||
+      n != bodies)
     return false;
   if (status < 0 || status > static_cast<std::int32_t>(RunStatus::refused)) return false;
   t.status = static_cast<RunStatus>(status);

@@ -67,7 +67,8 @@ SweepPoint measure(const Scene& scene, const EngineInfo& info, const Trajectory&
     p.analytic_final_dx = e.final_dx;
   }
   const Trajectory own = predict_own_arithmetic(info, scene, dt.seconds);
-  const OwnLawVerdict verdict = judge_own_law(info, run, own, predict_discrete(info.law, scene, dt.seconds));
+  const OwnLawVerdict verdict =
+      judge_own_law(info, run, own, predict_discrete(info.law, scene, dt.seconds));
   measure_law(scene, run, own, verdict.tolerance.x, p);
   if (scene.world.contacts) return p;  // the laws know no contacts: no verdict
   p.own_law = verdict;
@@ -75,7 +76,8 @@ SweepPoint measure(const Scene& scene, const EngineInfo& info, const Trajectory&
   return p;
 }
 
-void add_timing(const Scene& scene, const EngineFactory& make, const std::string& name, SweepPoint& p) {
+void add_timing(const Scene& scene, const EngineFactory& make, const std::string& name,
+                SweepPoint& p) {
   const std::vector<Timing> t = time_engines({{name, make}}, scene, p.dt.seconds);
   p.wall_min = t.front().min_per_sim_s;
   p.wall_median = t.front().median_per_sim_s;
@@ -84,7 +86,8 @@ void add_timing(const Scene& scene, const EngineFactory& make, const std::string
 
 }  // namespace
 
-Baseline make_baseline(const Scene& scene, const EngineFactory& make, const BaselineOptions& options) {
+Baseline make_baseline(const Scene& scene, const EngineFactory& make,
+                       const BaselineOptions& options) {
   Baseline out;
   std::unique_ptr<Engine> engine = make();
   const EngineInfo info = engine->info();
@@ -124,7 +127,8 @@ Baseline make_baseline(const Scene& scene, const EngineFactory& make, const Base
 std::string provenance(const std::string& commit) {
   const BuildId id = current_build();
   return "made by `dropcheck bless` with " + id.key + ", build type " +
-         (id.build_type.empty() ? "(none)" : id.build_type) + " \"" + id.flags + "\", on commit " + commit;
+         (id.build_type.empty() ? "(none)" : id.build_type) + " \"" + id.flags + "\", on commit " +
+         commit;
 }
 
 std::string baseline_file_name(const std::string& scene, const std::string& engine) {

@@ -1,13 +1,14 @@
 // Golden baselines: what one engine did on one scene, in a diff-friendly text file with exact
-// numbers, so that a change to an integrator shows at once what moved (harness/guard/regression.hpp).
+// numbers, so that a change to an integrator shows at once what moved
+// (harness/guard/regression.hpp).
 //
 // One file per scene and engine, <scene>.<engine>.txt; a directory of them is a "result set"
 // (tests/baselines/ is the committed one; `dropcheck bless --out DIR` writes one anywhere). Format,
 // one record per line, numbers printed with %.17g so that they read back to the bit:
 //
-//   # dropcheck baseline: made by `dropcheck bless` with <toolchain>, <build type> "<flags>", on <commit>
-//   build_key x86_64, GNU 12.2.0, Eigen 3.4.0, glibc 2.36, -O2 -ffp-contract=off   (bits tier key)
-//   scene free_fall_drag / engine ours-f64 / scalar f64 / law v = phi*(v + a*h); x += h*v
+//   # dropcheck baseline: made by `dropcheck bless` with <toolchain>, <build type> "<flags>", on
+//   <commit> build_key x86_64, GNU 12.2.0, Eigen 3.4.0, glibc 2.36, -O2 -ffp-contract=off   (bits
+//   tier key) scene free_fall_drag / engine ours-f64 / scalar f64 / law v = phi*(v + a*h); x += h*v
 //   analytic closed form                    (or why there is none: "contacts", ...)
 //   skipped no contacts                     (instead of everything below, when it cannot run)
 //   dt 1/60 0.016666666666666666 / steps 60 / record_every 10 / status ok / hash 3f2a...
@@ -37,20 +38,20 @@ inline constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
 struct SweepPoint {
   Timestep dt;
   std::int64_t steps = 0;
-  std::string status = "ok";            // to_string(RunStatus) at this h (one word)
-  double analytic_max_dx = kNoValue;    // max over steps and bodies of |x - oracle 1| (m); NaN: none
+  std::string status = "ok";          // to_string(RunStatus) at this h (one word)
+  double analytic_max_dx = kNoValue;  // max over steps and bodies of |x - oracle 1| (m); NaN: none
   double analytic_final_dx = kNoValue;  // the same at the last step (m)
   double law_max_dx = 0.0;              // max over steps and bodies of |x - oracle 2| (m), oracle 2
                                         // in the engine's own arithmetic (own_arithmetic.hpp)
   std::string law_worst_body;           // the body with that maximum
-  std::int64_t law_first_over = -1;     // first step where it exceeds the own-law tolerance; -1 never
+  std::int64_t law_first_over = -1;  // first step where it exceeds the own-law tolerance; -1 never
   // Judged on a fresh run only (not in the file): the own-law verdict at this h, and the member of
   // the law family the run follows instead when it leaves its declared law.
   std::optional<OwnLawVerdict> own_law;
   std::optional<Law> fits;
-  double wall_min = kNoValue;           // wall seconds per simulated second (--timing only)
+  double wall_min = kNoValue;  // wall seconds per simulated second (--timing only)
   double wall_median = kNoValue;
-  int replicas = 0;                     // copies of the scene in one timed run (--timing only)
+  int replicas = 0;  // copies of the scene in one timed run (--timing only)
 };
 
 // One scene on one engine: the golden record that the regression tiers compare a fresh run with.
@@ -59,27 +60,29 @@ struct Baseline {
   std::string build_key;   // BuildId::key of the build that made it
   std::string scene, engine;
   Scalar scalar = Scalar::f64;
-  std::string law;         // to_string(DampingOrder) the engine declares
-  std::string analytic;    // "closed form", or why the scene has none
-  std::string skipped;     // why the engine cannot run the scene; empty when it ran
-  Timestep dt;             // the scene's default step
+  std::string law;       // to_string(DampingOrder) the engine declares
+  std::string analytic;  // "closed form", or why the scene has none
+  std::string skipped;   // why the engine cannot run the scene; empty when it ran
+  Timestep dt;           // the scene's default step
   std::int64_t record_every = 10;
   std::string status = "ok";  // run status at dt, with the failure when not ok
-  std::string hash;        // trajectory_hash_hex of the run at dt, every step recorded
-  Trajectory samples;      // the run at dt, every record_every-th step and the last
-  std::vector<SweepPoint> sweep;  // scene_sweep(scene) (harness/measure/sweep.hpp): largest step first
+  std::string hash;           // trajectory_hash_hex of the run at dt, every step recorded
+  Trajectory samples;         // the run at dt, every record_every-th step and the last
+  std::vector<SweepPoint>
+      sweep;                 // scene_sweep(scene) (harness/measure/sweep.hpp): largest step first
   std::string failed_tiers;  // written as a "# FAILED ..." comment by `bless --out` (not parsed)
 };
 
 // How make_baseline samples and whether it times.
 struct BaselineOptions {
   std::int64_t record_every = 10;  // sampling of the stored trajectory
-  bool timing = false;             // measure wall time per simulated second (harness/measure/timing.hpp)
+  bool timing = false;  // measure wall time per simulated second (harness/measure/timing.hpp)
 };
 
 // Runs `scene` on a fresh engine from `make` at every step of its sweep (and its default step) and
 // measures it against both oracles. An engine that cannot run the scene gives a `skipped` baseline.
-Baseline make_baseline(const Scene& scene, const EngineFactory& make, const BaselineOptions& options = {});
+Baseline make_baseline(const Scene& scene, const EngineFactory& make,
+                       const BaselineOptions& options = {});
 
 // "made by `dropcheck bless` with <key>, <build type> \"<flags>\", on commit <commit>": the
 // provenance line of a baseline made by this build; `commit` from commit_stamp (build_id.hpp).

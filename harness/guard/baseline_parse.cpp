@@ -1,14 +1,14 @@
-// Parsing the baseline text format (harness/guard/baseline.hpp) back into a Baseline, to the bit: every
-// number was printed with %.17g, which strtod reads back exactly.
+// Parsing the baseline text format (harness/guard/baseline.hpp) back into a Baseline, to the bit:
+// every number was printed with %.17g, which strtod reads back exactly.
 #include <cerrno>
 #include <cstdlib>
 #include <map>
 #include <sstream>
 #include <vector>
 
-#include "harness/guard/baseline.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/core/timestep.hpp"
+#include "harness/guard/baseline.hpp"
 
 namespace dropcheck {
 namespace {
@@ -58,8 +58,9 @@ struct Parser {
   }
 
   void sweep(const std::string& rest) {
-    auto f = fields(rest, "sweep", {"h", "steps", "status", "analytic_max_dx", "analytic_final_dx",
-                                    "law_max_dx", "law_worst_body", "law_first_over"});
+    auto f = fields(rest, "sweep",
+                    {"h", "steps", "status", "analytic_max_dx", "analytic_final_dx", "law_max_dx",
+                     "law_worst_body", "law_first_over"});
     SweepPoint p;
     std::string why;
     const std::optional<Timestep> dt = parse_timestep(f["h"], why);
@@ -113,8 +114,9 @@ struct Parser {
     if (t.body_names.empty()) fail("sample", "before the 'bodies' line");
     const std::int64_t step = integer(w[0], "sample step");
     if (next_body == 0) t.recorded.push_back(step);
-    if (step != t.recorded.back()) fail("sample", "step " + w[0] + " before every body of step " +
-                                                      std::to_string(t.recorded.back()) + " was listed");
+    if (step != t.recorded.back())
+      fail("sample", "step " + w[0] + " before every body of step " +
+                         std::to_string(t.recorded.back()) + " was listed");
     if (w[1] != t.body_names[next_body]) fail("sample", "expected body " + t.body_names[next_body]);
     BodyState s;
     for (int i = 0; i < 3; ++i) s.position[i] = number(w[2 + i], "sample " + w[1]);
@@ -130,23 +132,40 @@ struct Parser {
   }
 
   void record(const std::string& key, const std::string& rest) {
-    if (key == "build_key") b.build_key = rest;
-    else if (key == "scene") b.scene = rest;
-    else if (key == "engine") b.engine = rest;
-    else if (key == "scalar") b.scalar = scalar(rest);
-    else if (key == "law") b.law = rest;
-    else if (key == "analytic") b.analytic = rest;
-    else if (key == "skipped") b.skipped = rest;
-    else if (key == "dt") dt(rest);
-    else if (key == "steps") b.samples.steps = integer(rest, key);
-    else if (key == "record_every") b.record_every = integer(rest, key);
-    else if (key == "status") b.status = rest;
-    else if (key == "hash") b.hash = rest;
-    else if (key == "sweep") sweep(rest);
-    else if (key == "timing") timing(rest);
-    else if (key == "bodies") bodies(rest);
-    else if (key == "sample") sample(rest);
-    else fail(key, "unknown record");
+    if (key == "build_key")
+      b.build_key = rest;
+    else if (key == "scene")
+      b.scene = rest;
+    else if (key == "engine")
+      b.engine = rest;
+    else if (key == "scalar")
+      b.scalar = scalar(rest);
+    else if (key == "law")
+      b.law = rest;
+    else if (key == "analytic")
+      b.analytic = rest;
+    else if (key == "skipped")
+      b.skipped = rest;
+    else if (key == "dt")
+      dt(rest);
+    else if (key == "steps")
+      b.samples.steps = integer(rest, key);
+    else if (key == "record_every")
+      b.record_every = integer(rest, key);
+    else if (key == "status")
+      b.status = rest;
+    else if (key == "hash")
+      b.hash = rest;
+    else if (key == "sweep")
+      sweep(rest);
+    else if (key == "timing")
+      timing(rest);
+    else if (key == "bodies")
+      bodies(rest);
+    else if (key == "sample")
+      sample(rest);
+    else
+      fail(key, "unknown record");
   }
 
   void finish() {

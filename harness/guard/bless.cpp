@@ -46,12 +46,14 @@ std::string write_one(const Baseline& b, const std::string& dir) {
 
 }  // namespace
 
-std::string baseline_path(const std::string& dir, const std::string& scene, const std::string& engine) {
+std::string baseline_path(const std::string& dir, const std::string& scene,
+                          const std::string& engine) {
   return (std::filesystem::path(dir) / baseline_file_name(slug(scene), slug(engine))).string();
 }
 
 std::vector<std::string> baseline_paths(const std::vector<Scene>& scenes,
-                                        const std::vector<std::string>& engines, const std::string& dir) {
+                                        const std::vector<std::string>& engines,
+                                        const std::string& dir) {
   std::vector<std::string> out;
   std::map<std::string, std::string> owner;  // path -> the scene (and its file) that claimed it
   for (const Scene& scene : scenes) {
@@ -60,8 +62,9 @@ std::vector<std::string> baseline_paths(const std::vector<Scene>& scenes,
       const std::string who = "scene \"" + scene.name + "\" (" + scene.source + ")";
       auto [it, fresh] = owner.emplace(path, who);
       if (!fresh)
-        throw InputError(path, 0, "name",
-                         it->second + " and " + who + " would both be written here; give them distinct names");
+        throw InputError(
+            path, 0, "name",
+            it->second + " and " + who + " would both be written here; give them distinct names");
       out.push_back(path);
     }
   }

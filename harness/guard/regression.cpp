@@ -22,7 +22,9 @@ std::string prefix(const Baseline& b, Tier tier) {
   return b.scene + " / " + b.engine + " / " + to_string(tier) + ": ";
 }
 
-TierResult result(Verdict v, std::string message) { return {v, std::move(message)}; }
+TierResult result(Verdict v, std::string message) {
+  return {v, std::move(message)};
+}
 
 // The component (of position when `position`, else velocity) that differs most between a and b.
 void worst_component(const BodyState& a, const BodyState& b, bool position, SampleDiff& d) {
@@ -52,9 +54,10 @@ std::string first_difference_text(const SampleDiff& d, double tolerance, std::in
   const bool pos = d.component[0] != 'v';
   return "body '" + d.first_body + "' first differs at step " + std::to_string(d.first_step) +
          " (samples every " + std::to_string(every) + " steps): " + d.component + " = " +
-         exact(d.before) + " in the baseline, " + exact(d.after) + " now, " + (pos ? "|dx| = " : "|dv| = ") +
-         g3(d.first_delta) + (pos ? " m" : " m/s") + " > " + g3(tolerance) + (pos ? " m" : " m/s") + "; max |dx| " +
-         g3(d.max_dx) + " m (body '" + d.max_body + "', step " + std::to_string(d.max_step) + ")";
+         exact(d.before) + " in the baseline, " + exact(d.after) + " now, " +
+         (pos ? "|dx| = " : "|dv| = ") + g3(d.first_delta) + (pos ? " m" : " m/s") + " > " +
+         g3(tolerance) + (pos ? " m" : " m/s") + "; max |dx| " + g3(d.max_dx) + " m (body '" +
+         d.max_body + "', step " + std::to_string(d.max_step) + ")";
 }
 
 // Sweep errors against oracle 1, per h: |now - baseline| within the tolerance.
@@ -64,11 +67,13 @@ std::string sweep_problem(const Baseline& expected, const Baseline& now, double 
     const SweepPoint& a = expected.sweep[i];
     const SweepPoint& b = now.sweep[i];
     if (a.dt.text != b.dt.text || a.steps != b.steps) return "the sweep's steps differ";
-    if (a.status != b.status) return "at h = " + a.dt.text + " the run was " + a.status + ", now " + b.status;
+    if (a.status != b.status)
+      return "at h = " + a.dt.text + " the run was " + a.status + ", now " + b.status;
     const double d = std::abs(a.analytic_max_dx - b.analytic_max_dx);
     if (d > tolerance)
       return "at h = " + a.dt.text + " max |dx| against the analytic solution moved from " +
-             exact(a.analytic_max_dx) + " to " + exact(b.analytic_max_dx) + " m (by " + g3(d) + " m)";
+             exact(a.analytic_max_dx) + " to " + exact(b.analytic_max_dx) + " m (by " + g3(d) +
+             " m)";
   }
   return {};
 }
@@ -106,7 +111,8 @@ SampleDiff diff_samples(const Trajectory& before, const Trajectory& after, doubl
 
 TierResult check_bits(const Baseline& expected, const Baseline& now) {
   const std::string p = prefix(now, Tier::bits);
-  if (!now.skipped.empty()) return result(Verdict::skipped, p + "the engine cannot run this scene: " + now.skipped);
+  if (!now.skipped.empty())
+    return result(Verdict::skipped, p + "the engine cannot run this scene: " + now.skipped);
   if (expected.build_key != now.build_key)
     return result(Verdict::skipped, p + "the baseline was made by [" + expected.build_key +
                                         "], this build is [" + now.build_key +
@@ -115,27 +121,34 @@ TierResult check_bits(const Baseline& expected, const Baseline& now) {
     return result(Verdict::passed, p + "hash " + now.hash + " identical to the baseline's");
   const SampleDiff d = diff_samples(expected.samples, now.samples, 0.0);
   std::string where = !d.incomparable.empty() ? d.incomparable
-                      : d.first_step >= 0      ? first_difference_text(d, 0.0, now.record_every)
-                                               : "every sampled step is identical; the change lies between samples";
+                      : d.first_step >= 0
+                          ? first_difference_text(d, 0.0, now.record_every)
+                          : "every sampled step is identical; the change lies between samples";
   return result(Verdict::failed, p + "hash " + now.hash + " != baseline " + expected.hash +
                                      " on the same build key [" + now.build_key + "]: " + where);
 }
 
 TierResult check_tolerance(const Baseline& expected, const Baseline& now) {
   const std::string p = prefix(now, Tier::tolerance);
-  if (!now.skipped.empty()) return result(Verdict::skipped, p + "the engine cannot run this scene: " + now.skipped);
+  if (!now.skipped.empty())
+    return result(Verdict::skipped, p + "the engine cannot run this scene: " + now.skipped);
   if (!expected.skipped.empty())
-    return result(Verdict::failed, p + "the baseline says skipped (" + expected.skipped + ") but it ran now");
+    return result(Verdict::failed,
+                  p + "the baseline says skipped (" + expected.skipped + ") but it ran now");
   const double tol = regression_tolerance(now.scalar);
   if (expected.status != now.status)
-    return result(Verdict::failed, p + "the run was '" + expected.status + "', now '" + now.status + "'");
+    return result(Verdict::failed,
+                  p + "the run was '" + expected.status + "', now '" + now.status + "'");
   const SampleDiff d = diff_samples(expected.samples, now.samples, tol);
   if (!d.incomparable.empty()) return result(Verdict::failed, p + d.incomparable);
-  if (d.first_step >= 0) return result(Verdict::failed, p + first_difference_text(d, tol, now.record_every));
-  if (std::string s = sweep_problem(expected, now, tol); !s.empty()) return result(Verdict::failed, p + s);
+  if (d.first_step >= 0)
+    return result(Verdict::failed, p + first_difference_text(d, tol, now.record_every));
+  if (std::string s = sweep_problem(expected, now, tol); !s.empty())
+    return result(Verdict::failed, p + s);
   return result(Verdict::passed, p + "max |dx| " + g3(d.max_dx) + " m over " +
-                                     std::to_string(now.samples.samples()) + " samples (tolerance " +
-                                     g3(tol) + " m for " + to_string(now.scalar) + ")");
+                                     std::to_string(now.samples.samples()) +
+                                     " samples (tolerance " + g3(tol) + " m for " +
+                                     to_string(now.scalar) + ")");
 }
 
 TierResult check_determinism(const Scene& scene, const EngineFactory& make) {
@@ -148,23 +161,28 @@ TierResult check_determinism(const Scene& scene, const EngineFactory& make) {
   const std::string csv_a = trajectories_to_csv({&a, 1}), csv_b = trajectories_to_csv({&b, 1});
   const std::string hash_a = trajectory_hash_hex(a), hash_b = trajectory_hash_hex(b);
   if (csv_a == csv_b && hash_a == hash_b)
-    return result(Verdict::passed, p + "two runs gave identical CSV (" + std::to_string(csv_a.size()) +
-                                       " bytes) and hash " + hash_a);
+    return result(Verdict::passed, p + "two runs gave identical CSV (" +
+                                       std::to_string(csv_a.size()) + " bytes) and hash " + hash_a);
   std::size_t i = 0;
   while (i < csv_a.size() && i < csv_b.size() && csv_a[i] == csv_b[i]) ++i;
   const std::size_t line_start = csv_a.rfind('\n', i) + 1;
-  return result(Verdict::failed, p + "two runs differ (hash " + hash_a + " vs " + hash_b +
-                                     "); first differing CSV line: '" +
-                                     csv_a.substr(line_start, csv_a.find('\n', i) - line_start) + "' vs '" +
-                                     csv_b.substr(line_start, csv_b.find('\n', i) - line_start) + "'");
+  return result(Verdict::failed,
+                p + "two runs differ (hash " + hash_a + " vs " + hash_b +
+                    "); first differing CSV line: '" +
+                    csv_a.substr(line_start, csv_a.find('\n', i) - line_start) + "' vs '" +
+                    csv_b.substr(line_start, csv_b.find('\n', i) - line_start) + "'");
 }
 
 const char* to_string(Tier tier) {
   switch (tier) {
-    case Tier::bits: return "bits";
-    case Tier::tolerance: return "tolerance";
-    case Tier::physics: return "physics";
-    case Tier::determinism: return "determinism";
+    case Tier::bits:
+      return "bits";
+    case Tier::tolerance:
+      return "tolerance";
+    case Tier::physics:
+      return "physics";
+    case Tier::determinism:
+      return "determinism";
   }
   return "?";
 }
@@ -177,9 +195,12 @@ std::optional<Tier> parse_tier(const std::string& name) {
 
 const char* to_string(Verdict verdict) {
   switch (verdict) {
-    case Verdict::passed: return "passed";
-    case Verdict::failed: return "FAILED";
-    case Verdict::skipped: return "skipped";
+    case Verdict::passed:
+      return "passed";
+    case Verdict::failed:
+      return "FAILED";
+    case Verdict::skipped:
+      return "skipped";
   }
   return "?";
 }

@@ -4,7 +4,8 @@
 //                  that change FP results) equals the baseline's, otherwise skipped with the reason
 //   2 tolerance    every sample within a small absolute tolerance of the baseline (any build)
 //   3 physics      the fresh run against the oracles, whatever the baseline says: it follows its
-//                  own discrete law to rounding, and converges to the analytic solution at first order
+//                  own discrete law to rounding, and converges to the analytic solution at first
+//                  order
 //   determinism    two runs in one process give identical bytes (CSV) and hash
 // A failure names scene, engine, body, first differing step, both values and by how much.
 #pragma once
@@ -30,18 +31,17 @@ struct TierResult {
 // Tier 2's absolute tolerance on positions (m) and velocities (m/s) for an engine's scalar.
 double regression_tolerance(Scalar scalar);
 
-
 // Where two sampled trajectories of one scene and engine differ.
 struct SampleDiff {
-  std::string incomparable;        // why the samples cannot be compared (steps, bodies); "" if they can
-  double max_dx = 0.0;             // max |dx| over samples and bodies (m)
-  std::int64_t max_step = -1;      // where
+  std::string incomparable;    // why the samples cannot be compared (steps, bodies); "" if they can
+  double max_dx = 0.0;         // max |dx| over samples and bodies (m)
+  std::int64_t max_step = -1;  // where
   std::string max_body;
-  std::int64_t first_step = -1;    // first sampled step with |dx| or |dv| > tolerance; -1 when none
+  std::int64_t first_step = -1;  // first sampled step with |dx| or |dv| > tolerance; -1 when none
   std::string first_body;
-  std::string component;           // "y", "vx", ...: the component that differs most there
+  std::string component;             // "y", "vx", ...: the component that differs most there
   double before = 0.0, after = 0.0;  // its values
-  double first_delta = 0.0;        // |dx| (m) or |dv| (m/s) there
+  double first_delta = 0.0;          // |dx| (m) or |dv| (m/s) there
 };
 
 // Compares `after` with `before` sample by sample (same recorded steps and bodies required).

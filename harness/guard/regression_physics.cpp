@@ -29,7 +29,8 @@ std::string g3(double v) {
 std::optional<OrderEstimate> analytic_order(const Baseline& b) {
   if (b.analytic != "closed form" || b.sweep.size() < 2) return std::nullopt;
   std::vector<SweepPoint> pts = b.sweep;
-  std::sort(pts.begin(), pts.end(), [](const SweepPoint& x, const SweepPoint& y) { return x.dt.seconds > y.dt.seconds; });
+  std::sort(pts.begin(), pts.end(),
+            [](const SweepPoint& x, const SweepPoint& y) { return x.dt.seconds > y.dt.seconds; });
   std::vector<double> h, e;
   double noise = 0.0;
   for (const SweepPoint& p : pts) {
@@ -43,21 +44,26 @@ std::optional<OrderEstimate> analytic_order(const Baseline& b) {
 // What the run does instead of its declared law: the cause of an oracle-2 failure.
 std::string departure_cause(const Baseline& b, const SweepPoint& p) {
   const std::optional<OrderEstimate> o = analytic_order(b);
-  const std::string orders = o ? "observed orders" + [&] {
-    std::string s;
-    for (double x : o->orders) s += std::isfinite(x) ? " " + g3(x) : std::string(" undefined");
-    return s;
-  }() : "order not measured (no closed form)";
+  const std::string orders =
+      o ? "observed orders" +
+              [&] {
+                std::string s;
+                for (double x : o->orders)
+                  s += std::isfinite(x) ? " " + g3(x) : std::string(" undefined");
+                return s;
+              }()
+        : "order not measured (no closed form)";
   if (p.fits)
-    return "; the run follows another member of the law family instead: " + law_family_name(*p.fits) +
-           " (" + to_string(*p.fits) + "), a consistent" +
+    return "; the run follows another member of the law family instead: " +
+           law_family_name(*p.fits) + " (" + to_string(*p.fits) + "), a consistent" +
            (o && o->first_order ? ", first-order" : "") + " scheme (" + orders +
            "). If intended, declare that law in the engine's adapter (EngineInfo::law)";
   if (o && !o->consistent) {
     double worst = INFINITY;
     for (double x : o->orders) worst = std::min(worst, x);
     return "; it matches no member of the law family and its error against the analytic solution "
-           "does not shrink as h halves: order " + g3(worst) + ": not consistent (a broken scheme)";
+           "does not shrink as h halves: order " +
+           g3(worst) + ": not consistent (a broken scheme)";
   }
   return "; it matches no member of the law family (" + orders + ")";
 }
@@ -72,12 +78,14 @@ std::string law_problem(const Baseline& b, std::string& summary) {
     if (!p.own_law->follows() || std::isnan(p.law_max_dx))
       return "oracle 2 (own discrete law: " + b.law + ") fails: at h = " + p.dt.text + " body '" +
              p.law_worst_body + "' departs from it by " + g3(p.law_max_dx) + " m, beyond its " +
-             "own-law tolerance " + g3(p.own_law->tolerance.x) + " m (" + p.own_law->tolerance.rule +
-             ") from step " + std::to_string(p.law_first_over) + " on" + departure_cause(b, p);
-    if (p.law_max_dx >= worst) worst = p.law_max_dx, worst_h = p.dt.text, worst_tol = p.own_law->tolerance.x;
+             "own-law tolerance " + g3(p.own_law->tolerance.x) + " m (" +
+             p.own_law->tolerance.rule + ") from step " + std::to_string(p.law_first_over) + " on" +
+             departure_cause(b, p);
+    if (p.law_max_dx >= worst)
+      worst = p.law_max_dx, worst_h = p.dt.text, worst_tol = p.own_law->tolerance.x;
   }
-  summary = "oracle 2 (own law " + b.law + "): max departure " + g3(worst) + " m at h = " + worst_h +
-            " (tolerance " + g3(worst_tol) + " m)";
+  summary = "oracle 2 (own law " + b.law + "): max departure " + g3(worst) +
+            " m at h = " + worst_h + " (tolerance " + g3(worst_tol) + " m)";
   return {};
 }
 
@@ -95,12 +103,14 @@ std::string order_problem(const Baseline& b, std::string& summary) {
   }
   if (o->first_order) return {};
   std::vector<SweepPoint> pts = b.sweep;
-  std::sort(pts.begin(), pts.end(), [](const SweepPoint& x, const SweepPoint& y) { return x.dt.seconds > y.dt.seconds; });
+  std::sort(pts.begin(), pts.end(),
+            [](const SweepPoint& x, const SweepPoint& y) { return x.dt.seconds > y.dt.seconds; });
   for (std::size_t i = 0; i < o->orders.size(); ++i) {
     const double p = o->orders[i];
     if (p >= tolerance::kFirstOrderLow && p <= tolerance::kFirstOrderHigh) continue;
     return "oracle 1 (analytic solution) fails: the error should shrink at first order as h halves "
-           "(order " + g3(tolerance::kFirstOrderLow) + ".." + g3(tolerance::kFirstOrderHigh) + "), observed " +
+           "(order " +
+           g3(tolerance::kFirstOrderLow) + ".." + g3(tolerance::kFirstOrderHigh) + "), observed " +
            g3(p) + " from h = " + pts[i].dt.text + " to " + pts[i + 1].dt.text + " (max |dx| " +
            g3(pts[i].analytic_max_dx) + " -> " + g3(pts[i + 1].analytic_max_dx) + " m)";
   }
@@ -111,8 +121,10 @@ std::string order_problem(const Baseline& b, std::string& summary) {
 
 TierResult check_physics(const Baseline& now) {
   const std::string p = now.scene + " / " + now.engine + " / physics: ";
-  if (!now.skipped.empty()) return {Verdict::skipped, p + "the engine cannot run this scene: " + now.skipped};
-  if (now.status != "ok") return {Verdict::failed, p + "the run at h = " + now.dt.text + " ended: " + now.status};
+  if (!now.skipped.empty())
+    return {Verdict::skipped, p + "the engine cannot run this scene: " + now.skipped};
+  if (now.status != "ok")
+    return {Verdict::failed, p + "the run at h = " + now.dt.text + " ended: " + now.status};
   std::string law, order;
   if (std::string why = law_problem(now, law); !why.empty()) return {Verdict::failed, p + why};
   if (std::string why = order_problem(now, order); !why.empty()) return {Verdict::failed, p + why};

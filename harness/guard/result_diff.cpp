@@ -18,7 +18,9 @@ std::string digits(double v, int n) {
   std::snprintf(buf, sizeof buf, "%.*g", n, v);
   return buf;
 }
-std::string g3(double v) { return digits(v, 3); }
+std::string g3(double v) {
+  return digits(v, 3);
+}
 
 const SweepPoint* find_h(const Baseline& b, const std::string& h) {
   for (const SweepPoint& p : b.sweep)
@@ -41,19 +43,24 @@ std::string movement_cells(const Baseline& before, const Baseline& after) {
   const double tol = regression_tolerance(after.scalar);
   const SampleDiff d = diff_samples(before.samples, after.samples, tol);
   if (!d.incomparable.empty()) return "- | " + d.incomparable;
-  std::string cells = d.max_dx == 0.0 ? "0 m | " : g3(d.max_dx) + " m (step " + std::to_string(d.max_step) + ") | ";
+  std::string cells =
+      d.max_dx == 0.0 ? "0 m | " : g3(d.max_dx) + " m (step " + std::to_string(d.max_step) + ") | ";
   if (d.first_step < 0) return cells + "- (tolerance " + g3(tol) + " m)";
-  return cells + "step " + std::to_string(d.first_step) + ", " + d.first_body + "." + d.component + ": " +
-         digits(d.before, 9) + " -> " + digits(d.after, 9) + " (" + g3(d.first_delta) + ")";
+  return cells + "step " + std::to_string(d.first_step) + ", " + d.first_body + "." + d.component +
+         ": " + digits(d.before, 9) + " -> " + digits(d.after, 9) + " (" + g3(d.first_delta) + ")";
 }
 
 std::string summary_row(const Baseline* before, const Baseline* after) {
   const Baseline& any = after ? *after : *before;
   const Movement m = classify(before, after);
   std::string row = "| " + any.scene + " | " + any.engine + " | " + to_string(m) + " | ";
-  if (m == Movement::skipped) return row + "- | " + (after && !after->skipped.empty() ? after->skipped : before->skipped) + " | - |\n";
-  if (!before || !after || !before->skipped.empty() || !after->skipped.empty()) return row + "- | - | - |\n";
-  return row + movement_cells(*before, *after) + " | " + before->hash + " -> " + after->hash + " |\n";
+  if (m == Movement::skipped)
+    return row + "- | " + (after && !after->skipped.empty() ? after->skipped : before->skipped) +
+           " | - |\n";
+  if (!before || !after || !before->skipped.empty() || !after->skipped.empty())
+    return row + "- | - | - |\n";
+  return row + movement_cells(*before, *after) + " | " + before->hash + " -> " + after->hash +
+         " |\n";
 }
 
 // Rows of the error-against-run-time table for one pair: every h whose numbers differ.
@@ -68,8 +75,9 @@ std::string curve_rows(const Baseline& before, const Baseline& after, bool timin
       ++omitted;
       continue;
     }
-    rows += "| " + after.scene + " | " + after.engine + " | " + a.dt.text + " | " + g3(b->analytic_max_dx) +
-            " | " + g3(a.analytic_max_dx) + " | " + g3(a.analytic_max_dx / b->analytic_max_dx);
+    rows += "| " + after.scene + " | " + after.engine + " | " + a.dt.text + " | " +
+            g3(b->analytic_max_dx) + " | " + g3(a.analytic_max_dx) + " | " +
+            g3(a.analytic_max_dx / b->analytic_max_dx);
     if (timing) rows += " | " + g3(b->wall_min * 1e3) + " | " + g3(a.wall_min * 1e3);
     rows += " |\n";
   }
@@ -85,12 +93,14 @@ bool has_timing(const ResultSet& s) {
 
 std::string curves_section(const ResultSet& before, const ResultSet& after) {
   const bool timing = has_timing(before) || has_timing(after);
-  std::string out = "\n## Error against run time\n\nPer h of each scene's sweep: max |dx| against the "
-                    "analytic solution (m)";
+  std::string out =
+      "\n## Error against run time\n\nPer h of each scene's sweep: max |dx| against the "
+      "analytic solution (m)";
   out += timing ? " and wall time per simulated second (ms, minimum of repeats).\n\n"
                 : ". The result sets carry no timing (`dropcheck bless --timing` adds it).\n\n";
   out += "| scene | engine | h | error before | error after | after/before |";
-  out += timing ? " wall before | wall after |\n|---|---|---|---:|---:|---:|---:|---:|\n" : "\n|---|---|---|---:|---:|---:|\n";
+  out += timing ? " wall before | wall after |\n|---|---|---|---:|---:|---:|---:|---:|\n"
+                : "\n|---|---|---|---:|---:|---:|\n";
   int omitted = 0;
   std::string rows;
   for (const auto& [file, a] : after.runs) {
@@ -98,7 +108,9 @@ std::string curves_section(const ResultSet& before, const ResultSet& after) {
     if (b == before.runs.end() || !a.skipped.empty() || !b->second.skipped.empty()) continue;
     rows += curve_rows(b->second, a, timing, omitted);
   }
-  if (rows.empty()) return "\n## Error against run time\n\nNo curve moved (" + std::to_string(omitted) + " points identical).\n";
+  if (rows.empty())
+    return "\n## Error against run time\n\nNo curve moved (" + std::to_string(omitted) +
+           " points identical).\n";
   out += rows;
   if (omitted) out += "\n" + std::to_string(omitted) + " points with identical errors omitted.\n";
   return out;
@@ -107,7 +119,8 @@ std::string curves_section(const ResultSet& before, const ResultSet& after) {
 }  // namespace
 
 ResultSet load_result_set(const std::string& dir) {
-  if (!std::filesystem::is_directory(dir)) throw InputError(dir, 0, "", "not a directory of baseline files");
+  if (!std::filesystem::is_directory(dir))
+    throw InputError(dir, 0, "", "not a directory of baseline files");
   ResultSet set;
   set.dir = dir;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
@@ -125,18 +138,25 @@ Movement classify(const Baseline* before, const Baseline* after) {
   if (before->hash == after->hash && before->status == after->status) return Movement::identical;
   const double tol = regression_tolerance(after->scalar);
   const SampleDiff d = diff_samples(before->samples, after->samples, tol);
-  if (!d.incomparable.empty() || d.first_step >= 0 || before->status != after->status) return Movement::moved;
+  if (!d.incomparable.empty() || d.first_step >= 0 || before->status != after->status)
+    return Movement::moved;
   return sweep_moved(*before, *after, tol) ? Movement::moved : Movement::within_tolerance;
 }
 
 const char* to_string(Movement m) {
   switch (m) {
-    case Movement::identical: return "identical";
-    case Movement::within_tolerance: return "within tolerance";
-    case Movement::moved: return "**moved**";
-    case Movement::only_before: return "only before";
-    case Movement::only_after: return "only after";
-    case Movement::skipped: return "skipped";
+    case Movement::identical:
+      return "identical";
+    case Movement::within_tolerance:
+      return "within tolerance";
+    case Movement::moved:
+      return "**moved**";
+    case Movement::only_before:
+      return "only before";
+    case Movement::only_after:
+      return "only after";
+    case Movement::skipped:
+      return "skipped";
   }
   return "?";
 }
@@ -154,11 +174,14 @@ std::string diff_markdown(const ResultSet& before, const ResultSet& after) {
     moved += classify(pb, pa) == Movement::moved;
     rows += summary_row(pb, pa);
   }
-  std::string out = "# dropcheck diff\n\nBefore: `" + before.dir + "`, after: `" + after.dir + "`. " +
-                    std::to_string(moved) + " of " + std::to_string(files.size()) +
-                    " scene/engine runs moved beyond tolerance (" + g3(regression_tolerance(Scalar::f64)) +
-                    " m for f64, " + g3(regression_tolerance(Scalar::f32)) + " m for f32).\n\n";
-  out += "| scene | engine | verdict | max \\|dx\\| | first step over tolerance | hash before -> after |\n";
+  std::string out = "# dropcheck diff\n\nBefore: `" + before.dir + "`, after: `" + after.dir +
+                    "`. " + std::to_string(moved) + " of " + std::to_string(files.size()) +
+                    " scene/engine runs moved beyond tolerance (" +
+                    g3(regression_tolerance(Scalar::f64)) + " m for f64, " +
+                    g3(regression_tolerance(Scalar::f32)) + " m for f32).\n\n";
+  out +=
+      "| scene | engine | verdict | max \\|dx\\| | first step over tolerance | hash before -> "
+      "after |\n";
   out += "|---|---|---|---:|---|---|\n" + rows;
   return out + curves_section(before, after);
 }

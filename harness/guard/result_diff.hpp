@@ -1,6 +1,7 @@
-// Comparing two result sets (directories of baseline files, harness/guard/baseline.hpp): which scenes
-// and engines moved, by how much and from which step, and how the error-against-run-time curves
-// shifted. The output is Markdown with fixed number formats and sorted rows, so it diffs cleanly.
+// Comparing two result sets (directories of baseline files, harness/guard/baseline.hpp): which
+// scenes and engines moved, by how much and from which step, and how the error-against-run-time
+// curves shifted. The output is Markdown with fixed number formats and sorted rows, so it diffs
+// cleanly.
 #pragma once
 
 #include <map>
@@ -16,7 +17,8 @@ struct ResultSet {
   std::map<std::string, Baseline> runs;  // by file name "<scene>.<engine>.txt", hence sorted
 };
 
-// Every *.txt baseline file in `dir`. InputError when `dir` is not a directory or a file is malformed.
+// Every *.txt baseline file in `dir`. InputError when `dir` is not a directory or a file is
+// malformed.
 ResultSet load_result_set(const std::string& dir);
 
 // How one scene/engine pair compares between the two sets.

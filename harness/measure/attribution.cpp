@@ -29,7 +29,9 @@ std::string follows(const OwnLawVerdict& v) {
 
 }  // namespace
 
-bool Attribution::explained() const { return !departs(engine_law) && !departs(reference_law); }
+bool Attribution::explained() const {
+  return !departs(engine_law) && !departs(reference_law);
+}
 
 std::string Attribution::blamed() const {
   std::string out;
@@ -74,11 +76,16 @@ std::string format_length(double m) {
   const double x = std::abs(m);
   if (x == 0.0) return "0 m";
   if (!std::isfinite(x)) return "inf";
-  if (x >= 1.0) std::snprintf(buf, sizeof buf, "%.3g m", m);
-  else if (x >= 1e-2) std::snprintf(buf, sizeof buf, "%.3g cm", m * 1e2);
-  else if (x >= 1e-3) std::snprintf(buf, sizeof buf, "%.3g mm", m * 1e3);
-  else if (x >= 1e-6) std::snprintf(buf, sizeof buf, "%.3g um", m * 1e6);
-  else std::snprintf(buf, sizeof buf, "%.2g m", m);
+  if (x >= 1.0)
+    std::snprintf(buf, sizeof buf, "%.3g m", m);
+  else if (x >= 1e-2)
+    std::snprintf(buf, sizeof buf, "%.3g cm", m * 1e2);
+  else if (x >= 1e-3)
+    std::snprintf(buf, sizeof buf, "%.3g mm", m * 1e3);
+  else if (x >= 1e-6)
+    std::snprintf(buf, sizeof buf, "%.3g um", m * 1e6);
+  else
+    std::snprintf(buf, sizeof buf, "%.2g m", m);
   return buf;
 }
 
@@ -99,14 +106,18 @@ std::string Attribution::sentence() const {
     why = buf;
   } else if (law_part <= budget) {
     // Same discrete law (or laws that differ by less than rounding): nothing for the laws to split.
-    std::snprintf(buf, sizeof buf, "the two discrete laws agree, so all of it is rounding (%s; residual %s, budget %s)",
-                  precision.c_str(), format_length(residual).c_str(), format_length(budget).c_str());
+    std::snprintf(
+        buf, sizeof buf,
+        "the two discrete laws agree, so all of it is rounding (%s; residual %s, budget %s)",
+        precision.c_str(), format_length(residual).c_str(), format_length(budget).c_str());
     why = buf;
   } else {
     const double share = law_part >= total ? 100.0 : 100.0 * law_part / total;
-    std::snprintf(buf, sizeof buf, "%s from the two discrete laws (damping order); %s; residual %s, within rounding",
-                  share >= 99.95 ? "all of it" : (std::to_string(static_cast<int>(share)) + "%").c_str(),
-                  precision.c_str(), format_length(residual).c_str());
+    std::snprintf(
+        buf, sizeof buf,
+        "%s from the two discrete laws (damping order); %s; residual %s, within rounding",
+        share >= 99.95 ? "all of it" : (std::to_string(static_cast<int>(share)) + "%").c_str(),
+        precision.c_str(), format_length(residual).c_str());
     why = buf;
   }
   std::snprintf(buf, sizeof buf, "%s vs %s: %s at t = %g s (max %s), %s", engine.c_str(),

@@ -23,7 +23,9 @@ std::string fmt(const char* format, double a, double b = 0.0, double c = 0.0) {
   return buf;
 }
 
-std::string vec(const Vec3& v) { return fmt("(%.17g, %.17g, %.17g)", v.x(), v.y(), v.z()); }
+std::string vec(const Vec3& v) {
+  return fmt("(%.17g, %.17g, %.17g)", v.x(), v.y(), v.z());
+}
 
 CheckResult result(const Scene& scene, const std::string& engine, const std::string& check) {
   return {scene.name, engine, check, false, {}};
@@ -35,12 +37,15 @@ std::string worst_text(const OwnLawVerdict& v, const Trajectory& run, const Traj
   const BodyState& want = own.at(v.worst_sample, v.worst_body);
   return "; worst at body '" + run.body_names[v.worst_body] + "' step " +
          std::to_string(run.recorded[v.worst_sample]) + ": engine x = " + vec(got.position) +
-         " v = " + vec(got.velocity) + ", law x = " + vec(want.position) + " v = " + vec(want.velocity);
+         " v = " + vec(got.velocity) + ", law x = " + vec(want.position) +
+         " v = " + vec(want.velocity);
 }
 
 }  // namespace
 
-std::vector<Timestep> conformance_steps(const Scene& scene) { return own_law_steps(scene); }
+std::vector<Timestep> conformance_steps(const Scene& scene) {
+  return own_law_steps(scene);
+}
 
 CheckResult check_own_law(const Scene& scene, const EngineFactory& make, const Timestep& h) {
   std::unique_ptr<Engine> engine = make();
@@ -52,7 +57,8 @@ CheckResult check_own_law(const Scene& scene, const EngineFactory& make, const T
     return r;
   }
   const Trajectory own = predict_own_arithmetic(info, scene, h.seconds);
-  const OwnLawVerdict v = judge_own_law(info, run, own, predict_discrete(info.law, scene, h.seconds));
+  const OwnLawVerdict v =
+      judge_own_law(info, run, own, predict_discrete(info.law, scene, h.seconds));
   r.passed = v.follows();
   r.message = v.sentence();
   if (!r.passed) r.message += worst_text(v, run, own);
@@ -64,10 +70,12 @@ CheckResult check_divergence(const Scene& scene, const EngineFactory& make,
   std::unique_ptr<Engine> engine = make(), ref = reference();
   const EngineInfo ei = engine->info(), ri = ref->info();
   const bool is_reference = ei.name == ri.name;
-  CheckResult r = result(scene, ei.name, is_reference ? "convergence to analytic" : "divergence from " + ri.name);
+  CheckResult r = result(scene, ei.name,
+                         is_reference ? "convergence to analytic" : "divergence from " + ri.name);
   if (is_reference && !analytic_unavailable(scene).empty()) {
     r.passed = true;
-    r.message = "no analytic solution (" + analytic_unavailable(scene) + "); nothing to converge to";
+    r.message =
+        "no analytic solution (" + analytic_unavailable(scene) + "); nothing to converge to";
     return r;
   }
   std::vector<double> hs, errors;
@@ -82,7 +90,8 @@ CheckResult check_divergence(const Scene& scene, const EngineFactory& make,
     const Trajectory ae = predict_own_arithmetic(ei, scene, h.seconds);
     const Trajectory le = predict_discrete(ei.law, scene, h.seconds);
     if (is_reference) {
-      errors.push_back(compare_worst(run, *analytic_trajectory(scene, h.seconds), scene.tolerance).max_dx);
+      errors.push_back(
+          compare_worst(run, *analytic_trajectory(scene, h.seconds), scene.tolerance).max_dx);
       noise = std::max(noise, own_law_tolerance(ei, ae).x);
       continue;
     }
@@ -103,7 +112,8 @@ CheckResult check_divergence(const Scene& scene, const EngineFactory& make,
   }
   const OrderEstimate o = estimate_order(hs, errors, tolerance::kOrderMeasurableFactor * noise);
   r.passed = o.first_order || (is_reference && !o.measurable);
-  r.message = o.text + fmt(" (expected %.1f-%.1f)", tolerance::kFirstOrderLow, tolerance::kFirstOrderHigh) +
+  r.message = o.text +
+              fmt(" (expected %.1f-%.1f)", tolerance::kFirstOrderLow, tolerance::kFirstOrderHigh) +
               (o.measurable ? "" : ", at rounding level: order not measurable");
   return r;
 }
@@ -133,8 +143,8 @@ CheckResult check_landing(const Scene& scene, const EngineFactory& make, const T
                  (on_time ? "" : " MORE THAN ONE STEP OFF") +
                  fmt(", rebound %.3g m above rest (limit %.0e)", rebound, tolerance::kMaxRebound) +
                  (no_rebound ? "" : " TOO HIGH") +
-                 fmt(", rest offset %.3g m (expected %.3g +- %.3g)", o.rest_offset, info.rest_offset,
-                     info.rest_tolerance) +
+                 fmt(", rest offset %.3g m (expected %.3g +- %.3g)", o.rest_offset,
+                     info.rest_offset, info.rest_tolerance) +
                  (rests ? "" : " OUT OF RANGE") +
                  fmt(", still: max |v| %.3g m/s, range %.3g m over the last 2 s", o.still_speed,
                      o.still_range) +

@@ -11,7 +11,7 @@ namespace dropcheck {
 
 struct CheckResult {
   std::string scene, engine;
-  std::string check;    // "own law at h = 1/60", "divergence from ours-f64", "landing", ...
+  std::string check;  // "own law at h = 1/60", "divergence from ours-f64", "landing", ...
   bool passed = false;
   std::string message;  // the measured figures; on failure, what differs and where
 };
@@ -31,8 +31,8 @@ CheckResult check_divergence(const Scene& scene, const EngineFactory& make,
                              const EngineFactory& reference);
 
 // Oracle 1 for contacts: each dynamic body over a static floor makes first contact within one step
-// of its own discrete law's contact step, rebounds no higher than rest + tolerance::kMaxRebound, rests within
-// the engine's declared rest_offset +- rest_tolerance, and is still over the last 2 s.
+// of its own discrete law's contact step, rebounds no higher than rest + tolerance::kMaxRebound,
+// rests within the engine's declared rest_offset +- rest_tolerance, and is still over the last 2 s.
 CheckResult check_landing(const Scene& scene, const EngineFactory& make, const Timestep& h);
 
 // Every check that applies to `scene` on one engine (free flight: own law at three steps and

@@ -6,14 +6,14 @@
 #include <limits>
 #include <map>
 
-#include "harness/oracles/analytic.hpp"
-#include "harness/measure/own_law.hpp"
-#include "harness/measure/sweep.hpp"
-#include "harness/oracles/discrete_law.hpp"
-#include "harness/oracles/own_arithmetic.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/core/timestep.hpp"
 #include "harness/core/trajectory_hash.hpp"
+#include "harness/measure/own_law.hpp"
+#include "harness/measure/sweep.hpp"
+#include "harness/oracles/analytic.hpp"
+#include "harness/oracles/discrete_law.hpp"
+#include "harness/oracles/own_arithmetic.hpp"
 
 namespace dropcheck {
 namespace {
@@ -67,7 +67,8 @@ std::optional<Timestep> fine_step(const Scene& scene, const Timestep& finest, in
     char text[64];
     // N*factor only while it fits a long long (N = 2^62 once printed 1/-2446744073709551616).
     const long long n = std::atoll(finest.text.c_str() + 2);
-    if (finest.text.rfind("1/", 0) == 0 && n > 0 && n <= std::numeric_limits<long long>::max() / factor)
+    if (finest.text.rfind("1/", 0) == 0 && n > 0 &&
+        n <= std::numeric_limits<long long>::max() / factor)
       std::snprintf(text, sizeof text, "1/%lld", n * factor);
     else
       std::snprintf(text, sizeof text, "%.6g", h);
@@ -123,9 +124,9 @@ void run_fine(EngineEvaluation& ev, const EngineSlot& slot, const SceneEvaluatio
   for (StepEvaluation& s : ev.sweep) s.vs_fine = compare_worst(s.run, ev.fine, se.scene.tolerance);
 }
 
-// Landing figures of every run of a contact scene (harness/oracles/landing.hpp). An engine whose resting
-// surface sits above the geometry (Box2D's 0.01 m skin) touches the floor there: contact means
-// reaching floor top + rest_offset (+ its tolerance), as `dropcheck check` counts it.
+// Landing figures of every run of a contact scene (harness/oracles/landing.hpp). An engine whose
+// resting surface sits above the geometry (Box2D's 0.01 m skin) touches the floor there: contact
+// means reaching floor top + rest_offset (+ its tolerance), as `dropcheck check` counts it.
 void measure_landings(EngineEvaluation& ev, const SceneEvaluation& se) {
   const std::vector<LandingSetup> setups = engine_landing_setups(se.scene, ev.info);
   for (StepEvaluation& s : ev.sweep) {
@@ -271,7 +272,9 @@ const EngineEvaluation* SceneEvaluation::find(const std::string& name) const {
   return nullptr;
 }
 
-std::vector<Timestep> sorted_sweep(const Scene& scene) { return scene_sweep(scene); }
+std::vector<Timestep> sorted_sweep(const Scene& scene) {
+  return scene_sweep(scene);
+}
 
 SceneEvaluation evaluate_scene(const Scene& scene, const std::vector<EngineSlot>& engines,
                                const EvaluateOptions& options, const Progress& progress) {

@@ -1,11 +1,12 @@
 // Evaluation of one scene on every engine, for the comparison report: each engine over the scene's
 // timestep sweep, measured against the three oracles kept apart (docs/design.md "Oracles"):
 //   1. continuous analytic solution (harness/oracles/analytic.hpp), where one exists;
-//   2. the engine's own discrete law (harness/oracles/discrete_law.hpp), for free flight (no contacts);
+//   2. the engine's own discrete law (harness/oracles/discrete_law.hpp), for free flight (no
+//   contacts);
 //   3. self-consistency: the same engine at a much finer step, where no closed form exists;
 // and against the reference engine (ours-f64) at the same step, split into law part and residual
-// (harness/measure/attribution.hpp). Optionally timed (harness/measure/timing.hpp). Engine-neutral: engines come in
-// as named factories, so the harness does not depend on adapters.
+// (harness/measure/attribution.hpp). Optionally timed (harness/measure/timing.hpp). Engine-neutral:
+// engines come in as named factories, so the harness does not depend on adapters.
 #pragma once
 
 #include <functional>
@@ -13,13 +14,13 @@
 #include <string>
 #include <vector>
 
-#include "harness/measure/attribution.hpp"
 #include "harness/core/engine.hpp"
-#include "harness/oracles/landing.hpp"
+#include "harness/core/trajectory.hpp"
+#include "harness/measure/attribution.hpp"
 #include "harness/measure/metrics.hpp"
 #include "harness/measure/own_law.hpp"
 #include "harness/measure/timing.hpp"
-#include "harness/core/trajectory.hpp"
+#include "harness/oracles/landing.hpp"
 
 namespace dropcheck {
 

@@ -18,8 +18,8 @@ struct ErrorStats {
 };
 
 // Compares body `body` of `a` against `b` at every sample time present in both (the two may run at
-// different h: a fine-step reference is sampled at the coarse run's times). Samples are matched when
-// their times agree to 1e-9 of the coarser step. Failed runs compare up to their last sample.
+// different h: a fine-step reference is sampled at the coarse run's times). Samples are matched
+// when their times agree to 1e-9 of the coarser step. Failed runs compare up to their last sample.
 ErrorStats compare(const Trajectory& a, const Trajectory& b, std::size_t body, double tolerance);
 
 // The worst ErrorStats over all dynamic bodies (by max |dx|), for one-line summaries.

@@ -13,7 +13,9 @@ namespace dropcheck {
 namespace {
 
 // Machine epsilon of the scalar: the spacing of numbers in [1, 2).
-double epsilon(Scalar s) { return s == Scalar::f32 ? 0x1p-23 : 0x1p-52; }
+double epsilon(Scalar s) {
+  return s == Scalar::f32 ? 0x1p-23 : 0x1p-52;
+}
 
 std::string g3(double v) {
   char buf[32];
@@ -36,14 +38,16 @@ Scales scales(const Trajectory& law) {
 
 OwnLawTolerance tolerance_for(Scalar scalar, bool copied, const Trajectory& law) {
   const Scales s = scales(law);
-  const double ulps = copied ? tolerance::kCopiedUlps
-                             : tolerance::kStepUlps * static_cast<double>(std::max<std::int64_t>(law.steps, 1));
+  const double ulps =
+      copied ? tolerance::kCopiedUlps
+             : tolerance::kStepUlps * static_cast<double>(std::max<std::int64_t>(law.steps, 1));
   // One scale for positions and velocities: the largest magnitude the run carries (a body at rest
   // still rounds its position, a body near the origin its velocity).
   const double scale = std::max(s.x, s.v);
   OwnLawTolerance t{ulps * epsilon(scalar) * scale, ulps * epsilon(scalar) * scale, {}};
   t.rule = g3(ulps) + " ulps of " + g3(scale) + " (" + to_string(scalar) +
-           (copied ? ", operation order copied)" : ", order not copied: " + g3(tolerance::kStepUlps) + " ulps per step)");
+           (copied ? ", operation order copied)"
+                   : ", order not copied: " + g3(tolerance::kStepUlps) + " ulps per step)");
   return t;
 }
 
@@ -87,7 +91,8 @@ OwnLawVerdict judge_own_law(const EngineInfo& info, const Trajectory& run, const
       r.residual_x = std::max(r.residual_x, dx);
       r.residual_v = std::max(r.residual_v, dv);
       r.precision = std::max(r.precision, (own.at(s, b).position - exact.at(s, b).position).norm());
-      const double rel = std::max(dx / std::max(r.tolerance.x, 1e-300), dv / std::max(r.tolerance.v, 1e-300));
+      const double rel =
+          std::max(dx / std::max(r.tolerance.x, 1e-300), dv / std::max(r.tolerance.v, 1e-300));
       if (rel > worst) worst = rel, r.worst_sample = s, r.worst_body = b;
     }
   }
@@ -101,8 +106,8 @@ OwnLawVerdict judge_own_law(const EngineInfo& info, const Scene& scene, const Tr
 
 std::string OwnLawVerdict::sentence() const {
   std::string s = "max |x - law| " + g3(residual_x) + " m, |v - law| " + g3(residual_v) +
-                  " m/s (tolerance " + g3(tolerance.x) + " m, " + g3(tolerance.v) + " m/s: " +
-                  tolerance.rule + "; law " + law + ")";
+                  " m/s (tolerance " + g3(tolerance.x) + " m, " + g3(tolerance.v) +
+                  " m/s: " + tolerance.rule + "; law " + law + ")";
   s += "; precision part " + format_length(precision) + " (own arithmetic vs long-double law)";
   if (clamped_from >= 0)
     s += "; the engine clamped a speed at step " + std::to_string(clamped_from) +
@@ -116,9 +121,12 @@ std::string law_family_name(Law law) {
   std::string name = explicit_x ? "explicit Euler" : "semi-implicit Euler";
   switch (law.damping) {
     case DampingOrder::AfterForces:
-      return name + (explicit_x ? ", damping after the forces" : ", damping after the forces (ours, Box2D, MuJoCo)");
-    case DampingOrder::BeforeForces: return name + ", damping before the forces (Bullet's order)";
-    case DampingOrder::AfterPosition: return name + ", damping after the position update (ODE's order)";
+      return name + (explicit_x ? ", damping after the forces"
+                                : ", damping after the forces (ours, Box2D, MuJoCo)");
+    case DampingOrder::BeforeForces:
+      return name + ", damping before the forces (Bullet's order)";
+    case DampingOrder::AfterPosition:
+      return name + ", damping after the position update (ODE's order)";
   }
   return name;
 }

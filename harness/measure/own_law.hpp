@@ -32,15 +32,15 @@ OwnLawTolerance own_law_tolerance(const EngineInfo& info, const Trajectory& own_
 // One run against its own law.
 struct OwnLawVerdict {
   std::string engine;
-  std::string law;                 // to_string(info.law)
-  std::string failure;             // the run did not finish (status and reason); "" when it did
-  double residual_x = 0.0;         // max |x - own law| (m)
-  double residual_v = 0.0;         // max |v - own law| (m/s)
+  std::string law;          // to_string(info.law)
+  std::string failure;      // the run did not finish (status and reason); "" when it did
+  double residual_x = 0.0;  // max |x - own law| (m)
+  double residual_v = 0.0;  // max |v - own law| (m/s)
   std::size_t worst_sample = 0, worst_body = 0;  // where the larger relative departure is
   OwnLawTolerance tolerance;
-  double precision = 0.0;          // max |own-arithmetic law - long-double law| (m): scalar cost
-  std::int64_t clamped_from = -1;  // first step the engine clamped a speed; compared before it
-  std::int64_t compared_steps = 0; // last step compared
+  double precision = 0.0;           // max |own-arithmetic law - long-double law| (m): scalar cost
+  std::int64_t clamped_from = -1;   // first step the engine clamped a speed; compared before it
+  std::int64_t compared_steps = 0;  // last step compared
 
   // The run finished and stays within tolerance of its own law.
   bool follows() const;

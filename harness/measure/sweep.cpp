@@ -19,13 +19,16 @@ std::string g(const char* format, double v) {
 
 // h/n written as "1/(N*n)" when h is "1/N", else in seconds.
 Timestep divided(const Timestep& h, int n) {
-  if (h.text.rfind("1/", 0) == 0) return {h.seconds / n, "1/" + std::to_string(std::atoll(h.text.c_str() + 2) * n)};
+  if (h.text.rfind("1/", 0) == 0)
+    return {h.seconds / n, "1/" + std::to_string(std::atoll(h.text.c_str() + 2) * n)};
   return {h.seconds / n, g("%.6g", h.seconds / n)};
 }
 
 }  // namespace
 
-bool same_step(double a, double b) { return std::abs(a - b) <= 1e-12 * std::max(a, b); }
+bool same_step(double a, double b) {
+  return std::abs(a - b) <= 1e-12 * std::max(a, b);
+}
 
 std::vector<Timestep> scene_sweep(const Scene& scene) {
   std::vector<Timestep> out = scene.timesteps;
@@ -34,7 +37,8 @@ std::vector<Timestep> scene_sweep(const Scene& scene) {
                    [](const Timestep& a, const Timestep& b) { return a.seconds > b.seconds; });
   auto same = [](const Timestep& a, const Timestep& b) { return same_step(a.seconds, b.seconds); };
   out.erase(std::unique(out.begin(), out.end(), same), out.end());
-  if (out.size() < 2) out = {scene.timestep, divided(scene.timestep, 2), divided(scene.timestep, 4)};
+  if (out.size() < 2)
+    out = {scene.timestep, divided(scene.timestep, 2), divided(scene.timestep, 4)};
   return out;
 }
 
@@ -54,11 +58,13 @@ std::vector<Timestep> own_law_steps(const Scene& scene) {
 OrderEstimate estimate_order(std::span<const double> h, std::span<const double> e, double noise) {
   OrderEstimate o;
   o.orders = observed_orders(h, e);
-  o.measurable = !o.orders.empty() && std::all_of(e.begin(), e.end(), [&](double x) { return x > noise; });
+  o.measurable =
+      !o.orders.empty() && std::all_of(e.begin(), e.end(), [&](double x) { return x > noise; });
   o.first_order = o.measurable;
   o.consistent = o.measurable;
   for (double p : o.orders) {
-    o.first_order = o.first_order && p >= tolerance::kFirstOrderLow && p <= tolerance::kFirstOrderHigh;
+    o.first_order =
+        o.first_order && p >= tolerance::kFirstOrderLow && p <= tolerance::kFirstOrderHigh;
     o.consistent = o.consistent && p >= tolerance::kConsistentOrder;
   }
   o.text = "max |dx| ";

@@ -26,7 +26,9 @@ double quantile(std::vector<double> v, double q) {
   return v[i] + (at - static_cast<double>(i)) * (v[i + 1] - v[i]);
 }
 
-double median(const std::vector<double>& v) { return quantile(v, 0.5); }
+double median(const std::vector<double>& v) {
+  return quantile(v, 0.5);
+}
 
 // The samples of one half: rounds 0, 1, 4, 5, 8, 9, ... (which = 0) or 2, 3, 6, 7, ... (which = 1).
 // By pairs of rounds, so that each half holds as many forward as reversed rounds.
@@ -121,16 +123,19 @@ Scene replicate(const Scene& scene, int copies) {
 }
 
 double Timing::half_spread() const {
-  const double lo = std::min(half_a_median, half_b_median), hi = std::max(half_a_median, half_b_median);
+  const double lo = std::min(half_a_median, half_b_median),
+               hi = std::max(half_a_median, half_b_median);
   return lo > 0.0 ? hi / lo - 1.0 : 0.0;
 }
 
 int replicas_for(const Scene& scene, double h, const TimingOptions& options) {
   double dynamic = 0.0;
   for (const Body& b : scene.bodies) dynamic += b.is_static ? 0.0 : 1.0;
-  const double per_copy = std::max(dynamic, 1.0) * static_cast<double>(std::max<std::int64_t>(step_count(scene, h), 1));
+  const double per_copy =
+      std::max(dynamic, 1.0) * static_cast<double>(std::max<std::int64_t>(step_count(scene, h), 1));
   int copies = 1;
-  while (copies < options.max_replicas && copies * per_copy < options.body_steps_per_run) copies *= 2;
+  while (copies < options.max_replicas && copies * per_copy < options.body_steps_per_run)
+    copies *= 2;
   return std::min(copies, std::max(options.max_replicas, 1));
 }
 
@@ -149,8 +154,10 @@ std::vector<Timing> time_engines(const std::vector<std::pair<std::string, Engine
       // that no figure depends on which engine ran before it.
       time_bare(*engine, copies, h);
       int& d = disturbed[e];
-      const double f = undisturbed([&] { return time_full(*engine, copies, h); }, options.retries, d);
-      const double b = undisturbed([&] { return time_bare(*engine, copies, h); }, options.retries, d);
+      const double f =
+          undisturbed([&] { return time_full(*engine, copies, h); }, options.retries, d);
+      const double b =
+          undisturbed([&] { return time_bare(*engine, copies, h); }, options.retries, d);
       if (r >= 0) full[e].push_back(f), bare[e].push_back(b);
     }
   }

@@ -29,17 +29,17 @@ struct TimingOptions {
 struct Timing {
   std::string engine;
   double h = 0.0;
-  int replicas = 1;              // copies of the scene's dynamic bodies in one timed run
-  int samples = 0;               // timed runs behind each figure below
-  int disturbed = 0;             // runs measured again because another process took the core
+  int replicas = 1;   // copies of the scene's dynamic bodies in one timed run
+  int samples = 0;    // timed runs behind each figure below
+  int disturbed = 0;  // runs measured again because another process took the core
   // Full harness loop (run_scene), wall seconds per simulated second, per copy of the scene.
   double min_per_sim_s = 0.0;
   double median_per_sim_s = 0.0;
-  double q1_per_sim_s = 0.0;     // first and third quartile: the interquartile range is the spread
+  double q1_per_sim_s = 0.0;  // first and third quartile: the interquartile range is the spread
   double q3_per_sim_s = 0.0;
-  double half_a_median = 0.0;    // median of rounds 0, 1, 4, 5, ... (per sim s)
-  double half_b_median = 0.0;    // median of rounds 2, 3, 6, 7, ...
-  double bare_min_per_sim_s = 0.0;     // the engine's bare step() loop, no forces/reads/sampling
+  double half_a_median = 0.0;       // median of rounds 0, 1, 4, 5, ... (per sim s)
+  double half_b_median = 0.0;       // median of rounds 2, 3, 6, 7, ...
+  double bare_min_per_sim_s = 0.0;  // the engine's bare step() loop, no forces/reads/sampling
   double bare_median_per_sim_s = 0.0;
   // Harness overhead: (full loop - bare loop) / bare loop, from the medians.
   double overhead() const {

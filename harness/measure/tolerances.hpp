@@ -6,19 +6,21 @@ namespace dropcheck::tolerance {
 
 // --- Own law (oracle 2), harness/measure/own_law.hpp -------------------------------------------
 // An engine whose operation order the harness copies (EngineInfo::arithmetic) must match its law
-// iterated in its own arithmetic to within this many ulps of the largest |x| or |v| the law reaches.
-// Measured: 0 ulps (bit for bit) for ours, ours-f64 and box2d on every shipped scene at every step
-// of its sweep, and box2d at 150 m/s, h = 1/120 (tests/adapters/conformance_test.cpp). Before, the
-// same runs against the long-double law were 6.45e-5 m off (ours and box2d, f32, seed_part3 1/120).
+// iterated in its own arithmetic to within this many ulps of the largest |x| or |v| the law
+// reaches. Measured: 0 ulps (bit for bit) for ours, ours-f64 and box2d on every shipped scene at
+// every step of its sweep, and box2d at 150 m/s, h = 1/120 (tests/adapters/conformance_test.cpp).
+// Before, the same runs against the long-double law were 6.45e-5 m off (ours and box2d, f32,
+// seed_part3 1/120).
 inline constexpr double kCopiedUlps = 4.0;
 
 // An engine whose order is not copied is predicted in long double; each step may round each
-// coordinate differently from the law, and a spring feeds those roundings back, so its departure may
-// grow by up to this many ulps of the largest |x| or |v| per step (n steps: n * kStepUlps ulps).
-// Measured worst (`dropcheck check scenarios/*.toml`): ode 1.23e-13 m on seed_part3 (h = 1/120,
-// 360 steps, 12.1 m: 0.13 ulp per step), mujoco 1.07e-14 m; bullet 0 m since its damping parameter
-// is copied (DampingForm::per_second_power). On scenarios/extreme/stiff_spring a spring feeds the
-// roundings back: 5.7 ulps per step (bullet, ode, mujoco: 4.06e-12 m/s after 286 steps at h = 1/32).
+// coordinate differently from the law, and a spring feeds those roundings back, so its departure
+// may grow by up to this many ulps of the largest |x| or |v| per step (n steps: n * kStepUlps
+// ulps). Measured worst (`dropcheck check scenarios/*.toml`): ode 1.23e-13 m on seed_part3 (h =
+// 1/120, 360 steps, 12.1 m: 0.13 ulp per step), mujoco 1.07e-14 m; bullet 0 m since its damping
+// parameter is copied (DampingForm::per_second_power). On scenarios/extreme/stiff_spring a spring
+// feeds the roundings back: 5.7 ulps per step (bullet, ode, mujoco: 4.06e-12 m/s after 286 steps at
+// h = 1/32).
 inline constexpr double kStepUlps = 16.0;
 
 // --- Orders of convergence, harness/measure/sweep.hpp ------------------------------------------

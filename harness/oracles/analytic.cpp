@@ -61,9 +61,9 @@ BodyState drag_flight(const Body& b, const Vec3& a, double k, double t) {
 }
 
 // y'' + 2*zeta*w*y' + w^2*y = 0, y = x - x_eq, per axis with y0, y0'. With p = zeta*w:
-//   under-damped (p < w, wd = sqrt(w^2 - p^2)): y = exp(-p t)*(y0*cos(wd t) + (y0' + p*y0)/wd*sin(wd t))
-//   critical     (p = w):                       y = exp(-p t)*(y0 + (y0' + p*y0)*t)
-//   over-damped  (p > w, r1,2 = -p -+ sqrt(p^2 - w^2)): y = c1*exp(r1 t) + c2*exp(r2 t)
+//   under-damped (p < w, wd = sqrt(w^2 - p^2)): y = exp(-p t)*(y0*cos(wd t) + (y0' +
+//   p*y0)/wd*sin(wd t)) critical     (p = w):                       y = exp(-p t)*(y0 + (y0' +
+//   p*y0)*t) over-damped  (p > w, r1,2 = -p -+ sqrt(p^2 - w^2)): y = c1*exp(r1 t) + c2*exp(r2 t)
 // (tests/harness/oracles/analytic_test.cpp checks each against the ODE by finite differences.)
 void oscillator_axis(double y0, double v0, double w, double p, double t, double& y, double& v) {
   const double e = std::exp(-p * t);
@@ -116,7 +116,8 @@ BodyState analytic_state(const Scene& scene, std::size_t index, double t) {
   return l.stiffness > 0.0 ? spring_flight(b, l, k, t) : drag_flight(b, l.accel, k, t);
 }
 
-std::optional<Trajectory> analytic_trajectory(const Scene& scene, double h, const RunOptions& options) {
+std::optional<Trajectory> analytic_trajectory(const Scene& scene, double h,
+                                              const RunOptions& options) {
   if (!analytic_unavailable(scene).empty()) return std::nullopt;
   Trajectory t;
   t.engine = "analytic";

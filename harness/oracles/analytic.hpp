@@ -25,6 +25,7 @@ std::string analytic_unavailable(const Scene& scene);
 BodyState analytic_state(const Scene& scene, std::size_t index, double t);
 
 // The exact solution sampled at the steps a run at h records; nullopt when there is none.
-std::optional<Trajectory> analytic_trajectory(const Scene& scene, double h, const RunOptions& options = {});
+std::optional<Trajectory> analytic_trajectory(const Scene& scene, double h,
+                                              const RunOptions& options = {});
 
 }  // namespace dropcheck

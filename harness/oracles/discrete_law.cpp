@@ -17,8 +17,7 @@ struct StateL {
 
 }  // namespace
 
-Trajectory predict_discrete(Law law, const Scene& scene, double h,
-                            const RunOptions& options) {
+Trajectory predict_discrete(Law law, const Scene& scene, double h, const RunOptions& options) {
   Trajectory t;
   t.engine = "law: " + to_string(law);
   t.scene = scene.name;

@@ -1,10 +1,9 @@
 // Oracle 2: an engine's own discrete law, iterated in long double.
 //
-// With the per-step decay phi = exp(-k*h) and a = g + F/m (F from harness/core/forces.hpp evaluated on
-// the predicted state at the start of the step), a free body follows its member of the law family
-// (harness/core/law.hpp).
-// An engine that differs from its own law by more than rounding has an adapter bug.
-// Valid for free flight only (contacts are not modelled).
+// With the per-step decay phi = exp(-k*h) and a = g + F/m (F from harness/core/forces.hpp evaluated
+// on the predicted state at the start of the step), a free body follows its member of the law
+// family (harness/core/law.hpp). An engine that differs from its own law by more than rounding has
+// an adapter bug. Valid for free flight only (contacts are not modelled).
 #pragma once
 
 #include "harness/core/engine.hpp"
@@ -13,7 +12,6 @@
 
 namespace dropcheck {
 
-Trajectory predict_discrete(Law law, const Scene& scene, double h,
-                            const RunOptions& options = {});
+Trajectory predict_discrete(Law law, const Scene& scene, double h, const RunOptions& options = {});
 
 }  // namespace dropcheck

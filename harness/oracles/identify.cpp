@@ -10,26 +10,30 @@
 namespace dropcheck {
 namespace {
 
-bool after_forces_type(Law law) { return law.damping != DampingOrder::BeforeForces; }
+bool after_forces_type(Law law) {
+  return law.damping != DampingOrder::BeforeForces;
+}
 
 void require_usable(const Scene& scene, const Trajectory& run) {
   const auto problem = [&](const std::string& what) {
     return InputError(scene.source, 0, "identify", "trajectory of '" + run.engine + "': " + what);
   };
   if (scene.world.contacts) throw problem("needs a free-flight scene (contacts = false)");
-  if (run.status != RunStatus::ok) throw problem("the run failed at step " + std::to_string(run.failed_step) + ": " + run.failure);
+  if (run.status != RunStatus::ok)
+    throw problem("the run failed at step " + std::to_string(run.failed_step) + ": " + run.failure);
   if (run.body_names.size() != scene.bodies.size())
     throw problem(std::to_string(run.body_names.size()) + " bodies, the scene has " +
                   std::to_string(scene.bodies.size()));
   for (std::size_t b = 0; b < scene.bodies.size(); ++b)
     if (run.body_names[b] != scene.bodies[b].name)
-      throw problem("body " + std::to_string(b + 1) + " is '" + run.body_names[b] + "', the scene's is '" +
-                    scene.bodies[b].name + "'");
+      throw problem("body " + std::to_string(b + 1) + " is '" + run.body_names[b] +
+                    "', the scene's is '" + scene.bodies[b].name + "'");
   if (run.samples() < 4) throw problem("needs at least 3 steps");
   for (std::size_t s = 0; s < run.samples(); ++s)
     if (run.recorded[s] != static_cast<std::int64_t>(s))
       throw problem("step " + std::to_string(s) + " is missing (every step must be recorded)");
-  if (std::none_of(scene.bodies.begin(), scene.bodies.end(), [](const Body& b) { return !b.is_static; }))
+  if (std::none_of(scene.bodies.begin(), scene.bodies.end(),
+                   [](const Body& b) { return !b.is_static; }))
     throw problem("the scene has no dynamic body");
 }
 
@@ -39,13 +43,15 @@ std::vector<Vec3> accelerations_from_forces(const Scene& scene, const Trajectory
   std::vector<Vec3> forces(run.bodies());
   for (std::size_t s = 0; s < run.samples(); ++s) {
     compute_forces(scene, std::span(run.states).subspan(s * run.bodies(), run.bodies()), forces);
-    for (std::size_t b = 0; b < run.bodies(); ++b) out[s * run.bodies() + b] = forces[b] / scene.bodies[b].mass;
+    for (std::size_t b = 0; b < run.bodies(); ++b)
+      out[s * run.bodies() + b] = forces[b] / scene.bodies[b].mass;
   }
   return out;
 }
 
 // Least squares for (phi, c) on the velocity sequence; fills phi and gravity.
-void fit_velocity(const Scene& scene, const Trajectory& run, const std::vector<Vec3>& f, MemberFit& m) {
+void fit_velocity(const Scene& scene, const Trajectory& run, const std::vector<Vec3>& f,
+                  MemberFit& m) {
   const bool af = after_forces_type(m.law);
   std::size_t dynamic = 0;
   for (const Body& b : scene.bodies) dynamic += b.is_static ? 0 : 1;
@@ -74,7 +80,8 @@ void fit_velocity(const Scene& scene, const Trajectory& run, const std::vector<V
 
 // Iterates the member from the recorded initial state; fills max_dx and max_dv.
 void residual(const Scene& scene, const Trajectory& run, MemberFit& m) {
-  std::vector<BodyState> state(run.states.begin(), run.states.begin() + static_cast<long>(run.bodies()));
+  std::vector<BodyState> state(run.states.begin(),
+                               run.states.begin() + static_cast<long>(run.bodies()));
   std::vector<Vec3> forces(run.bodies());
   m.max_dx = m.max_dv = 0.0;
   for (std::size_t s = 1; s < run.samples(); ++s) {
@@ -106,8 +113,9 @@ Identification identify_law(const Scene& scene, const Trajectory& run) {
   }
   std::vector<std::size_t> order(id.fits.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return id.fits[a].max_dx < id.fits[b].max_dx; });
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return id.fits[a].max_dx < id.fits[b].max_dx;
+  });
   id.best = order[0];
   id.runner_up = order[1];
   const double best = id.fits[id.best].max_dx;

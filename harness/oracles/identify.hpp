@@ -32,19 +32,19 @@ inline constexpr double kIdentifyTolerance = 0.02;
 // One member of the family fitted to the trajectory.
 struct MemberFit {
   Law law;
-  double phi = 1.0;              // fitted per-step velocity factor
-  Vec3 gravity = Vec3::Zero();   // fitted gravity (m/s^2)
-  double max_dx = 0.0;           // largest |x - prediction| over samples, bodies, components (m)
-  double max_dv = 0.0;           // the same for velocities (m/s)
+  double phi = 1.0;             // fitted per-step velocity factor
+  Vec3 gravity = Vec3::Zero();  // fitted gravity (m/s^2)
+  double max_dx = 0.0;          // largest |x - prediction| over samples, bodies, components (m)
+  double max_dv = 0.0;          // the same for velocities (m/s)
 };
 
 // Every member's fit and the verdict.
 struct Identification {
-  std::vector<MemberFit> fits;   // one per kLawFamily member, in family order
-  std::size_t best = 0;          // index in fits of the smallest max_dx
-  std::size_t runner_up = 0;     // index of the second smallest
-  bool fits_any = false;         // fits[best].max_dx <= kIdentifyTolerance
-  bool ambiguous = false;        // the runner-up is within 2x (+1e-12 m) of the best: no verdict
+  std::vector<MemberFit> fits;  // one per kLawFamily member, in family order
+  std::size_t best = 0;         // index in fits of the smallest max_dx
+  std::size_t runner_up = 0;    // index of the second smallest
+  bool fits_any = false;        // fits[best].max_dx <= kIdentifyTolerance
+  bool ambiguous = false;       // the runner-up is within 2x (+1e-12 m) of the best: no verdict
 };
 
 // Identifies the law behind `run`, a run of `scene` at step run.h with every step recorded from 0.

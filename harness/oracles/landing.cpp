@@ -150,7 +150,8 @@ std::vector<LandingSetup> landing_setups(const Scene& scene) {
 
 std::vector<LandingSetup> engine_landing_setups(const Scene& scene, const EngineInfo& info) {
   std::vector<LandingSetup> setups = landing_setups(scene);
-  for (LandingSetup& setup : setups) setup.floor_top += std::max(0.0, info.rest_offset + info.rest_tolerance);
+  for (LandingSetup& setup : setups)
+    setup.floor_top += std::max(0.0, info.rest_offset + info.rest_tolerance);
   return setups;
 }
 

@@ -47,16 +47,16 @@ StepConstants<T> constants(DampingForm form, const Scene& scene, double h) {
 template <typename T>
 void add_forces(DampingForm form, const StepConstants<T>& c, const V3<T>& f, StateT<T>& s) {
   if (form == DampingForm::phi_multiply) {
-    s.v = s.v + c.g * c.h;           // ApplyGravity
-    s.v = s.v + (f / s.m) * c.h;     // IntegrateLinearForce
+    s.v = s.v + c.g * c.h;        // ApplyGravity
+    s.v = s.v + (f / s.m) * c.h;  // IntegrateLinearForce
     return;
   }
   if (form == DampingForm::per_second_power) {
     s.v = s.v + (c.g + f / s.m) * c.h;
     return;
   }
-  const T inv_mass = T(1) / s.m;                 // b2Body::SetMassData: m_invMass = 1/m
-  const V3<T> total = (T(1) * s.m) * c.g + f;    // gravityScale*mass*gravity + m_force
+  const T inv_mass = T(1) / s.m;               // b2Body::SetMassData: m_invMass = 1/m
+  const V3<T> total = (T(1) * s.m) * c.g + f;  // gravityScale*mass*gravity + m_force
   s.v = s.v + (c.h * inv_mass) * total;
 }
 
@@ -73,7 +73,8 @@ void step_body(Law law, DampingForm form, const StepConstants<T>& c, const V3<T>
 }
 
 template <typename T>
-Trajectory iterate(const EngineInfo& info, const Scene& scene, double h, const RunOptions& options) {
+Trajectory iterate(const EngineInfo& info, const Scene& scene, double h,
+                   const RunOptions& options) {
   Trajectory t;
   t.engine = "law in " + std::string(to_string(info.scalar)) + ": " + to_string(info.law);
   t.scene = scene.name;
@@ -91,7 +92,8 @@ Trajectory iterate(const EngineInfo& info, const Scene& scene, double h, const R
   std::vector<BodyState> start(nb);
   std::vector<Vec3> forces(nb);
   auto read = [&] {
-    for (std::size_t i = 0; i < nb; ++i) start[i] = {s[i].x.template cast<double>(), s[i].v.template cast<double>()};
+    for (std::size_t i = 0; i < nb; ++i)
+      start[i] = {s[i].x.template cast<double>(), s[i].v.template cast<double>()};
   };
   auto snapshot = [&](std::int64_t n) {
     t.recorded.push_back(n);
@@ -102,7 +104,8 @@ Trajectory iterate(const EngineInfo& info, const Scene& scene, double h, const R
   for (std::int64_t n = 1; n <= t.steps; ++n) {
     compute_forces(scene, start, forces);
     for (std::size_t i = 0; i < nb; ++i)
-      if (!scene.bodies[i].is_static) step_body<T>(info.law, info.arithmetic, c, forces[i].cast<T>(), s[i]);
+      if (!scene.bodies[i].is_static)
+        step_body<T>(info.law, info.arithmetic, c, forces[i].cast<T>(), s[i]);
     read();
     if (n % every == 0 || n == t.steps) snapshot(n);
   }
@@ -111,7 +114,9 @@ Trajectory iterate(const EngineInfo& info, const Scene& scene, double h, const R
 
 }  // namespace
 
-bool arithmetic_copied(const EngineInfo& info) { return info.arithmetic != DampingForm::other; }
+bool arithmetic_copied(const EngineInfo& info) {
+  return info.arithmetic != DampingForm::other;
+}
 
 bool order_copied(const EngineInfo& info) {
   return info.arithmetic == DampingForm::phi_multiply || info.arithmetic == DampingForm::pade;

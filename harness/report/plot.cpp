@@ -30,7 +30,8 @@ bool series_drawable(const PlotSpec& s, const PlotSeries& line) {
 }
 
 // A string in gnuplot single quotes, where a quote is written twice. Single quotes expand neither
-// backticks nor escapes; plot_text() has already removed the line breaks that would end the command.
+// backticks nor escapes; plot_text() has already removed the line breaks that would end the
+// command.
 std::string quoted(const std::string& text) {
   std::string out = "'";
   for (char c : plot_text(text)) out += c == '\'' ? std::string("''") : std::string(1, c);
@@ -45,10 +46,14 @@ std::size_t utf8_length(const std::string& s, std::size_t i) {
   std::size_t n = 0;
   unsigned min = 0, cp = 0;
   if (c < 0x80) return 1;
-  if ((c & 0xE0) == 0xC0) n = 2, min = 0x80, cp = c & 0x1F;
-  else if ((c & 0xF0) == 0xE0) n = 3, min = 0x800, cp = c & 0x0F;
-  else if ((c & 0xF8) == 0xF0) n = 4, min = 0x10000, cp = c & 0x07;
-  else return 0;
+  if ((c & 0xE0) == 0xC0)
+    n = 2, min = 0x80, cp = c & 0x1F;
+  else if ((c & 0xF0) == 0xE0)
+    n = 3, min = 0x800, cp = c & 0x0F;
+  else if ((c & 0xF8) == 0xF0)
+    n = 4, min = 0x10000, cp = c & 0x07;
+  else
+    return 0;
   if (i + n > s.size()) return 0;
   for (std::size_t k = 1; k < n; ++k) {
     if ((byte(i + k) & 0xC0) != 0x80) return 0;
@@ -138,9 +143,12 @@ std::string plot_text(const std::string& text) {
     }
     const std::size_t n = utf8_length(text, i);
     const unsigned char c = static_cast<unsigned char>(text[i]);
-    if (n == 0) out += "?";                             // a byte that is not UTF-8
-    else if (c < 0x20 || c == 0x7F) out += " ";         // line breaks, NUL, other controls
-    else out.append(text, i, n);
+    if (n == 0)
+      out += "?";  // a byte that is not UTF-8
+    else if (c < 0x20 || c == 0x7F)
+      out += " ";  // line breaks, NUL, other controls
+    else
+      out.append(text, i, n);
     i += n ? n : 1;
     ++chars;
   }

@@ -171,9 +171,8 @@ std::string reproducibility(const ReportInput& in) {
       "reports' medians is of this order; a larger one is more than the machine's noise. "
       "%ld of %ld timed runs were measured again because another process took the core "
       "(wall time beyond the thread's CPU time).\n\n",
-      n, static_cast<long>(within(0.05)), 100.0 * within(0.05) / n,
-      static_cast<long>(within(0.10)), 100.0 * within(0.10) / n, 100.0 * spreads[n / 2],
-      100.0 * spreads.back(), disturbed, runs);
+      n, static_cast<long>(within(0.05)), 100.0 * within(0.05) / n, static_cast<long>(within(0.10)),
+      100.0 * within(0.10) / n, 100.0 * spreads[n / 2], 100.0 * spreads.back(), disturbed, runs);
 }
 
 std::string determinism(const ReportInput& in) {

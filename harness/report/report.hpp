@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "harness/core/engine.hpp"
+#include "harness/core/provenance.hpp"
 #include "harness/measure/evaluate.hpp"
 #include "harness/report/plot.hpp"
-#include "harness/core/provenance.hpp"
 
 namespace dropcheck {
 

@@ -1,6 +1,7 @@
-// The landing part of a contact scene's section (harness/oracles/landing.hpp): first contact against the
-// continuous model and the engine's own law, penetration, rebound, resting offset against what the
-// engine documents (EngineInfo::rest_offset, docs/engines.md section 5), stillness.
+// The landing part of a contact scene's section (harness/oracles/landing.hpp): first contact
+// against the continuous model and the engine's own law, penetration, rebound, resting offset
+// against what the engine documents (EngineInfo::rest_offset, docs/engines.md section 5),
+// stillness.
 #include <cmath>
 
 #include "harness/report/report_format.hpp"

@@ -1,5 +1,5 @@
-// The report's plots, as data (drawing is harness/report/plot.cpp's job): per scene a trajectory plot, a
-// divergence plot and, with timings, a work-precision diagram.
+// The report's plots, as data (drawing is harness/report/plot.cpp's job): per scene a trajectory
+// plot, a divergence plot and, with timings, a work-precision diagram.
 #include <algorithm>
 #include <set>
 
@@ -141,8 +141,8 @@ std::vector<std::vector<ReportPlot>> report_plots(const ReportInput& input) {
       plots.push_back(
           {slug + "-divergence.svg", se.scene.name + " divergence", divergence_plot(se)});
     if (input.timing && (se.no_analytic.empty() || se.uses_fine))
-      plots.push_back({slug + "-work-precision.svg", se.scene.name + " work-precision (⏱ wall time)",
-                       work_precision_plot(se)});
+      plots.push_back({slug + "-work-precision.svg",
+                       se.scene.name + " work-precision (⏱ wall time)", work_precision_plot(se)});
     out.push_back(std::move(plots));
   }
   return out;

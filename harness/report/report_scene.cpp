@@ -196,11 +196,11 @@ std::vector<std::string> sweep_row(const SceneEvaluation& se, const StepEvaluati
   if (!timing) return r;
   if (!st.timing) return r;
   const Timing& t = *st.timing;
-  r.insert(r.end(), {g3(t.median_per_sim_s * 1e3),
-                     g3(t.q1_per_sim_s * 1e3) + " .. " + g3(t.q3_per_sim_s * 1e3),
-                     g3(t.min_per_sim_s * 1e3), percent(t.half_spread()),
-                     g3(t.bare_median_per_sim_s * 1e3), percent(t.overhead()),
-                     strf("%d x %d", t.samples, t.replicas)});
+  r.insert(
+      r.end(),
+      {g3(t.median_per_sim_s * 1e3), g3(t.q1_per_sim_s * 1e3) + " .. " + g3(t.q3_per_sim_s * 1e3),
+       g3(t.min_per_sim_s * 1e3), percent(t.half_spread()), g3(t.bare_median_per_sim_s * 1e3),
+       percent(t.overhead()), strf("%d x %d", t.samples, t.replicas)});
   return r;
 }
 
@@ -209,9 +209,9 @@ std::string sweep_table(const SceneEvaluation& se, bool timing) {
   std::vector<std::string> h{"engine", "h", "steps", "status", "error vs " + ref + ": max dx (m)"};
   if (!se.reference.empty()) h.push_back("divergence from " + se.reference + ": max dx (m)");
   if (timing)
-    for (const char* c : {"median (ms per sim s)", "IQR (ms per sim s)", "min (ms per sim s)",
-                          "halves differ", "bare step loop median (ms per sim s)",
-                          "harness overhead", "samples x replicas"})
+    for (const char* c :
+         {"median (ms per sim s)", "IQR (ms per sim s)", "min (ms per sim s)", "halves differ",
+          "bare step loop median (ms per sim s)", "harness overhead", "samples x replicas"})
       h.push_back(kTimed + std::string(c));
   MarkdownTable t(h, "llrlr");
   for (const EngineEvaluation& ev : se.engines) {
@@ -227,8 +227,8 @@ std::string sweep_table(const SceneEvaluation& se, bool timing) {
 
 std::string run_time(const SceneEvaluation& se, const std::vector<ReportPlot>& plots,
                      const PlotOutcomes& outcomes, bool timing) {
-  std::string md = timing ? "#### Error against run time (⏱ wall time)\n\n"
-                          : "#### Error against run time\n\n";
+  std::string md =
+      timing ? "#### Error against run time (⏱ wall time)\n\n" : "#### Error against run time\n\n";
   md += timing ? "Columns marked ⏱ and the work-precision plot are wall-clock timings (the only "
                  "figures that change between runs). \"halves differ\": the medians of the two "
                  "halves of the samples (rounds 0, 1, 4, 5, ... and 2, 3, 6, 7, ...), max/min - "

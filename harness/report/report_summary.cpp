@@ -38,8 +38,7 @@ const EngineEvaluation* farthest(const SceneEvaluation& se) {
 // Beyond rounding from its own law at some step of the sweep: an adapter bug.
 bool off_own_law(const EngineEvaluation& ev) {
   for (const StepEvaluation& st : ev.sweep)
-    if (st.own_law && !st.own_law->follows())
-      return true;
+    if (st.own_law && !st.own_law->follows()) return true;
   return false;
 }
 

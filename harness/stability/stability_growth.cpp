@@ -75,7 +75,8 @@ void speed_growth(const Scene& scene, const Trajectory& run, std::size_t i, cons
   for (std::size_t s = 0; s < run.samples(); ++s) {
     const double t = run.time(s);
     const double bound = k > 0.0 ? std::max(v0, terminal) : v0 + a * t;
-    if (std::isnan(bound)) return;  // |v0| or |a| overflowed: no bound to claim (NaN/Inf is its own mode)
+    if (std::isnan(bound))
+      return;  // |v0| or |a| overflowed: no bound to claim (NaN/Inf is its own mode)
     const double v = run.at(s, i).velocity.norm();
     if (v <= bound * (1.0 + o.speed_slack) + 1e-12) continue;
     out.push_back(

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "harness/core/trajectory_io.hpp"
 #include "harness/stability/stability_detail.hpp"
 #include "harness/stability/stability_study.hpp"
-#include "harness/core/trajectory_io.hpp"
 
 namespace dropcheck {
 namespace {
@@ -15,15 +15,20 @@ using stability_detail::format;
 using Json = nlohmann::ordered_json;
 
 // JSON has no NaN or Inf: null for them (and for an absent value).
-Json json_number(std::optional<double> v) { return v && std::isfinite(*v) ? Json(*v) : Json(nullptr); }
+Json json_number(std::optional<double> v) {
+  return v && std::isfinite(*v) ? Json(*v) : Json(nullptr);
+}
 
 // Escaped by construction; a byte that is not UTF-8 becomes U+FFFD instead of breaking the file.
-std::string dump(const Json& j) { return j.dump(-1, ' ', false, Json::error_handler_t::replace); }
+std::string dump(const Json& j) {
+  return j.dump(-1, ' ', false, Json::error_handler_t::replace);
+}
 
 Json failures_json(const Verdict& v) {
   Json out = Json::array();
   for (const Failure& f : v.failures)
-    out.push_back({{"mode", to_string(f.mode)}, {"body", f.body}, {"step", f.step}, {"message", f.what}});
+    out.push_back(
+        {{"mode", to_string(f.mode)}, {"body", f.body}, {"step", f.step}, {"message", f.what}});
   return out;
 }
 
@@ -89,15 +94,22 @@ std::string search_summary(const StepSearch& s) {
 
 std::string stability_to_json(const SceneStability& s, const SearchOptions& search) {
   const Json head = {
-      {"scene", s.name}, {"file", s.source}, {"dt", s.h.seconds}, {"dt_text", s.h.text},
-      {"duration", s.duration}, {"steps", s.steps}, {"no_analytic", s.no_analytic},
-      {"search_rule", format("each probe at step h runs duration' = ceil(min(duration, %lld*dt)/h)*h; "
-                             "bisection to a relative %.3g",
-                             static_cast<long long>(search.horizon_steps), search.rel_tol)}};
+      {"scene", s.name},
+      {"file", s.source},
+      {"dt", s.h.seconds},
+      {"dt_text", s.h.text},
+      {"duration", s.duration},
+      {"steps", s.steps},
+      {"no_analytic", s.no_analytic},
+      {"search_rule",
+       format("each probe at step h runs duration' = ceil(min(duration, %lld*dt)/h)*h; "
+              "bisection to a relative %.3g",
+              static_cast<long long>(search.horizon_steps), search.rel_tol)}};
   std::string out = dump(head);  // then the engines, one a line, as before nlohmann wrote them
   out.pop_back();
   out += ",\"engines\":[";
-  for (std::size_t i = 0; i < s.engines.size(); ++i) out += (i ? ",\n" : "\n") + dump(engine_json(s.engines[i]));
+  for (std::size_t i = 0; i < s.engines.size(); ++i)
+    out += (i ? ",\n" : "\n") + dump(engine_json(s.engines[i]));
   return out + "\n]}\n";
 }
 

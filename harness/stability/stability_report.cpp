@@ -77,7 +77,8 @@ std::string table(const std::vector<SceneStability>& studies, Cell cell, bool wi
   std::vector<std::string> engines;
   if (!studies.empty())
     for (const EngineStability& e : studies.front().engines) engines.push_back(e.engine);
-  std::string out = with_step ? header({"scene", "h"}, engines, true) : header({"scene"}, engines, true);
+  std::string out =
+      with_step ? header({"scene", "h"}, engines, true) : header({"scene"}, engines, true);
   for (const SceneStability& s : studies) {
     std::vector<std::string> cells{"`" + s.name + "`"};
     if (with_step) cells.push_back(s.h.text);
@@ -113,14 +114,16 @@ std::string failure_list(const std::vector<SceneStability>& studies) {
 }  // namespace
 
 std::string stability_report_section(const std::vector<std::string>& extreme_scene_files,
-                                     const std::vector<EngineSlot>& engines, std::ostream& progress) {
+                                     const std::vector<EngineSlot>& engines,
+                                     std::ostream& progress) {
   std::vector<Scene> scenes;
   for (const std::string& file : extreme_scene_files) scenes.push_back(load_scene(file));
   std::sort(scenes.begin(), scenes.end(),
             [](const Scene& a, const Scene& b) { return a.name < b.name; });
   const StudyOptions options;
   std::vector<SceneStability> studies;
-  for (const Scene& scene : scenes) studies.push_back(study_scene(scene, engines, options, &progress));
+  for (const Scene& scene : scenes)
+    studies.push_back(study_scene(scene, engines, options, &progress));
 
   const SearchOptions& so = options.search_options;
   std::string out = "## Stability: stiff and extreme cases\n\n";
@@ -128,12 +131,14 @@ std::string stability_report_section(const std::vector<std::string>& extreme_sce
       "Each engine runs each scene at the scene's own step h and is classified as stable or by its "
       "severest failure (NaN/Inf, engine error, unbounded growth, tunnelled, frozen, speed "
       "clamped; "
-      "harness/stability/stability.hpp). Then its largest stable step is searched by bisection on h: each "
+      "harness/stability/stability.hpp). Then its largest stable step is searched by bisection on "
+      "h: each "
       "probe "
       "runs min(duration, %lld h) rounded up to whole steps of the probe's h, and the bisection "
       "stops "
       "at a relative width of %.1g. For springs the theoretical edge of the engine's damping order "
-      "follows the measured one (harness/stability/stability_theory.cpp): semi-implicit Euler without "
+      "follows the measured one (harness/stability/stability_theory.cpp): semi-implicit Euler "
+      "without "
       "damping is "
       "stable iff omega*h < 2.\n\n",
       static_cast<long long>(so.horizon_steps), so.rel_tol);

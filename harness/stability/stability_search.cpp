@@ -14,8 +14,8 @@
 #include <memory>
 
 #include "harness/core/runner.hpp"
-#include "harness/stability/stability.hpp"
 #include "harness/core/trajectory_io.hpp"
+#include "harness/stability/stability.hpp"
 
 namespace dropcheck {
 namespace {

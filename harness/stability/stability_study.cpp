@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "harness/oracles/analytic.hpp"
 #include "harness/core/runner.hpp"
+#include "harness/oracles/analytic.hpp"
 #include "harness/stability/stability_detail.hpp"
 
 namespace dropcheck {
@@ -46,8 +46,8 @@ EngineStability study_engine(const EngineSlot& slot, const Scene& scene, const S
   study_default_step(*engine, scene, o, r);
   r.theory_max_dt = spring_theory_max_dt(scene, r.law);
   if (o.search) {
-    r.search = search_max_stable_dt(slot.make, r.scalar, scene, scene.timestep.seconds, o.search_options,
-                                    o.classify);
+    r.search = search_max_stable_dt(slot.make, r.scalar, scene, scene.timestep.seconds,
+                                    o.search_options, o.classify);
   }
   return r;
 }

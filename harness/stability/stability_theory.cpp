@@ -14,8 +14,9 @@
 //     [y' v'] = [[1 - w^2*h^2, h*(1 - gamma*h)], [-phi*w^2*h, phi*(1 - gamma*h)]] [y v]
 //
 // With the explicit position update (y' = y + h*v, forward Euler; harness/core/law.hpp):
-//   AfterForces/AfterPosition: v' = phi*(v + h*a): A = phi*w^2*h^2, beta = phi*(1 - gamma*h + w^2*h^2)
-//   BeforeForces:              v' = phi*v + h*a:   A = w^2*h^2,     beta = phi - gamma*h + w^2*h^2
+//   AfterForces/AfterPosition: v' = phi*(v + h*a): A = phi*w^2*h^2, beta = phi*(1 - gamma*h +
+//   w^2*h^2) BeforeForces:              v' = phi*v + h*a:   A = w^2*h^2,     beta = phi - gamma*h +
+//   w^2*h^2
 // (trace 1 + beta - A as below): without damping beta = 1 + w^2*h^2 > 1, unstable at every h.
 //
 // Each matrix has determinant beta and trace 1 + beta - A, with
@@ -48,8 +49,9 @@ struct StepCoefficients {
 StepCoefficients coefficients(Law law, const SpringModel& s, double h) {
   const double phi = std::exp(-s.k * h), wh2 = s.omega * s.omega * h * h, gh = s.gamma * h;
   if (law.position == PositionUpdate::Explicit)
-    return law.damping == DampingOrder::BeforeForces ? StepCoefficients{wh2, phi - gh + wh2}
-                                                     : StepCoefficients{phi * wh2, phi * (1.0 - gh + wh2)};
+    return law.damping == DampingOrder::BeforeForces
+               ? StepCoefficients{wh2, phi - gh + wh2}
+               : StepCoefficients{phi * wh2, phi * (1.0 - gh + wh2)};
   switch (law.damping) {
     case DampingOrder::AfterForces:
       return {phi * wh2, phi * (1.0 - gh)};

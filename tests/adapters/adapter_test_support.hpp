@@ -11,7 +11,7 @@
 namespace dropcheck::testing {
 
 inline const char* const kFreeFlightScenes[] = {"seed_part3", "free_fall", "free_fall_drag", "wind",
-                                         "throw_up"};
+                                                "throw_up"};
 
 inline Scene scenario(const std::string& name) {
   return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + name + ".toml");
@@ -49,8 +49,10 @@ inline Scene drop_on_floor() {
   s.duration = 5.0;
   s.world.gravity = Vec3(0.0, -9.8, 0.0);
   s.world.contacts = true;
-  s.bodies.push_back({.name = "floor", .half_extents = {10.0, 0.5, 10.0},
-                      .position = {0.0, -0.5, 0.0}, .is_static = true});
+  s.bodies.push_back({.name = "floor",
+                      .half_extents = {10.0, 0.5, 10.0},
+                      .position = {0.0, -0.5, 0.0},
+                      .is_static = true});
   s.bodies.push_back({.name = "cube", .position = {0.0, 10.0, 0.0}});
   return s;
 }

@@ -1,21 +1,20 @@
 // Tests adapters/box2d.cpp: Box2D 2.4.1 (float, 2-D) driven through the Engine interface.
 //
-// References: oracle 2 (harness/oracles/discrete_law.hpp: Box2D's law v = phi*(v + a*h); x += h*v, iterated
-// in long double) for free flight; the continuous first-contact time t_c = sqrt(2*fall/|g|) and the
-// geometric rest height (floor top + half extent) for landing; docs/engines.md section 2 and 5 for
-// the measured figures reproduced here.
-#include <catch2/catch.hpp>
-
+// References: oracle 2 (harness/oracles/discrete_law.hpp: Box2D's law v = phi*(v + a*h); x += h*v,
+// iterated in long double) for free flight; the continuous first-contact time t_c =
+// sqrt(2*fall/|g|) and the geometric rest height (floor top + half extent) for landing;
+// docs/engines.md section 2 and 5 for the measured figures reproduced here.
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <sstream>
 #include <string>
 
-#include "harness/oracles/discrete_law.hpp"
 #include "adapter_test_support.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/core/scene_loader.hpp"
+#include "harness/oracles/discrete_law.hpp"
 
 namespace dropcheck {
 // Defined in adapters/box2d.cpp for tests: Box2D's GetMass() of body i of a loaded box2d engine.
@@ -53,17 +52,20 @@ Landing measure_landing(const Trajectory& run, const Trajectory& free, std::size
       l.response_step = run.recorded[s];
     if (l.response_step >= 0) l.highest_after = std::max(l.highest_after, y);
     l.lowest = std::min(l.lowest, y);
-    if (b.velocity.norm() > 1e-3 || std::abs(y - l.rest) > 1e-4) l.settled_at = run.time(std::min(s + 1, run.samples() - 1));
+    if (b.velocity.norm() > 1e-3 || std::abs(y - l.rest) > 1e-4)
+      l.settled_at = run.time(std::min(s + 1, run.samples() - 1));
   }
   return l;
 }
 
 // Box2D against its own law in float. Each step rounds x += h*v to half an ulp of |x| (3e-7 at
-// 10 m), and the decay Box2D computes, fl(1/fl(1 + h*c)), can only take values 1.2e-7 apart (the ulp
-// of 1 + h*c): it is 1.9e-8 above exp(-k*h) at 1/60 and 4.0e-8 above at 1/240 (the closest it can
-// reach), a systematic error whose effect on x grows as n^2. Measured worst |dx|: 2.0e-5 m up to 240
-// steps (seed_part3 at 1/60), 1.4e-4 m at 720 steps (seed_part3 at 1/240).
-double f32_law_tolerance(std::int64_t steps) { return steps <= 240 ? 1e-4 : 3e-4; }
+// 10 m), and the decay Box2D computes, fl(1/fl(1 + h*c)), can only take values 1.2e-7 apart (the
+// ulp of 1 + h*c): it is 1.9e-8 above exp(-k*h) at 1/60 and 4.0e-8 above at 1/240 (the closest it
+// can reach), a systematic error whose effect on x grows as n^2. Measured worst |dx|: 2.0e-5 m up
+// to 240 steps (seed_part3 at 1/60), 1.4e-4 m at 720 steps (seed_part3 at 1/240).
+double f32_law_tolerance(std::int64_t steps) {
+  return steps <= 240 ? 1e-4 : 3e-4;
+}
 
 }  // namespace
 
@@ -138,8 +140,10 @@ TEST_CASE("Box2D reports every step on which it clamps a body's speed to 2 m per
     scene.duration = 0.5;
     scene.bodies[0].position = Vec3(0.0, 2.0, 0.0);
     scene.bodies[0].velocity = Vec3(0.0, -200.0, 0.0);
-    scene.bodies.push_back({.name = "floor", .half_extents = {5.0, 0.005, 5.0},
-                            .position = {0.0, -0.005, 0.0}, .is_static = true});
+    scene.bodies.push_back({.name = "floor",
+                            .half_extents = {5.0, 0.005, 5.0},
+                            .position = {0.0, -0.005, 0.0},
+                            .is_static = true});
     const Trajectory t = run_scene(*engine, scene, 1.0 / 60.0);
     CHECK(t.first_clamped_step == 1);
     CHECK(t.clamped_steps == 1);

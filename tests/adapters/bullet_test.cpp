@@ -1,22 +1,22 @@
 // Tests adapters/bullet.cpp: Bullet 3.24 (Debian's float64 build by default) through the Engine
 // interface.
 //
-// References: oracle 2 (harness/oracles/discrete_law.hpp, Bullet's law v = phi*v + a*h; x += h*v iterated
-// in long double) for free flight; harness/oracles/landing.hpp (continuous first-contact time, the law's
-// first-contact step, geometric rest height) for landing; docs/engines.md sections 2 and 5 for the
-// figures reproduced here. Set DROPCHECK_MEASURE=1 to print the measured figures.
+// References: oracle 2 (harness/oracles/discrete_law.hpp, Bullet's law v = phi*v + a*h; x += h*v
+// iterated in long double) for free flight; harness/oracles/landing.hpp (continuous first-contact
+// time, the law's first-contact step, geometric rest height) for landing; docs/engines.md sections
+// 2 and 5 for the figures reproduced here. Set DROPCHECK_MEASURE=1 to print the measured figures.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
 #include <string>
 
-#include "harness/measure/checks.hpp"
-#include "harness/oracles/discrete_law.hpp"
-#include "harness/oracles/landing.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/core/scene_loader.hpp"
+#include "harness/measure/checks.hpp"
+#include "harness/oracles/discrete_law.hpp"
+#include "harness/oracles/landing.hpp"
 
 using namespace dropcheck;
 
@@ -126,9 +126,9 @@ TEST_CASE("Bullet reproduces docs/engines.md's 60-step drag figure", "[bullet][l
     // Measured 6.5182636233228308 exactly (docs/engines.md section 2); 1e-12 leaves room for libm.
     CHECK(x == Approx(6.5182636233228308).epsilon(0).margin(1e-12));
   } else {
-    CHECK(
-        x ==
-        Approx(6.5182623863220215).epsilon(0).margin(1e-6));  // float libs, docs/engines.md section 2
+    CHECK(x == Approx(6.5182623863220215)
+                   .epsilon(0)
+                   .margin(1e-6));  // float libs, docs/engines.md section 2
   }
 }
 
@@ -264,7 +264,8 @@ TEST_CASE("Bullet refuses a damping rate its per-second parameter cannot hold", 
   // Bullet's (1 - d)^h would be 0 instead of exp(-k*h) = 0.61 at 1/120.
   Scene scene = scenario("free_fall");
   scene.world.damping_rate = 60.0;
-  CHECK_THAT(engine->cannot_run(scene), Catch::Contains("engine limit") && Catch::Contains("to 0.0 digits"));
+  CHECK_THAT(engine->cannot_run(scene),
+             Catch::Contains("engine limit") && Catch::Contains("to 0.0 digits"));
   const Trajectory run = run_scene(*engine, scene, 1.0 / 120.0);
   CHECK(run.status == RunStatus::engine_error);
   CHECK_THAT(run.failure, Catch::Contains("damping rate k = 60"));
@@ -272,9 +273,12 @@ TEST_CASE("Bullet refuses a damping rate its per-second parameter cannot hold", 
   // and phi = (1 - d)^h h times that: k = 15 1/s holds in double (measured |dx| 3.4e-12 m at
   // 1/120); float needs k = 5 1/s (1 - d = 6.7e-3, rounding 4.5e-6; measured |dx| 4.2e-6 m).
   const bool f64 = engine->info().scalar == Scalar::f64;
-  // k = 30 1/s keeps 2.9 digits in double (it drifted 9.2 um from exp(-k*h)): refused, with the reason.
+  // k = 30 1/s keeps 2.9 digits in double (it drifted 9.2 um from exp(-k*h)): refused, with the
+  // reason.
   scene.world.damping_rate = 30.0;
-  if (f64) CHECK_THAT(engine->cannot_run(scene), Catch::Contains("to 2.9 digits") && Catch::Contains("k <= 22.9 1/s"));
+  if (f64)
+    CHECK_THAT(engine->cannot_run(scene),
+               Catch::Contains("to 2.9 digits") && Catch::Contains("k <= 22.9 1/s"));
   scene.world.damping_rate = f64 ? 15.0 : 5.0;
   CHECK(engine->cannot_run(scene).empty());
   const Trajectory ok = run_scene(*engine, scene, 1.0 / 120.0);

@@ -24,7 +24,8 @@ EngineFactory factory(const std::string& name) {
   return [name] { return make_engine(name); };
 }
 
-const char* const kFreeFlight[] = {"free_fall", "free_fall_drag", "seed_part3", "throw_up", "throw_3d", "wind"};
+const char* const kFreeFlight[] = {"free_fall", "free_fall_drag", "seed_part3",
+                                   "throw_up",  "throw_3d",       "wind"};
 const char* const kContacts[] = {"drop_on_floor", "drop_on_floor_undamped"};
 
 }  // namespace
@@ -38,7 +39,8 @@ TEST_CASE("Every compiled engine follows its own law at every step of every free
       if (!engine->cannot_run(scene).empty()) continue;
       const EngineInfo info = engine->info();
       for (const Timestep& h : scene_sweep(scene)) {
-        const OwnLawVerdict v = judge_own_law(info, scene, run_scene(*make_engine(name), scene, h.seconds));
+        const OwnLawVerdict v =
+            judge_own_law(info, scene, run_scene(*make_engine(name), scene, h.seconds));
         INFO(name << " on " << stem << " at h = " << h.text << ": " << v.sentence());
         CHECK(v.follows());
         // An engine whose order the harness copies matches its law to the bit (measured: 0 m for
@@ -49,7 +51,8 @@ TEST_CASE("Every compiled engine follows its own law at every step of every free
   }
 }
 
-TEST_CASE("Box2D at 150 m/s and h = 1/120 follows its float law to the bit", "[conformance][box2d]") {
+TEST_CASE("Box2D at 150 m/s and h = 1/120 follows its float law to the bit",
+          "[conformance][box2d]") {
   if (!make_engine("box2d")) return;  // not compiled in
   // 1.25 m per step: below Box2D's 2 m clamp; the old long-double check saw 6.3e-4 m/s of float
   // rounding in its 1/(1 + h*c) and failed it.
@@ -64,7 +67,8 @@ TEST_CASE("Box2D at 150 m/s and h = 1/120 follows its float law to the bit", "[c
   CHECK(v.precision > 1e-4);  // the float cost, measured (242 um), not budgeted
 }
 
-TEST_CASE("A speed clamp the engine reports is named, not called a departure", "[conformance][box2d]") {
+TEST_CASE("A speed clamp the engine reports is named, not called a departure",
+          "[conformance][box2d]") {
   if (!make_engine("box2d")) return;  // not compiled in
   Scene scene = shipped("throw_up");
   scene.bodies[0].velocity = {300.0, 0.0, 0.0};  // 5 m per step at 1/60: clamped from step 1
@@ -72,7 +76,8 @@ TEST_CASE("A speed clamp the engine reports is named, not called a departure", "
   const OwnLawVerdict v = judge_own_law(make_engine("box2d")->info(), scene, run);
   CHECK(v.clamped_from == 1);
   CHECK(v.follows());
-  CHECK_THAT(v.sentence(), Catch::Contains("clamped a speed at step 1 (clamp, reported by the engine)"));
+  CHECK_THAT(v.sentence(),
+             Catch::Contains("clamped a speed at step 1 (clamp, reported by the engine)"));
 }
 
 TEST_CASE("Every compiled engine with contacts lands as the core's landing check expects",

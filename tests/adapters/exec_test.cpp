@@ -2,17 +2,18 @@
 // match the compiled ours bit for bit and pass `check`; the wrong example fails it; every kind of
 // bad engine (tests/adapters/bad_engine.py) is a recorded result naming the step, never a hang or a
 // crash of dropcheck, and no child process outlives its engine.
-#include <catch2/catch.hpp>
+#include "adapters/exec.hpp"
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
 #include <cerrno>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include "adapters/exec.hpp"
 #include "harness/cli/cli.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/core/registry.hpp"
@@ -32,7 +33,9 @@ const std::string kWrong = kSource + "/examples/python/wrong_order.toml";
 const std::string kC = std::string("exec:") + DROPCHECK_SEED_ENGINE_C;
 const std::string kBad = kSource + "/tests/adapters/bad_engine.py";
 
-Scene scene(const std::string& name) { return load_scene(kSource + "/scenarios/" + name + ".toml"); }
+Scene scene(const std::string& name) {
+  return load_scene(kSource + "/scenarios/" + name + ".toml");
+}
 
 Trajectory run(const std::string& engine, const Scene& s) {
   auto e = make_engine(engine);
@@ -71,7 +74,8 @@ Trajectory run_bad(const std::string& mode, int at, double timeout_s = 2.0) {
 }
 
 std::string write_file(const std::string& name, const std::string& text) {
-  const fs::path p = fs::temp_directory_path() / ("dropcheck_exec_" + std::to_string(::getpid()) + "_" + name);
+  const fs::path p =
+      fs::temp_directory_path() / ("dropcheck_exec_" + std::to_string(::getpid()) + "_" + name);
   std::ofstream(p) << text;
   return p.string();
 }
@@ -101,29 +105,36 @@ TEST_CASE("The C seed engine in float follows ours (f32) bit for bit over the pr
   CHECK(info.law == Law{DampingOrder::AfterForces});
 }
 
-TEST_CASE("check passes the example engines and fails the wrong-order one on its own law", "[exec]") {
+TEST_CASE("check passes the example engines and fails the wrong-order one on its own law",
+          "[exec]") {
   const Scene s = scene("throw_up");
   const EngineFactory ref = [] { return make_engine("ours-f64"); };
   for (const std::string& engine : {kPython, kC}) {
-    for (const CheckResult& r : check_scene(s, [engine] { return make_engine(engine); }, ref)) {
+    for (const CheckResult& r : check_scene(
+             s, [engine] { return make_engine(engine); }, ref)) {
       INFO(engine << ": " << r.check << ": " << r.message);
       CHECK(r.passed);
     }
   }
-  const CheckResult wrong = check_own_law(s, [] { return make_engine(kWrong); }, s.timestep);
+  const CheckResult wrong = check_own_law(
+      s, [] { return make_engine(kWrong); }, s.timestep);
   CHECK_FALSE(wrong.passed);
   CHECK(wrong.engine == "wrong-order");
 }
 
 TEST_CASE("run and check accept an external engine on the command line", "[exec][cli]") {
   std::ostringstream out, err;
-  REQUIRE(cli_main({"run", kSource + "/scenarios/wind.toml", "--engine", kPython}, out, err) == kExitOk);
+  REQUIRE(cli_main({"run", kSource + "/scenarios/wind.toml", "--engine", kPython}, out, err) ==
+          kExitOk);
   CHECK_THAT(out.str(), Contains("seed-python small") && Contains("120") && Contains("ok"));
   out.str("");
-  REQUIRE(cli_main({"check", kSource + "/scenarios/wind.toml", "--engine", kC}, out, err) == kExitOk);
-  CHECK_THAT(out.str(), Contains("PASS  wind  seed-c  own law at h = 1/60") && Contains("0 failed"));
+  REQUIRE(cli_main({"check", kSource + "/scenarios/wind.toml", "--engine", kC}, out, err) ==
+          kExitOk);
+  CHECK_THAT(out.str(),
+             Contains("PASS  wind  seed-c  own law at h = 1/60") && Contains("0 failed"));
   out.str("");
-  CHECK(cli_main({"check", kSource + "/scenarios/wind.toml", "--engine", kWrong}, out, err) == kExitCheckFailed);
+  CHECK(cli_main({"check", kSource + "/scenarios/wind.toml", "--engine", kWrong}, out, err) ==
+        kExitCheckFailed);
   CHECK_THAT(out.str(), Contains("FAIL  wind  wrong-order  own law"));
 }
 
@@ -139,7 +150,8 @@ TEST_CASE("A crashing engine is a result naming the signal and the step", "[exec
 TEST_CASE("A hanging engine times out at its step and is killed", "[exec]") {
   const auto start = std::chrono::steady_clock::now();
   const Trajectory t = run_bad("hang", 2, 1.5);  // 1.5 s: also bounds python's start (handshake)
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   CHECK(t.status == RunStatus::engine_error);
   CHECK(t.failed_step == 2);
   CHECK_THAT(t.failure, Contains("at step 2: no answer within 1.5 s (timeout; engine killed)"));
@@ -150,19 +162,22 @@ TEST_CASE("A hanging engine times out at its step and is killed", "[exec]") {
 TEST_CASE("Garbage, a wrong body count, an error line and an early exit are results", "[exec]") {
   const Trajectory garbage = run_bad("garbage", 4);
   CHECK(garbage.failed_step == 4);
-  CHECK_THAT(garbage.failure, Contains("at step 4: garbage from the engine: expected 'state 4' and 12 "
-                                       "numbers, got 'hello world'"));
+  CHECK_THAT(garbage.failure,
+             Contains("at step 4: garbage from the engine: expected 'state 4' and 12 "
+                      "numbers, got 'hello world'"));
   const Trajectory bodies = run_bad("bodies", 5);
   CHECK(bodies.failed_step == 5);
-  CHECK_THAT(bodies.failure, Contains("at step 5: the engine answered 6 numbers (1 bodies), the scene has "
-                                      "2 bodies (12 numbers)"));
+  CHECK_THAT(bodies.failure,
+             Contains("at step 5: the engine answered 6 numbers (1 bodies), the scene has "
+                      "2 bodies (12 numbers)"));
   const Trajectory error = run_bad("error", 6);
   CHECK(error.failed_step == 6);
   CHECK_THAT(error.failure, Contains("at step 6: the engine reported an error: out of memory"));
   const Trajectory exit = run_bad("exit", 7);
   CHECK(exit.failed_step == 7);
   CHECK_THAT(exit.failure, Contains("at step 7: the engine exited early (exited with status 0)"));
-  for (const Trajectory* t : {&garbage, &bodies, &error, &exit}) CHECK(t->status == RunStatus::engine_error);
+  for (const Trajectory* t : {&garbage, &bodies, &error, &exit})
+    CHECK(t->status == RunStatus::engine_error);
   CHECK(no_children());
 }
 
@@ -176,7 +191,8 @@ TEST_CASE("An engine answering NaN is recorded as a non-finite state at that ste
 TEST_CASE("A wrong handshake, a silent engine and a missing program fail at start", "[exec]") {
   const Trajectory version = run_bad("handshake", 0);
   CHECK(version.status == RunStatus::engine_error);
-  CHECK_THAT(version.failure, Contains("at start: the engine speaks protocol '2'; dropcheck speaks 1"));
+  CHECK_THAT(version.failure,
+             Contains("at start: the engine speaks protocol '2'; dropcheck speaks 1"));
   const Trajectory silent = run_bad("silent", 0, 1.0);
   CHECK_THAT(silent.failure, Contains("at start: no answer within 1 s"));
   ExecSpec missing;
@@ -210,17 +226,19 @@ TEST_CASE("Engine files and exec: paths are validated as input", "[exec]") {
              Contains(":2: speed: unknown key (known: name, command, timeout)"));
   CHECK_THAT(error_of(write_file("c.toml", "command = [\"x\"]\ntimeout = -1\n")),
              Contains("timeout: must be a number of seconds in (0, 3600]"));
-  CHECK_THAT(error_of(write_file("d.toml", "command = []\n")), Contains("command: must be a non-empty array"));
+  CHECK_THAT(error_of(write_file("d.toml", "command = []\n")),
+             Contains("command: must be a non-empty array"));
   CHECK_THAT(error_of(write_file("e.toml", "name = \"ours\"\ncommand = [\"x\"]\n")),
              Contains("'ours' is the name of a built-in engine"));
   CHECK_THAT(error_of(write_file("f.toml", "name = \"a b\"\ncommand = [\"x\"]\n")),
              Contains("not a valid engine name"));
-  const ExecSpec ok = parse_exec_spec(write_file("g.toml", "command = [\"python3\", \"e.py\"]\ntimeout = 0.5\n"));
+  const ExecSpec ok =
+      parse_exec_spec(write_file("g.toml", "command = [\"python3\", \"e.py\"]\ntimeout = 0.5\n"));
   CHECK(ok.command == std::vector<std::string>{"python3", "e.py"});
   CHECK(ok.timeout_s == 0.5);
   CHECK(ok.cwd == fs::temp_directory_path().string());
   std::ostringstream out, err;
-  CHECK(cli_main({"run", kSource + "/scenarios/wind.toml", "--engine", "/nonexistent/e.toml"}, out, err) ==
-        kExitBadInput);
+  CHECK(cli_main({"run", kSource + "/scenarios/wind.toml", "--engine", "/nonexistent/e.toml"}, out,
+                 err) == kExitBadInput);
   CHECK_THAT(err.str(), Contains("no such engine file"));
 }

@@ -1,20 +1,20 @@
 // Tests adapters/mujoco.cpp: MuJoCo 2.2.2 (double, Euler) driven through the Engine interface.
 //
-// References: oracle 2 (harness/oracles/discrete_law.hpp: MuJoCo's law v = phi*(v + a*h); x += h*v, iterated
-// in long double) for free flight; the continuous first-contact time t_c = sqrt(2*fall/|g|) and the
-// geometric rest height (floor top + half extent) for landing; docs/engines.md sections 2 and 5.
-#include <catch2/catch.hpp>
-
+// References: oracle 2 (harness/oracles/discrete_law.hpp: MuJoCo's law v = phi*(v + a*h); x += h*v,
+// iterated in long double) for free flight; the continuous first-contact time t_c =
+// sqrt(2*fall/|g|) and the geometric rest height (floor top + half extent) for landing;
+// docs/engines.md sections 2 and 5.
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <sstream>
 #include <string>
 
-#include "harness/oracles/discrete_law.hpp"
 #include "adapter_test_support.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/core/scene_loader.hpp"
+#include "harness/oracles/discrete_law.hpp"
 
 namespace dropcheck {
 // Defined in adapters/mujoco.cpp for tests: body_mass of scene body i of a loaded mujoco engine.
@@ -36,7 +36,7 @@ std::unique_ptr<Engine> mujoco() {
 
 // Landing of body `cube` as seen in a run, measured against the same scene without contacts.
 struct Landing {
-  std::int64_t touch_step = -1;     // first step whose state has the cube's bottom at or below y = 0
+  std::int64_t touch_step = -1;  // first step whose state has the cube's bottom at or below y = 0
   std::int64_t response_step = -1;  // first step whose state departs from free flight
   double lowest = 1e300;            // lowest centre height
   double highest_after = -1e300;    // highest centre height from the response on (rebound)
@@ -87,8 +87,8 @@ TEST_CASE("MuJoCo reproduces docs/engines.md's drag figure, equal to ours in dou
   auto engine = mujoco();
   const Trajectory t = run_scene(*engine, scene, 1.0 / 60.0);
   REQUIRE(t.recorded.back() == 60);
-  // Measured bit-identical (difference 0); implicit damping (m*v + h*F)/(m + h*b) rounds differently
-  // from phi*(v + a*h), so allow a few ulps.
+  // Measured bit-identical (difference 0); implicit damping (m*v + h*F)/(m + h*b) rounds
+  // differently from phi*(v + a*h), so allow a few ulps.
   CHECK(t.final_state(0).position.y() == Approx(6.5878983508563724).margin(1e-14));
 }
 
@@ -163,7 +163,8 @@ TEST_CASE("A model MuJoCo cannot load is an engine error, not an exit", "[mujoco
   CHECK(run_scene(*engine, scenario("free_fall"), 1.0 / 60.0).status == RunStatus::ok);
 }
 
-TEST_CASE("MuJoCo's mju_error becomes an EngineError instead of ending the process", "[mujoco][errors]") {
+TEST_CASE("MuJoCo's mju_error becomes an EngineError instead of ending the process",
+          "[mujoco][errors]") {
   CHECK_THROWS_MATCHES(mujoco_raise_error("forced by a test"), EngineError,
                        Catch::Matchers::Message("MuJoCo error: forced by a test"));
 }

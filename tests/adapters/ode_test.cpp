@@ -1,21 +1,22 @@
 // Tests adapters/ode.cpp: ODE 0.16.2 (Debian's double build) through the Engine interface.
 //
-// References: oracle 2 (harness/oracles/discrete_law.hpp, ODE's law v' = v + a*h; x += h*v'; v = phi*v'
-// iterated in long double) for free flight; harness/oracles/landing.hpp (continuous first-contact time, the
-// law's first-contact step, geometric rest height) for landing; docs/engines.md sections 2 and 5
-// for the figures reproduced here. Set DROPCHECK_MEASURE=1 to print the measured figures.
+// References: oracle 2 (harness/oracles/discrete_law.hpp, ODE's law v' = v + a*h; x += h*v'; v =
+// phi*v' iterated in long double) for free flight; harness/oracles/landing.hpp (continuous
+// first-contact time, the law's first-contact step, geometric rest height) for landing;
+// docs/engines.md sections 2 and 5 for the figures reproduced here. Set DROPCHECK_MEASURE=1 to
+// print the measured figures.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
 #include <string>
 
-#include "harness/measure/checks.hpp"
-#include "harness/oracles/discrete_law.hpp"
-#include "harness/oracles/landing.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/core/scene_loader.hpp"
+#include "harness/measure/checks.hpp"
+#include "harness/oracles/discrete_law.hpp"
+#include "harness/oracles/landing.hpp"
 
 using namespace dropcheck;
 
@@ -31,8 +32,6 @@ Scene scenario(const std::string& name) {
 bool measuring() {
   return std::getenv("DROPCHECK_MEASURE") != nullptr;
 }
-
-
 
 // Wraps the real adapter and misreports one thing, as a careless adapter would.
 class MisreportingEngine final : public Engine {

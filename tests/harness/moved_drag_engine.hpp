@@ -1,7 +1,8 @@
 // Test doubles for the regression guard: ours' own structures (ours::Model, ours::World,
 // ours::ApplyGravity) stepped with the drag on either side of the position update:
-//   DampingOrder::AfterForces    v += a*h;  v *= f;  x += h*v   (the seed's order, IntegrateLinearForce)
-//   DampingOrder::AfterPosition  v += a*h;  x += h*v;  v *= f   (the drag moved after the position)
+//   DampingOrder::AfterForces    v += a*h;  v *= f;  x += h*v   (the seed's order,
+//   IntegrateLinearForce) DampingOrder::AfterPosition  v += a*h;  x += h*v;  v *= f   (the drag
+//   moved after the position)
 // Each double runs one order and declares a law, possibly another one, exactly as an edited
 // ours/physics.hpp whose adapter still declares the old law would. The orders are written here, not
 // taken from ours/physics.hpp, so that these tests do not move when ours does.
@@ -20,7 +21,8 @@ template <typename T>
 class ReorderedDragEngine final : public Engine {
  public:
   // Runs `runs` (AfterForces or AfterPosition) and tells the harness it follows `declares`.
-  ReorderedDragEngine(DampingOrder runs, DampingOrder declares) : runs_(runs), declares_(declares) {}
+  ReorderedDragEngine(DampingOrder runs, DampingOrder declares)
+      : runs_(runs), declares_(declares) {}
 
   EngineInfo info() const override {
     EngineInfo i;
@@ -44,7 +46,8 @@ class ReorderedDragEngine final : public Engine {
   }
 
   void set_forces(std::span<const Vec3> forces) override {
-    for (std::size_t i = 0; i < models_.size(); ++i) models_[i].rigidBody.force = forces[i].cast<T>();
+    for (std::size_t i = 0; i < models_.size(); ++i)
+      models_[i].rigidBody.force = forces[i].cast<T>();
   }
 
   // ApplyPhysics with IntegrateLinearForce's drag where `runs` puts it.
@@ -77,12 +80,14 @@ class ReorderedDragEngine final : public Engine {
 
 // The seed's order, declared honestly: what ours-f64 is today.
 inline std::unique_ptr<Engine> make_seed_order_f64() {
-  return std::make_unique<ReorderedDragEngine<double>>(DampingOrder::AfterForces, DampingOrder::AfterForces);
+  return std::make_unique<ReorderedDragEngine<double>>(DampingOrder::AfterForces,
+                                                       DampingOrder::AfterForces);
 }
 
 // The careless change: drag moved after the position update, the seed's law still declared.
 inline std::unique_ptr<Engine> make_moved_drag_f64() {
-  return std::make_unique<ReorderedDragEngine<double>>(DampingOrder::AfterPosition, DampingOrder::AfterForces);
+  return std::make_unique<ReorderedDragEngine<double>>(DampingOrder::AfterPosition,
+                                                       DampingOrder::AfterForces);
 }
 
 }  // namespace dropcheck::testing

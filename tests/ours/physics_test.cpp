@@ -1,4 +1,5 @@
-// Tests ours/physics.hpp and ours/constants.hpp: the seed's step against its exact discrete solution.
+// Tests ours/physics.hpp and ours/constants.hpp: the seed's step against its exact discrete
+// solution.
 //
 // Discrete law of one step (docs/engines.md section 1), acceleration a = g + F/m constant, b = a*h:
 //   v_{n+1} = f*(v_n + b);  x_{n+1} = x_n + h*v_{n+1}
@@ -10,13 +11,12 @@
 // No drag (f = 1): v_n = v0 + n*b;  x_n = x0 + v0*n*h + a*h^2*n*(n + 1)/2.
 // The reference is evaluated in long double from the same (already rounded) constants the
 // iteration uses, so the difference is the iteration's own rounding only.
-#include <catch2/catch.hpp>
+#include "ours/physics.hpp"
 
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 #include <vector>
-
-#include "ours/physics.hpp"
 
 namespace {
 
@@ -29,8 +29,10 @@ struct Case {
 // Exact discrete solution after n steps (header comment), one axis.
 template <typename T>
 void closed_form(const Case& c, T h_t, int n, LD& x, LD& v) {
-  const LD h = h_t, f = static_cast<T>(c.drag), x0 = static_cast<T>(c.x0), v0 = static_cast<T>(c.v0);
-  const LD a = LD(static_cast<T>(c.accel_g)) + LD(static_cast<T>(c.force)) / LD(static_cast<T>(c.mass));
+  const LD h = h_t, f = static_cast<T>(c.drag), x0 = static_cast<T>(c.x0),
+           v0 = static_cast<T>(c.v0);
+  const LD a =
+      LD(static_cast<T>(c.accel_g)) + LD(static_cast<T>(c.force)) / LD(static_cast<T>(c.mass));
   const LD b = a * h;
   if (f == 1) {
     v = v0 + n * b;
@@ -45,7 +47,8 @@ void closed_form(const Case& c, T h_t, int n, LD& x, LD& v) {
 // Runs `steps` steps of ApplyPhysics with the case on every axis scaled by (1, -1, 0.5) and
 // returns the worst |x - closed form| and |v - closed form| over all steps and axes.
 template <typename T>
-void worst_error(const Case& c, int steps, T h, double& dx, double& dv, double& max_x, double& max_v) {
+void worst_error(const Case& c, int steps, T h, double& dx, double& dv, double& max_x,
+                 double& max_v) {
   const Eigen::Vector3d scale(1.0, -1.0, 0.5);
   std::vector<ours::Model<T>> models(1);
   models[0].translation = (c.x0 * scale).cast<T>();
@@ -56,10 +59,12 @@ void worst_error(const Case& c, int steps, T h, double& dx, double& dv, double& 
   world.linearDrag = static_cast<T>(c.drag);
   dx = dv = max_x = max_v = 0;
   for (int n = 1; n <= steps; ++n) {
-    models[0].rigidBody.force = (c.force * scale).cast<T>();  // the accumulator is cleared each step
+    models[0].rigidBody.force =
+        (c.force * scale).cast<T>();  // the accumulator is cleared each step
     ours::ApplyPhysics<T>(models, world, h);
     for (int i = 0; i < 3; ++i) {
-      Case ci{c.x0 * scale[i], c.v0 * scale[i], c.accel_g * scale[i], c.force * scale[i], c.mass, c.drag};
+      Case ci{c.x0 * scale[i],    c.v0 * scale[i], c.accel_g * scale[i],
+              c.force * scale[i], c.mass,          c.drag};
       LD x, v;
       closed_form<T>(ci, h, n, x, v);
       dx = std::max(dx, double(std::fabs(LD(models[0].translation[i]) - x)));
@@ -72,9 +77,9 @@ void worst_error(const Case& c, int steps, T h, double& dx, double& dv, double& 
 
 // Float rounding bound. Each float operation has relative error <= u = 2^-24. Per step the velocity
 // takes about 5 rounded operations (g*h, +, F/m*h, +, *f) of size <= V = max|v| + |a|*h, and f <= 1
-// does not amplify old errors, so |dv_n| <= 5*n*u*V. The position adds u*(|x| + h*|v|) per step plus
-// h*|dv_j| carried: |dx_n| <= n*u*(X + h*V) + h*5*u*V*n*(n+1)/2 <= n*u*(X + 3*(n + 1)*h*V).
-// A worst case: roundings of either sign partly cancel, so the measured error sits 20-100x below.
+// does not amplify old errors, so |dv_n| <= 5*n*u*V. The position adds u*(|x| + h*|v|) per step
+// plus h*|dv_j| carried: |dx_n| <= n*u*(X + h*V) + h*5*u*V*n*(n+1)/2 <= n*u*(X + 3*(n + 1)*h*V). A
+// worst case: roundings of either sign partly cancel, so the measured error sits 20-100x below.
 struct Bound {
   double x, v;
 };
@@ -106,7 +111,8 @@ TEST_CASE("the seed's constants are 1/60 s, (0, -9.8, 0) and 0.98 in float and d
   CHECK_FALSE(b.isStatic);
 }
 
-TEST_CASE("ApplyPhysics without drag matches x0 + v0*n*h + a*h^2*n(n+1)/2 to 1e-12 in double", "[ours]") {
+TEST_CASE("ApplyPhysics without drag matches x0 + v0*n*h + a*h^2*n(n+1)/2 to 1e-12 in double",
+          "[ours]") {
   double dx, dv, mx, mv;
   worst_error<double>(kNoDrag, 120, 1.0 / 60.0, dx, dv, mx, mv);
   CHECK(dx < 1e-12);  // measured 1.5e-14
@@ -116,34 +122,42 @@ TEST_CASE("ApplyPhysics without drag matches x0 + v0*n*h + a*h^2*n(n+1)/2 to 1e-
   CHECK(dv < 1e-12);  // measured 3.6e-14
 }
 
-TEST_CASE("ApplyPhysics with the seed's drag matches the closed form to 1e-12 in double", "[ours]") {
+TEST_CASE("ApplyPhysics with the seed's drag matches the closed form to 1e-12 in double",
+          "[ours]") {
   double dx, dv, mx, mv;
   worst_error<double>(kSeedDrag, 300, 1.0 / 60.0, dx, dv, mx, mv);
   CHECK(dx < 1e-12);  // measured 2.7e-14
   CHECK(dv < 1e-12);  // measured 1.3e-14
 }
 
-TEST_CASE("ApplyPhysics with a constant force, mass 2.5 and v0 != 0 matches the closed form in double", "[ours]") {
+TEST_CASE(
+    "ApplyPhysics with a constant force, mass 2.5 and v0 != 0 matches the closed form in double",
+    "[ours]") {
   double dx, dv, mx, mv;
   worst_error<double>(kForceAndV0, 300, 1.0 / 60.0, dx, dv, mx, mv);
   CHECK(dx < 1e-12);  // measured 7.1e-14
   CHECK(dv < 1e-12);  // measured 2.2e-14
 }
 
-TEST_CASE("ApplyPhysics in float stays within the float rounding bound of the closed form", "[ours]") {
+TEST_CASE("ApplyPhysics in float stays within the float rounding bound of the closed form",
+          "[ours]") {
   for (const Case& c : {kNoDrag, kSeedDrag, kForceAndV0, kForceAndV0NoDrag}) {
     const int n = 300;
     double dx, dv, mx, mv;
     worst_error<float>(c, n, ours::PHYSICS_TIMESTEP<float>, dx, dv, mx, mv);
     const Bound b = float_bound(n, 1.0 / 60.0, mx, mv + 9.8 / 60.0 + 7.0 / 2.5 / 60.0);
-    INFO("drag " << c.drag << ": dx " << dx << " (bound " << b.x << "), dv " << dv << " (bound " << b.v << ")");
+    INFO("drag " << c.drag << ": dx " << dx << " (bound " << b.x << "), dv " << dv << " (bound "
+                 << b.v << ")");
     CHECK(dx < b.x);  // measured 1.2e-5 .. 1.3e-4 against bounds 2.4e-3 .. 1.5e-2
     CHECK(dv < b.v);  // measured 6.8e-6 .. 9.2e-5 against bounds 7.1e-4 .. 4.4e-3
     CHECK(dx > 0.0);  // float really rounds: the comparison is not vacuous
   }
 }
 
-TEST_CASE("60 steps of the seed's scene reproduce docs/engines.md's 6.5878983508563724 and 6.5878987312316895", "[ours]") {
+TEST_CASE(
+    "60 steps of the seed's scene reproduce docs/engines.md's 6.5878983508563724 and "
+    "6.5878987312316895",
+    "[ours]") {
   std::vector<ours::Model<double>> d(1);
   std::vector<ours::Model<float>> f(1);
   d[0].translation = {0.0, 10.0, 0.0};
@@ -172,7 +186,8 @@ TEST_CASE("a static body does not move even with a velocity and a force", "[ours
   CHECK(m[1].translation != Eigen::Vector3d(1.0, 2.0, 3.0));  // the dynamic twin does move
 }
 
-TEST_CASE("the force accumulator is cleared by a step and acts on that step only", "[ours][accumulator]") {
+TEST_CASE("the force accumulator is cleared by a step and acts on that step only",
+          "[ours][accumulator]") {
   std::vector<ours::Model<double>> m(1);
   const ours::World<double> w{Eigen::Vector3d::Zero(), 1.0};
   const double h = 0.5;

@@ -1,25 +1,34 @@
 // Tests harness/cli/args.cpp: positionals, repeatable --name VALUE options and --flags, by spec.
+#include "harness/cli/args.hpp"
+
 #include <catch2/catch.hpp>
 
-#include "harness/cli/args.hpp"
 #include "harness/core/input_error.hpp"
 
 using Catch::Matchers::Contains;
 
 namespace {
 
-const dropcheck::CommandSpec kSpec{"demo", "A demo command.", "FILE", "files", 0, -1,
+const dropcheck::CommandSpec kSpec{"demo",
+                                   "A demo command.",
+                                   "FILE",
+                                   "files",
+                                   0,
+                                   -1,
                                    {{"--engine", "E", "engines", true},
                                     {"--dt", "H", "step"},
                                     {"--csv", "OUT", "csv"},
                                     {"--quick", "", "a flag"}}};
 
-dropcheck::Args parse(const std::vector<std::string>& argv) { return dropcheck::parse_args(kSpec, argv); }
+dropcheck::Args parse(const std::vector<std::string>& argv) {
+  return dropcheck::parse_args(kSpec, argv);
+}
 
 }  // namespace
 
 TEST_CASE("parse_args splits positionals, repeatable options and flags", "[cli][args]") {
-  const dropcheck::Args a = parse({"scene.toml", "--engine", "ours", "--quick", "--engine", "ode", "more", "--dt", "1/120"});
+  const dropcheck::Args a = parse(
+      {"scene.toml", "--engine", "ours", "--quick", "--engine", "ode", "more", "--dt", "1/120"});
   CHECK(a.positional == std::vector<std::string>{"scene.toml", "more"});
   CHECK(a.values("--engine") == std::vector<std::string>{"ours", "ode"});
   CHECK(a.value("--engine") == "ode");  // the last one
@@ -37,19 +46,24 @@ TEST_CASE("a negative number is a value and --name=VALUE takes any value", "[cli
   CHECK(a.positional.empty());
 }
 
-TEST_CASE("after a bare -- every word is a positional, and a single-dash word before it is an unknown option", "[cli][args]") {
+TEST_CASE(
+    "after a bare -- every word is a positional, and a single-dash word before it is an unknown "
+    "option",
+    "[cli][args]") {
   const dropcheck::Args a = parse({"--", "-x"});
   CHECK(a.positional == std::vector<std::string>{"-x"});
   CHECK_THROWS_WITH(parse({"-x"}), Contains("-x") && Contains("unknown option"));
 }
 
-TEST_CASE("an unknown option or a missing value is an InputError naming the option", "[cli][args]") {
+TEST_CASE("an unknown option or a missing value is an InputError naming the option",
+          "[cli][args]") {
   CHECK_THROWS_WITH(parse({"--nope"}), Contains("--nope") && Contains("unknown option"));
   CHECK_THROWS_WITH(parse({"f.toml", "--dt"}), Contains("--dt"));
   CHECK_THROWS_AS(parse({"--nope"}), dropcheck::InputError);
 }
 
-TEST_CASE("an empty value or a single-valued option given twice is an InputError naming it", "[cli][args]") {
+TEST_CASE("an empty value or a single-valued option given twice is an InputError naming it",
+          "[cli][args]") {
   CHECK_THROWS_WITH(parse({"--dt", ""}), Contains("--dt") && Contains("empty"));
   CHECK_THROWS_WITH(parse({"--dt", "1", "--dt", "2"}), Contains("--dt") && Contains("2 times"));
 }

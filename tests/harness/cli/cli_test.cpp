@@ -1,11 +1,10 @@
 // Tests the dropcheck command line's dispatch and `engines` (harness/cli/cli.cpp, cmd_engines.cpp).
-#include <catch2/catch.hpp>
+#include "harness/cli/cli.hpp"
 
+#include <catch2/catch.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include "harness/cli/cli.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;

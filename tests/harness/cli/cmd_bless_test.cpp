@@ -1,7 +1,6 @@
 // Tests harness/cli/cmd_bless.cpp and cmd_diff.cpp as a user (or ctest) calls them: exit codes
 // 0 passed, 1 failed, 77 skipped, 2 bad usage; --out writes a result set anywhere.
 #include <catch2/catch.hpp>
-
 #include <sstream>
 
 #include "../test_dirs.hpp"
@@ -28,25 +27,33 @@ int run(const std::vector<std::string>& argv, std::string& out) {
 TEST_CASE("bless --out writes a result set that bless --check then passes", "[baseline][cli]") {
   const ScratchDir dir("cli-bless");
   std::string out;
-  REQUIRE(run({"bless", scene_file("throw_up"), "--engine", "ours", "--out", dir.path.string()}, out) == 0);
+  REQUIRE(run({"bless", scene_file("throw_up"), "--engine", "ours", "--out", dir.path.string()},
+              out) == 0);
   CHECK_THAT(out, Catch::StartsWith("new ") && Catch::Contains("throw_up.ours.txt (hash "));
-  const std::vector<std::string> check = {"bless", "--check", scene_file("throw_up"), "--engine", "ours",
-                                          "--baselines", dir.path.string()};
+  const std::vector<std::string> check = {"bless",          "--check", scene_file("throw_up"),
+                                          "--engine",       "ours",    "--baselines",
+                                          dir.path.string()};
   REQUIRE(run(check, out) == 0);
   CHECK_THAT(out, Catch::Contains("passed: throw_up / ours / bits: hash ") &&
-                      Catch::Contains("passed: throw_up / ours / determinism: two runs gave identical CSV"));
+                      Catch::Contains(
+                          "passed: throw_up / ours / determinism: two runs gave identical CSV"));
 }
 
-TEST_CASE("bless --check exits 77 when every tier is skipped and 1 when a baseline is missing", "[baseline][cli]") {
+TEST_CASE("bless --check exits 77 when every tier is skipped and 1 when a baseline is missing",
+          "[baseline][cli]") {
   const ScratchDir dir("cli-check");
   std::string out;
   CHECK(run({"bless", "--check", scene_file("drop_on_floor"), "--engine", "ours", "--baselines",
-             dir.path.string()}, out) == 77);
-  CHECK_THAT(out, Catch::Contains("skipped: drop_on_floor / ours / physics: the engine cannot run this scene: no contacts"));
-  CHECK(run({"bless", "--check", scene_file("wind"), "--engine", "ours-f64", "--tier", "tolerance", "--baselines",
-             dir.path.string()}, out) == 1);
-  CHECK_THAT(out, Catch::Contains("FAILED: wind / ours-f64 / tolerance: no baseline ") &&
-                      Catch::Contains("run `dropcheck bless " + scene_file("wind") + "` to make one"));
+             dir.path.string()},
+            out) == 77);
+  CHECK_THAT(out, Catch::Contains("skipped: drop_on_floor / ours / physics: the engine cannot run "
+                                  "this scene: no contacts"));
+  CHECK(run({"bless", "--check", scene_file("wind"), "--engine", "ours-f64", "--tier", "tolerance",
+             "--baselines", dir.path.string()},
+            out) == 1);
+  CHECK_THAT(out,
+             Catch::Contains("FAILED: wind / ours-f64 / tolerance: no baseline ") &&
+                 Catch::Contains("run `dropcheck bless " + scene_file("wind") + "` to make one"));
   CHECK(run({"bless", "--check", scene_file("wind"), "--tier", "colour"}, out) == 2);
   CHECK(run({"bless", scene_file("wind"), "--tier", "bits"}, out) == 2);
 }
@@ -57,7 +64,8 @@ TEST_CASE("diff prints Markdown to stdout or writes it with --out", "[baseline][
   REQUIRE(run({"bless", scene_file("free_fall"), "--out", a.path.string()}, out) == 0);
   REQUIRE(run({"bless", scene_file("free_fall"), "--out", b.path.string()}, out) == 0);
   REQUIRE(run({"diff", a.path.string(), b.path.string()}, out) == 0);
-  CHECK_THAT(out, Catch::StartsWith("# dropcheck diff") && Catch::Contains("0 of 2 scene/engine runs moved"));
+  CHECK_THAT(out, Catch::StartsWith("# dropcheck diff") &&
+                      Catch::Contains("0 of 2 scene/engine runs moved"));
   REQUIRE(run({"diff", a.path.string(), b.path.string(), "--out", c.file("diff.md")}, out) == 0);
   CHECK_THAT(slurp(c.file("diff.md")), Catch::Contains("| free_fall | ours | identical |"));
   CHECK(run({"diff", a.path.string()}, out) == 2);

@@ -2,14 +2,13 @@
 // output_dir, output_plan, signal_cleanup, harness/guard/bless): every case drives cli_main with an
 // argument vector and scratch folders and checks the exit code, the message, and what is (not)
 // left on disk. The rules are in docs/files.md.
-#include <catch2/catch.hpp>
-
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <catch2/catch.hpp>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -20,10 +19,10 @@
 #include <thread>
 #include <vector>
 
+#include "../test_dirs.hpp"
 #include "harness/cli/cli.hpp"
 #include "harness/core/output_dir.hpp"
 #include "harness/core/signal_cleanup.hpp"
-#include "../test_dirs.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
@@ -51,11 +50,15 @@ void put(const std::string& path, const std::string& text) {
 
 // A tiny free-fall scene (10 steps; `name` as given, TOML-escaped by the caller).
 std::string scene_text(const std::string& name = "tiny", const std::string& extra = "") {
-  return "name = \"" + name + "\"\nduration = 0.5\ntimestep = \"1/20\"\ntimesteps = [\"1/10\", \"1/20\"]\n" +
-         "[world]\ngravity = [0.0, -9.8, 0.0]\n[[body]]\nname = \"c\"\nposition = [0.0, 10.0, 0.0]\n" + extra;
+  return "name = \"" + name +
+         "\"\nduration = 0.5\ntimestep = \"1/20\"\ntimesteps = [\"1/10\", \"1/20\"]\n" +
+         "[world]\ngravity = [0.0, -9.8, 0.0]\n[[body]]\nname = \"c\"\nposition = [0.0, 10.0, "
+         "0.0]\n" +
+         extra;
 }
 
-std::string scene(const ScratchDir& d, const std::string& file = "tiny.toml", const std::string& name = "tiny") {
+std::string scene(const ScratchDir& d, const std::string& file = "tiny.toml",
+                  const std::string& name = "tiny") {
   put(d.file(file), scene_text(name));
   return d.file(file);
 }
@@ -63,7 +66,8 @@ std::string scene(const ScratchDir& d, const std::string& file = "tiny.toml", co
 // Every name in `dir` (hidden ones too), sorted.
 std::set<std::string> names(const fs::path& dir) {
   std::set<std::string> out;
-  for (const fs::directory_entry& e : fs::directory_iterator(dir)) out.insert(e.path().filename().string());
+  for (const fs::directory_entry& e : fs::directory_iterator(dir))
+    out.insert(e.path().filename().string());
   return out;
 }
 
@@ -89,8 +93,9 @@ Result run_tiny(const std::string& scene_file, std::vector<std::string> extra) {
   return cli(argv);
 }
 
-// fork() with SIGTERM at its default in the child (Catch2 installs its own handler, which would print
-// a test report from the child): blocked across the fork so that no early signal reaches Catch2's.
+// fork() with SIGTERM at its default in the child (Catch2 installs its own handler, which would
+// print a test report from the child): blocked across the fork so that no early signal reaches
+// Catch2's.
 pid_t fork_plain() {
   sigset_t term, old;
   sigemptyset(&term);
@@ -103,7 +108,9 @@ pid_t fork_plain() {
 }
 
 // The engines ran when the summary's header was printed.
-bool engines_ran(const Result& r) { return r.out.find("engine    body") != std::string::npos; }
+bool engines_ran(const Result& r) {
+  return r.out.find("engine    body") != std::string::npos;
+}
 
 }  // namespace
 
@@ -119,10 +126,13 @@ TEST_CASE("dropcheck --help lists every command on stdout and exits 0", "[cli][h
 }
 
 TEST_CASE("every command answers --help with its options on stdout and exit 0", "[cli][hostile]") {
-  const std::vector<std::pair<std::string, std::string>> commands{
-      {"engines", "dropcheck engines"}, {"run", "--csv"},      {"bless", "--baselines"},
-      {"diff", "--out"},                {"check", "--engine"}, {"report", "--no-timing"},
-      {"stability", "--json"}};
+  const std::vector<std::pair<std::string, std::string>> commands{{"engines", "dropcheck engines"},
+                                                                  {"run", "--csv"},
+                                                                  {"bless", "--baselines"},
+                                                                  {"diff", "--out"},
+                                                                  {"check", "--engine"},
+                                                                  {"report", "--no-timing"},
+                                                                  {"stability", "--json"}};
   for (const auto& [command, option] : commands) {
     const Result r = cli({command, "--help"});
     INFO(command);
@@ -176,7 +186,8 @@ TEST_CASE("report --out '' names --out", "[cli][hostile]") {
   CHECK_THAT(r.err, Contains("--out"));
 }
 
-TEST_CASE("a single-valued option given twice is refused rather than silently taking one", "[cli][hostile]") {
+TEST_CASE("a single-valued option given twice is refused rather than silently taking one",
+          "[cli][hostile]") {
   ScratchDir d("hostile-dt-twice");
   const Result r = run_tiny(scene(d), {"--dt", "1/20", "--dt", "1/10"});
   CHECK(r.code == 2);
@@ -237,7 +248,8 @@ TEST_CASE("run S --json S is refused, also when S is spelled differently", "[cli
   ScratchDir d("hostile-json-input");
   const std::string s = scene(d);
   const std::string before = slurp(s);
-  const Result r = run_tiny(s, {"--json", (d.path / "." / ".." / d.path.filename() / "tiny.toml").string()});
+  const Result r =
+      run_tiny(s, {"--json", (d.path / "." / ".." / d.path.filename() / "tiny.toml").string()});
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains("--json"));
   CHECK(slurp(s) == before);
@@ -261,7 +273,8 @@ TEST_CASE("run --csv onto a hard link of the scene is refused", "[cli][hostile]"
   CHECK(slurp(s) == before);
 }
 
-TEST_CASE("run --csv X --json X is refused before any work and X is not created", "[cli][hostile]") {
+TEST_CASE("run --csv X --json X is refused before any work and X is not created",
+          "[cli][hostile]") {
   ScratchDir d("hostile-two-outputs");
   const std::string s = scene(d);
   const Result r = run_tiny(s, {"--csv", d.file("x"), "--json", d.file("x")});
@@ -295,7 +308,8 @@ TEST_CASE("diff A B --out A/summary.md is refused: A is an input", "[cli][hostil
 // ---------------------------------------------------------------------------------------------
 // Only regular files are replaced; a symbolic link is written through.
 
-TEST_CASE("run --csv onto an existing folder is refused and the folder is untouched", "[cli][hostile]") {
+TEST_CASE("run --csv onto an existing folder is refused and the folder is untouched",
+          "[cli][hostile]") {
   ScratchDir d("hostile-csv-dir");
   fs::create_directories(d.path / "out" / "keep");
   const Result r = run_tiny(scene(d), {"--csv", d.file("out")});
@@ -325,7 +339,8 @@ TEST_CASE("run --csv onto a FIFO is refused without blocking", "[cli][hostile]")
   CHECK(S_ISFIFO(st.st_mode));
 }
 
-TEST_CASE("run --csv through a symbolic link writes the linked file and keeps the link", "[cli][hostile]") {
+TEST_CASE("run --csv through a symbolic link writes the linked file and keeps the link",
+          "[cli][hostile]") {
   ScratchDir d("hostile-link-through");
   put(d.file("real.csv"), "old");
   fs::create_symlink("real.csv", d.file("link.csv"));  // relative, resolved from the link's folder
@@ -377,7 +392,8 @@ TEST_CASE("a replaced output keeps its permissions", "[cli][hostile]") {
   put(d.file("o.csv"), "old");
   fs::permissions(d.file("o.csv"), fs::perms::owner_read | fs::perms::owner_write);
   REQUIRE(run_tiny(scene(d), {"--csv", d.file("o.csv")}).code == 0);
-  CHECK(fs::status(d.file("o.csv")).permissions() == (fs::perms::owner_read | fs::perms::owner_write));
+  CHECK(fs::status(d.file("o.csv")).permissions() ==
+        (fs::perms::owner_read | fs::perms::owner_write));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -426,7 +442,8 @@ TEST_CASE("report --out . is refused", "[cli][hostile]") {
 
 TEST_CASE("report --out /proc/x is refused before any engine runs", "[cli][hostile]") {
   ScratchDir d("hostile-report-proc");
-  const Result r = cli({"report", scene(d), "--engine", "ours", "--no-timing", "--out", "/proc/dropcheck-x"});
+  const Result r =
+      cli({"report", scene(d), "--engine", "ours", "--no-timing", "--out", "/proc/dropcheck-x"});
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains("--out"));
   CHECK(r.err.find("[1/1]") == std::string::npos);  // no progress line: nothing was evaluated
@@ -451,7 +468,8 @@ TEST_CASE("report --out a folder holding its own input scene is refused", "[cli]
   CHECK(fs::exists(s));
 }
 
-TEST_CASE("bless --out a regular file or /proc is refused before any engine runs", "[cli][hostile]") {
+TEST_CASE("bless --out a regular file or /proc is refused before any engine runs",
+          "[cli][hostile]") {
   ScratchDir d("hostile-bless-out");
   const std::string s = scene(d);
   put(d.file("file"), "x");
@@ -463,7 +481,8 @@ TEST_CASE("bless --out a regular file or /proc is refused before any engine runs
 // ---------------------------------------------------------------------------------------------
 // The report folder: only a folder dropcheck wrote is replaced.
 
-TEST_CASE("report --out a user's folder of README.md and SVGs is refused and left as it was", "[cli][hostile]") {
+TEST_CASE("report --out a user's folder of README.md and SVGs is refused and left as it was",
+          "[cli][hostile]") {
   ScratchDir d("hostile-report-user");
   const std::string s = scene(d);
   user_folder(d.path / "mine");
@@ -475,7 +494,8 @@ TEST_CASE("report --out a user's folder of README.md and SVGs is refused and lef
   CHECK(slurp(d.file("mine/README.md")) == "# My notes\n");
 }
 
-TEST_CASE("a report folder carries a manifest and is replaced by the next report", "[cli][hostile]") {
+TEST_CASE("a report folder carries a manifest and is replaced by the next report",
+          "[cli][hostile]") {
   ScratchDir d("hostile-report-manifest");
   const std::string s = scene(d);
   REQUIRE(cli({"report", s, "--engine", "ours", "--no-timing", "--out", d.file("rep")}).code == 0);
@@ -507,7 +527,8 @@ TEST_CASE("a report folder holding a subfolder is refused", "[cli][hostile]") {
   CHECK(fs::is_directory(d.path / "rep" / "keep"));
 }
 
-TEST_CASE("a report written before manifests is adopted only when its README names every SVG", "[cli][hostile]") {
+TEST_CASE("a report written before manifests is adopted only when its README names every SVG",
+          "[cli][hostile]") {
   ScratchDir d("hostile-report-legacy");
   put(d.file("old/README.md"), "# dropcheck comparison report\n\n![x](x-trajectory.svg)\n");
   put(d.file("old/x-trajectory.svg"), "<svg/>");
@@ -532,7 +553,8 @@ TEST_CASE("the committed reports/ folder is one dropcheck may replace", "[cli][h
 // ---------------------------------------------------------------------------------------------
 // Signals and concurrent runs.
 
-TEST_CASE("SIGTERM removes a registered temporary file and staging folder, then kills", "[cli][hostile]") {
+TEST_CASE("SIGTERM removes a registered temporary file and staging folder, then kills",
+          "[cli][hostile]") {
   ScratchDir d("hostile-signal");
   put(d.file(".o.csv.tmp-abc"), "partial");
   put(d.file(".rep.staging-abc/README.md"), "partial");
@@ -551,7 +573,8 @@ TEST_CASE("SIGTERM removes a registered temporary file and staging folder, then 
   CHECK(names(d.path).empty());
 }
 
-TEST_CASE("a report killed at any moment leaves the previous report whole and nothing beside it", "[cli][hostile]") {
+TEST_CASE("a report killed at any moment leaves the previous report whole and nothing beside it",
+          "[cli][hostile]") {
   ScratchDir d("hostile-report-kill");
   const std::string s = scene(d);
   REQUIRE(cli({"report", s, "--engine", "ours", "--no-timing", "--out", d.file("rep")}).code == 0);
@@ -560,7 +583,8 @@ TEST_CASE("a report killed at any moment leaves the previous report whole and no
     const pid_t pid = fork_plain();
     if (pid == 0) {
       std::ostringstream out, err;
-      ::_exit(dropcheck::cli_main({"report", s, "--engine", "ours", "--no-timing", "--out", d.file("rep")}, out, err));
+      ::_exit(dropcheck::cli_main(
+          {"report", s, "--engine", "ours", "--no-timing", "--out", d.file("rep")}, out, err));
     }
     std::this_thread::sleep_for(std::chrono::microseconds(delay_us));
     ::kill(pid, SIGTERM);
@@ -572,7 +596,8 @@ TEST_CASE("a report killed at any moment leaves the previous report whole and no
   }
 }
 
-TEST_CASE("two runs writing the same CSV at once leave one run's complete output and both exit 0", "[cli][hostile]") {
+TEST_CASE("two runs writing the same CSV at once leave one run's complete output and both exit 0",
+          "[cli][hostile]") {
   ScratchDir d("hostile-concurrent-csv");
   const std::string s = scene(d);
   REQUIRE(run_tiny(s, {"--dt", "1/10", "--csv", d.file("ref10.csv")}).code == 0);
@@ -583,7 +608,9 @@ TEST_CASE("two runs writing the same CSV at once leave one run's complete output
       pids[i] = fork_plain();
       if (pids[i] == 0) {
         std::ostringstream out, err;
-        ::_exit(dropcheck::cli_main({"run", s, "--engine", "ours-f64", "--dt", i ? "1/20" : "1/10", "--csv", d.file("o.csv")}, out, err));
+        ::_exit(dropcheck::cli_main({"run", s, "--engine", "ours-f64", "--dt", i ? "1/20" : "1/10",
+                                     "--csv", d.file("o.csv")},
+                                    out, err));
       }
     }
     for (pid_t pid : pids) {
@@ -598,7 +625,8 @@ TEST_CASE("two runs writing the same CSV at once leave one run's complete output
   CHECK(names(d.path) == std::set<std::string>{"o.csv", "ref10.csv", "ref20.csv", "tiny.toml"});
 }
 
-TEST_CASE("two reports into one folder at once leave one complete report and both exit 0", "[cli][hostile]") {
+TEST_CASE("two reports into one folder at once leave one complete report and both exit 0",
+          "[cli][hostile]") {
   ScratchDir d("hostile-concurrent-report");
   const std::string s = scene(d);
   for (int round = 0; round < 4; ++round) {
@@ -607,7 +635,8 @@ TEST_CASE("two reports into one folder at once leave one complete report and bot
       pid = fork_plain();
       if (pid == 0) {
         std::ostringstream out, err;
-        ::_exit(dropcheck::cli_main({"report", s, "--engine", "ours", "--no-timing", "--out", d.file("rep")}, out, err));
+        ::_exit(dropcheck::cli_main(
+            {"report", s, "--engine", "ours", "--no-timing", "--out", d.file("rep")}, out, err));
       }
     }
     for (pid_t pid : pids) {
@@ -632,7 +661,8 @@ TEST_CASE("two reports into one folder at once leave one complete report and bot
 TEST_CASE("bless a scene named ../x writes inside --out only", "[cli][hostile]") {
   ScratchDir d("hostile-bless-dotdot");
   put(d.file("s.toml"), scene_text("../x"));
-  REQUIRE(cli({"bless", d.file("s.toml"), "--engine", "ours-f64", "--out", d.file("set")}).code == 0);
+  REQUIRE(cli({"bless", d.file("s.toml"), "--engine", "ours-f64", "--out", d.file("set")}).code ==
+          0);
   CHECK(names(d.path) == std::set<std::string>{"s.toml", "set"});
   CHECK(names(d.path / "set") == std::set<std::string>{"_.._x.ours-f64.txt"});
 }
@@ -640,36 +670,43 @@ TEST_CASE("bless a scene named ../x writes inside --out only", "[cli][hostile]")
 TEST_CASE("bless a scene named with an absolute path writes inside --out only", "[cli][hostile]") {
   ScratchDir d("hostile-bless-abs");
   put(d.file("s.toml"), scene_text(d.file("escaped")));
-  REQUIRE(cli({"bless", d.file("s.toml"), "--engine", "ours-f64", "--out", d.file("set")}).code == 0);
+  REQUIRE(cli({"bless", d.file("s.toml"), "--engine", "ours-f64", "--out", d.file("set")}).code ==
+          0);
   CHECK_FALSE(fs::exists(d.file("escaped.ours-f64.txt")));
   CHECK(names(d.path / "set").size() == 1);
 }
 
-TEST_CASE("bless two scenes whose names map to one file is refused and writes nothing", "[cli][hostile]") {
+TEST_CASE("bless two scenes whose names map to one file is refused and writes nothing",
+          "[cli][hostile]") {
   ScratchDir d("hostile-bless-collide");
   put(d.file("a.toml"), scene_text("a/b"));
   put(d.file("b.toml"), scene_text("a_b"));
-  const Result r = cli({"bless", d.file("a.toml"), d.file("b.toml"), "--engine", "ours-f64", "--out", d.file("set")});
+  const Result r = cli({"bless", d.file("a.toml"), d.file("b.toml"), "--engine", "ours-f64",
+                        "--out", d.file("set")});
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains("a/b") && Contains("a_b") && Contains("distinct names"));
   CHECK_FALSE(fs::exists(d.file("set")));
 }
 
-TEST_CASE("bless a scene name with a NUL byte neither truncates nor collides silently", "[cli][hostile]") {
+TEST_CASE("bless a scene name with a NUL byte neither truncates nor collides silently",
+          "[cli][hostile]") {
   ScratchDir d("hostile-bless-nul");
   put(d.file("a.toml"), scene_text("a\\u0000b"));
   put(d.file("b.toml"), scene_text("a_b"));
-  const Result r = cli({"bless", d.file("a.toml"), d.file("b.toml"), "--engine", "ours-f64", "--out", d.file("set")});
+  const Result r = cli({"bless", d.file("a.toml"), d.file("b.toml"), "--engine", "ours-f64",
+                        "--out", d.file("set")});
   CHECK(r.code == 2);
   CHECK_FALSE(fs::exists(d.file("set/a.ours-f64.txt")));
 }
 
-TEST_CASE("bless --check finds a sanitised baseline and never looks outside --baselines", "[cli][hostile]") {
+TEST_CASE("bless --check finds a sanitised baseline and never looks outside --baselines",
+          "[cli][hostile]") {
   ScratchDir d("hostile-bless-check-dotdot");
   put(d.file("s.toml"), scene_text("../x"));
-  REQUIRE(cli({"bless", d.file("s.toml"), "--engine", "ours-f64", "--out", d.file("set")}).code == 0);
-  const Result r = cli({"bless", "--check", d.file("s.toml"), "--engine", "ours-f64", "--tier", "tolerance",
-                        "--baselines", d.file("set")});
+  REQUIRE(cli({"bless", d.file("s.toml"), "--engine", "ours-f64", "--out", d.file("set")}).code ==
+          0);
+  const Result r = cli({"bless", "--check", d.file("s.toml"), "--engine", "ours-f64", "--tier",
+                        "tolerance", "--baselines", d.file("set")});
   CHECK(r.code == 0);
   CHECK_THAT(r.out, Contains("passed"));
 }
@@ -687,7 +724,9 @@ TEST_CASE("diff of two folders that hold no baselines exits 2", "[cli][hostile]"
 
 TEST_CASE("diff of a binary .txt gives a sentence, not its bytes", "[cli][hostile]") {
   ScratchDir a("hostile-diff-binary-a"), b("hostile-diff-binary-b");
-  put(a.file("x.txt"), std::string("\x7f" "ELF\x02\x01\x01\0\0\0\x1b[31mred", 16));
+  put(a.file("x.txt"), std::string("\x7f"
+                                   "ELF\x02\x01\x01\0\0\0\x1b[31mred",
+                                   16));
   put(b.file("x.txt"), "scene x\n");
   const Result r = cli({"diff", a.path.string(), b.path.string()});
   CHECK(r.code == 2);
@@ -708,7 +747,8 @@ TEST_CASE("a folder named like a baseline is a read error, not a missing key", "
 
 TEST_CASE("a force listing the same body twice is refused naming the entry", "[cli][hostile]") {
   ScratchDir d("hostile-force-twice");
-  put(d.file("s.toml"), scene_text("twice", "[[force]]\nbodies = [\"c\", \"c\"]\nconstant = [1.0, 0.0, 0.0]\n"));
+  put(d.file("s.toml"),
+      scene_text("twice", "[[force]]\nbodies = [\"c\", \"c\"]\nconstant = [1.0, 0.0, 0.0]\n"));
   const Result r = run_tiny(d.file("s.toml"), {});
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains("bodies[1]") && Contains("twice"));
@@ -724,10 +764,12 @@ TEST_CASE("an integer where a float is expected is accepted when exact", "[cli][
   CHECK_THAT(r.out, Contains("gravity (0, -10, 0)"));
 }
 
-TEST_CASE("numbers like 1e300 are printed whole in the run summary, not cut by a line buffer", "[cli][hostile]") {
+TEST_CASE("numbers like 1e300 are printed whole in the run summary, not cut by a line buffer",
+          "[cli][hostile]") {
   ScratchDir d("hostile-1e300");
   put(d.file("s.toml"),
-      "duration = 0.5\ntimestep = \"1/10\"\n[world]\ngravity = [0.0, 0.0, 0.0]\n[[body]]\nname = \"c\"\n"
+      "duration = 0.5\ntimestep = \"1/10\"\n[world]\ngravity = [0.0, 0.0, 0.0]\n[[body]]\nname = "
+      "\"c\"\n"
       "position = [1e300, -1e300, 1e300]\n");
   const Result r = run_tiny(d.file("s.toml"), {});
   CHECK(r.code == 0);
@@ -742,7 +784,8 @@ TEST_CASE("numbers like 1e300 are printed whole in the run summary, not cut by a
 TEST_CASE("checks and stability on overflowing numbers print no -nan", "[cli][hostile]") {
   ScratchDir d("hostile-nan");
   put(d.file("s.toml"),
-      "duration = 1.0\ntimestep = \"1/60\"\n[world]\ngravity = [0.0, -1e300, 0.0]\n[[body]]\nname = \"c\"\n"
+      "duration = 1.0\ntimestep = \"1/60\"\n[world]\ngravity = [0.0, -1e300, 0.0]\n[[body]]\nname "
+      "= \"c\"\n"
       "position = [0.0, 1e300, 0.0]\nvelocity = [1e300, 0.0, 0.0]\n");
   const Result check = cli({"check", d.file("s.toml"), "--engine", "ours-f64"});
   CHECK(check.out.find("nan") == std::string::npos);
@@ -753,10 +796,12 @@ TEST_CASE("checks and stability on overflowing numbers print no -nan", "[cli][ho
 // ---------------------------------------------------------------------------------------------
 // JSON: every name is escaped by construction.
 
-TEST_CASE("run --json with hostile scene and body names is valid JSON that reads the names back", "[cli][hostile]") {
+TEST_CASE("run --json with hostile scene and body names is valid JSON that reads the names back",
+          "[cli][hostile]") {
   ScratchDir d("hostile-json-names");
   put(d.file("s.toml"),
-      "name = \"q\\\"uote\\\\ \\u0001 \\n \\u00e9\"\nduration = 0.5\ntimestep = \"1/10\"\n[world]\ngravity = [0.0, -9.8, 0.0]\n[[body]]\n"
+      "name = \"q\\\"uote\\\\ \\u0001 \\n \\u00e9\"\nduration = 0.5\ntimestep = "
+      "\"1/10\"\n[world]\ngravity = [0.0, -9.8, 0.0]\n[[body]]\n"
       "name = \"b}],\\\"x\\\":[{\"\nposition = [0.0, 1.0, 0.0]\n");
   REQUIRE(run_tiny(d.file("s.toml"), {"--json", d.file("o.json")}).code == 0);
   const nlohmann::json j = nlohmann::json::parse(slurp(d.file("o.json")));
@@ -766,8 +811,11 @@ TEST_CASE("run --json with hostile scene and body names is valid JSON that reads
 
 TEST_CASE("stability --json with a hostile scene name is valid JSON", "[cli][hostile]") {
   ScratchDir d("hostile-stability-json");
-  put(d.file("s.toml"), "name = \"\\\"}\\u0007\"\nduration = 0.5\ntimestep = \"1/10\"\n[world]\ngravity = [0.0, -9.8, 0.0]\n[[body]]\nname = \"c\"\nposition = [0.0, 1.0, 0.0]\n");
-  REQUIRE(cli({"stability", d.file("s.toml"), "--engine", "ours-f64", "--json", d.file("o.json")}).code == 0);
+  put(d.file("s.toml"),
+      "name = \"\\\"}\\u0007\"\nduration = 0.5\ntimestep = \"1/10\"\n[world]\ngravity = [0.0, "
+      "-9.8, 0.0]\n[[body]]\nname = \"c\"\nposition = [0.0, 1.0, 0.0]\n");
+  REQUIRE(cli({"stability", d.file("s.toml"), "--engine", "ours-f64", "--json", d.file("o.json")})
+              .code == 0);
   const nlohmann::json j = nlohmann::json::parse(slurp(d.file("o.json")));
   CHECK(j["scene"] == "\"}\x07");
   CHECK(j["engines"][0]["engine"] == "ours-f64");

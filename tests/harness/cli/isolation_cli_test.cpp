@@ -1,6 +1,7 @@
-// Tests the commands end to end on a scene that aborts Box2D (tests/scenes/box2d_tiny_cube_abort.toml)
-// with runs isolated, as the dropcheck executable runs them: box2d's run is a "crashed" result in
-// run's summary and JSON, check, report and stability, and every other engine's results are kept.
+// Tests the commands end to end on a scene that aborts Box2D
+// (tests/scenes/box2d_tiny_cube_abort.toml) with runs isolated, as the dropcheck executable runs
+// them: box2d's run is a "crashed" result in run's summary and JSON, check, report and stability,
+// and every other engine's results are kept.
 #include <catch2/catch.hpp>
 #include <sstream>
 
@@ -16,7 +17,8 @@ using dropcheck::testing::slurp;
 
 namespace {
 
-const std::string kScene = std::string(DROPCHECK_SOURCE_DIR) + "/tests/scenes/box2d_tiny_cube_abort.toml";
+const std::string kScene =
+    std::string(DROPCHECK_SOURCE_DIR) + "/tests/scenes/box2d_tiny_cube_abort.toml";
 
 // Runs a command with isolated runs (the executable's default), returning its exit code.
 int isolated_cli(const std::vector<std::string>& argv, std::string& out_text) {
@@ -28,12 +30,15 @@ int isolated_cli(const std::vector<std::string>& argv, std::string& out_text) {
   return rc;
 }
 
-bool have(const std::string& engine) { return engine_unavailable_reason(engine).empty(); }
+bool have(const std::string& engine) {
+  return engine_unavailable_reason(engine).empty();
+}
 
 }  // namespace
 
-TEST_CASE("run on a scene that aborts Box2D reports box2d crashed and keeps the other engines' results",
-          "[cli][isolation]") {
+TEST_CASE(
+    "run on a scene that aborts Box2D reports box2d crashed and keeps the other engines' results",
+    "[cli][isolation]") {
   if (!have("box2d")) return;
   ScratchDir dir("isolation-run");
   std::string out;
@@ -54,8 +59,8 @@ TEST_CASE("check, report and stability carry box2d's crash as its result", "[cli
   std::string out;
   isolated_cli({"check", kScene, "--engine", "box2d"}, out);
   CHECK_THAT(out, Contains("crashed: SIGABRT while loading the scene"));
-  REQUIRE(isolated_cli({"report", kScene, "--out", dir.file("report"), "--no-timing", "--engine", "box2d",
-                        "--engine", "ode"},
+  REQUIRE(isolated_cli({"report", kScene, "--out", dir.file("report"), "--no-timing", "--engine",
+                        "box2d", "--engine", "ode"},
                        out) == kExitOk);
   CHECK_THAT(slurp(dir.file("report/README.md")), Contains("failed"));
   isolated_cli({"stability", kScene, "--engine", "box2d"}, out);

@@ -1,14 +1,14 @@
 // Tests harness/cli/cmd_run.cpp through dropcheck::cli_main: exit codes, messages on err, and the
 // CSV/JSON files `run` writes (whole, exact, deterministic, absent after a failure).
-#include <catch2/catch.hpp>
+#include <unistd.h>
 
+#include <catch2/catch.hpp>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "harness/cli/cli.hpp"
@@ -21,14 +21,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kWind = DROPCHECK_SOURCE_DIR "/scenarios/wind.toml";          // 2 bodies, a force, 2 s
+const std::string kWind = DROPCHECK_SOURCE_DIR "/scenarios/wind.toml";  // 2 bodies, a force, 2 s
 const std::string kThrowUp = DROPCHECK_SOURCE_DIR "/scenarios/throw_up.toml";  // v0 != 0, 2 s
 
 // A fresh directory under the system temp dir, removed with everything in it at scope exit.
 struct ScratchDir {
   fs::path path;
   explicit ScratchDir(const std::string& tag)
-      : path(fs::temp_directory_path() / ("dropcheck_cli_" + tag + "_" + std::to_string(::getpid()))) {
+      : path(fs::temp_directory_path() /
+             ("dropcheck_cli_" + tag + "_" + std::to_string(::getpid()))) {
     fs::remove_all(path);
     fs::create_directories(path);
   }
@@ -78,10 +79,12 @@ TEST_CASE("run on a missing file exits 2 naming the file on err", "[cli]") {
   CHECK(r.out.empty());
 }
 
-TEST_CASE("run on a malformed file exits 2 with the loader's file, key and problem on err", "[cli]") {
+TEST_CASE("run on a malformed file exits 2 with the loader's file, key and problem on err",
+          "[cli]") {
   ScratchDir dir("malformed");
-  std::ofstream(dir / "bad.toml") << "duration = 1.0\n[world]\ngravity = [0, -9.8, 0]\n"
-                                     "[[body]]\nname = \"cube\"\nposition = [0, 0, 0]\nmass = 0.0\n";
+  std::ofstream(dir / "bad.toml")
+      << "duration = 1.0\n[world]\ngravity = [0, -9.8, 0]\n"
+         "[[body]]\nname = \"cube\"\nposition = [0, 0, 0]\nmass = 0.0\n";
   const Result r = cli({"run", dir / "bad.toml"});
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains("bad.toml:7: body[0].mass: must be > 0 kg"));
@@ -101,7 +104,8 @@ TEST_CASE("run --dt 0.7 on a 2 s scene exits 2: not a whole number of steps", "[
   CHECK(cli({"run", kThrowUp, "--dt", "1/0"}).code == 2);
 }
 
-TEST_CASE("run with a bad usage exits 2: no file, two files, an unknown option, a missing value", "[cli]") {
+TEST_CASE("run with a bad usage exits 2: no file, two files, an unknown option, a missing value",
+          "[cli]") {
   CHECK(cli({"run"}).code == 2);
   CHECK(cli({"run", kWind, kThrowUp}).code == 2);
   const Result unknown = cli({"run", kWind, "--bogus"});
@@ -114,14 +118,19 @@ TEST_CASE("run with a bad usage exits 2: no file, two files, an unknown option, 
 
 TEST_CASE("a failing run leaves no output file and no temporary behind", "[cli]") {
   ScratchDir dir("fail");
-  const Result r = cli({"run", kThrowUp, "--dt", "0.7", "--csv", dir / "out.csv", "--json", dir / "out.json"});
+  const Result r =
+      cli({"run", kThrowUp, "--dt", "0.7", "--csv", dir / "out.csv", "--json", dir / "out.json"});
   CHECK(r.code == 2);
   CHECK(fs::is_empty(dir.path));
 }
 
-TEST_CASE("run --csv writes the contract's header, step 0 first and numbers equal to run_scene bit for bit", "[cli]") {
+TEST_CASE(
+    "run --csv writes the contract's header, step 0 first and numbers equal to run_scene bit for "
+    "bit",
+    "[cli]") {
   ScratchDir dir("csv");
-  const Result r = cli({"run", kWind, "--engine", "ours", "--engine", "ours-f64", "--csv", dir / "out.csv"});
+  const Result r =
+      cli({"run", kWind, "--engine", "ours", "--engine", "ours-f64", "--csv", dir / "out.csv"});
   REQUIRE(r.code == 0);
   CHECK_THAT(r.out, Contains("ours ") && Contains("ours-f64 "));
   const std::vector<std::string> lines = split(read_all(dir / "out.csv"), '\n');
@@ -159,7 +168,8 @@ TEST_CASE("run --csv writes the contract's header, step 0 first and numbers equa
 
 TEST_CASE("run --dt 1/120 runs and records at that step", "[cli]") {
   ScratchDir dir("dt");
-  REQUIRE(cli({"run", kThrowUp, "--engine", "ours-f64", "--dt", "1/120", "--csv", dir / "out.csv"}).code == 0);
+  REQUIRE(cli({"run", kThrowUp, "--engine", "ours-f64", "--dt", "1/120", "--csv", dir / "out.csv"})
+              .code == 0);
   const std::vector<std::string> lines = split(read_all(dir / "out.csv"), '\n');
   REQUIRE(lines.size() == 1 + 241);  // 2 s at 1/120, one body, step 0 included
   CHECK(lines.back().rfind("ours-f64,0.0083333333333333332,240,2,cube,", 0) == 0);
@@ -168,8 +178,8 @@ TEST_CASE("run --dt 1/120 runs and records at that step", "[cli]") {
 TEST_CASE("running the same scene twice gives byte-identical CSV and JSON", "[cli][determinism]") {
   ScratchDir dir("determinism");
   for (const char* n : {"1", "2"})
-    REQUIRE(cli({"run", kWind, "--engine", "ours", "--engine", "ours-f64", "--csv", dir / (std::string(n) + ".csv"),
-                 "--json", dir / (std::string(n) + ".json")})
+    REQUIRE(cli({"run", kWind, "--engine", "ours", "--engine", "ours-f64", "--csv",
+                 dir / (std::string(n) + ".csv"), "--json", dir / (std::string(n) + ".json")})
                 .code == 0);
   const std::string csv = read_all(dir / "1.csv");
   CHECK(csv.size() > 10000);  // 2 engines x 121 samples x 2 bodies

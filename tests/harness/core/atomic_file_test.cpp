@@ -1,13 +1,15 @@
-// Tests harness/core/atomic_file.cpp: a file is written whole or not at all, and a failure names the path.
-#include <catch2/catch.hpp>
+// Tests harness/core/atomic_file.cpp: a file is written whole or not at all, and a failure names
+// the path.
+#include "harness/core/atomic_file.hpp"
 
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 
-#include "harness/core/atomic_file.hpp"
 #include "harness/core/input_error.hpp"
 
 using Catch::Matchers::Contains;
@@ -19,7 +21,8 @@ namespace {
 struct ScratchDir {
   fs::path path;
   explicit ScratchDir(const std::string& tag)
-      : path(fs::temp_directory_path() / ("dropcheck_atomic_" + tag + "_" + std::to_string(::getpid()))) {
+      : path(fs::temp_directory_path() /
+             ("dropcheck_atomic_" + tag + "_" + std::to_string(::getpid()))) {
     fs::remove_all(path);
     fs::create_directories(path);
   }
@@ -39,7 +42,9 @@ std::string read_all(const std::string& path) {
 
 std::size_t entries(const fs::path& dir) {
   std::size_t n = 0;
-  for (auto it = fs::recursive_directory_iterator(dir); it != fs::recursive_directory_iterator(); ++it) ++n;
+  for (auto it = fs::recursive_directory_iterator(dir); it != fs::recursive_directory_iterator();
+       ++it)
+    ++n;
   return n;
 }
 
@@ -55,7 +60,8 @@ std::string write_error(const std::string& path, const std::string& content) {
 
 }  // namespace
 
-TEST_CASE("write_file_atomic writes the whole content, bytes included, and no temporary remains", "[atomic_file]") {
+TEST_CASE("write_file_atomic writes the whole content, bytes included, and no temporary remains",
+          "[atomic_file]") {
   ScratchDir dir("whole");
   std::string content(1 << 20, 'x');
   content[10] = '\0';
@@ -66,7 +72,8 @@ TEST_CASE("write_file_atomic writes the whole content, bytes included, and no te
   CHECK(entries(dir.path) == 1);
 }
 
-TEST_CASE("write_file_atomic replaces an existing file and creates missing parent directories", "[atomic_file]") {
+TEST_CASE("write_file_atomic replaces an existing file and creates missing parent directories",
+          "[atomic_file]") {
   ScratchDir dir("replace");
   dropcheck::write_file_atomic(dir / "a/b/out.json", "first, and longer than the second");
   dropcheck::write_file_atomic(dir / "a/b/out.json", "second");
@@ -74,16 +81,19 @@ TEST_CASE("write_file_atomic replaces an existing file and creates missing paren
   CHECK(entries(dir.path) == 3);  // a, a/b, a/b/out.json
 }
 
-TEST_CASE("a path under a regular file throws InputError naming the path and leaves nothing", "[atomic_file]") {
+TEST_CASE("a path under a regular file throws InputError naming the path and leaves nothing",
+          "[atomic_file]") {
   ScratchDir dir("notdir");
   dropcheck::write_file_atomic(dir / "file", "I am not a directory");
   const std::string target = dir / "file/out.csv";
-  CHECK_THAT(write_error(target, "data"), Contains(target) && Contains("cannot write") && Contains("Not a directory"));
+  CHECK_THAT(write_error(target, "data"),
+             Contains(target) && Contains("cannot write") && Contains("Not a directory"));
   CHECK(entries(dir.path) == 1);  // only the regular file: no out.csv, no .tmp
   CHECK(read_all(dir / "file") == "I am not a directory");
 }
 
-TEST_CASE("a target that is a directory throws InputError with the reason and leaves no temporary", "[atomic_file]") {
+TEST_CASE("a target that is a directory throws InputError with the reason and leaves no temporary",
+          "[atomic_file]") {
   ScratchDir dir("isdir");
   fs::create_directories(dir.path / "out.csv" / "inside");
   const std::string target = dir / "out.csv";

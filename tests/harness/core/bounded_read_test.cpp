@@ -45,7 +45,8 @@ TEST_CASE("devices and FIFOs are refused at once, before a byte is read", "[load
   }
   double took = 0;
   CHECK_THAT(refusal(dir.path.string(), took), Contains("it is a directory"));
-  CHECK_THAT(refusal(dir.file("missing.toml"), took), Contains("cannot read the file: No such file"));
+  CHECK_THAT(refusal(dir.file("missing.toml"), took),
+             Contains("cannot read the file: No such file"));
 }
 
 TEST_CASE("a scene file over 1 MiB is refused with its size and the limit", "[loader][limits]") {
@@ -53,9 +54,10 @@ TEST_CASE("a scene file over 1 MiB is refused with its size and the limit", "[lo
   const std::string big = dir.file("big.toml");
   std::ofstream(big) << "# " << std::string(kMaxSceneBytes, 'x') << "\n";
   double took = 0;
-  CHECK_THAT(refusal(big, took),
-             Contains("the file is 1048579 bytes, more than the limit of 1048576 bytes (1 MiB, for a "
-                      "scene)"));
+  CHECK_THAT(
+      refusal(big, took),
+      Contains("the file is 1048579 bytes, more than the limit of 1048576 bytes (1 MiB, for a "
+               "scene)"));
   // At the limit it is read (and then refused only because it holds no scene).
   CHECK(read_regular_file(big, 2 << 20, "test").size() == 1048579);
 }

@@ -1,21 +1,23 @@
 // Tests harness/core/child_process.cpp: lines both ways, bounded waits, exit descriptions, a dead
 // reader that does not kill the writer (SIGPIPE), and no child left after the object goes.
-#include <catch2/catch.hpp>
+#include "harness/core/child_process.hpp"
 
+#include <sys/wait.h>
+
+#include <catch2/catch.hpp>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <stdexcept>
-#include <sys/wait.h>
-
-#include "harness/core/child_process.hpp"
 
 using namespace dropcheck;
 using Catch::Matchers::Contains;
 
 namespace {
 
-bool gone(pid_t pid) { return ::kill(pid, 0) == -1 && errno == ESRCH; }
+bool gone(pid_t pid) {
+  return ::kill(pid, 0) == -1 && errno == ESRCH;
+}
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -33,7 +35,8 @@ TEST_CASE("A child echoes lines back in lockstep", "[child_process]") {
   }
 }
 
-TEST_CASE("A read from a silent child times out, and the child is killed and reaped", "[child_process]") {
+TEST_CASE("A read from a silent child times out, and the child is killed and reaped",
+          "[child_process]") {
   pid_t pid = -1;
   const auto start = std::chrono::steady_clock::now();
   {
@@ -46,7 +49,8 @@ TEST_CASE("A read from a silent child times out, and the child is killed and rea
   CHECK(gone(pid));
 }
 
-TEST_CASE("Exit statuses are described: crashed with the signal's name, or the exit code", "[child_process]") {
+TEST_CASE("Exit statuses are described: crashed with the signal's name, or the exit code",
+          "[child_process]") {
   ChildProcess segv({"sh", "-c", "kill -SEGV $$"}, "");
   std::string line;
   CHECK(segv.read_line(line, 2.0) == IoStatus::closed);
@@ -57,20 +61,23 @@ TEST_CASE("Exit statuses are described: crashed with the signal's name, or the e
   CHECK(describe_wait_status(SIGABRT) == "crashed: SIGABRT");  // raw status of a signal death
 }
 
-TEST_CASE("Writing to a child that exited is an error value, not a SIGPIPE death", "[child_process]") {
+TEST_CASE("Writing to a child that exited is an error value, not a SIGPIPE death",
+          "[child_process]") {
   ChildProcess quitter({"true"}, "");
   std::string line;
   CHECK(quitter.read_line(line, 2.0) == IoStatus::closed);
   CHECK(quitter.exit_description() == "exited with status 0");
   IoStatus s = IoStatus::ok;
-  for (int i = 0; i < 100 && s == IoStatus::ok; ++i) s = quitter.write_line(std::string(1000, 'x'), 1.0);
+  for (int i = 0; i < 100 && s == IoStatus::ok; ++i)
+    s = quitter.write_line(std::string(1000, 'x'), 1.0);
   CHECK(s == IoStatus::closed);
 }
 
 TEST_CASE("A child that does not read its input makes writes time out", "[child_process]") {
   ChildProcess sleeper({"sleep", "30"}, "");
   IoStatus s = IoStatus::ok;
-  for (int i = 0; i < 1000 && s == IoStatus::ok; ++i) s = sleeper.write_line(std::string(4096, 'x'), 0.1);
+  for (int i = 0; i < 1000 && s == IoStatus::ok; ++i)
+    s = sleeper.write_line(std::string(4096, 'x'), 0.1);
   CHECK(s == IoStatus::timeout);  // the pipe (64 KiB) filled up
 }
 
@@ -80,7 +87,8 @@ TEST_CASE("An endless line is cut off as too long", "[child_process]") {
   CHECK(yes.read_line(line, 5.0) == IoStatus::too_long);
 }
 
-TEST_CASE("The child runs in the directory given, and a missing program is named", "[child_process]") {
+TEST_CASE("The child runs in the directory given, and a missing program is named",
+          "[child_process]") {
   ChildProcess pwd({"pwd"}, "/");
   std::string line;
   REQUIRE(pwd.read_line(line, 2.0) == IoStatus::ok);
@@ -89,7 +97,8 @@ TEST_CASE("The child runs in the directory given, and a missing program is named
     ChildProcess missing({"/nonexistent/engine"}, "");
     FAIL("started a missing program");
   } catch (const std::runtime_error& e) {
-    CHECK_THAT(e.what(), Contains("cannot start '/nonexistent/engine'") && Contains("No such file"));
+    CHECK_THAT(e.what(),
+               Contains("cannot start '/nonexistent/engine'") && Contains("No such file"));
   }
 }
 

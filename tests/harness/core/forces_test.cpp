@@ -1,9 +1,9 @@
 // Tests harness/core/forces.cpp: the force laws every engine is handed, evaluated on a given state.
-#include <catch2/catch.hpp>
+#include "harness/core/forces.hpp"
 
+#include <catch2/catch.hpp>
 #include <vector>
 
-#include "harness/core/forces.hpp"
 #include "harness/core/scene_loader.hpp"
 
 namespace {
@@ -30,7 +30,8 @@ position = [0.0, 0.0, 0.0]
                                 "forces.toml");
 }
 
-std::vector<Vec3> forces_on(const dropcheck::Scene& s, const std::vector<dropcheck::BodyState>& states) {
+std::vector<Vec3> forces_on(const dropcheck::Scene& s,
+                            const std::vector<dropcheck::BodyState>& states) {
   std::vector<Vec3> out(states.size(), Vec3::Constant(99.0));  // garbage the call must clear
   dropcheck::compute_forces(s, states, out);
   return out;
@@ -38,7 +39,8 @@ std::vector<Vec3> forces_on(const dropcheck::Scene& s, const std::vector<dropche
 
 }  // namespace
 
-TEST_CASE("constant forces add up on their bodies and leave the others and static bodies at zero", "[forces]") {
+TEST_CASE("constant forces add up on their bodies and leave the others and static bodies at zero",
+          "[forces]") {
   const dropcheck::Scene s = with_forces(R"(
 [[force]]
 constant = [2.0, 0.0, 0.0]

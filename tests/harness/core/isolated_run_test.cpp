@@ -53,13 +53,19 @@ class UnrulyEngine final : public Engine {
  private:
   void misbehave() {
     switch (what_) {
-      case Misdeed::none: return;
-      case Misdeed::abort: std::abort();
-      case Misdeed::segfault: std::raise(SIGSEGV); return;
-      case Misdeed::exit7: std::_Exit(7);
+      case Misdeed::none:
+        return;
+      case Misdeed::abort:
+        std::abort();
+      case Misdeed::segfault:
+        std::raise(SIGSEGV);
+        return;
+      case Misdeed::exit7:
+        std::_Exit(7);
       case Misdeed::hang:
         for (;;) ::pause();
-      case Misdeed::bad_alloc: throw std::bad_alloc();
+      case Misdeed::bad_alloc:
+        throw std::bad_alloc();
       case Misdeed::say_and_abort:
         std::fputs("engine.cpp:12: solver: Assertion `mass > 0' failed.\n", stderr);
         std::abort();
@@ -95,7 +101,9 @@ Trajectory isolated(Misdeed what, std::int64_t at, double limit = 0.0) {
 }
 
 // True when this process has no child left to reap (no zombie, nothing running).
-bool no_children() { return ::waitpid(-1, nullptr, WNOHANG) == -1 && errno == ECHILD; }
+bool no_children() {
+  return ::waitpid(-1, nullptr, WNOHANG) == -1 && errno == ECHILD;
+}
 
 }  // namespace
 
@@ -126,7 +134,8 @@ TEST_CASE("an isolated run returns the same trajectory as an in-process run, bit
   CHECK(no_children());
 }
 
-TEST_CASE("an engine that aborts becomes a crashed run with the signal and the step", "[isolation]") {
+TEST_CASE("an engine that aborts becomes a crashed run with the signal and the step",
+          "[isolation]") {
   const Trajectory t = isolated(Misdeed::abort, 4);
   CHECK(t.status == RunStatus::crashed);
   CHECK(std::string(to_string(t.status)) == "crashed");
@@ -164,7 +173,8 @@ TEST_CASE("a hung engine is killed at the time limit, reaped, and reported with 
           "[isolation]") {
   const auto start = std::chrono::steady_clock::now();
   const Trajectory t = isolated(Misdeed::hang, 6, 0.3);
-  const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double took =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   CHECK(t.status == RunStatus::timed_out);
   CHECK(t.failure == "no result within the limit of 0.3 s; killed at step 6");
   CHECK(t.failed_step == 6);
@@ -172,8 +182,9 @@ TEST_CASE("a hung engine is killed at the time limit, reaped, and reported with 
   CHECK(no_children());
 }
 
-TEST_CASE("an allocation failure is its own status, in a child and in process, and invents no state",
-          "[isolation]") {
+TEST_CASE(
+    "an allocation failure is its own status, in a child and in process, and invents no state",
+    "[isolation]") {
   const Trajectory child = isolated(Misdeed::bad_alloc, 5);
   UnrulyEngine e(Misdeed::bad_alloc, 5);
   const Trajectory here = run_scene(e, ten_steps(), 0.1, {.isolation = Isolation::in_process});
@@ -188,7 +199,8 @@ TEST_CASE("an allocation failure is its own status, in a child and in process, a
   }
 }
 
-TEST_CASE("the process default decides where a run without an explicit choice goes", "[isolation]") {
+TEST_CASE("the process default decides where a run without an explicit choice goes",
+          "[isolation]") {
   REQUIRE(default_isolation() == Isolation::in_process);
   set_default_isolation(Isolation::child_process);
   UnrulyEngine e(Misdeed::abort, 2);
@@ -208,10 +220,11 @@ TEST_CASE("isolation cost per run: fork, pipe transfer and reaping", "[.isolatio
       const RunOptions o{.isolation = mode ? Isolation::child_process : Isolation::in_process};
       const auto start = std::chrono::steady_clock::now();
       for (int i = 0; i < 200; ++i) run_scene(*make_engine("ours-f64"), s, s.timestep.seconds, o);
-      secs[mode] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / 200;
+      secs[mode] =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / 200;
     }
     std::printf("%s (%lld steps): in process %.1f us, isolated %.1f us, cost %.1f us per run\n",
-                s.name.c_str(), static_cast<long long>(step_count(s, s.timestep.seconds)), secs[0] * 1e6,
-                secs[1] * 1e6, (secs[1] - secs[0]) * 1e6);
+                s.name.c_str(), static_cast<long long>(step_count(s, s.timestep.seconds)),
+                secs[0] * 1e6, secs[1] * 1e6, (secs[1] - secs[0]) * 1e6);
   }
 }

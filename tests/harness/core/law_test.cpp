@@ -1,8 +1,8 @@
 // The law family (harness/core/law.hpp): each member against its closed form for a constant
 // acceleration, and the keys that name members on the command line and in files.
-#include <catch2/catch.hpp>
-
 #include "harness/core/law.hpp"
+
+#include <catch2/catch.hpp>
 
 namespace dropcheck {
 namespace {
@@ -40,8 +40,8 @@ TEST_CASE("law family: damping decays the velocity by phi per step in every memb
     }
     INFO(law_key(law));
     CHECK(v == Approx(vk).epsilon(1e-13));
-    const bool moves_with_old = law.position == PositionUpdate::Explicit ||
-                                law.damping == DampingOrder::AfterPosition;
+    const bool moves_with_old =
+        law.position == PositionUpdate::Explicit || law.damping == DampingOrder::AfterPosition;
     const double expected = h * (moves_with_old ? sum_old : sum_new);
     CHECK(x == Approx(expected).epsilon(1e-13));
   }

@@ -1,16 +1,16 @@
-// Tests harness/core/runner.cpp: the one run loop. A scripted test double stands in for an engine so that
-// failures (NaN, EngineError) and the force hand-over can be placed at chosen steps.
-#include <catch2/catch.hpp>
+// Tests harness/core/runner.cpp: the one run loop. A scripted test double stands in for an engine
+// so that failures (NaN, EngineError) and the force hand-over can be placed at chosen steps.
+#include "harness/core/runner.hpp"
 
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 #include <vector>
 
-#include "harness/oracles/discrete_law.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/core/runner.hpp"
 #include "harness/core/scene_loader.hpp"
+#include "harness/oracles/discrete_law.hpp"
 
 using Catch::Matchers::Contains;
 
@@ -86,7 +86,9 @@ spring = { anchor = [0.0, 0.0, 0.0], stiffness = 3.0, damping = 0.5 }
                                 "ten_steps.toml");
 }
 
-std::vector<std::int64_t> steps_of(const dropcheck::Trajectory& t) { return t.recorded; }
+std::vector<std::int64_t> steps_of(const dropcheck::Trajectory& t) {
+  return t.recorded;
+}
 
 }  // namespace
 
@@ -100,11 +102,13 @@ TEST_CASE("a run that completes records every step, step 0 being the initial sta
   CHECK(t.body_names == std::vector<std::string>{"a", "b"});
   CHECK(steps_of(t) == std::vector<std::int64_t>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10});
   CHECK(t.at(0, 1).position == dropcheck::Vec3(0.0, 2.0, 0.0));
-  CHECK(t.at(10, 0).position.x() == Approx(1.0).epsilon(1e-15));  // x = 10 * 0.1 * 1; measured 1.1e-16
+  CHECK(t.at(10, 0).position.x() ==
+        Approx(1.0).epsilon(1e-15));  // x = 10 * 0.1 * 1; measured 1.1e-16
   CHECK(t.failed_step == -1);
 }
 
-TEST_CASE("a NaN at step k ends the run as non_finite at k and keeps the samples before it", "[runner]") {
+TEST_CASE("a NaN at step k ends the run as non_finite at k and keeps the samples before it",
+          "[runner]") {
   ScriptedEngine e;
   e.nan_at = 4;
   const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps(), 0.1);
@@ -128,7 +132,8 @@ TEST_CASE("a NaN on a step that is not sampled ends the run at that step", "[run
 }
 
 TEST_CASE("an infinite state counts as non_finite like a NaN, on a sampled step too", "[runner]") {
-  for (const double bad : {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()}) {
+  for (const double bad :
+       {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()}) {
     ScriptedEngine e;
     e.nan_at = 8;
     e.bad_value = bad;
@@ -146,7 +151,8 @@ TEST_CASE("an infinite state counts as non_finite like a NaN, on a sampled step 
 TEST_CASE("a run's samples are sized once, to exactly the samples it keeps", "[runner]") {
   for (const std::int64_t every : {1, 3, 4, 5, 10, 100}) {
     ScriptedEngine e;
-    const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps(), 0.1, {.record_every = every});
+    const dropcheck::Trajectory t =
+        dropcheck::run_scene(e, ten_steps(), 0.1, {.record_every = every});
     INFO("record_every " << every);
     CHECK(t.recorded.capacity() == t.recorded.size());
     CHECK(t.states.capacity() == t.states.size());
@@ -154,10 +160,12 @@ TEST_CASE("a run's samples are sized once, to exactly the samples it keeps", "[r
   }
 }
 
-TEST_CASE("sampling every few steps hands the engine the same forces as sampling every step", "[runner]") {
+TEST_CASE("sampling every few steps hands the engine the same forces as sampling every step",
+          "[runner]") {
   ScriptedEngine every_step, every_third;
   const dropcheck::Trajectory a = dropcheck::run_scene(every_step, ten_steps(), 0.1);
-  const dropcheck::Trajectory b = dropcheck::run_scene(every_third, ten_steps(), 0.1, {.record_every = 3});
+  const dropcheck::Trajectory b =
+      dropcheck::run_scene(every_third, ten_steps(), 0.1, {.record_every = 3});
   CHECK(every_third.forces_seen == every_step.forces_seen);  // exact: same doubles
   CHECK(b.final_state(1).position == a.final_state(1).position);
 }
@@ -223,7 +231,8 @@ TEST_CASE("record_every keeps step 0, every Nth step and the last step", "[runne
   CHECK(steps_of(dropcheck::run_scene(e3, ten_steps(), 0.1, {.record_every = 100})) ==
         std::vector<std::int64_t>{0, 10});
   ScriptedEngine e4;
-  CHECK(dropcheck::run_scene(e4, ten_steps(), 0.1, {.record_every = 0}).samples() == 11);  // < 1 means 1
+  CHECK(dropcheck::run_scene(e4, ten_steps(), 0.1, {.record_every = 0}).samples() ==
+        11);  // < 1 means 1
 }
 
 TEST_CASE("speed clamps are counted with the first clamped step", "[runner]") {
@@ -235,7 +244,8 @@ TEST_CASE("speed clamps are counted with the first clamped step", "[runner]") {
   CHECK(t.status == dropcheck::RunStatus::ok);  // a clamp is reported, not a failure
 }
 
-TEST_CASE("the force handed to step n is the spring force of the state after step n-1", "[runner]") {
+TEST_CASE("the force handed to step n is the spring force of the state after step n-1",
+          "[runner]") {
   ScriptedEngine e;
   const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps(), 0.1);
   REQUIRE(e.forces_seen.size() == 10);
@@ -269,7 +279,8 @@ spring = { anchor = [0.0, 5.0, 0.0], stiffness = 400.0, damping = 1.5, rest_leng
   auto engine = dropcheck::make_engine("ours-f64");
   REQUIRE(engine);
   const dropcheck::Trajectory run = dropcheck::run_scene(*engine, s, s.timestep.seconds);
-  const dropcheck::Trajectory law = dropcheck::predict_discrete(dropcheck::DampingOrder::AfterForces, s, s.timestep.seconds);
+  const dropcheck::Trajectory law =
+      dropcheck::predict_discrete(dropcheck::DampingOrder::AfterForces, s, s.timestep.seconds);
   REQUIRE(run.status == dropcheck::RunStatus::ok);
   REQUIRE(run.samples() == law.samples());
   double dx = 0.0, dv = 0.0;

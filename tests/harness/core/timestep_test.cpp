@@ -1,9 +1,8 @@
 // Tests harness/core/timestep.cpp: step texts ("1/N" or seconds) and the step-count rules.
-#include <catch2/catch.hpp>
-
-#include <string>
-
 #include "harness/core/timestep.hpp"
+
+#include <catch2/catch.hpp>
+#include <string>
 
 using Catch::Matchers::Contains;
 
@@ -30,7 +29,8 @@ TEST_CASE("1/N and decimal seconds parse to their value and keep their text", "[
   CHECK(dropcheck::parse_timestep("1/240", why)->seconds == 1.0 / 240.0);
 }
 
-TEST_CASE("1/0, 1/-60, 1/60.5, abc, -0.1, 0, inf and nan are rejected with the text quoted", "[timestep]") {
+TEST_CASE("1/0, 1/-60, 1/60.5, abc, -0.1, 0, inf and nan are rejected with the text quoted",
+          "[timestep]") {
   CHECK_THAT(why_not("1/0"), Contains("positive whole number") && Contains("\"1/0\""));
   CHECK_THAT(why_not("1/-60"), Contains("positive whole number"));
   CHECK_THAT(why_not("1/60.5"), Contains("positive whole number"));
@@ -54,7 +54,8 @@ TEST_CASE("a step that covers the duration in whole steps has no problem", "[tim
 TEST_CASE("a step longer than the duration or not dividing it is a problem", "[timestep]") {
   CHECK_THAT(dropcheck::step_problem(0.01, 1.0 / 60.0), Contains("longer than the duration"));
   CHECK_THAT(dropcheck::step_problem(2.0, 0.7), Contains("not a whole number of steps"));
-  CHECK_THAT(dropcheck::step_problem(1.0, 1.0 / 60.0 * 1.001), Contains("not a whole number of steps"));
+  CHECK_THAT(dropcheck::step_problem(1.0, 1.0 / 60.0 * 1.001),
+             Contains("not a whole number of steps"));
 }
 
 TEST_CASE("kMaxSteps steps are allowed and one more is not", "[timestep]") {

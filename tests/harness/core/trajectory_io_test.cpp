@@ -1,6 +1,8 @@
-// Tests harness/core/trajectory_io.cpp: CSV and JSON are well-formed and their numbers read back exactly.
-#include <catch2/catch.hpp>
+// Tests harness/core/trajectory_io.cpp: CSV and JSON are well-formed and their numbers read back
+// exactly.
+#include "harness/core/trajectory_io.hpp"
 
+#include <catch2/catch.hpp>
 #include <cfloat>
 #include <cmath>
 #include <cstdlib>
@@ -10,8 +12,6 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/trajectory_io.hpp"
-
 using Catch::Matchers::Contains;
 
 namespace {
@@ -19,10 +19,13 @@ namespace {
 using dropcheck::Vec3;
 
 // Values that need all 17 digits, the extremes, a subnormal and a negative zero.
-const std::vector<double> kHard = {0.1, 1.0 / 3.0, M_PI, -2.5, 1e300, DBL_MAX, DBL_MIN, 4.9406564584124654e-324,
-                                   -0.0, 6.5878983508563724};
+const std::vector<double> kHard = {0.1,   1.0 / 3.0,         M_PI,    -2.5,
+                                   1e300, DBL_MAX,           DBL_MIN, 4.9406564584124654e-324,
+                                   -0.0,  6.5878983508563724};
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same_bits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
 
 // One run of two bodies and three samples (steps 0, 5, 10) filled with kHard values.
 dropcheck::Trajectory sample_run() {
@@ -77,7 +80,9 @@ struct JsonChecker {
   std::size_t i = 0;
   std::vector<double> numbers;
 
-  void ws() { while (i < s.size() && std::strchr(" \t\r\n", s[i])) ++i; }
+  void ws() {
+    while (i < s.size() && std::strchr(" \t\r\n", s[i])) ++i;
+  }
   bool lit(const char* w) {
     const std::size_t n = std::strlen(w);
     if (s.compare(i, n, w) != 0) return false;
@@ -100,7 +105,8 @@ struct JsonChecker {
     const std::size_t start = i;
     if (i < s.size() && s[i] == '-') ++i;
     if (i >= s.size() || !std::isdigit(static_cast<unsigned char>(s[i]))) return false;
-    if (s[i] == '0' && i + 1 < s.size() && std::isdigit(static_cast<unsigned char>(s[i + 1]))) return false;
+    if (s[i] == '0' && i + 1 < s.size() && std::isdigit(static_cast<unsigned char>(s[i + 1])))
+      return false;
     while (i < s.size() && std::strchr("0123456789.eE+-", s[i])) ++i;
     const std::string text = s.substr(start, i - start);
     char* end = nullptr;
@@ -120,8 +126,10 @@ struct JsonChecker {
         ws();
         if (!lit(":") || !value()) return false;
         ws();
-        if (lit("}")) ok = true;
-        else if (!lit(",")) return false;
+        if (lit("}"))
+          ok = true;
+        else if (!lit(","))
+          return false;
       }
     } else if (s[i] == '[') {
       ++i, ws();
@@ -129,8 +137,10 @@ struct JsonChecker {
       while (!ok) {
         if (!value()) return false;
         ws();
-        if (lit("]")) ok = true;
-        else if (!lit(",")) return false;
+        if (lit("]"))
+          ok = true;
+        else if (!lit(","))
+          return false;
       }
     } else if (s[i] == '"') {
       ok = string();
@@ -154,7 +164,10 @@ TEST_CASE("exact() prints doubles that read back bit for bit", "[trajectory_io]"
   CHECK(dropcheck::exact(0.1) == "0.10000000000000001");  // %.17g, not the shortest form
 }
 
-TEST_CASE("the CSV has the contract's header, one row per body per sample and numbers that read back exactly", "[trajectory_io]") {
+TEST_CASE(
+    "the CSV has the contract's header, one row per body per sample and numbers that read back "
+    "exactly",
+    "[trajectory_io]") {
   const dropcheck::Trajectory t = sample_run();
   const std::vector<std::string> lines = lines_of(dropcheck::trajectories_to_csv({&t, 1}));
   REQUIRE(lines.size() == 1 + 3 * 2);
@@ -189,14 +202,17 @@ TEST_CASE("a body name with a comma or a quote stays one CSV field", "[trajector
   CHECK(lines[1].rfind("ours-f64,", 0) == 0);  // plain fields stay unquoted
 }
 
-TEST_CASE("the JSON is well-formed, keeps every sample and its numbers read back exactly", "[trajectory_io]") {
+TEST_CASE("the JSON is well-formed, keeps every sample and its numbers read back exactly",
+          "[trajectory_io]") {
   const dropcheck::Trajectory t = sample_run();
   const std::vector<dropcheck::Trajectory> runs{t, t};
   const std::string json = dropcheck::trajectories_to_json(runs);
   JsonChecker j{json};
   REQUIRE(j.document());
-  CHECK_THAT(json, Contains("\"engine\":\"ours-f64\"") && Contains("\"status\":\"ok\"") && Contains("\"name\":\"b\""));
-  // Per run: dt, steps, failed_step, clamped_steps, then per body and sample: step, x, y, z, vx, vy, vz.
+  CHECK_THAT(json, Contains("\"engine\":\"ours-f64\"") && Contains("\"status\":\"ok\"") &&
+                       Contains("\"name\":\"b\""));
+  // Per run: dt, steps, failed_step, clamped_steps, then per body and sample: step, x, y, z, vx,
+  // vy, vz.
   REQUIRE(j.numbers.size() == 2 * (4 + 2 * 3 * 7));
   for (std::size_t run = 0; run < 2; ++run) {
     const double* n = j.numbers.data() + run * (4 + 2 * 3 * 7);

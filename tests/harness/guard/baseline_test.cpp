@@ -1,25 +1,27 @@
-// Tests harness/baseline*.cpp and harness/guard/bless.cpp: the baseline text format round-trips to the
-// bit, malformed files are named precisely, and bless refuses a run that is wrong physics.
-#include <catch2/catch.hpp>
+// Tests harness/baseline*.cpp and harness/guard/bless.cpp: the baseline text format round-trips to
+// the bit, malformed files are named precisely, and bless refuses a run that is wrong physics.
+#include "harness/guard/baseline.hpp"
 
 #include <bit>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
 
-#include "harness/guard/baseline.hpp"
-#include "harness/guard/bless.hpp"
+#include "../moved_drag_engine.hpp"
+#include "../test_dirs.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/scene_loader.hpp"
-#include "../moved_drag_engine.hpp"
-#include "../test_dirs.hpp"
+#include "harness/guard/bless.hpp"
 
 using namespace dropcheck;
 using namespace dropcheck::testing;
 
 namespace {
 
-std::uint64_t bits(double v) { return std::bit_cast<std::uint64_t>(v); }
+std::uint64_t bits(double v) {
+  return std::bit_cast<std::uint64_t>(v);
+}
 
 EngineFactory factory(const std::string& name) {
   return [name] { return make_engine(name); };
@@ -78,15 +80,20 @@ TEST_CASE("Awkward numbers survive the text format exactly", "[baseline]") {
 }
 
 TEST_CASE("A malformed baseline names the file, line and record", "[baseline]") {
-  const std::string good = baseline_to_text(make_baseline(shipped_scene("free_fall"), factory("ours-f64")));
+  const std::string good =
+      baseline_to_text(make_baseline(shipped_scene("free_fall"), factory("ours-f64")));
   std::string bad = good;
   bad.replace(bad.find("sample 10 cube 0 "), 17, "sample 10 cube 0x ");
-  REQUIRE_THROWS_WITH(parse_baseline(bad, "x.txt"), Catch::Contains("x.txt:") && Catch::Contains("not a number: '0x'"));
-  REQUIRE_THROWS_WITH(parse_baseline(good + "colour blue\n", "y.txt"), Catch::Contains("colour: unknown record"));
-  REQUIRE_THROWS_WITH(read_baseline("/nonexistent/z.txt"), Catch::Contains("run `dropcheck bless`"));
+  REQUIRE_THROWS_WITH(parse_baseline(bad, "x.txt"),
+                      Catch::Contains("x.txt:") && Catch::Contains("not a number: '0x'"));
+  REQUIRE_THROWS_WITH(parse_baseline(good + "colour blue\n", "y.txt"),
+                      Catch::Contains("colour: unknown record"));
+  REQUIRE_THROWS_WITH(read_baseline("/nonexistent/z.txt"),
+                      Catch::Contains("run `dropcheck bless`"));
 }
 
-TEST_CASE("An engine that cannot run a scene leaves a skipped baseline with its reason", "[baseline]") {
+TEST_CASE("An engine that cannot run a scene leaves a skipped baseline with its reason",
+          "[baseline]") {
   const Scene scene = shipped_scene("drop_on_floor");
   const Baseline b = make_baseline(scene, factory("ours"));
   CHECK(b.skipped == "no contacts");
@@ -96,49 +103,58 @@ TEST_CASE("An engine that cannot run a scene leaves a skipped baseline with its 
   CHECK(read.samples.samples() == 0);
 }
 
-TEST_CASE("Bless into the golden set refuses a run that breaks its own discrete law and writes nothing",
-          "[baseline][bless]") {
+TEST_CASE(
+    "Bless into the golden set refuses a run that breaks its own discrete law and writes nothing",
+    "[baseline][bless]") {
   const ScratchDir dir("bless-refuses");
   BlessOptions options;
   options.out_dir = dir.path.string();
   options.refuse_failed = true;  // as for tests/baselines
-  const BlessOutcome out = bless({shipped_scene("free_fall_drag")}, {{"ours-f64", make_moved_drag_f64}}, options);
+  const BlessOutcome out =
+      bless({shipped_scene("free_fall_drag")}, {{"ours-f64", make_moved_drag_f64}}, options);
   REQUIRE(out.refused.size() == 1);
   INFO(out.refused[0]);
-  CHECK_THAT(out.refused[0], Catch::StartsWith("free_fall_drag / ours-f64 / physics: oracle 2 (own discrete law"));
+  CHECK_THAT(out.refused[0],
+             Catch::StartsWith("free_fall_drag / ours-f64 / physics: oracle 2 (own discrete law"));
   CHECK_THAT(out.refused[0], Catch::Contains("body 'cube' departs from it by"));
   CHECK_THAT(out.refused[0], Catch::Contains("from step 1 on"));
   CHECK(out.lines.empty());
   CHECK(std::filesystem::is_empty(dir.path));
 }
 
-TEST_CASE("Bless --out elsewhere writes a run that breaks its law, the failed tier marked in the file",
-          "[baseline][bless]") {
+TEST_CASE(
+    "Bless --out elsewhere writes a run that breaks its law, the failed tier marked in the file",
+    "[baseline][bless]") {
   const ScratchDir dir("bless-marks");
   BlessOptions options;
   options.out_dir = dir.path.string();
   CHECK_FALSE(is_golden_set(options.out_dir));
   CHECK(is_golden_set("tests/baselines"));
-  const BlessOutcome out = bless({shipped_scene("free_fall_drag")}, {{"ours-f64", make_moved_drag_f64}}, options);
+  const BlessOutcome out =
+      bless({shipped_scene("free_fall_drag")}, {{"ours-f64", make_moved_drag_f64}}, options);
   CHECK(out.refused.empty());
   REQUIRE(out.lines.size() == 1);
-  CHECK_THAT(out.lines[0], Catch::Contains("FAILED physics: free_fall_drag / ours-f64 / physics: oracle 2"));
+  CHECK_THAT(out.lines[0],
+             Catch::Contains("FAILED physics: free_fall_drag / ours-f64 / physics: oracle 2"));
   const std::string text = slurp(dir.file("free_fall_drag.ours-f64.txt"));
   CHECK_THAT(text, Catch::Contains("\n# FAILED physics: "));
   CHECK(parse_baseline(text, "x").hash.size() > 0);  // still a baseline `diff` can read
 }
 
-TEST_CASE("Bless writes every baseline and leaves unchanged data byte for byte", "[baseline][bless]") {
+TEST_CASE("Bless writes every baseline and leaves unchanged data byte for byte",
+          "[baseline][bless]") {
   const ScratchDir dir("bless-writes");
   BlessOptions options;
   options.out_dir = dir.path.string();
   options.commit = "aaaaaaa 2026-01-01";
   const std::vector<Scene> scenes = {shipped_scene("free_fall"), shipped_scene("drop_on_floor")};
-  const std::vector<NamedFactory> engines = {{"ours", factory("ours")}, {"ours-f64", factory("ours-f64")}};
+  const std::vector<NamedFactory> engines = {{"ours", factory("ours")},
+                                             {"ours-f64", factory("ours-f64")}};
   const BlessOutcome first = bless(scenes, engines, options);
   REQUIRE(first.refused.empty());
   REQUIRE(first.lines.size() == 4);
-  CHECK_THAT(first.lines[0], Catch::StartsWith("new ") && Catch::Contains("free_fall.ours.txt (hash "));
+  CHECK_THAT(first.lines[0],
+             Catch::StartsWith("new ") && Catch::Contains("free_fall.ours.txt (hash "));
   CHECK_THAT(first.lines[2], Catch::Contains("drop_on_floor.ours.txt (skipped: no contacts)"));
   const std::string before = slurp(dir.file("free_fall.ours.txt"));
   CHECK_THAT(before, Catch::StartsWith("# dropcheck baseline: made by `dropcheck bless` with ") &&

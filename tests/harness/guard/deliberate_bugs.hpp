@@ -18,7 +18,14 @@
 
 namespace dropcheck::testing {
 
-enum class Bug { none, z_frozen, drag_twice, gravity_half_step, explicit_euler, drag_after_position };
+enum class Bug {
+  none,
+  z_frozen,
+  drag_twice,
+  gravity_half_step,
+  explicit_euler,
+  drag_after_position
+};
 
 template <typename T>
 class BuggyOurs final : public Engine {
@@ -42,7 +49,8 @@ class BuggyOurs final : public Engine {
     bodies_.assign(scene.bodies.size(), {});
     for (std::size_t i = 0; i < scene.bodies.size(); ++i)
       bodies_[i] = {scene.bodies[i].position.cast<T>(), scene.bodies[i].velocity.cast<T>(),
-                    ours::Vector3<T>::Zero(), static_cast<T>(scene.bodies[i].mass), scene.bodies[i].is_static};
+                    ours::Vector3<T>::Zero(), static_cast<T>(scene.bodies[i].mass),
+                    scene.bodies[i].is_static};
   }
 
   void set_forces(std::span<const Vec3> forces) override {

@@ -2,16 +2,16 @@
 // caught by tier 3 on the shipped 3-D throw with the right cause, and each blamed on ours by the
 // cross-engine attribution, never on the engine that follows its law. A ctest entry of its own
 // (regression.guard_catches_deliberate_bugs, label regression).
-#include <catch2/catch.hpp>
+#include "deliberate_bugs.hpp"
 
+#include <catch2/catch.hpp>
 #include <iostream>
 
-#include "deliberate_bugs.hpp"
+#include "../test_dirs.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/guard/baseline.hpp"
 #include "harness/guard/regression.hpp"
 #include "harness/measure/checks.hpp"
-#include "../test_dirs.hpp"
 
 using namespace dropcheck;
 using namespace dropcheck::testing;
@@ -55,27 +55,32 @@ TEST_CASE("Every deliberate bug in ours is caught by tier 3 with its cause", "[r
   }
 }
 
-TEST_CASE("A consistent new scheme and a broken one get different tier-3 messages", "[regression][bugs]") {
+TEST_CASE("A consistent new scheme and a broken one get different tier-3 messages",
+          "[regression][bugs]") {
   const Scene scene = shipped_scene("free_fall_drag");
   const TierResult twice = check_physics(make_baseline(scene, buggy_ours(Bug::drag_twice)));
   const TierResult euler = check_physics(make_baseline(scene, buggy_ours(Bug::explicit_euler)));
   CHECK_THAT(twice.message, Contains("order 0.0") && Contains("not consistent"));
-  CHECK_THAT(euler.message, Contains("explicit Euler") && Contains("a consistent, first-order scheme"));
+  CHECK_THAT(euler.message,
+             Contains("explicit Euler") && Contains("a consistent, first-order scheme"));
   CHECK(twice.message != euler.message);
 }
 
-TEST_CASE("The attribution blames ours for every deliberate bug, never the engine that follows its law",
-          "[regression][bugs]") {
+TEST_CASE(
+    "The attribution blames ours for every deliberate bug, never the engine that follows its law",
+    "[regression][bugs]") {
   const Scene scene = shipped_scene("throw_3d");
   for (const Case& c : kCases) {
     // ours (buggy) against the reference ours-f64 (correct).
     const CheckResult as_engine = check_divergence(scene, buggy_ours(c.bug), factory("ours-f64"));
     INFO(c.name << ": " << as_engine.message);
     CHECK_FALSE(as_engine.passed);
-    CHECK_THAT(as_engine.message, Contains("UNEXPLAINED") && Contains("ours departs from its own law") &&
+    CHECK_THAT(as_engine.message, Contains("UNEXPLAINED") &&
+                                      Contains("ours departs from its own law") &&
                                       Contains("ours-f64 follows its own law to 0 m"));
     // A correct engine (ours, f32) against a buggy reference: the reference is blamed.
-    const CheckResult as_reference = check_divergence(scene, factory("ours"), buggy_ours_f64(c.bug));
+    const CheckResult as_reference =
+        check_divergence(scene, factory("ours"), buggy_ours_f64(c.bug));
     INFO(as_reference.message);
     CHECK_FALSE(as_reference.passed);
     CHECK_THAT(as_reference.message, Contains("ours-f64 departs from its own law") &&

@@ -1,16 +1,16 @@
 // Tests harness/regression*.cpp: the tiers of the regression guard, the determinism check, and the
 // guard at work on a deliberate change to the integrator (tests/harness/moved_drag_engine.hpp).
-#include <catch2/catch.hpp>
+#include "harness/guard/regression.hpp"
 
+#include <catch2/catch.hpp>
 #include <iostream>
 
+#include "../moved_drag_engine.hpp"
+#include "../test_dirs.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/guard/regression.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/core/trajectory_hash.hpp"
 #include "harness/core/trajectory_io.hpp"
-#include "../moved_drag_engine.hpp"
-#include "../test_dirs.hpp"
 
 using namespace dropcheck;
 using namespace dropcheck::testing;
@@ -22,12 +22,14 @@ EngineFactory factory(const std::string& name) {
 }
 
 // The shipped scenes ours can run (free flight).
-const std::vector<std::string> kFreeFlight = {"free_fall", "free_fall_drag", "seed_part3", "throw_up", "wind"};
+const std::vector<std::string> kFreeFlight = {"free_fall", "free_fall_drag", "seed_part3",
+                                              "throw_up", "wind"};
 
 }  // namespace
 
-TEST_CASE("Tier 1 passes on identical bits and is skipped, with both builds named, on another build",
-          "[regression]") {
+TEST_CASE(
+    "Tier 1 passes on identical bits and is skipped, with both builds named, on another build",
+    "[regression]") {
   const Baseline now = make_baseline(shipped_scene("throw_up"), factory("ours"));
   CHECK(check_bits(now, now).verdict == Verdict::passed);
   Baseline other = now;
@@ -51,25 +53,30 @@ TEST_CASE("Tier 2 names scene, engine, body, first differing step, both values a
   const TierResult r = check_tolerance(expected, now);
   REQUIRE(r.verdict == Verdict::failed);
   const double y = expected.samples.at(sample, small).position.y();
-  CHECK_THAT(r.message, Catch::StartsWith("wind / ours-f64 / tolerance: body 'small' first differs at step 30"));
-  CHECK_THAT(r.message, Catch::Contains("y = " + exact(y) + " in the baseline, " + exact(y + 2e-9) + " now"));
+  CHECK_THAT(r.message, Catch::StartsWith(
+                            "wind / ours-f64 / tolerance: body 'small' first differs at step 30"));
+  CHECK_THAT(r.message,
+             Catch::Contains("y = " + exact(y) + " in the baseline, " + exact(y + 2e-9) + " now"));
   CHECK_THAT(r.message, Catch::Contains("|dx| = 2e-09 m > 1e-09"));
   CHECK_THAT(r.message, Catch::Contains("max |dx| 5e-09 m (body 'small', step 50)"));
 }
 
-TEST_CASE("Tier 2 accepts differences within its tolerance and reports the largest", "[regression]") {
+TEST_CASE("Tier 2 accepts differences within its tolerance and reports the largest",
+          "[regression]") {
   const Baseline expected = make_baseline(shipped_scene("wind"), factory("ours"));
   Baseline now = expected;
   now.samples.states[7].velocity.x() += 0.9e-4;  // f32 tolerance 1e-4 (measured across builds: 0)
   const TierResult r = check_tolerance(expected, now);
   CHECK(r.verdict == Verdict::passed);
-  CHECK_THAT(r.message, Catch::Contains("max |dx| 0 m over 13 samples (tolerance 0.0001 m for f32)"));
+  CHECK_THAT(r.message,
+             Catch::Contains("max |dx| 0 m over 13 samples (tolerance 0.0001 m for f32)"));
   now.sweep[2].analytic_max_dx += 2e-4;  // the error curve moved
   CHECK_THAT(check_tolerance(expected, now).message,
              Catch::Contains("at h = 1/120 max |dx| against the analytic solution moved"));
 }
 
-TEST_CASE("Tier 3 passes on ours and ours-f64 for every shipped free-flight scene", "[regression]") {
+TEST_CASE("Tier 3 passes on ours and ours-f64 for every shipped free-flight scene",
+          "[regression]") {
   for (const std::string& stem : kFreeFlight) {
     for (const char* engine : {"ours", "ours-f64"}) {
       const TierResult r = check_physics(make_baseline(shipped_scene(stem), factory(engine)));
@@ -79,10 +86,12 @@ TEST_CASE("Tier 3 passes on ours and ours-f64 for every shipped free-flight scen
   }
 }
 
-TEST_CASE("Tier 3 fails when the error against the analytic solution stops shrinking at first order",
-          "[regression]") {
+TEST_CASE(
+    "Tier 3 fails when the error against the analytic solution stops shrinking at first order",
+    "[regression]") {
   Baseline b = make_baseline(shipped_scene("free_fall_drag"), factory("ours-f64"));
-  b.sweep[3].analytic_max_dx = b.sweep[2].analytic_max_dx * 0.75;  // order 0.415 from 1/120 to 1/240
+  b.sweep[3].analytic_max_dx =
+      b.sweep[2].analytic_max_dx * 0.75;  // order 0.415 from 1/120 to 1/240
   const TierResult r = check_physics(b);
   REQUIRE(r.verdict == Verdict::failed);
   CHECK_THAT(r.message, Catch::Contains("oracle 1 (analytic solution) fails") &&
@@ -110,20 +119,24 @@ TEST_CASE("The guard catches damping moved after the position update", "[regress
   const Baseline now = make_baseline(shipped_scene("free_fall_drag"), make_moved_drag_f64);
   const TierResult bits = check_bits(expected, now), tolerance = check_tolerance(expected, now),
                    physics = check_physics(now);
-  std::cout << "What `ctest -L regression` says about the moved damping:\n  " << bits.message << "\n  "
-            << tolerance.message << "\n  " << physics.message << "\n";
+  std::cout << "What `ctest -L regression` says about the moved damping:\n  " << bits.message
+            << "\n  " << tolerance.message << "\n  " << physics.message << "\n";
   CHECK(bits.verdict == Verdict::failed);  // same build on both sides
   REQUIRE(tolerance.verdict == Verdict::failed);
-  // x_1 - x_1' = h^2*g*(1 - f) = 5.4e-5 m after one step; the first sample (step 10) shows 2.82e-3 m.
-  CHECK_THAT(tolerance.message, Catch::StartsWith("free_fall_drag / ours-f64 / tolerance: body 'cube' first "
-                                                  "differs at step 10 (samples every 10 steps): y = "
-                                                  "9.8617334079159473 in the baseline, 9.8589116407305539 now, "
-                                                  "|dx| = 0.00282 m > 1e-09 m; max |dx| 0.0696 m (body 'cube', step 60)"));
+  // x_1 - x_1' = h^2*g*(1 - f) = 5.4e-5 m after one step; the first sample (step 10) shows 2.82e-3
+  // m.
+  CHECK_THAT(
+      tolerance.message,
+      Catch::StartsWith("free_fall_drag / ours-f64 / tolerance: body 'cube' first "
+                        "differs at step 10 (samples every 10 steps): y = "
+                        "9.8617334079159473 in the baseline, 9.8589116407305539 now, "
+                        "|dx| = 0.00282 m > 1e-09 m; max |dx| 0.0696 m (body 'cube', step 60)"));
   REQUIRE(physics.verdict == Verdict::failed);
-  CHECK_THAT(physics.message, Catch::Contains("oracle 2 (own discrete law: v = phi*(v + a*h); x += h*v) fails: at "
-                                              "h = 1/30 body 'cube' departs from it by 0.141 m"));
+  CHECK_THAT(physics.message,
+             Catch::Contains("oracle 2 (own discrete law: v = phi*(v + a*h); x += h*v) fails: at "
+                             "h = 1/30 body 'cube' departs from it by 0.141 m"));
   // Where the drag does nothing (f = 1), the change is invisible, and the guard says so.
   const Baseline plain = make_baseline(shipped_scene("free_fall"), make_seed_order_f64);
-  CHECK(check_tolerance(plain, make_baseline(shipped_scene("free_fall"), make_moved_drag_f64)).verdict ==
-        Verdict::passed);
+  CHECK(check_tolerance(plain, make_baseline(shipped_scene("free_fall"), make_moved_drag_f64))
+            .verdict == Verdict::passed);
 }

@@ -1,11 +1,12 @@
 // Tests harness/guard/result_diff.cpp: `dropcheck diff` on two result sets, one of them made by an
 // integrator with the damping moved after the position update (moved_drag_engine.hpp).
+#include "harness/guard/result_diff.hpp"
+
 #include <catch2/catch.hpp>
 
-#include "harness/core/atomic_file.hpp"
-#include "harness/guard/result_diff.hpp"
 #include "../moved_drag_engine.hpp"
 #include "../test_dirs.hpp"
+#include "harness/core/atomic_file.hpp"
 
 using namespace dropcheck;
 using namespace dropcheck::testing;
@@ -21,19 +22,28 @@ EngineFactory ours_f64 = make_seed_order_f64;
 
 }  // namespace
 
-TEST_CASE("Diff of two result sets lists what moved and how the error curves shifted", "[baseline][diff]") {
+TEST_CASE("Diff of two result sets lists what moved and how the error curves shifted",
+          "[baseline][diff]") {
   const ScratchDir before("diff-before"), after("diff-after");
-  for (const char* stem : {"free_fall", "free_fall_drag"}) write(before, make_baseline(shipped_scene(stem), ours_f64));
+  for (const char* stem : {"free_fall", "free_fall_drag"})
+    write(before, make_baseline(shipped_scene(stem), ours_f64));
   write(before, make_baseline(shipped_scene("throw_up"), ours_f64));  // dropped from the new set
   write(after, make_baseline(shipped_scene("free_fall"), make_moved_drag_f64));  // f = 1: no change
   write(after, make_baseline(shipped_scene("free_fall_drag"), make_moved_drag_f64));
 
-  const std::string md = diff_markdown(load_result_set(before.path.string()), load_result_set(after.path.string()));
+  const std::string md =
+      diff_markdown(load_result_set(before.path.string()), load_result_set(after.path.string()));
   INFO(md);
-  CHECK_THAT(md, Catch::Contains("1 of 3 scene/engine runs moved beyond tolerance (1e-09 m for f64, 0.0001 m for f32)"));
-  CHECK_THAT(md, Catch::Contains("| free_fall | ours-f64 | identical | 0 m | - (tolerance 1e-09 m) |"));
-  CHECK_THAT(md, Catch::Contains("| free_fall_drag | ours-f64 | **moved** | 0.0696 m (step 60) | step 10, cube.y: "
-                                 "9.86173341 -> 9.85891164 (0.00282) |"));
+  CHECK_THAT(
+      md,
+      Catch::Contains(
+          "1 of 3 scene/engine runs moved beyond tolerance (1e-09 m for f64, 0.0001 m for f32)"));
+  CHECK_THAT(md,
+             Catch::Contains("| free_fall | ours-f64 | identical | 0 m | - (tolerance 1e-09 m) |"));
+  CHECK_THAT(md,
+             Catch::Contains(
+                 "| free_fall_drag | ours-f64 | **moved** | 0.0696 m (step 60) | step 10, cube.y: "
+                 "9.86173341 -> 9.85891164 (0.00282) |"));
   CHECK_THAT(md, Catch::Contains("| throw_up | ours-f64 | only before | - | - | - |"));
   // The curve: with the drag after the position update the cube moves with the velocity before
   // damping each step, falls faster, and ends 4 times farther from the continuous solution.
@@ -42,19 +52,24 @@ TEST_CASE("Diff of two result sets lists what moved and how the error curves shi
   CHECK_THAT(md, Catch::Contains("4 points with identical errors omitted."));
 }
 
-TEST_CASE("Diff shows wall time per simulated second when the result sets carry timing", "[baseline][diff]") {
+TEST_CASE("Diff shows wall time per simulated second when the result sets carry timing",
+          "[baseline][diff]") {
   const ScratchDir before("timing-before"), after("timing-after");
   Baseline b = make_baseline(shipped_scene("free_fall"), ours_f64);
   for (SweepPoint& p : b.sweep) p.wall_min = 1e-3, p.wall_median = 1.1e-3, p.replicas = 8;
   write(before, b);
   for (SweepPoint& p : b.sweep) p.wall_min = 2.5e-3;
   write(after, b);
-  const std::string md = diff_markdown(load_result_set(before.path.string()), load_result_set(after.path.string()));
+  const std::string md =
+      diff_markdown(load_result_set(before.path.string()), load_result_set(after.path.string()));
   INFO(md);
-  CHECK_THAT(md, Catch::Contains("| error before | error after | after/before | wall before | wall after |"));
-  CHECK_THAT(md, Catch::Contains("| free_fall | ours-f64 | 1/60 | 0.0817 | 0.0817 | 1 | 1 | 2.5 |"));
+  CHECK_THAT(md, Catch::Contains(
+                     "| error before | error after | after/before | wall before | wall after |"));
+  CHECK_THAT(md,
+             Catch::Contains("| free_fall | ours-f64 | 1/60 | 0.0817 | 0.0817 | 1 | 1 | 2.5 |"));
 }
 
 TEST_CASE("Diff refuses a result set that is not a directory", "[baseline][diff]") {
-  REQUIRE_THROWS_WITH(load_result_set("/nonexistent/set"), Catch::Contains("not a directory of baseline files"));
+  REQUIRE_THROWS_WITH(load_result_set("/nonexistent/set"),
+                      Catch::Contains("not a directory of baseline files"));
 }

@@ -1,5 +1,6 @@
-// Tests harness/measure/attribution.cpp: a divergence built from the exact discrete laws is all "law part";
-// a perturbed engine leaves a residual that is flagged; lengths print in readable units.
+// Tests harness/measure/attribution.cpp: a divergence built from the exact discrete laws is all
+// "law part"; a perturbed engine leaves a residual that is flagged; lengths print in readable
+// units.
 #include "harness/measure/attribution.hpp"
 
 #include <catch2/catch.hpp>
@@ -42,7 +43,8 @@ TEST_CASE("the attribution of Bullet's law against ours' law is all of it from t
   const double h = 1.0 / 60;
   const Trajectory bullet = predict_discrete(DampingOrder::BeforeForces, s, h);
   const Trajectory ours = predict_discrete(DampingOrder::AfterForces, s, h);
-  const EngineInfo bi = info("bullet", DampingOrder::BeforeForces), oi = info("ours-f64", DampingOrder::AfterForces);
+  const EngineInfo bi = info("bullet", DampingOrder::BeforeForces),
+                   oi = info("ours-f64", DampingOrder::AfterForces);
   const Attribution a = attribute({bi, bullet, bullet, bullet}, {oi, ours, ours, ours});
   // docs/engines.md 2: 6.5878983508563724 - 6.5182636233228308 m after 60 steps.
   CHECK(a.final_total == Approx(6.5878983508563724 - 6.5182636233228308).epsilon(1e-12));
@@ -57,7 +59,8 @@ TEST_CASE("the attribution of Bullet's law against ours' law is all of it from t
 }
 
 TEST_CASE(
-    "the attribution blames the engine that departs from its own law, never the one that follows it",
+    "the attribution blames the engine that departs from its own law, never the one that follows "
+    "it",
     "[attribution]") {
   const Scene s = drop();
   const double h = 1.0 / 60;
@@ -66,7 +69,8 @@ TEST_CASE(
   Trajectory engine = law;  // as if gravity were -10 instead of -9.8: 0.1*t^2 m off by t = 1 s
   for (std::size_t i = 0; i < engine.samples(); ++i)
     engine.states[i].position.y() -= 0.1 * engine.time(i) * engine.time(i);
-  const EngineInfo bi = info("bullet", DampingOrder::BeforeForces), oi = info("ours-f64", DampingOrder::AfterForces);
+  const EngineInfo bi = info("bullet", DampingOrder::BeforeForces),
+                   oi = info("ours-f64", DampingOrder::AfterForces);
   const Attribution a = attribute({bi, engine, law, law}, {oi, ours, ours, ours});
   CHECK_FALSE(a.explained());
   CHECK(a.blamed() == "bullet");

@@ -1,8 +1,9 @@
-// Tests harness/measure/checks.cpp: the checks pass on correct engines and catch broken mappings with a
-// message that names the scene, engine, body, step and both values.
+// Tests harness/measure/checks.cpp: the checks pass on correct engines and catch broken mappings
+// with a message that names the scene, engine, body, step and both values.
+#include "harness/measure/checks.hpp"
+
 #include <catch2/catch.hpp>
 
-#include "harness/measure/checks.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/scene_loader.hpp"
 
@@ -82,15 +83,18 @@ TEST_CASE("an adapter that declares the wrong law fails its own-law check with b
 TEST_CASE("an adapter that keeps a default gravity is caught as an unexplained residual",
           "[checks]") {
   const Scene scene = load_scene("scenarios/free_fall.toml");
-  CHECK_FALSE(check_own_law(scene, broken(BrokenEngine::Bug::default_gravity), scene.timestep).passed);
-  const CheckResult r = check_divergence(scene, broken(BrokenEngine::Bug::default_gravity), named("ours-f64"));
+  CHECK_FALSE(
+      check_own_law(scene, broken(BrokenEngine::Bug::default_gravity), scene.timestep).passed);
+  const CheckResult r =
+      check_divergence(scene, broken(BrokenEngine::Bug::default_gravity), named("ours-f64"));
   CHECK_FALSE(r.passed);
   CHECK_THAT(r.message, Catch::Contains("UNEXPLAINED residual"));
 }
 
 TEST_CASE("drag mapped per second instead of per step is caught by the own-law check", "[checks]") {
   const Scene scene = load_scene("scenarios/throw_up.toml");
-  const CheckResult r = check_own_law(scene, broken(BrokenEngine::Bug::per_second_drag), scene.timestep);
+  const CheckResult r =
+      check_own_law(scene, broken(BrokenEngine::Bug::per_second_drag), scene.timestep);
   CHECK_FALSE(r.passed);
   CHECK_THAT(r.message, Catch::Contains("worst at body 'cube'"));
 }

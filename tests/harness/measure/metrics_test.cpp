@@ -1,5 +1,6 @@
-// Tests harness/measure/metrics.cpp: distances between hand-made trajectories whose differences are known
-// exactly, sample matching across steps, time to divergence, and observed orders on e = C*h^p.
+// Tests harness/measure/metrics.cpp: distances between hand-made trajectories whose differences are
+// known exactly, sample matching across steps, time to divergence, and observed orders on e =
+// C*h^p.
 #include "harness/measure/metrics.hpp"
 
 #include <catch2/catch.hpp>

@@ -106,7 +106,8 @@ TEST_CASE("timing returns positive figures for every engine", "[timing]") {
   }
 }
 
-TEST_CASE("the work of a timed run depends on the scene and h only, never on a measurement", "[timing]") {
+TEST_CASE("the work of a timed run depends on the scene and h only, never on a measurement",
+          "[timing]") {
   const Scene s = scene();  // 2 dynamic bodies, 0.5 s
   TimingOptions o;
   o.body_steps_per_run = 1000;

@@ -1,14 +1,14 @@
-// Tests harness/oracles/analytic.cpp (oracle 1): each closed form is pinned against the model it solves,
-// computed here independently; measured values are written next to each tolerance.
+// Tests harness/oracles/analytic.cpp (oracle 1): each closed form is pinned against the model it
+// solves, computed here independently; measured values are written next to each tolerance.
 #include "harness/oracles/analytic.hpp"
 
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <vector>
 
-#include "harness/measure/metrics.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
+#include "harness/measure/metrics.hpp"
 
 using namespace dropcheck;
 
@@ -32,7 +32,8 @@ void add_force(Scene& s, std::variant<ConstantForce, Spring> law) {
   s.forces.push_back({{0}, law});
 }
 
-// dv/dt = a - k*v, continuous model, written out here independently of harness/oracles/analytic.cpp:
+// dv/dt = a - k*v, continuous model, written out here independently of
+// harness/oracles/analytic.cpp:
 //   v(t) = a/k + (v0 - a/k)*exp(-k*t);  x(t) = x0 + (a/k)*t + (v0 - a/k)*(1 - exp(-k*t))/k
 BodyState drag_formula(const Vec3& x0, const Vec3& v0, const Vec3& a, double k, double t) {
   const Vec3 vt = a / k;

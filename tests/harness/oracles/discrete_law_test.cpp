@@ -3,7 +3,8 @@
 // Constant acceleration a = g + F/m, b = a*h, decay phi per step, v0 and x0 given.
 //   AfterForces:   v_{n+1} = phi*(v_n + b)
 //     v_n = phi^n*v0 + phi*b*(1 - phi^n)/(1 - phi)
-//     x_n = x0 + h*sum_{j=1..n} v_j = x0 + h*v0*G + h*phi*b/(1 - phi)*(n - G),  G = phi*(1 - phi^n)/(1 - phi)
+//     x_n = x0 + h*sum_{j=1..n} v_j = x0 + h*v0*G + h*phi*b/(1 - phi)*(n - G),  G = phi*(1 -
+//     phi^n)/(1 - phi)
 //   BeforeForces:  v_{n+1} = phi*v_n + b   (fixed point b/(1 - phi))
 //     v_n = phi^n*v0 + b*(1 - phi^n)/(1 - phi)        (v0 = 0: v_n = a*h*(1 - phi^n)/(1 - phi))
 //     x_n = x0 + h*v0*G + h*b/(1 - phi)*(n - G)
@@ -12,11 +13,11 @@
 //     x_n = x0 + h*sum_{j=0..n-1}(v_j + b) = x0 + h*v0*G/phi + h*b/(1 - phi)*(n - G)
 // So with v0 = 0 BeforeForces and AfterPosition have the same x_n, and AfterForces' displacement
 // is phi times theirs (docs/engines.md section 2); with v0 != 0 BeforeForces damps v0 once more.
-#include <catch2/catch.hpp>
+#include "harness/oracles/discrete_law.hpp"
 
+#include <catch2/catch.hpp>
 #include <cmath>
 
-#include "harness/oracles/discrete_law.hpp"
 #include "harness/core/scene_loader.hpp"
 
 namespace {
@@ -70,8 +71,8 @@ void worst_error(DampingOrder law, double& dx, double& dv) {
     for (int k = 0; k < 3; ++k) {
       const dropcheck::Body& b = s.bodies[0];
       LD x, v;
-      closed_form(law, b.position[k], b.velocity[k], LD(s.world.gravity[k]) + LD(F[k]) / LD(b.mass), phi, h,
-                  int(t.recorded[i]), x, v);
+      closed_form(law, b.position[k], b.velocity[k], LD(s.world.gravity[k]) + LD(F[k]) / LD(b.mass),
+                  phi, h, int(t.recorded[i]), x, v);
       dx = std::max(dx, double(std::fabs(t.at(i, 0).position[k] - x)));
       dv = std::max(dv, double(std::fabs(t.at(i, 0).velocity[k] - v)));
     }
@@ -91,33 +92,41 @@ double engine_notes_height(DampingOrder law) {
 
 }  // namespace
 
-TEST_CASE("the AfterForces law matches its closed form with v0, a force and mass 2", "[discrete_law]") {
+TEST_CASE("the AfterForces law matches its closed form with v0, a force and mass 2",
+          "[discrete_law]") {
   double dx, dv;
   worst_error(DampingOrder::AfterForces, dx, dv);
   CHECK(dx < 1e-12);  // measured 8.8e-16
   CHECK(dv < 1e-12);  // measured 4.4e-16
 }
 
-TEST_CASE("the BeforeForces law matches its closed form with v0, a force and mass 2", "[discrete_law]") {
+TEST_CASE("the BeforeForces law matches its closed form with v0, a force and mass 2",
+          "[discrete_law]") {
   double dx, dv;
   worst_error(DampingOrder::BeforeForces, dx, dv);
   CHECK(dx < 1e-12);  // measured 8.3e-16
   CHECK(dv < 1e-12);  // measured 4.4e-16
 }
 
-TEST_CASE("the AfterPosition law matches its closed form with v0, a force and mass 2", "[discrete_law]") {
+TEST_CASE("the AfterPosition law matches its closed form with v0, a force and mass 2",
+          "[discrete_law]") {
   double dx, dv;
   worst_error(DampingOrder::AfterPosition, dx, dv);
   CHECK(dx < 1e-12);  // measured 8.7e-16
   CHECK(dv < 1e-12);  // measured 4.4e-16
 }
 
-TEST_CASE("60 steps of each law reproduce docs/engines.md's 6.5878983508563724 and 6.5182636233228308", "[discrete_law]") {
+TEST_CASE(
+    "60 steps of each law reproduce docs/engines.md's 6.5878983508563724 and 6.5182636233228308",
+    "[discrete_law]") {
   // The law iterates in long double from phi = exp(-k*h); the figures are double iterations with
   // f = 0.98: they agree to the rounding of the double iteration.
-  CHECK(engine_notes_height(DampingOrder::AfterForces) == Approx(6.5878983508563724).margin(1e-14));    // measured 0
-  CHECK(engine_notes_height(DampingOrder::BeforeForces) == Approx(6.5182636233228308).margin(1e-14));   // measured 1.8e-15
-  CHECK(engine_notes_height(DampingOrder::AfterPosition) == Approx(6.5182636233228308).margin(1e-14));  // measured 1.8e-15
+  CHECK(engine_notes_height(DampingOrder::AfterForces) ==
+        Approx(6.5878983508563724).margin(1e-14));  // measured 0
+  CHECK(engine_notes_height(DampingOrder::BeforeForces) ==
+        Approx(6.5182636233228308).margin(1e-14));  // measured 1.8e-15
+  CHECK(engine_notes_height(DampingOrder::AfterPosition) ==
+        Approx(6.5182636233228308).margin(1e-14));  // measured 1.8e-15
 }
 
 TEST_CASE("the laws predict a static body stays where it is", "[discrete_law]") {
@@ -126,7 +135,8 @@ TEST_CASE("the laws predict a static body stays where it is", "[discrete_law]") 
       "[[body]]\nname = \"floor\"\nposition = [0.0, -0.5, 0.0]\nstatic = true\n"
       "[[body]]\nname = \"cube\"\nposition = [0.0, 10.0, 0.0]\n",
       "static.toml");
-  const dropcheck::Trajectory t = dropcheck::predict_discrete(DampingOrder::BeforeForces, s, 1.0 / 60.0);
+  const dropcheck::Trajectory t =
+      dropcheck::predict_discrete(DampingOrder::BeforeForces, s, 1.0 / 60.0);
   CHECK(t.final_state(0).position == dropcheck::Vec3(0.0, -0.5, 0.0));
   CHECK(t.final_state(1).position.y() < 6.0);  // while the dynamic one falls
 }

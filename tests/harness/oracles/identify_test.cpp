@@ -2,13 +2,15 @@
 // built-in engine's law is named from its own trajectory on wind.toml (damping, and a force that
 // differs between bodies, so all five members separate); a non-Euler trajectory fits no member; a
 // gravity-only scene is honestly ambiguous between after-forces and before-forces.
-#include <catch2/catch.hpp>
+#include "harness/oracles/identify.hpp"
 
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 #include "harness/cli/cli.hpp"
 #include "harness/core/input_error.hpp"
@@ -17,7 +19,6 @@
 #include "harness/core/scene_loader.hpp"
 #include "harness/core/trajectory_csv.hpp"
 #include "harness/core/trajectory_io.hpp"
-#include "harness/oracles/identify.hpp"
 
 using namespace dropcheck;
 using Catch::Matchers::Contains;
@@ -25,7 +26,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-Scene scene(const std::string& name) { return load_scene(DROPCHECK_SOURCE_DIR "/scenarios/" + name + ".toml"); }
+Scene scene(const std::string& name) {
+  return load_scene(DROPCHECK_SOURCE_DIR "/scenarios/" + name + ".toml");
+}
 
 Trajectory run(const std::string& engine, const Scene& s) {
   auto e = make_engine(engine);
@@ -34,7 +37,8 @@ Trajectory run(const std::string& engine, const Scene& s) {
 }
 
 std::string temp_file(const std::string& name, const std::string& text) {
-  const fs::path p = fs::temp_directory_path() / ("dropcheck_identify_" + std::to_string(::getpid()) + "_" + name);
+  const fs::path p =
+      fs::temp_directory_path() / ("dropcheck_identify_" + std::to_string(::getpid()) + "_" + name);
   std::ofstream(p) << text;
   return p.string();
 }
@@ -49,7 +53,8 @@ void require_identified(const std::string& engine) {
   const Identification id = identify_law(s, run(engine, s));
   const MemberFit& best = id.fits[id.best];
   INFO(engine << ": best " << law_key(best.law) << " at " << best.max_dx << " m, runner-up "
-              << law_key(id.fits[id.runner_up].law) << " at " << id.fits[id.runner_up].max_dx << " m");
+              << law_key(id.fits[id.runner_up].law) << " at " << id.fits[id.runner_up].max_dx
+              << " m");
   CHECK(best.law == make_engine(engine)->info().law);
   CHECK(id.fits_any);
   CHECK_FALSE(id.ambiguous);
@@ -62,14 +67,24 @@ void require_identified(const std::string& engine) {
 
 }  // namespace
 
-TEST_CASE("identify names the law of ours from its own trajectory", "[identify]") { require_identified("ours"); }
+TEST_CASE("identify names the law of ours from its own trajectory", "[identify]") {
+  require_identified("ours");
+}
 TEST_CASE("identify names the law of ours-f64 from its own trajectory", "[identify]") {
   require_identified("ours-f64");
 }
-TEST_CASE("identify names the law of bullet from its own trajectory", "[identify]") { require_identified("bullet"); }
-TEST_CASE("identify names the law of ode from its own trajectory", "[identify]") { require_identified("ode"); }
-TEST_CASE("identify names the law of box2d from its own trajectory", "[identify]") { require_identified("box2d"); }
-TEST_CASE("identify names the law of mujoco from its own trajectory", "[identify]") { require_identified("mujoco"); }
+TEST_CASE("identify names the law of bullet from its own trajectory", "[identify]") {
+  require_identified("bullet");
+}
+TEST_CASE("identify names the law of ode from its own trajectory", "[identify]") {
+  require_identified("ode");
+}
+TEST_CASE("identify names the law of box2d from its own trajectory", "[identify]") {
+  require_identified("box2d");
+}
+TEST_CASE("identify names the law of mujoco from its own trajectory", "[identify]") {
+  require_identified("mujoco");
+}
 
 TEST_CASE("A trajectory that is no fixed-step Euler scheme fits no member", "[identify]") {
   const Scene s = scene("wind");
@@ -85,13 +100,15 @@ TEST_CASE("A trajectory that is no fixed-step Euler scheme fits no member", "[id
   CHECK_THAT(out.str(), Contains("no member fits better than 2 cm: not a fixed-step Euler scheme"));
 }
 
-TEST_CASE("A gravity-only scene cannot separate after-forces from before-forces with g fitted", "[identify]") {
+TEST_CASE("A gravity-only scene cannot separate after-forces from before-forces with g fitted",
+          "[identify]") {
   const Scene s = scene("throw_up");
   const Identification id = identify_law(s, run("ours-f64", s));
   CHECK(id.ambiguous);
   const Law pair[] = {id.fits[id.best].law, id.fits[id.runner_up].law};
-  CHECK(((pair[0] == Law{DampingOrder::AfterForces} && pair[1] == Law{DampingOrder::BeforeForces}) ||
-         (pair[1] == Law{DampingOrder::AfterForces} && pair[0] == Law{DampingOrder::BeforeForces})));
+  CHECK(
+      ((pair[0] == Law{DampingOrder::AfterForces} && pair[1] == Law{DampingOrder::BeforeForces}) ||
+       (pair[1] == Law{DampingOrder::AfterForces} && pair[0] == Law{DampingOrder::BeforeForces})));
   // ... but after-position (ODE) still separates there, by its positions.
   if (make_engine("ode")) {
     const Identification ode = identify_law(s, run("ode", s));
@@ -100,7 +117,8 @@ TEST_CASE("A gravity-only scene cannot separate after-forces from before-forces 
   }
 }
 
-TEST_CASE("A trajectory CSV reads back exactly and identifies like the run it came from", "[identify]") {
+TEST_CASE("A trajectory CSV reads back exactly and identifies like the run it came from",
+          "[identify]") {
   const Scene s = scene("wind");
   const Trajectory t = run("ours", s);
   const std::string csv = temp_file("ours.csv", trajectories_to_csv(std::span(&t, 1)));
@@ -128,13 +146,17 @@ TEST_CASE("identify rejects unusable input with the file and the problem", "[ide
     CHECK_THAT(err.str(), Contains(message));
   };
   fails({"identify", s.source}, "expects exactly one of --engine E and --trajectory CSV");
-  fails({"identify", s.source, "--engine", "ours", "--trajectory", "x.csv"}, "expects exactly one of");
+  fails({"identify", s.source, "--engine", "ours", "--trajectory", "x.csv"},
+        "expects exactly one of");
   const std::string header = "engine,dt,step,t,body,x,y,z,vx,vy,vz\n";
-  fails({"identify", s.source, "--trajectory", temp_file("h.csv", "engine,dt\n")}, ":1: the header must be");
-  fails({"identify", s.source, "--trajectory", temp_file("n.csv", header + "ours,0.1,0,0,small,1,2,x,0,0,0\n")},
+  fails({"identify", s.source, "--trajectory", temp_file("h.csv", "engine,dt\n")},
+        ":1: the header must be");
+  fails({"identify", s.source, "--trajectory",
+         temp_file("n.csv", header + "ours,0.1,0,0,small,1,2,x,0,0,0\n")},
         ":2: z: 'x' is not a number");
   fails({"identify", s.source, "--trajectory",
-         temp_file("b.csv", header + "ours,0.1,0,0,small,1,2,3,0,0,0\nours,0.1,1,0.1,small,1,2,3,0,0,0\n")},
+         temp_file("b.csv",
+                   header + "ours,0.1,0,0,small,1,2,3,0,0,0\nours,0.1,1,0.1,small,1,2,3,0,0,0\n")},
         "1 bodies, the scene has 2");
   const Trajectory a = run("ours", s), b = run("ours-f64", s);
   const Trajectory both[] = {a, b};

@@ -1,7 +1,7 @@
-// Tests harness/oracles/landing.cpp against closed forms computed here: the parabola (k = 0), the damped
-// fall of docs/engines.md section 1 (continuous model dv/dt = g - k*v), its a = 0 special case
-// y(t) = y0 + v0*(1 - exp(-k*t))/k (solvable for t), and the discrete twin of every law at k = 0
-// (x_n = x0 - g*h^2*n*(n+1)/2, the same for all three orders when phi = 1).
+// Tests harness/oracles/landing.cpp against closed forms computed here: the parabola (k = 0), the
+// damped fall of docs/engines.md section 1 (continuous model dv/dt = g - k*v), its a = 0 special
+// case y(t) = y0 + v0*(1 - exp(-k*t))/k (solvable for t), and the discrete twin of every law at k =
+// 0 (x_n = x0 - g*h^2*n*(n+1)/2, the same for all three orders when phi = 1).
 #include "harness/oracles/landing.hpp"
 
 #include <catch2/catch.hpp>

@@ -3,15 +3,15 @@
 // must not exist afterwards; plus the text sanitiser on its own.
 #include "harness/report/plot.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstdlib>
-#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
-#include "harness/cli/cli.hpp"
 #include "../test_dirs.hpp"
+#include "harness/cli/cli.hpp"
 
 using namespace dropcheck;
 using dropcheck::testing::ScratchDir;
@@ -20,7 +20,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-bool has_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
+bool has_gnuplot() {
+  return std::system("command -v gnuplot >/dev/null 2>&1") == 0;
+}
 
 // Titles that would run `touch MARKER` if any part of them were read as gnuplot code.
 std::vector<std::string> hostile_titles(const std::string& marker) {
@@ -54,10 +56,12 @@ TEST_CASE("plot text turns control characters into spaces, bad UTF-8 into '?' an
           "[plot]") {
   CHECK(plot_text("a\nb\rc\td") == "a b c d");
   CHECK(plot_text(std::string("x\0y", 3)) == "x y");
-  CHECK(plot_text("caf\xc3\xa9") == "caf\xc3\xa9");          // valid UTF-8 stays
-  CHECK(plot_text("bad\xff\xc3(") == "bad?" "?(");               // stray and truncated bytes
-  CHECK(plot_text("\xc0\xaf") == "??");                       // overlong '/'
-  CHECK(plot_text("\xed\xa0\x80") == "???");                  // a UTF-16 surrogate
+  CHECK(plot_text("caf\xc3\xa9") == "caf\xc3\xa9");  // valid UTF-8 stays
+  CHECK(plot_text("bad\xff\xc3(") ==
+        "bad?"
+        "?(");                                // stray and truncated bytes
+  CHECK(plot_text("\xc0\xaf") == "??");       // overlong '/'
+  CHECK(plot_text("\xed\xa0\x80") == "???");  // a UTF-16 surrogate
   const std::string mb(1 << 20, 'x');
   CHECK(plot_text(mb) == std::string(kPlotTextMax, 'x') + "...");
 }
@@ -87,15 +91,16 @@ TEST_CASE("gnuplot runs no command written in a title, label or legend", "[plot]
     CHECK(fs::exists(dir.file("p.svg")));
   }
   // 1 MB of text and invalid UTF-8: drawn, cut, and the SVG stays valid UTF-8.
-  CHECK(render_plot(spec_with(std::string(1 << 20, 'y') + "\xff\xfe"), dir.path.string(), "big.svg") ==
-        "");
+  CHECK(render_plot(spec_with(std::string(1 << 20, 'y') + "\xff\xfe"), dir.path.string(),
+                    "big.svg") == "");
   const std::string svg = slurp(dir.file("big.svg"));
   CHECK(svg.find(std::string(kPlotTextMax, 'y') + "...") != std::string::npos);
   CHECK(svg.find(std::string(kPlotTextMax + 1, 'y')) == std::string::npos);
   CHECK(svg.find('\xff') == std::string::npos);
 }
 
-TEST_CASE("dropcheck report on a scene whose names hold commands runs none of them", "[plot][report]") {
+TEST_CASE("dropcheck report on a scene whose names hold commands runs none of them",
+          "[plot][report]") {
   if (!has_gnuplot()) {
     WARN("gnuplot is not installed: nothing to test");
     return;
@@ -105,19 +110,20 @@ TEST_CASE("dropcheck report on a scene whose names hold commands runs none of th
   // TOML basic strings: \n is a newline, \u0060 a backtick.
   const std::string scene = dir.file("hostile.toml");
   {
-    std::ofstream(scene) << "name = \"x\\n\\u0060touch " << marker << "\\u0060\\nsystem('touch "
-                         << marker << "')\"\n"
-                         << "description = \"d\\n`touch " << marker << "`\"\n"
-                         << "duration = 0.5\ntimestep = \"1/60\"\ntimesteps = [\"1/30\", \"1/60\"]\n"
-                         << "[world]\ngravity = [0.0, -9.8, 0.0]\n"
-                         << "[[body]]\nname = \"b\\n`touch " << marker << "`\"\n"
-                         << "position = [0.0, 10.0, 0.0]\n"
-                         << "[[body]]\nname = \"c';system('touch " << marker << "');'\"\n"
-                         << "position = [3.0, 10.0, 0.0]\n";
+    std::ofstream(scene)
+        << "name = \"x\\n\\u0060touch " << marker << "\\u0060\\nsystem('touch " << marker
+        << "')\"\n"
+        << "description = \"d\\n`touch " << marker << "`\"\n"
+        << "duration = 0.5\ntimestep = \"1/60\"\ntimesteps = [\"1/30\", \"1/60\"]\n"
+        << "[world]\ngravity = [0.0, -9.8, 0.0]\n"
+        << "[[body]]\nname = \"b\\n`touch " << marker << "`\"\n"
+        << "position = [0.0, 10.0, 0.0]\n"
+        << "[[body]]\nname = \"c';system('touch " << marker << "');'\"\n"
+        << "position = [3.0, 10.0, 0.0]\n";
   }
   std::ostringstream out, err;
-  const int rc = cli_main({"report", scene, "--out", dir.file("out"), "--no-timing",
-                           "--engine", "ours", "--engine", "ours-f64"},
+  const int rc = cli_main({"report", scene, "--out", dir.file("out"), "--no-timing", "--engine",
+                           "ours", "--engine", "ours-f64"},
                           out, err);
   INFO(err.str());
   CHECK(rc == kExitOk);

@@ -1,6 +1,6 @@
-// Tests harness/stability/stability_report.cpp and harness/stability/stability_io.cpp: the report section is Markdown
-// with one column per known engine, byte-identical from run to run, and names every failure; the
-// JSON and text forms of a study carry the search's result.
+// Tests harness/stability/stability_report.cpp and harness/stability/stability_io.cpp: the report
+// section is Markdown with one column per known engine, byte-identical from run to run, and names
+// every failure; the JSON and text forms of a study carry the search's result.
 #include "harness/stability/stability_report.hpp"
 
 #include <catch2/catch.hpp>
@@ -23,7 +23,9 @@ std::vector<EngineSlot> slots(const std::vector<std::string>& names) {
   std::vector<EngineSlot> out;
   for (const std::string& name : names) {
     const std::string why = engine_unavailable_reason(name);
-    out.push_back({name, why.empty() ? EngineFactory([name] { return make_engine(name); }) : EngineFactory(), why});
+    out.push_back(
+        {name, why.empty() ? EngineFactory([name] { return make_engine(name); }) : EngineFactory(),
+         why});
   }
   return out;
 }
@@ -35,14 +37,17 @@ TEST_CASE("The stability section runs only the engines passed in", "[stability][
   stability_report_section({kTiny}, slots({"ours"}), progress);
   CHECK(progress.str().find("ours") != std::string::npos);
   for (const std::string& other : available_engine_names())
-    if (other.rfind("ours", 0) != 0) CHECK(progress.str().find(" " + other + " ") == std::string::npos);
+    if (other.rfind("ours", 0) != 0)
+      CHECK(progress.str().find(" " + other + " ") == std::string::npos);
 }
 
 TEST_CASE("The stability section is deterministic Markdown naming every failure",
           "[stability][report]") {
   std::ostringstream progress;
-  const std::string a = stability_report_section({kTiny, kSpring}, slots(available_engine_names()), progress);
-  const std::string b = stability_report_section({kSpring, kTiny}, slots(available_engine_names()), progress);
+  const std::string a =
+      stability_report_section({kTiny, kSpring}, slots(available_engine_names()), progress);
+  const std::string b =
+      stability_report_section({kSpring, kTiny}, slots(available_engine_names()), progress);
   CHECK(a == b);  // scenes sorted by name, no timings
   CHECK_THAT(a, Contains("## Stability: stiff and extreme cases"));
   std::string header = "| scene | h |";
@@ -58,7 +63,8 @@ TEST_CASE("The stability section is deterministic Markdown naming every failure"
 
 TEST_CASE("Stability: a bad scene file is an InputError naming it", "[stability][report]") {
   std::ostringstream progress;
-  CHECK_THROWS_AS(stability_report_section({"/nonexistent/x.toml"}, slots({"ours"}), progress), InputError);
+  CHECK_THROWS_AS(stability_report_section({"/nonexistent/x.toml"}, slots({"ours"}), progress),
+                  InputError);
 }
 
 TEST_CASE("Stability: the study's JSON and text carry verdicts, the search and skipped engines",
@@ -72,8 +78,8 @@ TEST_CASE("Stability: the study's JSON and text carry verdicts, the search and s
   const std::string text = stability_to_text(s);
   CHECK_THAT(text, Contains("ours (f32)       frozen") && Contains("frozen below"));
   const SceneStability floor =
-      study_scene(load_scene(DROPCHECK_SOURCE_DIR "/scenarios/extreme/thin_floor.toml"), slots({"ours"}),
-                  StudyOptions{});
+      study_scene(load_scene(DROPCHECK_SOURCE_DIR "/scenarios/extreme/thin_floor.toml"),
+                  slots({"ours"}), StudyOptions{});
   CHECK(floor.engines.front().skipped == "no contacts");
   CHECK_THAT(stability_to_json(floor, {}),
              Contains("{\"engine\":\"ours\",\"skipped\":\"no contacts\"}"));

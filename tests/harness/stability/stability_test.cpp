@@ -204,9 +204,9 @@ TEST_CASE(
 
 TEST_CASE("Stability: the spring theory matches the iterated step matrix of each law",
           "[stability][theory]") {
-  // Iterates each law's exact step (harness/stability/stability_theory.cpp) for 4000 steps from a unit
-  // displacement at 0.5% inside and outside the predicted edge: inside stays below 1e3 x the start
-  // energy (the discrete ellipse's flattening), outside passes 1e6 x.
+  // Iterates each law's exact step (harness/stability/stability_theory.cpp) for 4000 steps from a
+  // unit displacement at 0.5% inside and outside the predicted edge: inside stays below 1e3 x the
+  // start energy (the discrete ellipse's flattening), outside passes 1e6 x.
   const std::vector<SpringModel> springs = {
       {60.0, 0.0, 0.0}, {60.0, 0.0, 20.0}, {60.0, 6.0, 20.0}, {10.0, 3.0, 1.2}, {60.0, 30.0, 0.0}};
   for (DampingOrder law :
