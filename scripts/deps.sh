@@ -4,7 +4,8 @@
 set -euo pipefail
 
 DROPCHECK_PACKAGES=(
-  cmake g++ make pkg-config            # build
+  cmake g++ gcc make pkg-config        # build (gcc: the C example engine in examples/c)
+  python3                              # the Python example engines and the bad-engine test doubles
   libeigen3-dev libtomlplusplus-dev    # ours, scene files
   catch2                               # tests
   libcli11-dev                         # command-line parsing (header-only CLI11)
