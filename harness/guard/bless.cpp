@@ -6,24 +6,12 @@
 #include <sstream>
 
 #include "harness/core/atomic_file.hpp"
+#include "harness/core/file_slug.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/guard/regression.hpp"
 
 namespace dropcheck {
 namespace {
-
-// The report's rule (harness/report/report_format.cpp file_slug), kept here so that guard/ does
-// not depend on report/.
-std::string slug(const std::string& name) {
-  std::string out;
-  for (char c : name) {
-    const bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-                      c == '-' || c == '_' || c == '.';
-    out += keep ? c : '_';
-  }
-  if (out.empty() || out[0] == '.') out.insert(out.begin(), '_');
-  return out;
-}
 
 std::string read_or_empty(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -48,7 +36,8 @@ std::string write_one(const Baseline& b, const std::string& dir) {
 
 std::string baseline_path(const std::string& dir, const std::string& scene,
                           const std::string& engine) {
-  return (std::filesystem::path(dir) / baseline_file_name(slug(scene), slug(engine))).string();
+  return (std::filesystem::path(dir) / baseline_file_name(file_slug(scene), file_slug(engine)))
+      .string();
 }
 
 std::vector<std::string> baseline_paths(const std::vector<Scene>& scenes,

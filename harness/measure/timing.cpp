@@ -39,9 +39,14 @@ std::vector<double> half(const std::vector<double>& v, std::size_t which) {
   return out;
 }
 
-// The full harness loop (forces, step, read, NaN check, a sample every step) as run_scene does it.
+// The full harness loop (forces, step, read, NaN check, a sample every step) as run_scene does it,
+// in this process: a child process would leave this thread idle while the engine runs, so every
+// run would look disturbed (wall time far beyond this thread's CPU time) and be measured twice.
+// Only engines whose isolated run at this step finished are timed (measure/evaluate.cpp).
 double time_full(Engine& engine, const Scene& scene, double h) {
-  return run_scene(engine, scene, h).wall_seconds;
+  RunOptions in_process;
+  in_process.isolation = Isolation::in_process;
+  return run_scene(engine, scene, h, in_process).wall_seconds;
 }
 
 // The engine alone: load, then step() only. An engine that throws ends the loop (its failure is

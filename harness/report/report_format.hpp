@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "harness/core/file_slug.hpp"
+
 namespace dropcheck {
 
 // A Markdown table. `align` holds 'l' or 'r' per column (numbers right-aligned); its last letter
@@ -44,8 +46,5 @@ std::string percent(double fraction);
 
 // A time t (s) of a first divergence; "never" when negative.
 std::string when(double t);
-
-// A name safe for a file: letters, digits, '-', '_' and '.' kept, everything else '_'.
-std::string file_slug(const std::string& name);
 
 }  // namespace dropcheck
