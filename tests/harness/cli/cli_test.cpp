@@ -6,21 +6,15 @@
 #include <string>
 #include <vector>
 
+#include "cli_driver.hpp"
+
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
 
 namespace {
 
-struct Result {
-  int code;
-  std::string out, err;
-};
-
-Result cli(const std::vector<std::string>& argv) {
-  std::ostringstream out, err;
-  const int code = dropcheck::cli_main(argv, out, err);
-  return {code, out.str(), err.str()};
-}
+using dropcheck::testing::cli;
+using dropcheck::testing::Result;
 
 }  // namespace
 

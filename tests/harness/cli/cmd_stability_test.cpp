@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_driver.hpp"
 #include "harness/cli/cli.hpp"
 
 using Catch::Matchers::Contains;
@@ -19,16 +20,8 @@ namespace {
 
 const std::string kSpring = DROPCHECK_SOURCE_DIR "/scenarios/extreme/stiff_spring.toml";
 
-struct Result {
-  int code;
-  std::string out, err;
-};
-
-Result cli(const std::vector<std::string>& argv) {
-  std::ostringstream out, err;
-  const int code = dropcheck::cli_main(argv, out, err);
-  return {code, out.str(), err.str()};
-}
+using dropcheck::testing::cli;
+using dropcheck::testing::Result;
 
 std::string read_all(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

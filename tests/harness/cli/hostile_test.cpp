@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "../test_dirs.hpp"
+#include "cli_driver.hpp"
 #include "harness/cli/cli.hpp"
 #include "harness/core/output_dir.hpp"
 #include "harness/core/signal_cleanup.hpp"
@@ -32,16 +33,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int code;
-  std::string out, err;
-};
-
-Result cli(const std::vector<std::string>& argv) {
-  std::ostringstream out, err;
-  const int code = dropcheck::cli_main(argv, out, err);
-  return {code, out.str(), err.str()};
-}
+using dropcheck::testing::cli;
+using dropcheck::testing::Result;
 
 void put(const std::string& path, const std::string& text) {
   fs::create_directories(fs::path(path).parent_path());

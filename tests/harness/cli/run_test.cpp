@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_driver.hpp"
 #include "harness/cli/cli.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
@@ -40,16 +41,8 @@ struct ScratchDir {
   std::string operator/(const std::string& name) const { return (path / name).string(); }
 };
 
-struct Result {
-  int code;
-  std::string out, err;
-};
-
-Result cli(const std::vector<std::string>& argv) {
-  std::ostringstream out, err;
-  const int code = dropcheck::cli_main(argv, out, err);
-  return {code, out.str(), err.str()};
-}
+using dropcheck::testing::cli;
+using dropcheck::testing::Result;
 
 std::string read_all(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
