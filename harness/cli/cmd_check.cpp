@@ -1,6 +1,7 @@
 // dropcheck check FILE... [--engine E]...
 // Runs every check that applies to each scene on each engine (harness/measure/checks.hpp) and
-// prints one line per check: PASS/FAIL, scene, engine, check, measured figures. Exit 1 if any check
+// prints one line per check: PASS/LIMIT/FAIL (LIMIT: passed, the engine met a limit of its own
+// law or design, named), scene, engine, check, measured figures. Exit 1 if any check
 // failed. An engine that cannot run a scene is printed as "skipped: <reason>" (ctest reports it
 // skipped).
 #include "args.hpp"
@@ -19,8 +20,9 @@ EngineFactory factory(const std::string& name) {
 }
 
 void print(const CheckResult& r, std::ostream& out) {
-  out << (r.passed ? "PASS  " : "FAIL  ") << r.scene << "  " << r.engine << "  " << r.check << ": "
-      << r.message << "\n";
+  const char* verdict = !r.passed ? "FAIL  " : r.limit.empty() ? "PASS  " : "LIMIT ";
+  out << verdict << r.scene << "  " << r.engine << "  " << r.check << ": "
+      << (r.limit.empty() ? "" : r.limit + "; ") << r.message << "\n";
 }
 
 }  // namespace

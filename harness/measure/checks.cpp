@@ -28,7 +28,7 @@ std::string vec(const Vec3& v) {
 }
 
 CheckResult result(const Scene& scene, const std::string& engine, const std::string& check) {
-  return {scene.name, engine, check, false, {}};
+  return {scene.name, engine, check, false, {}, {}};
 }
 
 // Where the verdict's worst departure lies, both states.

@@ -13,6 +13,10 @@ struct CheckResult {
   std::string scene, engine;
   std::string check;  // "own law at h = 1/60", "divergence from ours-f64", "landing", ...
   bool passed = false;
+  // Set on a passed check whose engine met a limit of its own law or design rather than a fault
+  // (its law is unstable at h, it has no continuous collision, ...): the cause, one sentence.
+  // Printed as LIMIT; never counted as a failure.
+  std::string limit;
   std::string message;  // the measured figures; on failure, what differs and where
 };
 
