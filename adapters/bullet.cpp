@@ -40,13 +40,13 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "adapters.hpp"
+#include "harness/core/number_format.hpp"
 #include "harness/measure/tolerances.hpp"
 
 namespace dropcheck {
@@ -119,13 +119,11 @@ std::string damping_problem(double k) {
   const double k_max = (std::log10(2.0 / std::numeric_limits<btScalar>::epsilon()) -
                         tolerance::kMinParameterDigits) *
                        std::log(10.0);
-  char why[320];
-  std::snprintf(why, sizeof why,
-                "engine limit: damping rate k = %g 1/s: Bullet's per-second damping keeps 1 - d = "
-                "exp(-k) to %.1f digits in %s (%g required: k <= %.1f 1/s), so its decay per step "
-                "would not be exp(-k*h)",
-                k, std::max(digits, 0.0), kPrecision, tolerance::kMinParameterDigits, k_max);
-  return why;
+  return fmt::sprintf(
+      "engine limit: damping rate k = %g 1/s: Bullet's per-second damping keeps 1 - d = "
+      "exp(-k) to %.1f digits in %s (%g required: k <= %.1f 1/s), so its decay per step "
+      "would not be exp(-k*h)",
+      k, std::max(digits, 0.0), kPrecision, tolerance::kMinParameterDigits, k_max);
 }
 
 class BulletEngine final : public Engine {

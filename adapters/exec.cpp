@@ -14,11 +14,11 @@
 
 #include <cctype>
 #include <charconv>
-#include <cstdio>
 #include <filesystem>
 
 #include "harness/core/child_process.hpp"
 #include "harness/core/input_error.hpp"
+#include "harness/core/number_format.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/trajectory_io.hpp"
 
@@ -81,9 +81,7 @@ std::string name_problem(const std::string& name) {
 }
 
 std::string format_seconds(double s) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g s", s);
-  return buf;
+  return sig(s, 6) + " s";
 }
 
 class ExecEngine final : public Engine {

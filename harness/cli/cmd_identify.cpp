@@ -9,17 +9,16 @@
 // Argument parsing (IdentifyRequest, parse_identify_request) is kept apart from the work
 // (run_identify) so that the CLI front end can change without touching the analysis.
 #include <cmath>
-#include <cstdio>
 
 #include "args.hpp"
 #include "cli.hpp"
 #include "harness/core/input_error.hpp"
+#include "harness/core/number_format.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/core/scene_loader.hpp"
 #include "harness/core/trajectory_csv.hpp"
 #include "harness/oracles/identify.hpp"
-#include "printf.hpp"
 #include "selection.hpp"
 
 namespace dropcheck {
@@ -68,7 +67,7 @@ Trajectory trajectory_from_file(const std::string& file) {
   if (runs.size() != 1) {
     std::string list;
     for (const Trajectory& t : runs)
-      list += (list.empty() ? "" : ", ") + t.engine + strprintf(" at dt %.6g", t.h);
+      list += (list.empty() ? "" : ", ") + t.engine + " at dt " + sig(t.h, 6);
     throw InputError(file, 0, "",
                      "holds " + std::to_string(runs.size()) + " runs (" + list +
                          "); identify reads one: dropcheck run SCENE --engine E --csv OUT");
@@ -77,13 +76,13 @@ Trajectory trajectory_from_file(const std::string& file) {
 }
 
 void print_fits(const Identification& id, std::ostream& out) {
-  out << strprintf("  %-24s %-38s %12s  %-32s %14s %14s\n", "member", "update", "phi",
-                   "gravity (m/s^2)", "max|x-fit| m", "max|v-fit| m/s");
+  out << fmt::sprintf("  %-24s %-38s %12s  %-32s %14s %14s\n", "member", "update", "phi",
+                      "gravity (m/s^2)", "max|x-fit| m", "max|v-fit| m/s");
   for (const MemberFit& m : id.fits) {
     const std::string g =
-        strprintf("(%.6g, %.6g, %.6g)", m.gravity.x(), m.gravity.y(), m.gravity.z());
-    out << strprintf("  %-24s %-38s %12.9f  %-32s %14.3g %14.3g\n", law_key(m.law).c_str(),
-                     to_string(m.law).c_str(), m.phi, g.c_str(), m.max_dx, m.max_dv);
+        fmt::sprintf("(%.6g, %.6g, %.6g)", m.gravity.x(), m.gravity.y(), m.gravity.z());
+    out << fmt::sprintf("  %-24s %-38s %12.9f  %-32s %14.3g %14.3g\n", law_key(m.law).c_str(),
+                        to_string(m.law).c_str(), m.phi, g.c_str(), m.max_dx, m.max_dv);
   }
 }
 
@@ -108,21 +107,20 @@ bool print_verdict(const Identification& id, std::ostream& out) {
   const MemberFit& next = id.fits[id.runner_up];
   if (!id.fits_any) {
     out << "no member fits better than 2 cm: not a fixed-step Euler scheme (closest: "
-        << law_key(best.law) << strprintf(" at %.3g m)\n", best.max_dx);
+        << law_key(best.law) << " at " << g3(best.max_dx) << " m)\n";
     return false;
   }
   if (id.ambiguous) {
-    out << "ambiguous: " << law_key(best.law) << strprintf(" (%.3g m) and ", best.max_dx)
-        << law_key(next.law)
-        << strprintf(" (%.3g m) fit equally well: this scene cannot tell them apart", next.max_dx)
-        << hint(id) << "\n";
+    out << "ambiguous: " << law_key(best.law) << " (" << g3(best.max_dx) << " m) and "
+        << law_key(next.law) << " (" << g3(next.max_dx)
+        << " m) fit equally well: this scene cannot tell them apart" << hint(id) << "\n";
     return false;
   }
   out << "best fit: " << law_key(best.law) << " (" << to_string(best.law) << ")"
-      << strprintf(": residual %.3g m, phi = %.9g, ", best.max_dx, best.phi)
-      << strprintf("g = (%.6g, %.6g, %.6g); runner-up ", best.gravity.x(), best.gravity.y(),
-                   best.gravity.z())
-      << law_key(next.law) << strprintf(" at %.3g m\n", next.max_dx);
+      << fmt::sprintf(": residual %.3g m, phi = %.9g, ", best.max_dx, best.phi)
+      << fmt::sprintf("g = (%.6g, %.6g, %.6g); runner-up ", best.gravity.x(), best.gravity.y(),
+                      best.gravity.z())
+      << law_key(next.law) << " at " << g3(next.max_dx) << " m\n";
   return true;
 }
 
@@ -146,7 +144,8 @@ int run_identify(const IdentifyRequest& r, std::ostream& out) {
   }
   const Identification id = identify_law(scene, run);
   out << "identify " << scene.name << ": trajectory of " << run.engine << ", " << run.bodies()
-      << " bodies, " << run.steps << " steps" << strprintf(" at h = %.9g s\n", run.h);
+      << " bodies, " << run.steps << " steps"
+      << " at h = " << sig(run.h, 9) << " s\n";
   print_fits(id, out);
   bool ok = print_verdict(id, out);
   if (declared) {

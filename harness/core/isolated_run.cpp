@@ -18,6 +18,7 @@
 #include <string>
 #include <system_error>
 
+#include "harness/core/number_format.hpp"
 #include "harness/core/run_limits.hpp"
 #include "harness/core/trajectory_wire.hpp"
 
@@ -258,9 +259,7 @@ Trajectory child_failure(Trajectory t, int status, const ChildPipes& pipes, cons
   const std::string said = line.empty() ? "" : " (" + line + ")";
   if (pipes.timed_out()) {
     t.status = RunStatus::timed_out;
-    char secs[32];
-    std::snprintf(secs, sizeof secs, "%g", limit);
-    t.failure = "no result within the limit of " + std::string(secs) + " s; killed " + at;
+    t.failure = "no result within the limit of " + sig(limit, 6) + " s; killed " + at;
   } else if (status != -1 && WIFSIGNALED(status)) {
     t.status = RunStatus::crashed;
     t.failure = signal_name(WTERMSIG(status)) + " " + at + said;

@@ -2,20 +2,13 @@
 
 #include <cfloat>
 #include <cmath>
-#include <cstdio>
 #include <vector>
 
+#include "harness/core/number_format.hpp"
 #include "harness/core/timestep.hpp"
 
 namespace dropcheck {
 namespace {
-
-// "%.3g" of a double.
-std::string short_number(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
 
 // A scene value an engine receives, named as a user reads it.
 struct NamedValue {
@@ -56,8 +49,8 @@ std::vector<NamedValue> engine_values(const Scene& scene) {
 std::string step_refusal(const Scene& scene, double h) {
   const double n = scene.duration / h;
   if (n <= static_cast<double>(kMaxSteps)) return "";
-  return short_number(n) + " steps at h = " + short_number(h) + " s exceed the limit of " +
-         std::to_string(kMaxSteps) + " steps per run";
+  return g3(n) + " steps at h = " + g3(h) + " s exceed the limit of " + std::to_string(kMaxSteps) +
+         " steps per run";
 }
 
 std::string memory_refusal(const Scene& scene, double h, const RunOptions& options) {
@@ -65,10 +58,9 @@ std::string memory_refusal(const Scene& scene, double h, const RunOptions& optio
       static_cast<double>(recorded_samples(step_count(scene, h), options.record_every));
   const double bytes = trajectory_bytes(samples, scene.bodies.size());
   if (bytes <= static_cast<double>(kTrajectoryBudgetBytes)) return "";
-  return "the recorded trajectory would take " + short_number(bytes / (1 << 30)) + " GiB (" +
-         short_number(samples) + " samples x " + std::to_string(scene.bodies.size()) +
-         " bodies), over the budget of " +
-         short_number(double(kTrajectoryBudgetBytes) / (1 << 30)) +
+  return "the recorded trajectory would take " + g3(bytes / (1 << 30)) + " GiB (" + g3(samples) +
+         " samples x " + std::to_string(scene.bodies.size()) + " bodies), over the budget of " +
+         g3(double(kTrajectoryBudgetBytes) / (1 << 30)) +
          " GiB per run; shorten the duration, use a larger step or record fewer steps";
 }
 
@@ -76,8 +68,8 @@ std::string float_refusal(const EngineInfo& engine, const Scene& scene) {
   if (engine.scalar != Scalar::f32) return "";
   for (const NamedValue& v : engine_values(scene))
     if (std::abs(v.value) > static_cast<double>(FLT_MAX))
-      return v.name + " = " + short_number(v.value) + " exceeds the float range of " + engine.name +
-             " (f32, largest " + short_number(FLT_MAX) + ")";
+      return v.name + " = " + g3(v.value) + " exceeds the float range of " + engine.name +
+             " (f32, largest " + g3(FLT_MAX) + ")";
   return "";
 }
 

@@ -3,15 +3,14 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <set>
-#include <sstream>
 
 #include "harness/core/bounded_read.hpp"
+#include "harness/core/number_format.hpp"
 #include "harness/core/timestep.hpp"
 
 namespace dropcheck {
@@ -94,9 +93,7 @@ class Reader {
       text = *n.value<std::string>();
     } else if (n.is_number()) {
       // Shortest text that reads back to the same double: 0.1 stays "0.1" in messages and output.
-      char buf[32];
-      const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, number(key, n));
-      text.assign(buf, ec == std::errc() ? end : buf);
+      text = shortest(number(key, n));
     } else {
       fail(key, std::string("expected seconds or \"1/N\", got ") + type_name(n), &n);
     }
@@ -124,11 +121,8 @@ class Reader {
         return "a date or time";
     }
   }
-  static std::string format(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-  }
+  // A number in a message: 6 significant digits, as the user would print it.
+  static std::string format(double v) { return sig(v, 6); }
 
   const std::string& file() const { return file_; }
   const toml::table& table() const { return table_; }

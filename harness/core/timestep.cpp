@@ -2,7 +2,8 @@
 
 #include <charconv>
 #include <cmath>
-#include <cstdio>
+
+#include "harness/core/number_format.hpp"
 
 namespace dropcheck {
 namespace {
@@ -42,9 +43,7 @@ std::string step_problem(double duration, double h) {
   const double n = duration / h;
   if (n > static_cast<double>(kMaxSteps)) {
     // %.15g, not llround: a count beyond 2^63 (duration = 1e300) has no integer to round to.
-    char count[32];
-    std::snprintf(count, sizeof count, "%.15g", std::round(n));
-    return "duration / step = " + std::string(count) + " steps, more than the limit of " +
+    return "duration / step = " + sig(std::round(n), 15) + " steps, more than the limit of " +
            std::to_string(kMaxSteps);
   }
   if (std::abs(n - std::round(n)) > 1e-9 * n)

@@ -1,8 +1,9 @@
 #include "harness/core/trajectory_io.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <nlohmann/json.hpp>
+
+#include "harness/core/number_format.hpp"
 
 namespace dropcheck {
 namespace {
@@ -54,12 +55,6 @@ Json run_json(const Trajectory& t) {
 }
 
 }  // namespace
-
-std::string exact(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
 
 std::string trajectories_to_csv(std::span<const Trajectory> runs) {
   std::string out = "engine,dt,step,t,body,x,y,z,vx,vy,vz\n";

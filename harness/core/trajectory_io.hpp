@@ -15,7 +15,4 @@ std::string trajectories_to_csv(std::span<const Trajectory> runs);
 // {"runs":[{"engine","scene","dt","steps","status",...,"final":[...]}]} with every sample.
 std::string trajectories_to_json(std::span<const Trajectory> runs);
 
-// A double printed with %.17g (round-trips exactly).
-std::string exact(double v);
-
 }  // namespace dropcheck

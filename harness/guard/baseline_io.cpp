@@ -11,6 +11,7 @@
 
 #include "harness/core/bounded_read.hpp"
 #include "harness/core/input_error.hpp"
+#include "harness/core/number_format.hpp"
 #include "harness/core/trajectory_io.hpp"
 #include "harness/guard/baseline.hpp"
 

@@ -2,8 +2,8 @@
 #include "harness/guard/regression.hpp"
 
 #include <cmath>
-#include <cstdio>
 
+#include "harness/core/number_format.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/core/trajectory_hash.hpp"
 #include "harness/core/trajectory_io.hpp"
@@ -11,12 +11,6 @@
 
 namespace dropcheck {
 namespace {
-
-std::string g3(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
 
 std::string prefix(const Baseline& b, Tier tier) {
   return b.scene + " / " + b.engine + " / " + to_string(tier) + ": ";

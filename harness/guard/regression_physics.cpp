@@ -8,9 +8,9 @@
 // e(h) = C*h + O(h^2), so p = log2(e(h)/e(h/2)) -> 1 (tolerance::kFirstOrderLow..High).
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <vector>
 
+#include "harness/core/number_format.hpp"
 #include "harness/guard/regression.hpp"
 #include "harness/measure/metrics.hpp"
 #include "harness/measure/sweep.hpp"
@@ -18,12 +18,6 @@
 
 namespace dropcheck {
 namespace {
-
-std::string g3(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
 
 // Oracle 1 over the sweep (largest step first); nullopt without a closed form.
 std::optional<OrderEstimate> analytic_order(const Baseline& b) {

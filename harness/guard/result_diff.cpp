@@ -1,11 +1,11 @@
 #include "harness/guard/result_diff.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <set>
 
 #include "harness/core/input_error.hpp"
+#include "harness/core/number_format.hpp"
 #include "harness/guard/regression.hpp"
 
 namespace dropcheck {
@@ -13,12 +13,9 @@ namespace {
 
 // Readable numbers: 3 significant digits for errors, 9 for coordinates ("-" for NaN).
 std::string digits(double v, int n) {
-  if (std::isnan(v)) return "-";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.*g", n, v);
-  return buf;
+  return std::isnan(v) ? "-" : sig(v, n);
 }
-std::string g3(double v) {
+std::string g3_or_dash(double v) {
   return digits(v, 3);
 }
 
@@ -44,10 +41,12 @@ std::string movement_cells(const Baseline& before, const Baseline& after) {
   const SampleDiff d = diff_samples(before.samples, after.samples, tol);
   if (!d.incomparable.empty()) return "- | " + d.incomparable;
   std::string cells =
-      d.max_dx == 0.0 ? "0 m | " : g3(d.max_dx) + " m (step " + std::to_string(d.max_step) + ") | ";
-  if (d.first_step < 0) return cells + "- (tolerance " + g3(tol) + " m)";
+      d.max_dx == 0.0 ? "0 m | "
+                      : g3_or_dash(d.max_dx) + " m (step " + std::to_string(d.max_step) + ") | ";
+  if (d.first_step < 0) return cells + "- (tolerance " + g3_or_dash(tol) + " m)";
   return cells + "step " + std::to_string(d.first_step) + ", " + d.first_body + "." + d.component +
-         ": " + digits(d.before, 9) + " -> " + digits(d.after, 9) + " (" + g3(d.first_delta) + ")";
+         ": " + digits(d.before, 9) + " -> " + digits(d.after, 9) + " (" +
+         g3_or_dash(d.first_delta) + ")";
 }
 
 std::string summary_row(const Baseline* before, const Baseline* after) {
@@ -76,9 +75,10 @@ std::string curve_rows(const Baseline& before, const Baseline& after, bool timin
       continue;
     }
     rows += "| " + after.scene + " | " + after.engine + " | " + a.dt.text + " | " +
-            g3(b->analytic_max_dx) + " | " + g3(a.analytic_max_dx) + " | " +
-            g3(a.analytic_max_dx / b->analytic_max_dx);
-    if (timing) rows += " | " + g3(b->wall_min * 1e3) + " | " + g3(a.wall_min * 1e3);
+            g3_or_dash(b->analytic_max_dx) + " | " + g3_or_dash(a.analytic_max_dx) + " | " +
+            g3_or_dash(a.analytic_max_dx / b->analytic_max_dx);
+    if (timing)
+      rows += " | " + g3_or_dash(b->wall_min * 1e3) + " | " + g3_or_dash(a.wall_min * 1e3);
     rows += " |\n";
   }
   return rows;
@@ -177,8 +177,8 @@ std::string diff_markdown(const ResultSet& before, const ResultSet& after) {
   std::string out = "# dropcheck diff\n\nBefore: `" + before.dir + "`, after: `" + after.dir +
                     "`. " + std::to_string(moved) + " of " + std::to_string(files.size()) +
                     " scene/engine runs moved beyond tolerance (" +
-                    g3(regression_tolerance(Scalar::f64)) + " m for f64, " +
-                    g3(regression_tolerance(Scalar::f32)) + " m for f32).\n\n";
+                    g3_or_dash(regression_tolerance(Scalar::f64)) + " m for f64, " +
+                    g3_or_dash(regression_tolerance(Scalar::f32)) + " m for f32).\n\n";
   out +=
       "| scene | engine | verdict | max \\|dx\\| | first step over tolerance | hash before -> "
       "after |\n";

@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+
+#include "harness/core/number_format.hpp"
 
 namespace dropcheck {
 namespace {
@@ -71,26 +72,7 @@ Attribution attribute(const RunWithLaws& e, const RunWithLaws& r) {
   return a;
 }
 
-std::string format_length(double m) {
-  char buf[48];
-  const double x = std::abs(m);
-  if (x == 0.0) return "0 m";
-  if (!std::isfinite(x)) return "inf";
-  if (x >= 1.0)
-    std::snprintf(buf, sizeof buf, "%.3g m", m);
-  else if (x >= 1e-2)
-    std::snprintf(buf, sizeof buf, "%.3g cm", m * 1e2);
-  else if (x >= 1e-3)
-    std::snprintf(buf, sizeof buf, "%.3g mm", m * 1e3);
-  else if (x >= 1e-6)
-    std::snprintf(buf, sizeof buf, "%.3g um", m * 1e6);
-  else
-    std::snprintf(buf, sizeof buf, "%.2g m", m);
-  return buf;
-}
-
 std::string Attribution::sentence() const {
-  char buf[512];
   std::string why;
   const std::string precision = "precision part " + format_length(precision_part);
   if (total == 0.0) {
@@ -100,30 +82,22 @@ std::string Attribution::sentence() const {
     std::string who;
     for (const OwnLawVerdict* v : {&engine_law, &reference_law})
       who += (who.empty() ? "" : "; ") + (departs(*v) ? departure(*v) : follows(*v));
-    std::snprintf(buf, sizeof buf, "UNEXPLAINED residual %s: %s; the laws explain %s, %s",
-                  format_length(residual).c_str(), who.c_str(), format_length(law_part).c_str(),
-                  precision.c_str());
-    why = buf;
+    why = fmt::sprintf("UNEXPLAINED residual %s: %s; the laws explain %s, %s",
+                       format_length(residual), who, format_length(law_part), precision);
   } else if (law_part <= budget) {
     // Same discrete law (or laws that differ by less than rounding): nothing for the laws to split.
-    std::snprintf(
-        buf, sizeof buf,
+    why = fmt::sprintf(
         "the two discrete laws agree, so all of it is rounding (%s; residual %s, budget %s)",
-        precision.c_str(), format_length(residual).c_str(), format_length(budget).c_str());
-    why = buf;
+        precision, format_length(residual), format_length(budget));
   } else {
     const double share = law_part >= total ? 100.0 : 100.0 * law_part / total;
-    std::snprintf(
-        buf, sizeof buf,
+    why = fmt::sprintf(
         "%s from the two discrete laws (damping order); %s; residual %s, within rounding",
-        share >= 99.95 ? "all of it" : (std::to_string(static_cast<int>(share)) + "%").c_str(),
-        precision.c_str(), format_length(residual).c_str());
-    why = buf;
+        share >= 99.95 ? "all of it" : std::to_string(static_cast<int>(share)) + "%", precision,
+        format_length(residual));
   }
-  std::snprintf(buf, sizeof buf, "%s vs %s: %s at t = %g s (max %s), %s", engine.c_str(),
-                reference.c_str(), format_length(final_total).c_str(), final_t,
-                format_length(total).c_str(), why.c_str());
-  std::string out = buf;
+  std::string out = fmt::sprintf("%s vs %s: %s at t = %g s (max %s), %s", engine, reference,
+                                 format_length(final_total), final_t, format_length(total), why);
   if (clamped_from >= 0)
     out += "; a speed clamp reported by the engine at step " + std::to_string(clamped_from) +
            " ends the comparison there (clamp, not a departure)";

@@ -51,7 +51,4 @@ struct Attribution {
 // Both runs at the same h and recorded steps.
 Attribution attribute(const RunWithLaws& engine, const RunWithLaws& reference);
 
-// A length in readable units: "6.96 cm", "3.1e-15 m", "0 m".
-std::string format_length(double metres);
-
 }  // namespace dropcheck

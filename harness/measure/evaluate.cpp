@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <map>
 
+#include "harness/core/number_format.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/core/timestep.hpp"
 #include "harness/core/trajectory_hash.hpp"
@@ -64,15 +64,7 @@ std::optional<Timestep> fine_step(const Scene& scene, const Timestep& finest, in
   for (; factor >= 2; factor /= 2) {
     const double h = finest.seconds / factor;
     if (!step_problem(scene.duration, h).empty()) continue;
-    char text[64];
-    // N*factor only while it fits a long long (N = 2^62 once printed 1/-2446744073709551616).
-    const long long n = std::atoll(finest.text.c_str() + 2);
-    if (finest.text.rfind("1/", 0) == 0 && n > 0 &&
-        n <= std::numeric_limits<long long>::max() / factor)
-      std::snprintf(text, sizeof text, "1/%lld", n * factor);
-    else
-      std::snprintf(text, sizeof text, "%.6g", h);
-    return Timestep{h, text};
+    return Timestep{h, divided_step_text(finest.text, finest.seconds, factor)};
   }
   return std::nullopt;
 }

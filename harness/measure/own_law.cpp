@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
+#include "harness/core/number_format.hpp"
 #include "harness/measure/attribution.hpp"
 #include "harness/measure/tolerances.hpp"
 #include "harness/oracles/discrete_law.hpp"
@@ -15,12 +15,6 @@ namespace {
 // Machine epsilon of the scalar: the spacing of numbers in [1, 2).
 double epsilon(Scalar s) {
   return s == Scalar::f32 ? 0x1p-23 : 0x1p-52;
-}
-
-std::string g3(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
 }
 
 struct Scales {

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
+#include "harness/core/number_format.hpp"
 #include "harness/measure/attribution.hpp"
 #include "harness/measure/metrics.hpp"
 #include "harness/measure/tolerances.hpp"
@@ -11,17 +11,9 @@
 namespace dropcheck {
 namespace {
 
-std::string g(const char* format, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
-
 // h/n written as "1/(N*n)" when h is "1/N", else in seconds.
 Timestep divided(const Timestep& h, int n) {
-  if (h.text.rfind("1/", 0) == 0)
-    return {h.seconds / n, "1/" + std::to_string(std::atoll(h.text.c_str() + 2) * n)};
-  return {h.seconds / n, g("%.6g", h.seconds / n)};
+  return {h.seconds / n, divided_step_text(h.text, h.seconds, n)};
 }
 
 }  // namespace
@@ -70,9 +62,10 @@ OrderEstimate estimate_order(std::span<const double> h, std::span<const double> 
   o.text = "max |dx| ";
   for (std::size_t i = 0; i < e.size(); ++i) o.text += (i ? ", " : "") + format_length(e[i]);
   o.text += " at h = ";
-  for (std::size_t i = 0; i < h.size(); ++i) o.text += (i ? ", " : "") + g("%.4g", h[i]);
+  for (std::size_t i = 0; i < h.size(); ++i) o.text += (i ? ", " : "") + sig(h[i], 4);
   o.text += "; observed orders";
-  for (double p : o.orders) o.text += std::isfinite(p) ? g(" %.3f", p) : std::string(" undefined");
+  for (double p : o.orders)
+    o.text += std::isfinite(p) ? " " + fixed(p, 3) : std::string(" undefined");
   return o;
 }
 

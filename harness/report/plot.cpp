@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "harness/core/atomic_file.hpp"
+#include "harness/core/number_format.hpp"
 
 namespace dropcheck {
 namespace {
@@ -80,12 +81,6 @@ std::string axes(const PlotSpec& spec) {
   return s.str();
 }
 
-std::string strf_width(double w) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2g", w);
-  return buf;
-}
-
 // The plot command: one element per drawable series, plus its point labels.
 std::string plot_command(const PlotSpec& spec, const std::string& data_file) {
   std::ostringstream s;
@@ -98,8 +93,8 @@ std::string plot_command(const PlotSpec& spec, const std::string& data_file) {
     const char* dash = kDashes[line.dash % std::size(kDashes)];
     s << sep << quoted(data_file) << " index " << block << " using 1:2 with "
       << (spec.points ? "linespoints pointtype 7 pointsize 0.6" : "lines") << " linewidth "
-      << strf_width(line.width) << " linecolor rgb '" << colour << "' dashtype " << dash
-      << " title " << quoted(line.title);
+      << sig(line.width, 2) << " linecolor rgb '" << colour << "' dashtype " << dash << " title "
+      << quoted(line.title);
     if (!line.labels.empty())
       s << ", " << quoted(data_file) << " index " << block
         << " using 1:2:3 with labels offset char 0.8,0.6 font 'sans,8' textcolor rgb '" << colour
@@ -163,14 +158,12 @@ bool drawable(const PlotSpec& spec) {
 
 std::string gnuplot_data(const PlotSpec& spec) {
   std::ostringstream s;
-  char row[160];
   for (const PlotSeries& line : spec.series) {
     if (!series_drawable(spec, line)) continue;
     s << "# " << plot_text(line.title) << "\n";
     for (std::size_t i = 0; i < line.x.size(); ++i) {
       if (!point_ok(spec, line.x[i], line.y[i])) continue;
-      std::snprintf(row, sizeof row, "%.9g %.9g", line.x[i], line.y[i]);
-      s << row;
+      s << sig(line.x[i], 9) << " " << sig(line.y[i], 9);
       if (!line.labels.empty()) s << " \"" << data_label(line.labels[i]) << "\"";
       s << "\n";
     }

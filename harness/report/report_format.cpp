@@ -2,10 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdarg>
-#include <cstdio>
-
-#include "harness/measure/attribution.hpp"
 
 namespace dropcheck {
 
@@ -36,19 +32,8 @@ std::string MarkdownTable::str() const {
   return out;
 }
 
-std::string strf(const char* format, ...) {
-  char buf[1024];
-  va_list args;
-  va_start(args, format);
-  std::vsnprintf(buf, sizeof buf, format, args);
-  va_end(args);
-  return buf;
-}
-
-std::string g3(double v) {
-  if (std::isnan(v)) return kNone;
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  return strf("%.3g", v);
+std::string cell(double v) {
+  return std::isnan(v) ? kNone : g3(v);
 }
 
 std::string length(double metres) {
@@ -56,15 +41,15 @@ std::string length(double metres) {
 }
 
 std::string order(double p) {
-  return std::isfinite(p) ? strf("%.2f", p) : kNone;
+  return std::isfinite(p) ? fixed(p, 2) : kNone;
 }
 
 std::string percent(double fraction) {
-  return std::isfinite(fraction) ? strf("%+.0f%%", 100.0 * fraction) : kNone;
+  return std::isfinite(fraction) ? fmt::sprintf("%+.0f%%", 100.0 * fraction) : kNone;
 }
 
 std::string when(double t) {
-  return t < 0.0 ? "never" : strf("%.4g", t);
+  return t < 0.0 ? "never" : sig(t, 4);
 }
 
 }  // namespace dropcheck

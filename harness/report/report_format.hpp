@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "harness/core/file_slug.hpp"
+#include "harness/core/number_format.hpp"
 
 namespace dropcheck {
 
@@ -29,13 +30,10 @@ class MarkdownTable {
 // The dash shown where a figure does not exist.
 inline constexpr const char* kNone = "—";
 
-// printf into a std::string (for one-off fixed formats).
-std::string strf(const char* format, ...) __attribute__((format(printf, 1, 2)));
+// A figure in a table cell: g3 (number_format.hpp), "—" for NaN.
+std::string cell(double v);
 
-// "%.3g", "—" for NaN, "inf"/"-inf".
-std::string g3(double v);
-
-// A length with its unit (attribution.hpp format_length); "—" for NaN.
+// A length with its unit (number_format.hpp format_length); "—" for NaN.
 std::string length(double metres);
 
 // An observed order "%.2f"; "—" for NaN (zero error, nothing to measure).

@@ -11,7 +11,7 @@ namespace dropcheck {
 namespace {
 
 std::string time_or_never(double t) {
-  return std::isnan(t) ? "never" : strf("%.4g", t);
+  return std::isnan(t) ? "never" : sig(t, 4);
 }
 
 std::vector<std::string> landing_row(const EngineEvaluation& ev, const Scene& scene,
@@ -23,10 +23,10 @@ std::vector<std::string> landing_row(const EngineEvaluation& ev, const Scene& sc
           touched ? time_or_never(o.first_contact_time) : "never",
           time_or_never(l.setup.contact_time),
           time_or_never(l.law_contact_time),
-          g3(o.deepest),
-          g3(o.rebound - ev.info.rest_offset),
-          g3(o.rest_offset),
-          g3(ev.info.rest_offset) + " ± " + g3(ev.info.rest_tolerance),
+          cell(o.deepest),
+          cell(o.rebound - ev.info.rest_offset),
+          cell(o.rest_offset),
+          cell(ev.info.rest_offset) + " ± " + cell(ev.info.rest_tolerance),
           rest_offset_expected(ev, l) ? "yes" : "**NO**",
           o.still ? "yes" : "**NO**"};
 }

@@ -14,7 +14,7 @@ namespace {
 const char* kTimed = "⏱ ";  // marks the columns that hold wall-clock timings
 
 std::string vec3(const Vec3& v) {
-  return strf("(%g, %g, %g)", v.x(), v.y(), v.z());
+  return fmt::sprintf("(%g, %g, %g)", v.x(), v.y(), v.z());
 }
 
 std::string sweep_text(const SceneEvaluation& se) {
@@ -31,8 +31,8 @@ std::string bodies_text(const Scene& scene) {
       s += b.name + " (static, half extents " + vec3(b.half_extents) + " m, at " +
            vec3(b.position) + " m)";
     } else {
-      s += b.name + strf(" (%g kg, half extents ", b.mass) + vec3(b.half_extents) + " m, from " +
-           vec3(b.position) + " m at " + vec3(b.velocity) + " m/s)";
+      s += b.name + fmt::sprintf(" (%g kg, half extents ", b.mass) + vec3(b.half_extents) +
+           " m, from " + vec3(b.position) + " m at " + vec3(b.velocity) + " m/s)";
     }
   }
   return s;
@@ -45,8 +45,8 @@ std::string force_text(const Scene& scene, const Force& f) {
     return "constant " + vec3(c->force) + " N on " + on;
   const Spring& s = std::get<Spring>(f.law);
   return "spring to " + vec3(s.anchor) +
-         strf(" m, stiffness %g N/m, damping %g N*s/m, rest length %g m on ", s.stiffness,
-              s.damping, s.rest_length) +
+         fmt::sprintf(" m, stiffness %g N/m, damping %g N*s/m, rest length %g m on ", s.stiffness,
+                      s.damping, s.rest_length) +
          on;
 }
 
@@ -79,12 +79,12 @@ std::vector<std::string> left_out(const SceneEvaluation& se) {
 std::string intro(const SceneEvaluation& se) {
   const Scene& s = se.scene;
   std::string md = s.description.empty() ? "" : s.description + "\n\n";
-  md += "- File: `" + s.source + "`; " + strf("%g s", s.duration) + " at h = " + s.timestep.text +
-        strf(" (%lld steps)", static_cast<long long>(step_count(s, s.timestep.seconds))) +
+  md += "- File: `" + s.source + "`; " + sig(s.duration, 6) + " s" + " at h = " + s.timestep.text +
+        fmt::sprintf(" (%lld steps)", static_cast<long long>(step_count(s, s.timestep.seconds))) +
         "; sweep " + sweep_text(se) + "; divergence tolerance " + length(s.tolerance) + ".\n";
   md += "- World: gravity " + vec3(s.world.gravity) +
-        strf(" m/s^2; damping k = %.6g 1/s", s.world.damping_rate) +
-        strf(" (phi = %.6g per step at h = ", decay_per_step(s, s.timestep.seconds)) +
+        fmt::sprintf(" m/s^2; damping k = %.6g 1/s", s.world.damping_rate) +
+        fmt::sprintf(" (phi = %.6g per step at h = ", decay_per_step(s, s.timestep.seconds)) +
         s.timestep.text + "); contacts " + (s.world.contacts ? "on" : "off") + ".\n";
   md += "- Bodies: " + bodies_text(s) + ".\n";
   for (const Force& f : s.forces) md += "- Force: " + force_text(s, f) + ".\n";
@@ -113,8 +113,8 @@ std::string divergence_table(const SceneEvaluation& se) {
     for (std::size_t b = 0; b < st.reference_by_body.size(); ++b) {
       if (se.scene.bodies[b].is_static) continue;
       const ErrorStats& e = st.reference_by_body[b];
-      t.add({ev.name, se.scene.bodies[b].name, g3(e.max_dx), g3(e.rms_dx), g3(e.final_dx),
-             g3(e.max_dv), g3(e.rms_dv), g3(e.final_dv), when(e.diverged_at)});
+      t.add({ev.name, se.scene.bodies[b].name, cell(e.max_dx), cell(e.rms_dx), cell(e.final_dx),
+             cell(e.max_dv), cell(e.rms_dv), cell(e.final_dv), when(e.diverged_at)});
     }
   }
   return t.str();
@@ -128,7 +128,7 @@ std::string attribution_lines(const SceneEvaluation& se) {
     const std::string until =
         st.attributed_until < 0.0
             ? ""
-            : "Before first contact (t <= " + strf("%.4g", st.attributed_until) + " s): ";
+            : "Before first contact (t <= " + sig(st.attributed_until, 4) + " s): ";
     md += "- " + until + st.attribution->sentence() + " Cause: " + divergence_cause(se, ev) + ".\n";
   }
   return md.empty() ? md
@@ -166,13 +166,14 @@ std::vector<std::string> oracle_row(const EngineEvaluation& ev) {
   const StepEvaluation& st = ev.at_default();
   std::vector<std::string> r{ev.name};
   if (const auto& a = st.vs_analytic)
-    r.insert(r.end(), {g3(a->max_dx), g3(a->final_dx), g3(a->max_dv)});
+    r.insert(r.end(), {cell(a->max_dx), cell(a->final_dx), cell(a->max_dv)});
   if (const auto& l = st.vs_law) {
     const bool ok = st.own_law && st.own_law->follows();
-    r.insert(r.end(), {g3(l->max_dx), g3(l->max_dv), g3(st.law_budget), ok ? "yes" : "**NO**"});
+    r.insert(r.end(),
+             {cell(l->max_dx), cell(l->max_dv), cell(st.law_budget), ok ? "yes" : "**NO**"});
   }
   if (const auto& f = st.vs_fine)
-    r.insert(r.end(), {g3(f->max_dx), g3(f->final_dx), g3(f->max_dv)});
+    r.insert(r.end(), {cell(f->max_dx), cell(f->final_dx), cell(f->max_dv)});
   return r;
 }
 
@@ -189,18 +190,18 @@ std::vector<std::string> sweep_row(const SceneEvaluation& se, const StepEvaluati
                                    bool timing) {
   std::string status = to_string(st.run.status);
   if (st.run.clamped_steps)
-    status += strf(", clamped on %lld steps", static_cast<long long>(st.run.clamped_steps));
-  std::vector<std::string> r{st.h.text, strf("%lld", static_cast<long long>(st.run.steps)), status,
-                             g3(st.continuous_error())};
-  if (!se.reference.empty()) r.push_back(st.vs_reference ? g3(st.vs_reference->max_dx) : kNone);
+    status += fmt::sprintf(", clamped on %lld steps", static_cast<long long>(st.run.clamped_steps));
+  std::vector<std::string> r{st.h.text, std::to_string(st.run.steps), status,
+                             cell(st.continuous_error())};
+  if (!se.reference.empty()) r.push_back(st.vs_reference ? cell(st.vs_reference->max_dx) : kNone);
   if (!timing) return r;
   if (!st.timing) return r;
   const Timing& t = *st.timing;
-  r.insert(
-      r.end(),
-      {g3(t.median_per_sim_s * 1e3), g3(t.q1_per_sim_s * 1e3) + " .. " + g3(t.q3_per_sim_s * 1e3),
-       g3(t.min_per_sim_s * 1e3), percent(t.half_spread()), g3(t.bare_median_per_sim_s * 1e3),
-       percent(t.overhead()), strf("%d x %d", t.samples, t.replicas)});
+  r.insert(r.end(), {cell(t.median_per_sim_s * 1e3),
+                     cell(t.q1_per_sim_s * 1e3) + " .. " + cell(t.q3_per_sim_s * 1e3),
+                     cell(t.min_per_sim_s * 1e3), percent(t.half_spread()),
+                     cell(t.bare_median_per_sim_s * 1e3), percent(t.overhead()),
+                     fmt::sprintf("%d x %d", t.samples, t.replicas)});
   return r;
 }
 
@@ -276,13 +277,12 @@ std::string failures(const SceneEvaluation& se) {
     for (const StepEvaluation& st : ev.sweep) {
       if (st.run.status != RunStatus::ok)
         md += "- " + ev.name + " at h = " + st.h.text + ": " + to_string(st.run.status) +
-              " at step " + strf("%lld", static_cast<long long>(st.run.failed_step)) + ": " +
-              st.run.failure + ".\n";
+              " at step " + std::to_string(st.run.failed_step) + ": " + st.run.failure + ".\n";
       if (st.run.clamped_steps)
         md += "- " + ev.name + " at h = " + st.h.text +
-              strf(": speed clamped on %lld steps, first at step %lld.\n",
-                   static_cast<long long>(st.run.clamped_steps),
-                   static_cast<long long>(st.run.first_clamped_step));
+              fmt::sprintf(": speed clamped on %lld steps, first at step %lld.\n",
+                           static_cast<long long>(st.run.clamped_steps),
+                           static_cast<long long>(st.run.first_clamped_step));
     }
     if (se.uses_fine && ev.ran() && ev.fine.status != RunStatus::ok)
       md += "- " + ev.name + " at the fine step h = " + se.fine_step.text + ": " + ev.fine.failure +

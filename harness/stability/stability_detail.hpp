@@ -1,22 +1,13 @@
 // Internals shared by the stability sources (not part of the harness interface).
 #pragma once
 
-#include <cstdio>
 #include <optional>
 #include <string>
 
+#include "harness/core/number_format.hpp"
 #include "harness/stability/stability.hpp"
 
 namespace dropcheck::stability_detail {
-
-// printf into a std::string (messages and tables; fixed formats keep reports byte-stable).
-template <typename... Args>
-std::string format(const char* pattern, Args... args) {
-  const int n = std::snprintf(nullptr, 0, pattern, args...);
-  std::string out(n > 0 ? static_cast<std::size_t>(n) : 0, '\0');
-  std::snprintf(out.data(), out.size() + 1, pattern, args...);
-  return out;
-}
 
 // The constant part and the springs acting on one body, combined (all forces of the scene):
 //   m*x'' = m*accel - stiffness*(x - anchor) - dashpot*x'   (rest_length 0 springs)

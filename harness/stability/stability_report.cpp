@@ -13,8 +13,6 @@
 namespace dropcheck {
 namespace {
 
-using stability_detail::format;
-
 // A Markdown table row from cells.
 std::string row(const std::vector<std::string>& cells) {
   std::string out = "|";
@@ -48,7 +46,7 @@ std::string skipped_cell(const EngineStability* e) {
 std::string verdict_cell(const EngineStability* e) {
   if (!e || !e->ran()) return skipped_cell(e);
   return e->verdict.stable() ? "stable"
-                             : format("**%s**", to_string(e->verdict.failures.front().mode));
+                             : fmt::sprintf("**%s**", to_string(e->verdict.failures.front().mode));
 }
 
 std::string step_cell(const EngineStability* e) {
@@ -57,18 +55,18 @@ std::string step_cell(const EngineStability* e) {
   const StepSearch& s = *e->search;
   std::string out;
   if (std::isnan(s.max_stable_dt))
-    out = format("none (%s)", s.limit ? to_string(*s.limit) : "fails");
+    out = fmt::sprintf("none (%s)", s.limit ? to_string(*s.limit) : "fails");
   else if (std::isnan(s.min_unstable_dt))
-    out = format(">= %.4g (cap)", s.max_stable_dt);
+    out = fmt::sprintf(">= %.4g (cap)", s.max_stable_dt);
   else
-    out = format("%.4g (%s)", s.max_stable_dt, s.limit ? to_string(*s.limit) : "?");
-  if (e->theory_max_dt) out += format(" / %.4g", *e->theory_max_dt);
+    out = fmt::sprintf("%.4g (%s)", s.max_stable_dt, s.limit ? to_string(*s.limit) : "?");
+  if (e->theory_max_dt) out += fmt::sprintf(" / %.4g", *e->theory_max_dt);
   return out;
 }
 
 std::string error_cell(const EngineStability* e) {
   if (!e || !e->ran()) return skipped_cell(e);
-  return e->vs_analytic ? format("%.2e", e->vs_analytic->max_dx) : std::string("-");
+  return e->vs_analytic ? fmt::sprintf("%.2e", e->vs_analytic->max_dx) : std::string("-");
 }
 
 template <typename Cell>
@@ -93,9 +91,9 @@ std::string scene_list(const std::vector<SceneStability>& studies) {
   for (const SceneStability& s : studies) {
     std::string d = s.description;
     std::replace(d.begin(), d.end(), '\n', ' ');
-    out += format("- `%s` (%s, %lld steps of %s s): ", s.name.c_str(),
-                  std::filesystem::path(s.source).filename().string().c_str(),
-                  static_cast<long long>(s.steps), s.h.text.c_str()) +
+    out += fmt::sprintf("- `%s` (%s, %lld steps of %s s): ", s.name.c_str(),
+                        std::filesystem::path(s.source).filename().string().c_str(),
+                        static_cast<long long>(s.steps), s.h.text.c_str()) +
            d + "\n";
   }
   return out;
@@ -127,7 +125,7 @@ std::string stability_report_section(const std::vector<std::string>& extreme_sce
 
   const SearchOptions& so = options.search_options;
   std::string out = "## Stability: stiff and extreme cases\n\n";
-  out += format(
+  out += fmt::sprintf(
       "Each engine runs each scene at the scene's own step h and is classified as stable or by its "
       "severest failure (NaN/Inf, engine error, unbounded growth, tunnelled, frozen, speed "
       "clamped; "

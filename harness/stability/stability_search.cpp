@@ -13,6 +13,7 @@
 #include <cmath>
 #include <memory>
 
+#include "harness/core/number_format.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/core/trajectory_io.hpp"
 #include "harness/stability/stability.hpp"

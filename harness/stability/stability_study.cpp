@@ -11,8 +11,6 @@
 namespace dropcheck {
 namespace {
 
-using stability_detail::format;
-
 // Runs `engine` at the scene's own step and classifies the run.
 void study_default_step(Engine& engine, const Scene& scene, const StudyOptions& o,
                         EngineStability& r) {
@@ -54,13 +52,14 @@ EngineStability study_engine(const EngineSlot& slot, const Scene& scene, const S
 
 std::string progress_line(const SceneStability& s, const EngineStability& e) {
   if (!e.ran())
-    return format("stability %s: %s skipped (%s)\n", s.name.c_str(), e.engine.c_str(),
-                  e.skipped.c_str());
+    return fmt::sprintf("stability %s: %s skipped (%s)\n", s.name.c_str(), e.engine.c_str(),
+                        e.skipped.c_str());
   const std::string verdict =
       e.verdict.stable() ? std::string("stable") : to_string(e.verdict.failures.front().mode);
-  const std::string probes = e.search ? format(", %d probes", e.search->probes) : std::string();
-  return format("stability %s: %s %s%s\n", s.name.c_str(), e.label().c_str(), verdict.c_str(),
-                probes.c_str());
+  const std::string probes =
+      e.search ? fmt::sprintf(", %d probes", e.search->probes) : std::string();
+  return fmt::sprintf("stability %s: %s %s%s\n", s.name.c_str(), e.label().c_str(), verdict.c_str(),
+                      probes.c_str());
 }
 
 }  // namespace

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "harness/core/number_format.hpp"
+
 using Catch::Matchers::Contains;
 
 namespace {

@@ -7,6 +7,7 @@
 
 #include "../moved_drag_engine.hpp"
 #include "../test_dirs.hpp"
+#include "harness/core/number_format.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/core/trajectory_hash.hpp"

@@ -102,14 +102,3 @@ TEST_CASE("the attribution of two engines on the same law is rounding only", "[a
   CHECK_THAT(a.sentence(), Contains("the two discrete laws agree, so all of it is rounding"));
   CHECK_THAT(attribute({oi, law, law, law}, {oi, law, law, law}).sentence(), Contains("identical"));
 }
-
-TEST_CASE("attribution sentences print lengths in a readable unit", "[attribution]") {
-  CHECK(format_length(0.0) == "0 m");
-  CHECK(format_length(1.5) == "1.5 m");
-  CHECK(format_length(0.0696347) == "6.96 cm");
-  CHECK(format_length(0.0025) == "2.5 mm");
-  CHECK(format_length(1.23e-5) == "12.3 um");
-  CHECK(format_length(3.1e-15) == "3.1e-15 m");
-  CHECK(format_length(-0.02) == "-2 cm");
-  CHECK(format_length(std::numeric_limits<double>::infinity()) == "inf");
-}
