@@ -1,6 +1,8 @@
 // dropcheck bless [FILE]... [--engine E]... [--out DIR] [--timing]
 //   Rewrites the golden baselines (default: every scenarios/*.toml on ours and ours-f64, into
-//   tests/baselines/) and refuses, exit 1, when a fresh run fails an oracle check.
+//   tests/baselines/) and refuses, exit 1, when a fresh run fails an oracle check. With --out
+//   elsewhere it always writes, a failed tier marked in its file: exit 0 when every tier passed,
+//   1 when a file was written with a failed tier.
 // dropcheck bless --check FILE... [--engine E]... [--tier T]... [--baselines DIR]
 //   Compares this build with the baselines, tier by tier (harness/guard/regression.hpp): exit 0
 //   when every tier passed, 1 when one failed, 77 when every tier was skipped (ctest's
@@ -56,11 +58,14 @@ TierResult run_tier(Tier tier, const Scene& scene, const NamedFactory& engine,
                     const std::string& dir, std::optional<Baseline>& now) {
   if (tier == Tier::determinism) return check_determinism(scene, engine.second);
   if (!now) now = make_baseline(scene, engine.second);
-  if (tier == Tier::physics) return check_physics(*now);
+  const std::string path = baseline_path(dir, scene.name, engine.first);
+  if (tier == Tier::physics) {
+    const std::optional<Baseline> baseline = read_baseline_if_present(path);
+    return check_physics(*now, baseline ? &*baseline : nullptr);
+  }
   const std::string name = scene.name + " / " + engine.first + " / " + to_string(tier) + ": ";
   if (!now->skipped.empty())
     return {Verdict::skipped, name + "the engine cannot run this scene: " + now->skipped};
-  const std::string path = baseline_path(dir, scene.name, engine.first);
   if (!std::filesystem::exists(path))
     return {Verdict::failed, name + "no baseline " + path + "; run `dropcheck bless " +
                                  scene.source + "` to make one"};
@@ -142,7 +147,9 @@ int write(const Args& args, const std::vector<Scene>& scenes, std::ostream& out,
     return kExitCheckFailed;
   }
   for (const std::string& line : outcome.lines) out << line << "\n";
-  return kExitOk;
+  for (const std::string& why : outcome.failed)
+    err << "dropcheck bless: FAILED (written, marked in the file): " << why << "\n";
+  return outcome.failed.empty() ? kExitOk : kExitCheckFailed;
 }
 
 }  // namespace
@@ -150,15 +157,18 @@ int write(const Args& args, const std::vector<Scene>& scenes, std::ostream& out,
 const CommandSpec& bless_spec() {
   static const CommandSpec spec{
       "bless",
-      "Rewrites the golden baselines (refused, exit 1, when a fresh run fails an oracle check), or "
-      "with "
-      "--check compares this build with them tier by tier (exit 77 when every tier was skipped).",
+      "Rewrites the golden baselines (refused, exit 1, when a fresh run fails an oracle check); "
+      "with --out DIR elsewhere always writes, a failed tier marked in its file (exit 0 every tier "
+      "passed, 1 a file was written with a failed tier); or with --check compares this build with "
+      "them tier by tier (exit 77 when every tier was skipped).",
       "scene FILE",
       "scene files (default: every scenarios/*.toml)",
       0,
       -1,
       {{"--engine", "E", "an engine (repeatable; default: ours and ours-f64)", true},
-       {"--out", "DIR", "the folder of baselines to write (default: tests/baselines)"},
+       {"--out", "DIR",
+        "the folder of baselines to write (default: tests/baselines); elsewhere always written, "
+        "exit 1 when a tier failed"},
        {"--timing", "", "record wall-clock timings in the baselines"},
        {"--check", "", "compare with the baselines instead of writing them"},
        {"--tier", "T", "with --check: bits, tolerance, physics or determinism (repeatable)", true},

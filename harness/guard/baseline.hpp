@@ -100,6 +100,9 @@ Baseline parse_baseline(const std::string& text, const std::string& path);
 // Reads and parses a baseline file; InputError when it is missing or malformed.
 Baseline read_baseline(const std::string& path);
 
+// read_baseline when `path` exists, nullopt when it does not (InputError when it is malformed).
+std::optional<Baseline> read_baseline_if_present(const std::string& path);
+
 // True when the two texts differ at most in their provenance and build_key lines: the same numbers,
 // hence the same hash, so the file on disk is still true for the build it names.
 bool same_data(const std::string& a, const std::string& b);

@@ -90,6 +90,12 @@ bool same_data(const std::string& a, const std::string& b) {
 // of one body is 2e6 sample lines of about 150 bytes, 300 MB; the shipped ones are under 30 KiB.
 constexpr std::int64_t kMaxBaselineBytes = std::int64_t{512} << 20;
 
+std::optional<Baseline> read_baseline_if_present(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return std::nullopt;
+  return read_baseline(path);
+}
+
 Baseline read_baseline(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec))

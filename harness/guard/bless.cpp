@@ -78,7 +78,9 @@ BlessOutcome bless(const std::vector<Scene>& scenes, const std::vector<NamedFact
     for (const NamedFactory& engine : engines) {
       Baseline b = make_baseline(scene, engine.second, options.baseline);
       b.provenance = provenance(options.commit);
-      const TierResult physics = check_physics(b);
+      const std::string before = baseline_path(options.baselines_dir, scene.name, engine.first);
+      const std::optional<Baseline> baseline = read_baseline_if_present(before);
+      const TierResult physics = check_physics(b, baseline ? &*baseline : nullptr);
       if (physics.verdict == Verdict::failed) {
         out.refused.push_back(physics.message);
         b.failed_tiers = "physics: " + physics.message;
@@ -87,7 +89,8 @@ BlessOutcome bless(const std::vector<Scene>& scenes, const std::vector<NamedFact
     }
   }
   if (!out.refused.empty() && (options.refuse_failed || is_golden_set(options.out_dir))) return out;
-  out.refused.clear();  // recorded in the files instead
+  out.failed = std::move(out.refused);  // written, and marked in the files
+  out.refused.clear();
   for (const Baseline& b : made) out.lines.push_back(write_one(b, options.out_dir));
   return out;
 }

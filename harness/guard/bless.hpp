@@ -20,6 +20,7 @@ struct BlessOptions {
   std::string commit = "unknown commit";    // recorded in each file's provenance line
   BaselineOptions baseline;                 // sampling; --timing
   bool refuse_failed = false;               // refuse as for the golden set, wherever out_dir is
+  std::string baselines_dir = "tests/baselines";  // the baselines tier 3 measures a new scheme from
 };
 
 // True when `dir` is the golden set, tests/baselines under the working directory.
@@ -30,6 +31,7 @@ struct BlessOutcome {
   std::vector<std::string>
       refused;                     // golden set: each failed oracle check (tier 3); nothing written
   std::vector<std::string> lines;  // per file: "new", "updated" or "unchanged", path and hash
+  std::vector<std::string> failed;  // elsewhere: each failed oracle check, written and marked
 };
 
 // DIR/<scene>.<engine>.txt with every character of the names outside [A-Za-z0-9._-] turned into
@@ -44,7 +46,8 @@ std::vector<std::string> baseline_paths(const std::vector<Scene>& scenes,
                                         const std::vector<std::string>& engines,
                                         const std::string& dir);
 
-// Makes the baseline of every scene on every engine and checks each with check_physics. Into the
+// Makes the baseline of every scene on every engine and checks each with check_physics (against
+// the same scene and engine in options.baselines_dir, when there is one). Into the
 // golden set (or with refuse_failed) it writes only if all pass; anywhere else it writes every
 // file, a failed check recorded in it ("# FAILED physics: ...") and in its log line. A file whose
 // numbers are unchanged is left untouched (same_data), so re-blessing at another commit or from

@@ -35,8 +35,18 @@ std::optional<OrderEstimate> analytic_order(const Baseline& b) {
   return estimate_order(h, e, tolerance::kOrderMeasurableFactor * noise);
 }
 
+// How far the run at the scene's step is from `baseline`: "differs from the baseline by 3.2 cm at
+// h = 1/60" (largest |dx| over the stored samples and bodies), or why it cannot say.
+std::string distance(const Baseline& now, const Baseline* baseline) {
+  if (!baseline) return "no baseline to compare with";
+  const SampleDiff d =
+      diff_samples(baseline->samples, now.samples, regression_tolerance(now.scalar));
+  if (!d.incomparable.empty()) return "not comparable with the baseline: " + d.incomparable;
+  return "differs from the baseline by " + format_length(d.max_dx) + " at h = " + now.dt.text;
+}
+
 // What the run does instead of its declared law: the cause of an oracle-2 failure.
-std::string departure_cause(const Baseline& b, const SweepPoint& p) {
+std::string departure_cause(const Baseline& b, const SweepPoint& p, const Baseline* baseline) {
   const std::optional<OrderEstimate> o = analytic_order(b);
   const std::string orders =
       o ? "observed orders" +
@@ -48,9 +58,11 @@ std::string departure_cause(const Baseline& b, const SweepPoint& p) {
               }()
         : "order not measured (no closed form)";
   if (p.fits)
-    return "; the run follows another member of the law family instead: " +
-           law_family_name(*p.fits) + " (" + to_string(*p.fits) + "), a consistent" +
-           (o && o->first_order ? ", first-order" : "") + " scheme (" + orders +
+    return "; the run follows another member of the law family instead, a consistent new "
+           "scheme: " +
+           std::string(o && o->first_order ? "first-order, " : "") + "follows " +
+           law_family_name(*p.fits) + " (" + to_string(*p.fits) + "); " + distance(b, baseline) +
+           " (" + orders +
            "). If intended, declare that law in the engine's adapter (EngineInfo::law)";
   if (o && !o->consistent) {
     double worst = INFINITY;
@@ -63,7 +75,7 @@ std::string departure_cause(const Baseline& b, const SweepPoint& p) {
 }
 
 // Oracle 2 at every h; "" when all pass, else the failure.
-std::string law_problem(const Baseline& b, std::string& summary) {
+std::string law_problem(const Baseline& b, const Baseline* baseline, std::string& summary) {
   double worst = 0.0, worst_tol = 0.0;
   std::string worst_h = "-";
   for (const SweepPoint& p : b.sweep) {
@@ -74,7 +86,7 @@ std::string law_problem(const Baseline& b, std::string& summary) {
              p.law_worst_body + "' departs from it by " + g3(p.law_max_dx) + " m, beyond its " +
              "own-law tolerance " + g3(p.own_law->tolerance.x) + " m (" +
              p.own_law->tolerance.rule + ") from step " + std::to_string(p.law_first_over) + " on" +
-             departure_cause(b, p);
+             departure_cause(b, p, baseline);
     if (p.law_max_dx >= worst)
       worst = p.law_max_dx, worst_h = p.dt.text, worst_tol = p.own_law->tolerance.x;
   }
@@ -113,14 +125,15 @@ std::string order_problem(const Baseline& b, std::string& summary) {
 
 }  // namespace
 
-TierResult check_physics(const Baseline& now) {
+TierResult check_physics(const Baseline& now, const Baseline* baseline) {
   const std::string p = now.scene + " / " + now.engine + " / physics: ";
   if (!now.skipped.empty())
     return {Verdict::skipped, p + "the engine cannot run this scene: " + now.skipped};
   if (now.status != "ok")
     return {Verdict::failed, p + "the run at h = " + now.dt.text + " ended: " + now.status};
   std::string law, order;
-  if (std::string why = law_problem(now, law); !why.empty()) return {Verdict::failed, p + why};
+  if (std::string why = law_problem(now, baseline, law); !why.empty())
+    return {Verdict::failed, p + why};
   if (std::string why = order_problem(now, order); !why.empty()) return {Verdict::failed, p + why};
   return {Verdict::passed, p + law + "; " + order};
 }

@@ -1,6 +1,7 @@
 // Tests harness/cli/cmd_bless.cpp and cmd_diff.cpp as a user (or ctest) calls them: exit codes
 // 0 passed, 1 failed, 77 skipped, 2 bad usage; --out writes a result set anywhere.
 #include <catch2/catch.hpp>
+#include <filesystem>
 #include <sstream>
 
 #include "../test_dirs.hpp"
@@ -56,6 +57,23 @@ TEST_CASE("bless --check exits 77 when every tier is skipped and 1 when a baseli
                  Catch::Contains("run `dropcheck bless " + scene_file("wind") + "` to make one"));
   CHECK(run({"bless", "--check", scene_file("wind"), "--tier", "colour"}, out) == 2);
   CHECK(run({"bless", scene_file("wind"), "--tier", "bits"}, out) == 2);
+}
+
+TEST_CASE("bless --out writes a run that fails a tier, marks it and exits 1", "[baseline][cli]") {
+  const ScratchDir dir("cli-bless-failed");
+  const std::string engine =
+      std::string(DROPCHECK_SOURCE_DIR) + "/examples/python/wrong_order.toml";
+  std::string out;
+  CHECK(run({"bless", scene_file("free_fall_drag"), "--engine", engine, "--out", dir.path.string()},
+            out) == 1);
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("FAILED (written, marked in the file): free_fall_drag / "
+                                  "wrong-order / physics: oracle 2") &&
+                      Catch::Contains("a consistent new scheme: first-order, follows") &&
+                      Catch::Contains("no baseline to compare with"));
+  CHECK(std::filesystem::exists(dir.file("free_fall_drag.wrong-order.txt")));
+  CHECK(run({"bless", scene_file("free_fall_drag"), "--engine", "ours", "--out", dir.path.string()},
+            out) == 0);
 }
 
 TEST_CASE("diff prints Markdown to stdout or writes it with --out", "[baseline][cli]") {

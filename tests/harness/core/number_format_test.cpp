@@ -21,8 +21,8 @@ std::string printf_g(double v, int digits) {
 
 TEST_CASE("sig, g3, fixed and exact write the bytes printf writes", "[number_format]") {
   const double inf = std::numeric_limits<double>::infinity();
-  std::vector<double> values{0.0, -0.0, inf, -inf, std::nan(""), 1e300, 5e-324, 0.5, 2.5, 9.995,
-                             1.0 / 60.0, 0.0005, 1e16, 123456789.0};
+  std::vector<double> values{0.0, -0.0, inf,   -inf,       std::nan(""), 1e300, 5e-324,
+                             0.5, 2.5,  9.995, 1.0 / 60.0, 0.0005,       1e16,  123456789.0};
   std::mt19937_64 random(12);
   std::uniform_real_distribution<double> mantissa(-1000.0, 1000.0);
   std::uniform_int_distribution<int> exponent(-40, 40);

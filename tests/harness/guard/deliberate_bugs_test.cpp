@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "../test_dirs.hpp"
+#include "harness/core/number_format.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/guard/baseline.hpp"
 #include "harness/guard/regression.hpp"
@@ -34,9 +35,9 @@ const Case kCases[] = {
     {Bug::drag_twice, "drag applied twice", "not consistent"},
     {Bug::gravity_half_step, "gravity at half a step", "not consistent"},
     {Bug::explicit_euler, "explicit Euler",
-     "follows another member of the law family instead: explicit Euler, damping after the forces"},
+     "a consistent new scheme: first-order, follows explicit Euler, damping after the forces"},
     {Bug::drag_after_position, "drag after the position update",
-     "follows another member of the law family instead: semi-implicit Euler, damping after the "
+     "a consistent new scheme: first-order, follows semi-implicit Euler, damping after the "
      "position update (ODE's order)"},
 };
 
@@ -62,8 +63,31 @@ TEST_CASE("A consistent new scheme and a broken one get different tier-3 message
   const TierResult euler = check_physics(make_baseline(scene, buggy_ours(Bug::explicit_euler)));
   CHECK_THAT(twice.message, Contains("order 0.0") && Contains("not consistent"));
   CHECK_THAT(euler.message,
-             Contains("explicit Euler") && Contains("a consistent, first-order scheme"));
+             Contains("a consistent new scheme: first-order, follows explicit Euler"));
   CHECK(twice.message != euler.message);
+}
+
+TEST_CASE("A consistent new scheme's message says how far it is from the baseline",
+          "[regression][bugs]") {
+  const Scene scene = shipped_scene("free_fall_drag");
+  const Baseline golden =
+      read_baseline(std::string(DROPCHECK_SOURCE_DIR) + "/tests/baselines/free_fall_drag.ours.txt");
+  const Baseline euler = make_baseline(scene, buggy_ours(Bug::explicit_euler));
+  const SampleDiff d = diff_samples(golden.samples, euler.samples, 0.0);
+  REQUIRE(d.incomparable.empty());
+  REQUIRE(d.max_dx > 1e-4);  // explicit Euler moves the drop measurably
+  const TierResult r = check_physics(euler, &golden);
+  INFO(r.message);
+  CHECK(r.verdict == Verdict::failed);
+  CHECK_THAT(r.message, Contains("first-order, follows explicit Euler") &&
+                            Contains("; differs from the baseline by " + format_length(d.max_dx) +
+                                     " at h = " + euler.dt.text));
+  CHECK_THAT(check_physics(euler).message, Contains("no baseline to compare with"));
+  // A broken scheme is not measured from the baseline: it is not consistent.
+  const TierResult twice =
+      check_physics(make_baseline(scene, buggy_ours(Bug::drag_twice)), &golden);
+  CHECK_THAT(twice.message, Contains("order 0.0") && Contains(": not consistent"));
+  CHECK_THAT(twice.message, !Contains("differs from the baseline"));
 }
 
 TEST_CASE(
