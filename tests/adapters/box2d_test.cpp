@@ -176,23 +176,6 @@ TEST_CASE("Box2D gives a body the scene's mass with and without fixtures", "[box
   }
 }
 
-TEST_CASE("Box2D applies a force for one step only and divides it by the mass", "[box2d][mass]") {
-  Scene scene = scenario("free_fall");  // no drag
-  scene.world.gravity = Vec3::Zero();
-  scene.bodies[0].mass = 3.375;
-  auto engine = box2d();
-  engine->load(scene, 1.0 / 60.0);
-  const Vec3 force(2.0, -4.0, 0.0);
-  engine->set_forces(std::span<const Vec3>(&force, 1));
-  engine->step();
-  engine->step();  // no set_forces: Box2D must have cleared the force of step 1
-  BodyState s;
-  engine->read(std::span<BodyState>(&s, 1));
-  // v = F/m*h after step 1, unchanged by step 2 (float: measured relative error 0).
-  CHECK(s.velocity.x() == Approx(2.0 / 3.375 / 60.0).epsilon(1e-6));
-  CHECK(s.velocity.y() == Approx(-4.0 / 3.375 / 60.0).epsilon(1e-6));
-}
-
 TEST_CASE("A cube dropped on a floor lands on time and rests at Box2D's declared offset",
           "[box2d][contacts]") {
   const Scene scene = drop_on_floor();
