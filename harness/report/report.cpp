@@ -9,6 +9,7 @@
 #include "harness/core/atomic_file.hpp"
 #include "harness/report/report_format.hpp"
 #include "harness/report/report_scene.hpp"
+#include "harness/report/report_summary.hpp"
 
 namespace dropcheck {
 namespace {

@@ -11,6 +11,7 @@
 #include "harness/core/provenance.hpp"
 #include "harness/measure/evaluate.hpp"
 #include "harness/report/plot.hpp"
+#include "harness/report/report_plots.hpp"
 
 namespace dropcheck {
 
@@ -24,16 +25,6 @@ struct ReportInput {
   std::string stability;         // Markdown of the stability section ("" when none)
   std::string stability_note;    // shown when `stability` is empty
 };
-
-// One plot of the report: its file name (in the report's directory) and what to draw.
-struct ReportPlot {
-  std::string file;
-  std::string alt;  // the Markdown image's alt text
-  PlotSpec spec;
-};
-
-// Every plot the report for these scenes draws, per scene in order (report_plots.cpp).
-std::vector<std::vector<ReportPlot>> report_plots(const ReportInput& input);
 
 // Outcome of drawing each plot: file -> "" when drawn, else why not.
 using PlotOutcomes = std::vector<std::pair<std::string, std::string>>;

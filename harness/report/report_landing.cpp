@@ -2,6 +2,8 @@
 // against the continuous model and the engine's own law, penetration, rebound, resting offset
 // against what the engine documents (EngineInfo::rest_offset, docs/engines.md section 5),
 // stillness.
+#include "harness/report/report_landing.hpp"
+
 #include <cmath>
 
 #include "harness/report/report_format.hpp"

@@ -1,5 +1,7 @@
 // The report's plots, as data (drawing is harness/report/plot.cpp's job): per scene a trajectory
 // plot, a divergence plot and, with timings, a work-precision diagram.
+#include "harness/report/report_plots.hpp"
+
 #include <algorithm>
 #include <set>
 

@@ -7,6 +7,8 @@
 #include <variant>
 
 #include "harness/report/report_format.hpp"
+#include "harness/report/report_landing.hpp"
+#include "harness/report/report_summary.hpp"
 
 namespace dropcheck {
 namespace {

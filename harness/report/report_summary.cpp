@@ -1,9 +1,12 @@
 // The ten-second view of a scene: engines run, the largest divergence from the reference with a
 // one-word cause, and a verdict that flags what needs a person (failed, clamped, unexplained, off
 // its own law).
+#include "harness/report/report_summary.hpp"
+
 #include <cmath>
 
 #include "harness/report/report_format.hpp"
+#include "harness/report/report_landing.hpp"
 #include "harness/report/report_scene.hpp"
 
 namespace dropcheck {

@@ -7,6 +7,7 @@
 #include "harness/core/runner.hpp"
 #include "harness/oracles/analytic.hpp"
 #include "harness/stability/stability_detail.hpp"
+#include "harness/stability/stability_theory.hpp"
 
 namespace dropcheck {
 namespace {

@@ -30,6 +30,8 @@
 // damping only (gamma = 0): AfterForces is stable iff w*h < sqrt(2*(1 + phi)/phi) (the edge moves
 // up: drag helps), the other two iff w*h < sqrt(2*(1 + phi)) (the edge moves down: drag hurts).
 // phi = exp(-k*h) depends on h, so the edge is found numerically below.
+#include "harness/stability/stability_theory.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>

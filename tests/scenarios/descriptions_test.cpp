@@ -24,6 +24,7 @@
 #include "harness/oracles/analytic.hpp"
 #include "harness/oracles/landing.hpp"
 #include "harness/stability/stability.hpp"
+#include "harness/stability/stability_theory.hpp"
 
 namespace {
 

@@ -1,0 +1,16 @@
+// The landing part of a contact scene's section of the report (report_landing.cpp).
+#pragma once
+
+#include <string>
+
+#include "harness/measure/evaluate.hpp"
+
+namespace dropcheck {
+
+// The landing table of a contact scene at the default step ("" when no body lands on a floor).
+std::string landing_section(const SceneEvaluation& se);
+
+// True when the run's resting offset lies within the engine's documented band.
+bool rest_offset_expected(const EngineEvaluation& ev, const LandingResult& landing);
+
+}  // namespace dropcheck

@@ -1,0 +1,30 @@
+// The stability edge of a linear spring under each engine's discrete law (stability_theory.cpp):
+// the theory the stability study compares its measured edge with.
+#pragma once
+
+#include <optional>
+
+#include "harness/core/law.hpp"
+#include "harness/core/scene.hpp"
+
+namespace dropcheck {
+
+// A linear spring on one body as the stability analysis sees it: w^2 = S/m, gamma = C/m, k drag.
+struct SpringModel {
+  double omega = 0.0;  // rad/s
+  double gamma = 0.0;  // dashpot per unit mass, 1/s
+  double k = 0.0;      // world damping rate, 1/s
+};
+
+// True when one step of `law` with spring force from the start-of-step state is stable at h
+// (derivation in stability_theory.cpp).
+bool spring_step_stable(Law law, const SpringModel& spring, double h);
+
+// The largest h at which `law` is stable for `spring` (the first edge above h = 0).
+double spring_max_stable_dt(Law law, const SpringModel& spring);
+
+// The theoretical edge of `scene` under `law`: the smallest over bodies on linear springs
+// (rest_length 0); nullopt when the scene has none (free flight is stable at every h).
+std::optional<double> spring_theory_max_dt(const Scene& scene, Law law);
+
+}  // namespace dropcheck
