@@ -9,6 +9,8 @@
 
 #include "harness/core/input_error.hpp"
 #include "harness/guard/baseline.hpp"
+#include "harness/guard/baseline_io.hpp"
+#include "harness/guard/baseline_parse.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -17,8 +17,10 @@
 #include "harness/core/output_plan.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/scene_loader.hpp"
+#include "harness/guard/baseline_io.hpp"
 #include "harness/guard/bless.hpp"
 #include "harness/guard/regression.hpp"
+#include "harness/guard/regression_physics.hpp"
 
 namespace dropcheck {
 namespace {

@@ -9,6 +9,7 @@
 #include "harness/core/output_plan.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/scene_loader.hpp"
+#include "harness/stability/stability_io.hpp"
 #include "harness/stability/stability_study.hpp"
 #include "selection.hpp"
 

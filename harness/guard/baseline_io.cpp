@@ -1,4 +1,6 @@
 // The baseline text format (harness/guard/baseline.hpp): writing, and parsing back to the bit.
+#include "harness/guard/baseline_io.hpp"
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -14,6 +16,7 @@
 #include "harness/core/number_format.hpp"
 #include "harness/core/trajectory_io.hpp"
 #include "harness/guard/baseline.hpp"
+#include "harness/guard/baseline_parse.hpp"
 
 namespace dropcheck {
 namespace {

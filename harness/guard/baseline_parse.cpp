@@ -1,5 +1,7 @@
 // Parsing the baseline text format (harness/guard/baseline.hpp) back into a Baseline, to the bit:
 // every number was printed with %.17g, which strtod reads back exactly.
+#include "harness/guard/baseline_parse.hpp"
+
 #include <cerrno>
 #include <cstdlib>
 #include <map>

@@ -8,7 +8,9 @@
 #include "harness/core/atomic_file.hpp"
 #include "harness/core/file_slug.hpp"
 #include "harness/core/input_error.hpp"
+#include "harness/guard/baseline_io.hpp"
 #include "harness/guard/regression.hpp"
+#include "harness/guard/regression_physics.hpp"
 
 namespace dropcheck {
 namespace {

@@ -53,14 +53,6 @@ TierResult check_bits(const Baseline& expected, const Baseline& now);
 // Tier 2: samples and sweep errors within regression_tolerance of `expected`.
 TierResult check_tolerance(const Baseline& expected, const Baseline& now);
 
-// Tier 3: `now` (a fresh make_baseline, not a parsed file) follows its own discrete law within its
-// own-law tolerance at every h of the sweep, and its error against the analytic solution shrinks
-// at first order as h halves (harness/measure/tolerances.hpp). A departure names what the run
-// follows instead (a member of the law family: "first-order, follows explicit Euler (...);
-// differs from the baseline by 3.2 cm at h = 1/60", measured against `baseline` when given) or
-// "order 0.03: not consistent".
-TierResult check_physics(const Baseline& now, const Baseline* baseline = nullptr);
-
 // Runs `scene` twice at its default step on fresh engines; identical CSV bytes and hash required.
 TierResult check_determinism(const Scene& scene, const EngineFactory& make);
 

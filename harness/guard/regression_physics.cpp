@@ -6,6 +6,8 @@
 // nothing (an inconsistent scheme: its error against the analytic solution stops shrinking).
 // Oracle 1 (analytic, harness/oracles/analytic.hpp): every member of the family has a global error
 // e(h) = C*h + O(h^2), so p = log2(e(h)/e(h/2)) -> 1 (tolerance::kFirstOrderLow..High).
+#include "harness/guard/regression_physics.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <vector>

@@ -6,6 +6,7 @@
 
 #include "harness/core/input_error.hpp"
 #include "harness/core/number_format.hpp"
+#include "harness/guard/baseline_io.hpp"
 #include "harness/guard/regression.hpp"
 
 namespace dropcheck {

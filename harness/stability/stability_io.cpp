@@ -1,4 +1,6 @@
 // A stability study out: JSON for scripts (exact numbers) and a plain-text table for people.
+#include "harness/stability/stability_io.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>

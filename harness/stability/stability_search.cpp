@@ -9,6 +9,8 @@
 //   h0 only frozen:       a small-step failure: double h until stable (min_stable_dt, bisected),
 //                         then go on doubling as in the first case
 // then bisect the bracket geometrically until hi/lo - 1 < rel_tol; max_stable_dt = lo.
+#include "harness/stability/stability_search.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <memory>

@@ -11,6 +11,7 @@
 #include "harness/measure/evaluate.hpp"
 #include "harness/measure/metrics.hpp"
 #include "harness/stability/stability.hpp"
+#include "harness/stability/stability_search.hpp"
 
 namespace dropcheck {
 
@@ -56,16 +57,5 @@ struct StudyOptions {
 // a factory comes back skipped with its reason.
 SceneStability study_scene(const Scene& scene, const std::vector<EngineSlot>& engines,
                            const StudyOptions& options = {}, std::ostream* progress = nullptr);
-
-// The study as JSON: {"scene", "file", "dt", ..., "engines": [{"engine", "status", "failures",
-// "max_stable_dt", ...}]}; numbers exact (%.17g), NaN as null.
-std::string stability_to_json(const SceneStability& study, const SearchOptions& search);
-
-// One line on a step search: "fails at 0.0333481 s (unbounded growth)", "no failure up to the cap
-// 0.25 s", "frozen below 8e-05 s; ...".
-std::string search_summary(const StepSearch& search);
-
-// The study as a plain-text table plus one sentence per failure, for the terminal.
-std::string stability_to_text(const SceneStability& study);
 
 }  // namespace dropcheck

@@ -1,10 +1,13 @@
 // Tests harness/guard/baseline_parse.cpp on inputs fuzzing found
 // (fuzz/regressions/baseline_parse/): the parser must refuse what the writer could not print back.
+#include "harness/guard/baseline_parse.hpp"
+
 #include <catch2/catch.hpp>
 
 #include "../test_dirs.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/guard/baseline.hpp"
+#include "harness/guard/baseline_io.hpp"
 
 using namespace dropcheck;
 

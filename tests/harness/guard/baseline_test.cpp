@@ -12,6 +12,8 @@
 #include "harness/core/input_error.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/scene_loader.hpp"
+#include "harness/guard/baseline_io.hpp"
+#include "harness/guard/baseline_parse.hpp"
 #include "harness/guard/bless.hpp"
 
 using namespace dropcheck;

@@ -11,7 +11,9 @@
 #include "harness/core/number_format.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/guard/baseline.hpp"
+#include "harness/guard/baseline_io.hpp"
 #include "harness/guard/regression.hpp"
+#include "harness/guard/regression_physics.hpp"
 #include "harness/measure/checks.hpp"
 
 using namespace dropcheck;

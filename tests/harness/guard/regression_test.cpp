@@ -12,6 +12,7 @@
 #include "harness/core/runner.hpp"
 #include "harness/core/trajectory_hash.hpp"
 #include "harness/core/trajectory_io.hpp"
+#include "harness/guard/regression_physics.hpp"
 
 using namespace dropcheck;
 using namespace dropcheck::testing;

@@ -7,6 +7,7 @@
 #include "../moved_drag_engine.hpp"
 #include "../test_dirs.hpp"
 #include "harness/core/atomic_file.hpp"
+#include "harness/guard/baseline_io.hpp"
 
 using namespace dropcheck;
 using namespace dropcheck::testing;

@@ -8,6 +8,7 @@
 
 #include "harness/core/registry.hpp"
 #include "harness/core/scene_loader.hpp"
+#include "harness/stability/stability_io.hpp"
 #include "harness/stability/stability_study.hpp"
 
 using Catch::Matchers::Contains;

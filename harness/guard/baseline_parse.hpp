@@ -1,0 +1,13 @@
+// Parsing the baseline text format back into a Baseline, to the bit (baseline_parse.cpp).
+#pragma once
+
+#include <string>
+
+#include "harness/guard/baseline.hpp"
+
+namespace dropcheck {
+
+// Parses baseline_to_text's output exactly; `path` names the file in InputError messages.
+Baseline parse_baseline(const std::string& text, const std::string& path);
+
+}  // namespace dropcheck
