@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "harness/measure/attribution.hpp"
 #include "harness/measure/metrics.hpp"
@@ -17,10 +18,12 @@ std::string g(const char* format, double v) {
   return buf;
 }
 
-// h/n written as "1/(N*n)" when h is "1/N", else in seconds.
+// h/n written as "1/(N*n)" when h is "1/N" and N*n fits a long long (N = 2^62 once printed
+// "1/-9223372036854775808"), else in seconds.
 Timestep divided(const Timestep& h, int n) {
-  if (h.text.rfind("1/", 0) == 0)
-    return {h.seconds / n, "1/" + std::to_string(std::atoll(h.text.c_str() + 2) * n)};
+  const long long rate = h.text.rfind("1/", 0) == 0 ? std::atoll(h.text.c_str() + 2) : 0;
+  if (rate > 0 && rate <= std::numeric_limits<long long>::max() / n)
+    return {h.seconds / n, "1/" + std::to_string(rate * n)};
   return {h.seconds / n, g("%.6g", h.seconds / n)};
 }
 
