@@ -87,14 +87,15 @@ class Rewriter {
              "); a scene file is UTF-8 text");
       if ((c.value < 0x20 && c.value != '\t' && c.value != '\n' && c.value != '\r') ||
           c.value == 0x7F)
-        fail("control character " + code_name(c.value) +
-             "; TOML allows only tab and line breaks");
+        fail("control character " + code_name(c.value) + "; TOML allows only tab and line breaks");
       k += c.length;
     }
     i_ = 0;
   }
 
-  bool at(const char* s) const { return text_.compare(i_, std::char_traits<char>::length(s), s) == 0; }
+  bool at(const char* s) const {
+    return text_.compare(i_, std::char_traits<char>::length(s), s) == 0;
+  }
   bool ascii() const { return static_cast<unsigned char>(text_[i_]) < 0x80; }
   void copy(std::size_t n = 1) {
     out_.append(text_, i_, n);
@@ -137,7 +138,8 @@ class Rewriter {
     copy();  // "
     bool escaped = false;
     for (;;) {
-      if (i_ >= text_.size() || text_[i_] == '\n') fail("a \"...\" string is not closed on its line");
+      if (i_ >= text_.size() || text_[i_] == '\n')
+        fail("a \"...\" string is not closed on its line");
       if (!ascii()) {
         string_character(escaped);
       } else {

@@ -64,8 +64,7 @@ TEST_CASE("the first character after a line-ending backslash in a \"\"\" string 
 
 TEST_CASE("a '...' or '''...''' string with non-ASCII text becomes the same basic string",
           "[core][toml_ascii]") {
-  CHECK(toml_as_ascii("n = 'C:\\\"\xC3\xA9\"'\n", "s.toml") ==
-        "n = \"C:\\\\\\\"\\u00E9\\\"\"\n");
+  CHECK(toml_as_ascii("n = 'C:\\\"\xC3\xA9\"'\n", "s.toml") == "n = \"C:\\\\\\\"\\u00E9\\\"\"\n");
   CHECK(body_name("'C:\\\"\xC3\xA9\"'") == "C:\\\"\xC3\xA9\"");
   CHECK(body_name("'''\nx \\ \xC3\xA9 \"\"\" '''") == "x \\ \xC3\xA9 \"\"\" ");
   CHECK(body_name("'''\xC3\xA9'''''") == "\xC3\xA9''");
@@ -76,21 +75,27 @@ TEST_CASE("a literal key with non-ASCII text names the same key", "[core][toml_a
   CHECK(toml_as_ascii("'\xC3\xA9' = 1\n", "s.toml") == "\"\\u00E9\" = 1\n");
 }
 
-TEST_CASE("non-ASCII text in a comment becomes '?' and the line count stays", "[core][toml_ascii]") {
-  CHECK(toml_as_ascii("# W\xC3\xBCrfel \xE2\x80\x94 'x\na = 1", "s.toml") == "# W?rfel ? 'x\na = 1");
+TEST_CASE("non-ASCII text in a comment becomes '?' and the line count stays",
+          "[core][toml_ascii]") {
+  CHECK(toml_as_ascii("# W\xC3\xBCrfel \xE2\x80\x94 'x\na = 1", "s.toml") ==
+        "# W?rfel ? 'x\na = 1");
   CHECK(body_name("\"c\"", "# \xE3\x80\x80 \xEF\xBB\xBF\n") == "c");
 }
 
 TEST_CASE("a leading byte order mark is dropped", "[core][toml_ascii]") {
-  CHECK(toml_as_ascii("\xEF\xBB\xBF" "a = 1\n", "s.toml") == "a = 1\n");
+  CHECK(toml_as_ascii("\xEF\xBB\xBF"
+                      "a = 1\n",
+                      "s.toml") == "a = 1\n");
 }
 
 TEST_CASE("a non-ASCII character outside strings and comments is refused with its line",
           "[core][toml_ascii]") {
   const std::string why = refusal("a = 1\nx = 0.\xCB\x9D\n");
-  CHECK_THAT(why, Contains("s.toml:2") && Contains("U+02DD") &&
-                      Contains("outside a string or comment"));
-  CHECK_THAT(refusal("\xC2\xA0" "a = 1\n"), Contains("U+00A0"));  // a no-break space
+  CHECK_THAT(why,
+             Contains("s.toml:2") && Contains("U+02DD") && Contains("outside a string or comment"));
+  CHECK_THAT(refusal("\xC2\xA0"
+                     "a = 1\n"),
+             Contains("U+00A0"));  // a no-break space
   CHECK_THAT(refusal("[t\xC3\xA9]\n"), Contains("U+00E9"));
 }
 
