@@ -7,6 +7,9 @@
 #include <cerrno>
 #include <cstring>
 #include <optional>
+#include <streambuf>
+#include <string_view>
+#include <vector>
 
 #include "harness/core/input_error.hpp"
 #include "harness/core/signal_cleanup.hpp"
@@ -35,7 +38,7 @@ mode_t new_file_mode(const fs::path& target) {
 }
 
 // Writes all of `content` to `fd`; false with errno set on failure.
-bool write_all(int fd, const std::string& content) {
+bool write_all(int fd, std::string_view content) {
   std::size_t done = 0;
   while (done < content.size()) {
     const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
@@ -45,6 +48,39 @@ bool write_all(int fd, const std::string& content) {
   }
   return true;
 }
+
+// A stream buffer that writes to a file descriptor in blocks of kSize bytes. The first failed
+// write is kept (errno) and every later one skipped.
+class FdBuffer : public std::streambuf {
+ public:
+  static constexpr std::size_t kSize = 64 * 1024;
+  explicit FdBuffer(int fd) : fd_(fd), buffer_(kSize) {
+    setp(buffer_.data(), buffer_.data() + kSize);
+  }
+  int error() const { return error_; }  // errno of the first failed write, 0 if none
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (!flush()) return traits_type::eof();
+    if (!traits_type::eq_int_type(c, traits_type::eof())) {
+      *pptr() = traits_type::to_char_type(c);
+      pbump(1);
+    }
+    return traits_type::not_eof(c);
+  }
+  int sync() override { return flush() ? 0 : -1; }
+
+ private:
+  bool flush() {
+    const std::size_t n = static_cast<std::size_t>(pptr() - pbase());
+    if (error_ == 0 && n > 0 && !write_all(fd_, std::string_view(pbase(), n))) error_ = errno;
+    setp(buffer_.data(), buffer_.data() + kSize);
+    return error_ == 0;
+  }
+  int fd_;
+  std::vector<char> buffer_;
+  int error_ = 0;
+};
 
 // ".<name>.tmp-XXXXXX" beside the target (the name shortened so that it stays a legal name).
 std::string temp_template(const fs::path& target) {
@@ -76,6 +112,10 @@ fs::path output_target(const std::string& path, const std::string& key) {
 }
 
 void write_file_atomic(const std::string& path, const std::string& content) {
+  write_file_atomic(path, [&](std::ostream& out) { out.write(content.data(), content.size()); });
+}
+
+void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& fill) {
   const fs::path target = output_target(path);
   std::error_code ec;
   if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
@@ -85,15 +125,27 @@ void write_file_atomic(const std::string& path, const std::string& content) {
   if (fd < 0) throw InputError(path, 0, "", std::string("cannot write: ") + std::strerror(errno));
   CleanupOnSignal cleanup(tmp, false);
   deferred.reset();
-  const bool written = ::fchmod(fd, new_file_mode(target)) == 0 && write_all(fd, content);
-  const int write_errno = errno;
-  if (::close(fd) != 0 || !written) {
-    const int why = written ? errno : write_errno;
+  int why = ::fchmod(fd, new_file_mode(target)) == 0 ? 0 : errno;
+  if (why == 0) {
+    FdBuffer buffer(fd);
+    std::ostream out(&buffer);
+    try {
+      fill(out);
+    } catch (...) {
+      ::close(fd);
+      ::unlink(tmp.c_str());
+      throw;
+    }
+    out.flush();
+    why = buffer.error();
+  }
+  if (::close(fd) != 0 && why == 0) why = errno;
+  if (why != 0) {
     ::unlink(tmp.c_str());
     throw InputError(path, 0, "", std::string("write failed: ") + std::strerror(why));
   }
   if (::rename(tmp.c_str(), target.c_str()) != 0) {
-    const int why = errno;
+    why = errno;
     ::unlink(tmp.c_str());
     throw InputError(path, 0, "", std::string("cannot replace the file: ") + std::strerror(why));
   }

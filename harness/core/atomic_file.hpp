@@ -4,6 +4,8 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
+#include <ostream>
 #include <string>
 
 namespace dropcheck {
@@ -17,5 +19,10 @@ std::filesystem::path output_target(const std::string& path, const std::string& 
 // Writes `content` to output_target(path) atomically, creating missing parent folders. Throws
 // InputError naming the path when it cannot; the previous file is then untouched.
 void write_file_atomic(const std::string& path, const std::string& content);
+
+// The same with the content streamed: `fill` writes it into a buffered stream over the temporary
+// file (64 KiB at a time), so that a large output is never held in memory whole. When `fill`
+// throws, the temporary is removed and the exception passed on; a write error is an InputError.
+void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& fill);
 
 }  // namespace dropcheck

@@ -12,6 +12,7 @@
 #include "harness/core/bounded_read.hpp"
 #include "harness/core/number_format.hpp"
 #include "harness/core/timestep.hpp"
+#include "harness/core/toml_ascii.hpp"
 
 namespace dropcheck {
 namespace {
@@ -290,7 +291,7 @@ Scene build(const toml::table& root, const std::string& path) {
 Scene parse_scene(const std::string& text, const std::string& path) {
   toml::table root;
   try {
-    root = toml::parse(text, path);
+    root = toml::parse(toml_as_ascii(text, path), path);
   } catch (const toml::parse_error& e) {
     throw InputError(path, static_cast<int>(e.source().begin.line), "",
                      "TOML syntax error: " + std::string(e.description()));

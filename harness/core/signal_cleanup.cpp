@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/syscall.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -22,6 +23,10 @@ struct Slot {
   char path[kPathMax];
 };
 Slot g_slots[kSlots];
+
+// Child processes to kill first (0: a free slot).
+constexpr int kChildSlots = 8;
+std::atomic<pid_t> g_children[kChildSlots];
 
 constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
 struct sigaction g_previous[3];
@@ -50,6 +55,10 @@ void remove_folder(const char* path) {
 }
 
 void on_signal(int sig) {
+  for (std::atomic<pid_t>& child : g_children) {  // kill and waitpid are async-signal-safe
+    const pid_t pid = child.load();
+    if (pid > 0 && ::kill(pid, SIGKILL) == 0) ::waitpid(pid, nullptr, 0);
+  }
   for (Slot& s : g_slots) {
     const int state = s.state.load();
     if (state == kFile) ::unlink(s.path);
@@ -102,6 +111,21 @@ CleanupOnSignal::~CleanupOnSignal() {
 void CleanupOnSignal::release() {
   if (slot_ >= 0) g_slots[slot_].state.store(kFree);
   slot_ = -1;
+}
+
+KillOnSignal::KillOnSignal(pid_t pid) {
+  install();
+  for (int i = 0; i < kChildSlots; ++i) {
+    pid_t expected = 0;
+    if (g_children[i].compare_exchange_strong(expected, pid)) {
+      slot_ = i;
+      return;
+    }
+  }
+}
+
+KillOnSignal::~KillOnSignal() {
+  if (slot_ >= 0) g_children[slot_].store(0);
 }
 
 SignalsDeferred::SignalsDeferred() {

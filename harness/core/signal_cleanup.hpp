@@ -1,8 +1,10 @@
 // Temporary files and staging folders are removed when dropcheck is interrupted (SIGINT, SIGTERM,
-// SIGHUP): a killed run leaves the previous output intact and nothing of its own behind.
+// SIGHUP), after the child processes writing into them are killed: a killed run leaves the
+// previous output intact and nothing of its own behind.
 #pragma once
 
 #include <signal.h>
+#include <sys/types.h>
 
 #include <string>
 
@@ -21,6 +23,21 @@ class CleanupOnSignal {
 
   // Stops removing the path on a signal (it became the output, or was removed).
   void release();
+
+ private:
+  int slot_ = -1;
+};
+
+// A child process (gnuplot) killed and reaped by the signal handler, before the paths are removed,
+// while registered: it can then write nothing more into a folder being removed, and does not
+// outlive dropcheck. Unregisters itself at scope exit. Not copyable.
+class KillOnSignal {
+ public:
+  // Registers `pid` (installing the handlers on first use); inert when the table is full.
+  explicit KillOnSignal(pid_t pid);
+  ~KillOnSignal();
+  KillOnSignal(const KillOnSignal&) = delete;
+  KillOnSignal& operator=(const KillOnSignal&) = delete;
 
  private:
   int slot_ = -1;

@@ -1,6 +1,10 @@
 #include "harness/core/trajectory_csv.hpp"
 
+#include <sys/stat.h>
+
+#include <cerrno>
 #include <charconv>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -84,8 +88,22 @@ void add_row(Trajectory& t, std::int64_t step, const std::string& body, const Bo
 }  // namespace
 
 std::vector<Trajectory> read_trajectories_csv(const std::string& file) {
+  // The reason, not just the failure: a missing file, no permission, a folder, a device or FIFO
+  // (never read: /dev/zero would never end).
+  struct stat st {};
+  if (::stat(file.c_str(), &st) != 0)
+    throw InputError(file, 0, "",
+                     std::string("cannot read the trajectory file: ") + std::strerror(errno));
+  if (S_ISDIR(st.st_mode))
+    throw InputError(file, 0, "", "cannot read the trajectory file: it is a directory");
+  if (!S_ISREG(st.st_mode))
+    throw InputError(
+        file, 0, "",
+        "cannot read the trajectory file: not a regular file (a device, FIFO or socket)");
   std::ifstream in(file);
-  if (!in) throw InputError(file, 0, "", "cannot read the trajectory file");
+  if (!in)
+    throw InputError(file, 0, "",
+                     std::string("cannot read the trajectory file: ") + std::strerror(errno));
   std::string line;
   if (!std::getline(in, line) || (line.empty() ? line : line.substr(0, line.find('\r'))) != kHeader)
     throw InputError(file, 1, "", std::string("the header must be ") + kHeader);

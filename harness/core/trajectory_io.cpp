@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "harness/core/number_format.hpp"
 
@@ -57,20 +58,29 @@ Json run_json(const Trajectory& t) {
 }  // namespace
 
 std::string trajectories_to_csv(std::span<const Trajectory> runs) {
-  std::string out = "engine,dt,step,t,body,x,y,z,vx,vy,vz\n";
+  std::ostringstream out;
+  write_trajectories_csv(out, runs);
+  return out.str();
+}
+
+void write_trajectories_csv(std::ostream& out, std::span<const Trajectory> runs) {
+  out << "engine,dt,step,t,body,x,y,z,vx,vy,vz\n";
+  std::string row;  // reused: one row's text at a time
   for (const Trajectory& t : runs) {
+    const std::string engine = csv_field(t.engine) + "," + exact(t.h) + ",";
     for (std::size_t s = 0; s < t.samples(); ++s) {
       for (std::size_t b = 0; b < t.bodies(); ++b) {
         const BodyState& st = t.at(s, b);
-        out += csv_field(t.engine) + "," + exact(t.h) + "," + std::to_string(t.recorded[s]) + "," +
-               exact(t.time(s)) + "," + csv_field(t.body_names[b]);
-        append_csv(out, st.position);
-        append_csv(out, st.velocity);
-        out += '\n';
+        row = engine;
+        row += std::to_string(t.recorded[s]) + "," + exact(t.time(s)) + "," +
+               csv_field(t.body_names[b]);
+        append_csv(row, st.position);
+        append_csv(row, st.velocity);
+        row += '\n';
+        out.write(row.data(), static_cast<std::streamsize>(row.size()));
       }
     }
   }
-  return out;
 }
 
 std::string trajectories_to_json(std::span<const Trajectory> runs) {

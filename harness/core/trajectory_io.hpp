@@ -2,6 +2,7 @@
 // so that they read back exactly.
 #pragma once
 
+#include <ostream>
 #include <span>
 #include <string>
 
@@ -11,6 +12,9 @@ namespace dropcheck {
 
 // Header "engine,dt,step,t,body,x,y,z,vx,vy,vz", then rows, step 0 being the initial state.
 std::string trajectories_to_csv(std::span<const Trajectory> runs);
+
+// The same CSV written row by row to `out` (for a file: memory stays one row, not the whole text).
+void write_trajectories_csv(std::ostream& out, std::span<const Trajectory> runs);
 
 // {"runs":[{"engine","scene","dt","steps","status",...,"final":[...]}]} with every sample.
 std::string trajectories_to_json(std::span<const Trajectory> runs);

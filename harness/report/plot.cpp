@@ -1,14 +1,24 @@
 #include "harness/report/plot.hpp"
 
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "harness/core/atomic_file.hpp"
 #include "harness/core/number_format.hpp"
+#include "harness/core/signal_cleanup.hpp"
 
 namespace dropcheck {
 namespace {
@@ -64,13 +74,6 @@ std::size_t utf8_length(const std::string& s, std::size_t i) {
   return n;
 }
 
-// A string for the shell in single quotes ('\'' closes, escapes and reopens).
-std::string shell_quoted(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
 std::string axes(const PlotSpec& spec) {
   std::ostringstream s;
   s << "set title " << quoted(spec.title) << "\n";
@@ -103,6 +106,47 @@ std::string plot_command(const PlotSpec& spec, const std::string& data_file) {
     ++block;
   }
   return s.str() + "\n";
+}
+
+// Runs `gnuplot SCRIPT` in `dir` with stdin from /dev/null and stderr into `log` (names relative
+// to `dir`). No shell: every name is one argument, so no character of it is ever interpreted. The
+// child is registered to be killed on SIGINT/SIGTERM/SIGHUP, so Ctrl-C stops dropcheck (std::system
+// ignored SIGINT in the caller while gnuplot ran). Returns the wait status, or -1 when gnuplot
+// could not be started (`why` then holds the reason).
+int run_gnuplot(const std::string& dir, const std::string& script, const std::string& log,
+                std::string& why) {
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_addchdir_np(&files, dir.empty() ? "." : dir.c_str());
+  posix_spawn_file_actions_addopen(&files, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&files, 2, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  sigset_t none, defaults;
+  sigemptyset(&none);
+  sigemptyset(&defaults);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) sigaddset(&defaults, sig);
+  posix_spawnattr_setsigmask(&attr, &none);  // not the mask SignalsDeferred holds below
+  posix_spawnattr_setsigdefault(&attr, &defaults);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
+  std::string program = "gnuplot";
+  char* argv[] = {program.data(), const_cast<char*>(script.c_str()), nullptr};
+  pid_t pid = -1;
+  std::optional<SignalsDeferred> deferred(std::in_place);  // start + register as one step
+  const int rc = posix_spawnp(&pid, "gnuplot", &files, &attr, argv, environ);
+  posix_spawn_file_actions_destroy(&files);
+  posix_spawnattr_destroy(&attr);
+  if (rc != 0) {
+    why = rc == ENOENT ? "gnuplot not found"
+                       : std::string("cannot start gnuplot: ") + std::strerror(rc);
+    return -1;
+  }
+  KillOnSignal kill_on_signal(pid);
+  deferred.reset();
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return -1;
+  return status;
 }
 
 void remove_quietly(const std::filesystem::path& p) {
@@ -188,16 +232,14 @@ std::string render_plot(const PlotSpec& spec, const std::string& dir, const std:
   write_file_atomic((d / (stem + ".dat")).string(), gnuplot_data(spec));
   write_file_atomic((d / (stem + ".gp")).string(),
                     gnuplot_script(spec, stem + ".dat", stem + ".part"));
-  const std::string cmd = "cd " + shell_quoted(dir) + " && gnuplot " + shell_quoted(stem + ".gp") +
-                          " 2> " + shell_quoted(stem + ".log");
-  const int rc = std::system(cmd.c_str());
   std::string why;
-  if (rc != 0) {
+  const int status = run_gnuplot(dir, stem + ".gp", stem + ".log", why);
+  if (status == -1 && why.empty()) why = "gnuplot could not be waited for";
+  if (status != -1 && status != 0) {
     const std::string log = read_text(d / (stem + ".log"));
-    why = (rc == 127 * 256 || log.find("not found") != std::string::npos)
-              ? "gnuplot not found"
-              : "gnuplot failed: " + log;
-  } else {
+    why = WIFEXITED(status) && WEXITSTATUS(status) == 127 ? "gnuplot not found"
+                                                          : "gnuplot failed: " + log;
+  } else if (status == 0) {
     std::error_code ec;
     std::filesystem::rename(d / (stem + ".part"), d / svg_name, ec);
     if (ec) why = "cannot move the SVG into place: " + ec.message();

@@ -12,6 +12,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -812,4 +813,109 @@ TEST_CASE("stability --json with a hostile scene name is valid JSON", "[cli][hos
   const nlohmann::json j = nlohmann::json::parse(slurp(d.file("o.json")));
   CHECK(j["scene"] == "\"}\x07");
   CHECK(j["engines"][0]["engine"] == "ours-f64");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reasons, labels and Ctrl-C during gnuplot.
+
+TEST_CASE(
+    "a scene that cannot be read is refused with the reason (missing file; folder; not a folder)",
+    "[cli][hostile]") {
+  ScratchDir d("hostile-scene-reason");
+  const std::string s = scene(d);
+  fs::create_directories(d.path / "dir.toml");
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {d.file("missing.toml"), "No such file or directory"},
+      {d.file("dir.toml"), "it is a directory"},
+      {s + "/x.toml", "Not a directory"}};
+  for (const auto& [file, reason] : cases)
+    for (const char* command : {"run", "check", "stability"}) {
+      const Result r = cli({command, file, "--engine", "ours-f64"});
+      INFO(command << " " << file);
+      CHECK(r.code == 2);
+      CHECK_THAT(r.err, Contains(file) && Contains("cannot read the file: " + reason));
+    }
+}
+
+TEST_CASE("identify --trajectory names why the CSV cannot be read (missing file; folder; device)",
+          "[cli][hostile]") {
+  ScratchDir d("hostile-trajectory-reason");
+  const std::string s = scene(d);
+  fs::create_directories(d.path / "dir.csv");
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {d.file("missing.csv"), "No such file or directory"},
+      {d.file("dir.csv"), "it is a directory"},
+      {"/dev/zero", "not a regular file"}};
+  for (const auto& [file, reason] : cases) {
+    const Result r = cli({"identify", s, "--trajectory", file});
+    INFO(file);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Contains("cannot read the trajectory file: " + reason));
+  }
+}
+
+TEST_CASE("check's h/2 and h/4 labels never overflow or go negative for huge 1/N steps",
+          "[cli][hostile]") {
+  ScratchDir d("hostile-fine-label");
+  // One step of 1/2^62 s, and one of 1/(2^63 - 1) s: N*2 and N*4 do not fit a long long.
+  const std::vector<std::pair<std::string, std::string>> steps{
+      {"1/4611686018427387904", "2.168404344971009e-19"},
+      {"1/9223372036854775807", "1.0842021724855044e-19"}};
+  for (const auto& [step, duration] : steps) {
+    put(d.file("s.toml"), "name = \"tiny\"\nduration = " + duration + "\ntimestep = \"" + step +
+                              "\"\n[world]\ngravity = [0.0, -9.8, 0.0]\n[[body]]\nname = "
+                              "\"c\"\nposition = [0.0, 1.0, 0.0]\n");
+    const Result r = cli({"check", d.file("s.toml"), "--engine", "ours-f64"});
+    INFO(r.out << r.err);
+    CHECK(r.code == 0);
+    CHECK_THAT(r.out, Contains("own law at h = " + step + ":"));
+    CHECK(r.out.find("1/-") == std::string::npos);
+    CHECK(r.out.find("1/0") == std::string::npos);
+    CHECK(r.out.find("h = 1/", r.out.find("h = 1/") + 1) == std::string::npos);  // h/2, h/4 in s
+  }
+}
+
+TEST_CASE("Ctrl-C while gnuplot draws a report stops dropcheck and gnuplot and leaves nothing",
+          "[cli][hostile]") {
+  ScratchDir d("hostile-gnuplot-sigint"), bin("hostile-gnuplot-bin");
+  const std::string s = scene(d);
+  // A gnuplot that says it started, then hangs (as a slow plot would).
+  put(bin.file("gnuplot"), "#!/bin/sh\necho $$ > '" + bin.file("started.tmp") + "'\nmv '" +
+                               bin.file("started.tmp") + "' '" + bin.file("started") +
+                               "'\nexec sleep 30\n");
+  fs::permissions(bin.file("gnuplot"), fs::perms::owner_all);
+  const pid_t pid = fork_plain();
+  if (pid == 0) {
+    ::signal(SIGINT, SIG_DFL);  // as in a shell (Catch2 has its own handler)
+    ::setenv("PATH", (bin.path.string() + ":/usr/bin:/bin").c_str(), 1);
+    std::ostringstream out, err;
+    ::_exit(dropcheck::cli_main(
+        {"report", s, "--engine", "ours", "--no-timing", "--out", d.file("rep")}, out, err));
+  }
+  const auto until = [](const std::function<bool()>& done, double seconds) {  // done() once true
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    for (;;) {
+      if (done()) return true;
+      if (std::chrono::steady_clock::now() > end) return false;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+  };
+  int status = 0;
+  bool ended = false;
+  const bool started = until([&] { return fs::exists(bin.file("started")); }, 60);
+  CHECK(started);
+  ::kill(pid, SIGINT);
+  ended = until([&] { return ::waitpid(pid, &status, WNOHANG) == pid; }, 10);
+  const pid_t gnuplot = started ? std::stoi(slurp(bin.file("started"))) : -1;
+  const bool gnuplot_alive = gnuplot > 0 && ::kill(gnuplot, 0) == 0;
+  if (!ended) {  // the failure this test guards against: clean up, then report it
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+  }
+  if (gnuplot_alive) ::kill(gnuplot, SIGKILL);
+  CHECK(ended);
+  CHECK(WIFSIGNALED(status));
+  CHECK(WTERMSIG(status) == SIGINT);
+  CHECK_FALSE(gnuplot_alive);
+  CHECK(names(d.path) == std::set<std::string>{"tiny.toml"});
 }
