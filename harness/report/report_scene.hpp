@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "harness/oracles/landing.hpp"
 #include "harness/report/report.hpp"
 
 namespace dropcheck {
@@ -31,6 +32,11 @@ std::string landing_section(const SceneEvaluation& se);
 
 // True when the run's resting offset lies within the engine's documented band.
 bool rest_offset_expected(const EngineEvaluation& ev, const LandingResult& landing);
+
+// How the default-step run's passage through the floor is judged, as `dropcheck check` judges it
+// (judge_tunnelling, harness/oracles/landing.hpp): limit = tunnelled without continuous collision.
+TunnelVerdict landing_tunnel_verdict(const SceneEvaluation& se, const EngineEvaluation& ev,
+                                     const LandingResult& landing);
 
 // The Markdown anchor GitHub gives a heading ("Free fall (drag)" -> "free-fall-drag").
 std::string heading_anchor(const std::string& heading);
