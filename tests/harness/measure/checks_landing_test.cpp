@@ -106,9 +106,10 @@ TEST_CASE("Falling through a floor the law would hit FAILs even without continuo
   CHECK_THAT(r.message, Contains("OUT OF RANGE"));
 }
 
-TEST_CASE("A run that ends less than the still window after first contact does not judge "
-          "stillness",
-          "[checks][landing]") {
+TEST_CASE(
+    "A run that ends less than the still window after first contact does not judge "
+    "stillness",
+    "[checks][landing]") {
   // thin_floor lasts 0.5 s; the cube is stopped at step 1, so the run ends 29/60 s later.
   const Scene thin = scenario("extreme/thin_floor");
   const CheckResult r = check_landing(thin, floor_double(true, true), thin.timestep);
