@@ -106,6 +106,11 @@ EngineInfo Box2dEngine::info() const {
       "8 velocity / 3 position iterations, continuous collision on";
   i.rest_offset = kRestOffset;
   i.rest_tolerance = kRestTolerance;
+  // Continuous collision: b2World's constructor sets m_continuousPhysics = true (b2_world.cpp) and
+  // the adapter keeps it; b2World::SolveTOI sweeps every contact with a non-dynamic body
+  // (collideA = bA->IsBullet() || typeA != b2_dynamicBody), so a dynamic body against the static
+  // floor is caught between step ends without setting b2BodyDef::bullet (b2_body.h).
+  i.continuous_collision = true;
   return i;
 }
 

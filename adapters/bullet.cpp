@@ -146,6 +146,10 @@ class BulletEngine final : public Engine {
     // -1.3e-6 m (1/30) to -2e-8 m (1/240) over the sweep (bullet_test.cpp).
     i.rest_offset = -3e-7;
     i.rest_tolerance = 2e-6;
+    // Bullet has CCD (btCollisionObject::setCcdMotionThreshold / setCcdSweptSphereRadius), but the
+    // adapter leaves the threshold at its default 0, which disables it: overlap is tested at step
+    // ends only.
+    i.continuous_collision = false;
     return i;
   }
 

@@ -260,8 +260,10 @@ class ExecEngine final : public Engine {
             info_.capabilities.contacts = true;
           else if (k[i] == "planar-only")
             info_.capabilities.planar_only = true;
+          else if (k[i] == "continuous-collision")
+            info_.continuous_collision = true;
           else
-            garbage("capabilities 'contacts' or 'planar-only'", line);
+            garbage("capabilities 'contacts', 'planar-only' or 'continuous-collision'", line);
         }
       } else if (k[0] == "damping-mapping" && k.size() >= 2) {
         info_.damping_mapping = value;

@@ -225,6 +225,8 @@ EngineInfo MujocoEngine::info() const {
       "friction 0.5 (max mix)";
   i.rest_offset = kRestOffset;
   i.rest_tolerance = kRestTolerance;
+  // mj_collision tests geoms at the current positions only (no sweep): no continuous collision.
+  i.continuous_collision = false;
   return i;
 }
 

@@ -194,6 +194,9 @@ class OdeEngine final : public Engine {
     // h: -5.1e-12 m at 1/240), -9.8e-10 m at 1/30 where it is still settling (ode_test.cpp).
     i.rest_offset = -2e-11;
     i.rest_tolerance = 1e-8;
+    // dWorldStep collides the geoms where they are at the end of the step (dSpaceCollide): ODE has
+    // no continuous collision.
+    i.continuous_collision = false;
     return i;
   }
 

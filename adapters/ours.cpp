@@ -28,6 +28,7 @@ class OursEngine final : public Engine {
     i.law = DampingOrder::AfterForces;
     i.arithmetic = DampingForm::phi_multiply;  // ours/physics.hpp, copied by own_arithmetic.cpp
     i.damping_mapping = "linearDrag f = exp(-k*h) per step";
+    i.continuous_collision = false;  // no contacts at all
     return i;
   }
 

@@ -44,6 +44,10 @@ struct EngineInfo {
   // Documented per engine in docs/engines.md section 5 (Box2D: +0.015 from skin and slop).
   double rest_offset = 0.0;
   double rest_tolerance = 1e-3;
+  // Contacts as the adapter configures them: true when a fast body is swept between step ends
+  // (continuous collision) against a static floor; false when overlap is tested only at step ends,
+  // so a body that jumps over the floor in one step tunnels (a named limit, docs/engines.md 5).
+  bool continuous_collision = false;
 };
 
 struct BodyState {

@@ -118,6 +118,46 @@ CheckResult check_divergence(const Scene& scene, const EngineFactory& make,
   return r;
 }
 
+namespace {
+
+// Appends `part` to `text`, "; "-separated.
+void append(std::string& text, const std::string& part) {
+  text += (text.empty() ? "" : "; ") + part;
+}
+
+// One judged body's landing figures against its expectations; clears `passed` on a failure.
+// Stillness is judged only over a window wholly after first contact.
+std::string landing_text(const Trajectory& run, const LandingSetup& setup, const EngineInfo& info,
+                         const Scene& scene, const Timestep& h, bool& passed) {
+  const StillCriteria still;
+  const LandingObservation o = observe_landing(run, setup, still);
+  const std::int64_t law_step = discrete_contact_step(info.law, scene, h.seconds, setup);
+  const bool on_time = o.first_contact_step >= 0 &&
+                       std::abs(o.first_contact_step - law_step) <= tolerance::kContactStepSlack;
+  const double rebound = o.rebound - info.rest_offset;  // above the engine's own rest height
+  const bool no_rebound = rebound <= tolerance::kMaxRebound;
+  const bool rests = std::abs(o.rest_offset - info.rest_offset) <= info.rest_tolerance;
+  // A run that ends less than the window after first contact cannot show stillness: not judged.
+  const bool short_run = o.first_contact_step >= 0 && !o.still_judged;
+  passed = passed && on_time && no_rebound && rests && (o.still || short_run);
+  return fmt("first contact at step %.0f (law: step %.0f; continuous t = %.4f s)",
+             double(o.first_contact_step), double(law_step), setup.contact_time) +
+         (on_time ? "" : " MORE THAN ONE STEP OFF") +
+         fmt(", rebound %.3g m above rest (limit %.0e)", rebound, tolerance::kMaxRebound) +
+         (no_rebound ? "" : " TOO HIGH") +
+         fmt(", rest offset %.3g m (expected %.3g +- %.3g)", o.rest_offset, info.rest_offset,
+             info.rest_tolerance) +
+         (rests ? "" : " OUT OF RANGE") +
+         (short_run ? fmt(", stillness not judged: the run ends %.3g s after first contact "
+                          "(window %.3g s)",
+                          o.after_contact, still.seconds)
+                    : fmt(", still: max |v| %.3g m/s, range %.3g m over the last %.3g s",
+                          o.still_speed, o.still_range, still.seconds) +
+                          (o.still ? "" : " NOT STILL"));
+}
+
+}  // namespace
+
 CheckResult check_landing(const Scene& scene, const EngineFactory& make, const Timestep& h) {
   std::unique_ptr<Engine> engine = make();
   const EngineInfo info = engine->info();
@@ -128,28 +168,34 @@ CheckResult check_landing(const Scene& scene, const EngineFactory& make, const T
     return r;
   }
   r.passed = true;
-  for (const LandingSetup& setup : engine_landing_setups(scene, info)) {
-    const LandingObservation o = observe_landing(run, setup);
-    const std::int64_t law_step = discrete_contact_step(info.law, scene, h.seconds, setup);
-    const bool on_time = o.first_contact_step >= 0 &&
-                         std::abs(o.first_contact_step - law_step) <= tolerance::kContactStepSlack;
-    const double rebound = o.rebound - info.rest_offset;  // above the engine's own rest height
-    const bool no_rebound = rebound <= tolerance::kMaxRebound;
-    const bool rests = std::abs(o.rest_offset - info.rest_offset) <= info.rest_tolerance;
-    r.passed = r.passed && on_time && no_rebound && rests && o.still;
-    r.message += (r.message.empty() ? "" : "; ") + run.body_names[setup.body] + ": " +
-                 fmt("first contact at step %.0f (law: step %.0f; continuous t = %.4f s)",
-                     double(o.first_contact_step), double(law_step), setup.contact_time) +
-                 (on_time ? "" : " MORE THAN ONE STEP OFF") +
-                 fmt(", rebound %.3g m above rest (limit %.0e)", rebound, tolerance::kMaxRebound) +
-                 (no_rebound ? "" : " TOO HIGH") +
-                 fmt(", rest offset %.3g m (expected %.3g +- %.3g)", o.rest_offset,
-                     info.rest_offset, info.rest_tolerance) +
-                 (rests ? "" : " OUT OF RANGE") +
-                 fmt(", still: max |v| %.3g m/s, range %.3g m over the last 2 s", o.still_speed,
-                     o.still_range) +
-                 (o.still ? "" : " NOT STILL");
+  const std::vector<LandingSetup> setups = engine_landing_setups(scene, info);
+  std::vector<std::string> limits;
+  for (const LandingSetup& setup : setups) {
+    const std::string body = run.body_names[setup.body];
+    const Tunnelling tunnel = discrete_tunnelling(info.law, scene, h.seconds, setup);
+    const TunnelVerdict through = judge_tunnelling(tunnel, info, run, setup);
+    if (through == TunnelVerdict::limit) {
+      limits.push_back((setups.size() > 1 ? "'" + body + "' " : "") + tunnel.sentence() +
+                       "; no continuous collision");
+      append(r.message,
+             body + ": tunnelled through the floor as its own law predicts (step " +
+                 std::to_string(tunnel.step) + ")" +
+                 fmt(", final centre %.3g m below the floor's bottom; not judged further",
+                     setup.floor_bottom - run.final_state(setup.body).position.y()));
+      continue;
+    }
+    append(r.message, body + ": " + landing_text(run, setup, info, scene, h, r.passed));
+    if (through == TunnelVerdict::fault) {
+      r.passed = false;
+      r.message += " TUNNELLED although the engine declares continuous collision";
+    }
   }
+  for (const LandingExclusion& e : landing_exclusions(scene)) append(r.message, e.sentence(scene));
+  if (setups.empty())
+    append(r.message,
+           "no body is judged here: the stacks are covered by `dropcheck stability` (a body "
+           "ending below one it started above is reported as tunnelled)");
+  for (const std::string& l : limits) append(r.limit, l);
   return r;
 }
 

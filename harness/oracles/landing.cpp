@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <variant>
 
@@ -36,6 +37,14 @@ long floor_under(const Scene& scene, std::size_t i) {
       best = static_cast<long>(j);
   }
   return best;
+}
+
+// Dynamic body `o` shares dynamic body `b`'s x-z footprint (open rectangles overlap: boxes that
+// only touch at an edge do not stack) and reaches above the floor top `floor_top`.
+bool stacked_with(const Body& b, const Body& o, double floor_top) {
+  return !o.is_static && top(o) > floor_top &&
+         std::abs(b.position.x() - o.position.x()) < b.half_extents.x() + o.half_extents.x() &&
+         std::abs(b.position.z() - o.position.z()) < b.half_extents.z() + o.half_extents.z();
 }
 
 // Vertical acceleration of body i without damping: a = g_y + sum(F_y)/m over its constant forces.
@@ -138,6 +147,7 @@ std::vector<LandingSetup> landing_setups(const Scene& scene) {
     if (f < 0) continue;
     LandingSetup s{.body = i, .floor = static_cast<std::size_t>(f)};
     s.floor_top = top(scene.bodies[s.floor]);
+    s.floor_bottom = bottom(scene.bodies[s.floor]);
     s.half_height = b.half_extents.y();
     s.rest_height = s.floor_top + s.half_height;
     s.contact_time =
@@ -148,11 +158,88 @@ std::vector<LandingSetup> landing_setups(const Scene& scene) {
   return out;
 }
 
+std::string LandingExclusion::sentence(const Scene& scene) const {
+  const std::string name = "'" + scene.bodies[body].name + "'";
+  const std::string o = "'" + scene.bodies[other].name + "'";
+  return name + " not judged: " +
+         (on_other ? "lands on dynamic body " + o : "dynamic body " + o + " lands on it") +
+         " (the landing oracle covers one body over a static floor)";
+}
+
+std::vector<LandingExclusion> landing_exclusions(const Scene& scene) {
+  std::vector<LandingExclusion> out;
+  for (const LandingSetup& s : landing_setups(scene)) {
+    const Body& b = scene.bodies[s.body];
+    long below = -1, above = -1;  // nearest stacked body under / over b
+    for (std::size_t j = 0; j < scene.bodies.size(); ++j) {
+      const Body& o = scene.bodies[j];
+      if (j == s.body || !stacked_with(b, o, s.floor_top)) continue;
+      long& slot = o.position.y() < b.position.y() ? below : above;
+      const auto nearer = [&](long k) {
+        return k < 0 || std::abs(o.position.y() - b.position.y()) <
+                            std::abs(scene.bodies[static_cast<std::size_t>(k)].position.y() -
+                                     b.position.y());
+      };
+      if (nearer(slot)) slot = static_cast<long>(j);
+    }
+    if (below < 0 && above < 0) continue;
+    out.push_back({s.body, static_cast<std::size_t>(below >= 0 ? below : above), below >= 0});
+  }
+  return out;
+}
+
 std::vector<LandingSetup> engine_landing_setups(const Scene& scene, const EngineInfo& info) {
-  std::vector<LandingSetup> setups = landing_setups(scene);
-  for (LandingSetup& setup : setups)
+  const std::vector<LandingExclusion> excluded = landing_exclusions(scene);
+  std::vector<LandingSetup> setups;
+  for (LandingSetup setup : landing_setups(scene)) {
+    if (std::any_of(excluded.begin(), excluded.end(),
+                    [&](const LandingExclusion& e) { return e.body == setup.body; }))
+      continue;
     setup.floor_top += std::max(0.0, info.rest_offset + info.rest_tolerance);
+    setups.push_back(setup);
+  }
   return setups;
+}
+
+std::string Tunnelling::sentence() const {
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                "tunnels: it travels %.3g m per step at contact, more than the floor (%.3g m) plus "
+                "its height (%.3g m)",
+                travel, floor_thickness, height);
+  return buf;
+}
+
+// The slab an end-of-step centre must fall in for the body to overlap the floor at a step end:
+// [floor bottom - half height, floor top + half height] (geometric floor, no engine skin).
+Tunnelling discrete_tunnelling(Law law, const Scene& scene, double h, const LandingSetup& setup) {
+  Tunnelling t;
+  const Body& floor = scene.bodies[setup.floor];
+  const double slab_top = top(floor) + setup.half_height;
+  const double slab_bottom = bottom(floor) - setup.half_height;
+  t.floor_thickness = top(floor) - bottom(floor);
+  t.height = 2.0 * setup.half_height;
+  const Trajectory law_run = predict_discrete(law, scene, h);
+  for (std::size_t s = 0; s < law_run.samples(); ++s) {
+    const double y = law_run.at(s, setup.body).position.y();
+    if (y > slab_top) continue;
+    t.step = law_run.recorded[s];
+    t.tunnels = y < slab_bottom;
+    if (s > 0) t.travel = law_run.at(s - 1, setup.body).position.y() - y;
+    break;
+  }
+  return t;
+}
+
+bool ends_below_floor(const Trajectory& run, const LandingSetup& setup) {
+  return run.samples() > 0 &&
+         run.final_state(setup.body).position.y() < setup.floor_bottom - setup.half_height;
+}
+
+TunnelVerdict judge_tunnelling(const Tunnelling& law, const EngineInfo& info, const Trajectory& run,
+                               const LandingSetup& setup) {
+  if (!law.tunnels || !ends_below_floor(run, setup)) return TunnelVerdict::none;
+  return info.continuous_collision ? TunnelVerdict::fault : TunnelVerdict::limit;
 }
 
 std::int64_t first_contact_step(const Trajectory& run, const LandingSetup& setup) {
@@ -174,7 +261,8 @@ LandingObservation observe_landing(const Trajectory& run, const LandingSetup& se
                        .rebound = kNaN,
                        .rest_offset = kNaN,
                        .still_speed = kNaN,
-                       .still_range = kNaN};
+                       .still_range = kNaN,
+                       .after_contact = kNaN};
   if (run.samples() == 0) return o;
   o.first_contact_step = first_contact_step(run, setup);
   double lowest = INFINITY, highest_after = -INFINITY;
@@ -191,8 +279,9 @@ LandingObservation observe_landing(const Trajectory& run, const LandingSetup& se
   if (o.first_contact_step < 0) return o;
   o.first_contact_time = static_cast<double>(o.first_contact_step) * run.h;
   o.rebound = highest_after - setup.rest_height;
-  o.still = o.first_contact_step <= window_start && o.still_speed <= still.max_speed &&
-            o.still_range <= still.max_range;
+  o.after_contact = static_cast<double>(run.recorded.back() - o.first_contact_step) * run.h;
+  o.still_judged = o.first_contact_step <= window_start;
+  o.still = o.still_judged && o.still_speed <= still.max_speed && o.still_range <= still.max_range;
   return o;
 }
 

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "harness/core/engine.hpp"
@@ -21,6 +22,7 @@ struct LandingSetup {
   std::size_t body = 0;       // index into Scene::bodies
   std::size_t floor = 0;      // static body whose top is under the body's centre
   double floor_top = 0.0;     // m: floor centre y + floor half extent y
+  double floor_bottom = 0.0;  // m: floor centre y - floor half extent y (geometric, never shifted)
   double half_height = 0.0;   // m: the body's half extent along y (bottom = centre - this)
   double rest_height = 0.0;   // m: floor_top + body half extent y (centre of a resting body)
   double contact_time = 0.0;  // s: continuous model, bottom reaches floor_top; NaN if never
@@ -42,17 +44,68 @@ struct LandingObservation {
   double rest_offset = 0.0;              // m: final centre minus rest height
   double still_speed = 0.0;              // m/s: largest |v| in the still window
   double still_range = 0.0;              // m: largest position range in the still window
-  bool still = false;                    // window entirely after first contact, within criteria
+  bool still_judged = false;             // the still window lies wholly after first contact
+  double after_contact = 0.0;            // s: from first contact to the run's end (NaN if never)
+  bool still = false;                    // still_judged, and within the criteria
+};
+
+// A dynamic body over a floor that the single-body oracle does not judge: another dynamic body
+// shares its x-z footprint (rectangles overlap) above the floor, so it lands on that body or that
+// body lands on it.
+struct LandingExclusion {
+  std::size_t body = 0;   // index into Scene::bodies
+  std::size_t other = 0;  // the dynamic body below or above it
+  bool on_other = false;  // true: it lands on `other` (other is below); false: other lands on it
+  // "'heavy' not judged: lands on dynamic body 'light' (the landing oracle covers one body over
+  // a static floor)".
+  std::string sentence(const Scene& scene) const;
 };
 
 // Every dynamic body with a static box under its centre (the highest one whose top is below the
-// body's bottom and whose x-z footprint contains the body's x-z position), in body order.
+// body's bottom and whose x-z footprint contains the body's x-z position), in body order; stacked
+// bodies included (the geometry of every fall, not who is judged).
 std::vector<LandingSetup> landing_setups(const Scene& scene);
 
-// landing_setups as one engine meets the floor: an engine whose resting surface sits above the
-// geometry (Box2D's 0.01 m skin) touches it there, so contact means reaching the floor top plus
-// max(0, rest_offset + rest_tolerance). The one place that shift is made (check and report).
+// The bodies of landing_setups that share their x-z footprint with another dynamic body above the
+// floor top, in body order (the nearest body below it is named, else the nearest above).
+std::vector<LandingExclusion> landing_exclusions(const Scene& scene);
+
+// landing_setups without landing_exclusions, as one engine meets the floor: an engine whose
+// resting surface sits above the geometry (Box2D's 0.01 m skin) touches it there, so contact means
+// reaching the floor top plus max(0, rest_offset + rest_tolerance). The one place the bodies to
+// judge are chosen and that shift is made (check and report).
 std::vector<LandingSetup> engine_landing_setups(const Scene& scene, const EngineInfo& info);
+
+// Tunnelling of the engine's own discrete law (contacts ignored): at the first step whose centre
+// is at or below the floor slab's top widened by the half height (floor top + half height), is it
+// already below the slab's bottom widened the same way (floor bottom - half height)? Then no
+// end-of-step position ever overlaps the floor, and an engine that tests overlap only at step ends
+// (no continuous collision) cannot see it.
+struct Tunnelling {
+  bool tunnels = false;          // the law jumps over the widened slab in one step
+  std::int64_t step = -1;        // first step at or below the widened slab's top; -1 never
+  double travel = 0.0;           // m: distance the centre moves over that step
+  double floor_thickness = 0.0;  // m: floor top - floor bottom (geometric)
+  double height = 0.0;           // m: the body's full height (2 * half_height)
+  // "tunnels: it travels 3.33 m per step at contact, more than the floor (0.01 m) plus its
+  // height (1 m)".
+  std::string sentence() const;
+};
+
+// Tunnelling of predict_discrete(law, scene, h) for `setup`'s body over its (geometric) floor.
+Tunnelling discrete_tunnelling(Law law, const Scene& scene, double h, const LandingSetup& setup);
+
+// Whether the run ends with the body wholly below its floor (centre below floor bottom - half
+// height): it went through.
+bool ends_below_floor(const Trajectory& run, const LandingSetup& setup);
+
+// How a run that ends below the floor is judged (check and report alike): `limit` when the law
+// tunnels and the engine has no continuous collision (passed, the cause named); `fault` when the
+// law tunnels and the engine declares continuous collision yet went through; `none` otherwise
+// (judge the landing as usual).
+enum class TunnelVerdict { none, limit, fault };
+TunnelVerdict judge_tunnelling(const Tunnelling& law, const EngineInfo& info, const Trajectory& run,
+                               const LandingSetup& setup);
 
 // Centre height y(t) of the continuous model from y0, v0 (m, m/s) with acceleration a (m/s^2) and
 // damping rate k (1/s).

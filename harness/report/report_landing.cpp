@@ -16,12 +16,31 @@ std::string time_or_never(double t) {
   return std::isnan(t) ? "never" : sig(t, 4);
 }
 
-std::vector<std::string> landing_row(const EngineEvaluation& ev, const Scene& scene,
+// "yes", "**NO**", or why stillness is not judged (the run ends too soon after first contact).
+std::string still_cell(const LandingObservation& o) {
+  if (o.first_contact_step >= 0 && !o.still_judged)
+    return strf("not judged (run ends %.3g s after contact)", o.after_contact);
+  return o.still ? "yes" : "**NO**";
+}
+
+std::vector<std::string> landing_row(const SceneEvaluation& se, const EngineEvaluation& ev,
                                      const LandingResult& l) {
   const LandingObservation& o = l.seen;
   const bool touched = o.first_contact_step >= 0;
+  if (landing_tunnel_verdict(se, ev, l) == TunnelVerdict::limit)
+    return {ev.name,
+            se.scene.bodies[l.setup.body].name,
+            "tunnelled (no continuous collision: a limit)",
+            time_or_never(l.setup.contact_time),
+            time_or_never(l.law_contact_time),
+            g3(o.deepest),
+            "—",
+            g3(o.rest_offset),
+            g3(ev.info.rest_offset) + " ± " + g3(ev.info.rest_tolerance),
+            "not judged",
+            "not judged"};
   return {ev.name,
-          scene.bodies[l.setup.body].name,
+          se.scene.bodies[l.setup.body].name,
           touched ? time_or_never(o.first_contact_time) : "never",
           time_or_never(l.setup.contact_time),
           time_or_never(l.law_contact_time),
@@ -30,13 +49,31 @@ std::vector<std::string> landing_row(const EngineEvaluation& ev, const Scene& sc
           cell(o.rest_offset),
           cell(ev.info.rest_offset) + " ± " + cell(ev.info.rest_tolerance),
           rest_offset_expected(ev, l) ? "yes" : "**NO**",
-          o.still ? "yes" : "**NO**"};
+          still_cell(o)};
+}
+
+// One sentence per body the single-body oracle leaves out (a stack), or "".
+std::string exclusions(const Scene& scene) {
+  std::string out;
+  for (const LandingExclusion& e : landing_exclusions(scene))
+    out += "- " + e.sentence(scene) + ".\n";
+  return out.empty() ? out
+                     : "Not judged here (stacks; `dropcheck stability` reports a body that ends "
+                       "below one it started above as tunnelled):\n\n" +
+                           out + "\n";
 }
 
 }  // namespace
 
 bool rest_offset_expected(const EngineEvaluation& ev, const LandingResult& l) {
   return std::abs(l.seen.rest_offset - ev.info.rest_offset) <= ev.info.rest_tolerance;
+}
+
+TunnelVerdict landing_tunnel_verdict(const SceneEvaluation& se, const EngineEvaluation& ev,
+                                     const LandingResult& l) {
+  const StepEvaluation& st = ev.at_default();
+  const Tunnelling law = discrete_tunnelling(ev.info.law, se.scene, st.h.seconds, l.setup);
+  return judge_tunnelling(law, ev.info, st.run, l.setup);
 }
 
 std::string landing_section(const SceneEvaluation& se) {
@@ -46,9 +83,10 @@ std::string landing_section(const SceneEvaluation& se) {
       "llr");
   for (const EngineEvaluation& ev : se.engines) {
     if (!ev.ran()) continue;
-    for (const LandingResult& l : ev.at_default().landings) t.add(landing_row(ev, se.scene, l));
+    for (const LandingResult& l : ev.at_default().landings) t.add(landing_row(se, ev, l));
   }
-  if (t.empty()) return {};
+  const std::string excluded = exclusions(se.scene);
+  if (t.empty() && excluded.empty()) return {};
   return "#### Landing at h = " + se.scene.timestep.text +
          "\n\nFirst contact: first recorded step with the body's bottom at or below the "
          "floor's top, raised by the engine's expected rest offset where that is positive "
@@ -57,8 +95,11 @@ std::string landing_section(const SceneEvaluation& se) {
          "contacts ignored. Offsets are centre heights minus the geometric rest height (floor "
          "top + half extent); deepest < 0 is penetration; the rebound is measured above the "
          "engine's expected rest height. Still: |v| and the position range stay within 1 mm(/s) "
-         "over the last 2 s.\n\n" +
-         t.str() + "\n";
+         "over the last 2 s, judged only when that window lies wholly after first contact. A "
+         "body that tunnels through the floor as its engine's own law predicts (no end-of-step "
+         "position overlaps the floor) on an engine without continuous collision meets a limit "
+         "of that engine, not a fault.\n\n" +
+         (t.empty() ? "" : t.str() + "\n") + excluded;
 }
 
 }  // namespace dropcheck

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "harness/measure/evaluate.hpp"
+#include "harness/oracles/landing.hpp"
 
 namespace dropcheck {
 
@@ -12,5 +13,10 @@ std::string landing_section(const SceneEvaluation& se);
 
 // True when the run's resting offset lies within the engine's documented band.
 bool rest_offset_expected(const EngineEvaluation& ev, const LandingResult& landing);
+
+// How the default-step run's passage through the floor is judged, as `dropcheck check` judges it
+// (judge_tunnelling, harness/oracles/landing.hpp): limit = tunnelled without continuous collision.
+TunnelVerdict landing_tunnel_verdict(const SceneEvaluation& se, const EngineEvaluation& ev,
+                                     const LandingResult& landing);
 
 }  // namespace dropcheck

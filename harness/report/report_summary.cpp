@@ -52,15 +52,27 @@ bool unexplained(const EngineEvaluation& ev) {
 }
 
 // Landing flags at the default step: a resting offset outside the engine's band, or not still.
-bool off_rest(const EngineEvaluation& ev) {
+// A body that tunnelled as a limit (no continuous collision) is neither; a run too short after
+// first contact to judge stillness is not restless (as `dropcheck check` decides).
+bool off_rest(const SceneEvaluation& se, const EngineEvaluation& ev) {
   for (const LandingResult& l : ev.at_default().landings)
-    if (!rest_offset_expected(ev, l)) return true;
+    if (landing_tunnel_verdict(se, ev, l) != TunnelVerdict::limit && !rest_offset_expected(ev, l))
+      return true;
   return false;
 }
 
-bool restless(const EngineEvaluation& ev) {
+bool restless(const SceneEvaluation& se, const EngineEvaluation& ev) {
+  for (const LandingResult& l : ev.at_default().landings) {
+    const bool judged = l.seen.first_contact_step < 0 || l.seen.still_judged;
+    if (landing_tunnel_verdict(se, ev, l) != TunnelVerdict::limit && judged && !l.seen.still)
+      return true;
+  }
+  return false;
+}
+
+bool tunnelled(const SceneEvaluation& se, const EngineEvaluation& ev) {
   for (const LandingResult& l : ev.at_default().landings)
-    if (!l.seen.still) return true;
+    if (landing_tunnel_verdict(se, ev, l) == TunnelVerdict::limit) return true;
   return false;
 }
 
@@ -72,7 +84,7 @@ bool clamped(const EngineEvaluation& ev) {
 
 // "FAILED: box2d; UNEXPLAINED: ode", or "ok". Each flag names the engines it concerns.
 std::string verdict(const SceneEvaluation& se) {
-  std::string failed, clamps, unexp, offlaw, rest, moving;
+  std::string failed, clamps, unexp, offlaw, rest, moving, tunnels;
   auto add = [](std::string& list, const std::string& name) {
     list += (list.empty() ? "" : ", ") + name;
   };
@@ -82,8 +94,9 @@ std::string verdict(const SceneEvaluation& se) {
     if (clamped(ev)) add(clamps, ev.name);
     if (unexplained(ev)) add(unexp, ev.name);
     if (off_own_law(ev)) add(offlaw, ev.name);
-    if (off_rest(ev)) add(rest, ev.name);
-    if (restless(ev)) add(moving, ev.name);
+    if (off_rest(se, ev)) add(rest, ev.name);
+    if (restless(se, ev)) add(moving, ev.name);
+    if (tunnelled(se, ev)) add(tunnels, ev.name);
   }
   std::string v;
   auto flag = [&v](const char* what, const std::string& list) {
@@ -95,6 +108,7 @@ std::string verdict(const SceneEvaluation& se) {
   flag("**CLAMPED**", clamps);
   flag("**REST OFFSET**", rest);
   flag("**NOT STILL**", moving);
+  flag("tunnelled, no continuous collision (a limit)", tunnels);
   if (se.reference.empty()) flag("**NOT RUN**", "every engine");
   return v.empty() ? "ok" : v;
 }

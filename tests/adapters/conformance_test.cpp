@@ -279,5 +279,35 @@ TEST_CASE("No engine's landing rebounds at any step of the sweep", "[conformance
         CHECK(std::abs(o.rest_offset - info.rest_offset) <= info.rest_tolerance);
       }
     }
+
+TEST_CASE("On the thin floor, Box2D's continuous collision lands and the others tunnel as a limit",
+          "[conformance][landing]") {
+  const Scene scene = shipped("extreme/thin_floor");
+  for (const std::string& name : available_engine_names()) {
+    std::unique_ptr<Engine> engine = make_engine(name);
+    if (!engine->cannot_run(scene).empty()) continue;
+    const CheckResult r = check_landing(scene, factory(name), scene.timestep);
+    INFO(name << ": " << r.limit << " | " << r.message);
+    CHECK(r.passed);
+    if (engine->info().continuous_collision) {
+      CHECK(r.limit.empty());  // box2d: stopped on the floor at step 1, rests at +0.015 m
+      CHECK_THAT(r.message, Catch::Contains("stillness not judged: the run ends 0.483 s after "
+                                            "first contact (window 2 s)"));
+    } else {
+      CHECK_THAT(r.limit, Catch::StartsWith("tunnels: it travels 3.34 m per step at contact"));
+    }
+  }
+}
+
+TEST_CASE("On the mass-ratio stacks no contact engine is judged by the single-body oracle",
+          "[conformance][landing]") {
+  const Scene scene = shipped("extreme/mass_ratio");
+  for (const std::string& name : available_engine_names()) {
+    if (!make_engine(name)->cannot_run(scene).empty()) continue;
+    const CheckResult r = check_landing(scene, factory(name), scene.timestep);
+    INFO(name << ": " << r.message);
+    CHECK(r.passed);
+    CHECK_THAT(r.message, Catch::Contains("'heavy_1e5' not judged: lands on dynamic body "
+                                          "'light_1e5'"));
   }
 }

@@ -207,6 +207,51 @@ TEST_CASE("A wrong handshake, a silent engine and a missing program fail at star
   CHECK(no_children());
 }
 
+TEST_CASE("The handshake declares continuous collision with the capability continuous-collision",
+          "[exec]") {
+  // An engine that only shakes hands and waits for quit: its info and, for a refused handshake,
+  // the failure the first run reports (an accepted one would wait for a state that never comes).
+  struct Seen {
+    EngineInfo info;
+    std::string failure;
+  };
+  const auto shake = [](const std::string& tag, const std::string& capabilities, bool run) {
+    const std::string script =
+        write_file("caps_" + tag + ".py",
+                   "import sys\n"
+                   "for l in ['dropcheck-engine 1', 'name caps', 'version 0', 'scalar f64',\n"
+                   "          'law after-forces', '" +
+                       capabilities +
+                       "', 'ready']:\n"
+                       "    print(l, flush=True)\n"
+                       "for line in sys.stdin:\n"
+                       "    if line.strip() == 'quit':\n"
+                       "        break\n");
+    ExecSpec spec;
+    spec.command = {"python3", script};
+    spec.timeout_s = 2.0;
+    Seen seen;
+    {
+      auto e = make_exec_engine(spec);
+      seen.info = e->info();
+      const Scene s = scene("wind");
+      if (run) seen.failure = run_scene(*e, s, s.timestep.seconds).failure;
+    }
+    fs::remove(script);
+    return seen;
+  };
+  const Seen ccd = shake("ccd", "capabilities contacts continuous-collision", false);
+  CHECK(ccd.info.capabilities.contacts);
+  CHECK(ccd.info.continuous_collision);
+  const Seen plain = shake("plain", "capabilities contacts", false);
+  CHECK_FALSE(plain.info.continuous_collision);  // not declared: overlap tested at step ends only
+  const Seen bad = shake("bad", "capabilities contacts ccd", true);
+  CHECK_THAT(bad.failure,
+             Contains("at start") && Contains("capabilities 'contacts', 'planar-only' or "
+                                              "'continuous-collision'"));
+  CHECK(no_children());
+}
+
 TEST_CASE("Engine files and exec: paths are validated as input", "[exec]") {
   const auto error_of = [](const std::string& spec) -> std::string {
     try {

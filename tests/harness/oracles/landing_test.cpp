@@ -190,3 +190,98 @@ TEST_CASE("observe_landing reads first contact, depth, rebound, rest offset and 
     CHECK_FALSE(o.still);
   }
 }
+
+TEST_CASE("A stacked body is not judged by the landing oracle, and the reason names the other body",
+          "[landing]") {
+  const Scene stacks = scenario("extreme/mass_ratio");
+  const std::vector<LandingExclusion> out = landing_exclusions(stacks);
+  REQUIRE(out.size() == 4);  // light_1e3, heavy_1e3, light_1e5, heavy_1e5: both stacks
+  CHECK(out[0].sentence(stacks) ==
+        "'light_1e3' not judged: dynamic body 'heavy_1e3' lands on it (the landing oracle covers "
+        "one body over a static floor)");
+  CHECK(out[1].sentence(stacks) ==
+        "'heavy_1e3' not judged: lands on dynamic body 'light_1e3' (the landing oracle covers one "
+        "body over a static floor)");
+  CHECK(out[3].on_other);
+  CHECK(stacks.bodies[out[3].other].name == "light_1e5");
+  CHECK(engine_landing_setups(stacks, EngineInfo{}).empty());
+  CHECK(landing_setups(stacks).size() == 4);  // the geometry still lists every fall
+
+  // Side by side (footprints 0.1 m apart in x): two lone landings, both judged.
+  Scene apart = stacks;
+  apart.bodies[2].position.x() = -1.9;  // heavy_1e3 beside light_1e3 (half extents 0.5 each)
+  const std::vector<LandingSetup> judged = engine_landing_setups(apart, EngineInfo{});
+  REQUIRE(judged.size() == 2);
+  CHECK(judged[0].body == 1);
+  CHECK(judged[1].body == 2);
+
+  // A lone drop is judged; the Box2D-style skin shift is applied to it alone.
+  EngineInfo skin;
+  skin.rest_offset = 0.015;
+  skin.rest_tolerance = 1e-4;
+  const std::vector<LandingSetup> drop = engine_landing_setups(scenario("drop_on_floor"), skin);
+  REQUIRE(drop.size() == 1);
+  CHECK(drop[0].floor_top == Approx(0.0151).epsilon(0).margin(1e-15));
+  CHECK(landing_exclusions(scenario("drop_on_floor")).empty());
+}
+
+TEST_CASE("Stillness is judged only over a window that lies wholly after first contact",
+          "[landing]") {
+  const LandingSetup s = unit_cube_on_floor();
+  // Contact at step 3 (t = 1.5 s), run ends at step 4: 0.5 s after contact, window 2 s.
+  const LandingObservation late = observe_landing(heights(0.5, {3.0, 2.0, 1.0, 0.5, 0.5}), s);
+  CHECK_FALSE(late.still_judged);
+  CHECK_FALSE(late.still);
+  CHECK(late.after_contact == 0.5);
+  // Contact at step 3, run ends at step 8: window = steps 4..8, after contact.
+  const LandingObservation judged =
+      observe_landing(heights(0.5, {3.0, 2.0, 1.0, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5}), s);
+  CHECK(judged.still_judged);
+  CHECK(judged.still);
+  CHECK(judged.after_contact == 2.5);
+  const LandingObservation never = observe_landing(heights(0.5, {3.0, 2.0, 1.0}), s);
+  CHECK_FALSE(never.still_judged);
+  CHECK(std::isnan(never.after_contact));
+}
+
+TEST_CASE("The law tunnels when no end-of-step position overlaps the floor slab", "[landing]") {
+  const Scene thin = scenario("extreme/thin_floor");
+  const LandingSetup setup = landing_setups(thin).at(0);
+  CHECK(setup.floor_bottom == Approx(-0.01).epsilon(0).margin(1e-15));
+  // h = 1/60, after forces: v1 = -200 - 9.8/60, y1 = 2 + v1/60 = -1.33606 m, below the widened
+  // slab [-0.51, 0.5] in one step of 3.33606 m (floor 0.01 m + height 1 m = 1.01 m).
+  const Tunnelling t = discrete_tunnelling(DampingOrder::AfterForces, thin, 1.0 / 60.0, setup);
+  CHECK(t.tunnels);
+  CHECK(t.step == 1);
+  CHECK(t.travel == Approx((200.0 + 9.8 / 60.0) / 60.0).epsilon(1e-12));
+  CHECK(t.sentence() ==
+        "tunnels: it travels 3.34 m per step at contact, more than the floor (0.01 m) plus its "
+        "height (1 m)");
+  // h = 1/1000: 0.2 m per step, the step ends inside the slab.
+  const Tunnelling fine = discrete_tunnelling(DampingOrder::AfterForces, thin, 1e-3, setup);
+  CHECK_FALSE(fine.tunnels);
+  CHECK(fine.step >= 0);
+  // A 10 m drop at 1/60 moves at most 0.23 m per step: it never jumps the 1 m floor.
+  const Scene drop = scenario("drop_on_floor");
+  CHECK_FALSE(
+      discrete_tunnelling(DampingOrder::AfterForces, drop, 1.0 / 60.0, landing_setups(drop).at(0))
+          .tunnels);
+}
+
+TEST_CASE("Tunnelling is a limit without continuous collision and a fault with it", "[landing]") {
+  const Scene thin = scenario("extreme/thin_floor");
+  const LandingSetup setup = landing_setups(thin).at(0);
+  const Tunnelling law = discrete_tunnelling(DampingOrder::AfterForces, thin, 1.0 / 60.0, setup);
+  // One-body runs (body 0) over the same floor.
+  LandingSetup one = setup;
+  one.body = 0;
+  const Trajectory through = heights(1.0 / 60.0, {2.0, -1.3, -4.7});  // ends under the floor
+  const Trajectory caught = heights(1.0 / 60.0, {2.0, 0.5, 0.5});
+  EngineInfo plain, ccd;
+  ccd.continuous_collision = true;
+  CHECK(judge_tunnelling(law, plain, through, one) == TunnelVerdict::limit);
+  CHECK(judge_tunnelling(law, ccd, through, one) == TunnelVerdict::fault);
+  CHECK(judge_tunnelling(law, plain, caught, one) == TunnelVerdict::none);
+  const Tunnelling fine = discrete_tunnelling(DampingOrder::AfterForces, thin, 1e-3, setup);
+  CHECK(judge_tunnelling(fine, plain, through, one) == TunnelVerdict::none);  // judged as usual
+}

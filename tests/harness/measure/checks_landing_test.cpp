@@ -1,0 +1,144 @@
+// Tests the landing check of harness/measure/checks.cpp with two engine doubles that follow the
+// after-forces law exactly (v += (g + F/m)*h; v *= exp(-k*h); x += v*h): one stops each body on its
+// floor wherever a step ends below it (an ideal inelastic contact that nothing jumps over, as
+// continuous collision does), one has no floor at all (every step end is its only test, and it
+// finds nothing). What each declares about continuous collision is a parameter.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "harness/core/scene_loader.hpp"
+#include "harness/measure/checks.hpp"
+#include "harness/oracles/landing.hpp"
+
+using namespace dropcheck;
+using Catch::Matchers::Contains;
+
+namespace {
+
+Scene scenario(const std::string& stem) {
+  return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + stem + ".toml");
+}
+
+class FloorDouble final : public Engine {
+ public:
+  FloorDouble(bool stops, bool declares_ccd) : stops_(stops), declares_ccd_(declares_ccd) {}
+
+  EngineInfo info() const override {
+    EngineInfo i;
+    i.name = stops_ ? "stops-on-floor" : "no-floor";
+    i.capabilities.contacts = true;
+    i.law = DampingOrder::AfterForces;
+    i.continuous_collision = declares_ccd_;
+    return i;  // rest_offset 0 +- 1e-3: an ideal floor rests exactly at the geometric height
+  }
+  void load(const Scene& scene, double h) override {
+    scene_ = scene;
+    h_ = h;
+    phi_ = std::exp(-scene.world.damping_rate * h);
+    state_.clear();
+    for (const Body& b : scene.bodies) state_.push_back({b.position, b.velocity});
+    forces_.assign(scene.bodies.size(), Vec3::Zero());
+    rest_.assign(scene.bodies.size(), -INFINITY);
+    for (const LandingSetup& s : landing_setups(scene)) rest_[s.body] = s.rest_height;
+  }
+  void set_forces(std::span<const Vec3> f) override { forces_.assign(f.begin(), f.end()); }
+  void step() override {
+    for (std::size_t i = 0; i < state_.size(); ++i) {
+      const Body& b = scene_.bodies[i];
+      if (b.is_static) continue;
+      BodyState& s = state_[i];
+      s.velocity = (s.velocity + (scene_.world.gravity + forces_[i] / b.mass) * h_) * phi_;
+      s.position += s.velocity * h_;
+      if (stops_ && s.position.y() < rest_[i]) {
+        s.position.y() = rest_[i];
+        s.velocity.y() = 0.0;
+      }
+    }
+  }
+  void read(std::span<BodyState> out) const override {
+    std::copy(state_.begin(), state_.end(), out.begin());
+  }
+
+ private:
+  bool stops_, declares_ccd_;
+  Scene scene_;
+  double h_ = 0.0, phi_ = 1.0;
+  std::vector<BodyState> state_;
+  std::vector<Vec3> forces_;
+  std::vector<double> rest_;
+};
+
+EngineFactory floor_double(bool stops, bool declares_ccd) {
+  return [=] { return std::make_unique<FloorDouble>(stops, declares_ccd); };
+}
+
+}  // namespace
+
+TEST_CASE("A body that tunnels as its law predicts, without continuous collision, is a LIMIT",
+          "[checks][landing]") {
+  const Scene thin = scenario("extreme/thin_floor");
+  const CheckResult r = check_landing(thin, floor_double(false, false), thin.timestep);
+  INFO(r.message);
+  CHECK(r.passed);
+  CHECK(r.limit ==
+        "tunnels: it travels 3.34 m per step at contact, more than the floor (0.01 m) plus its "
+        "height (1 m); no continuous collision");
+  CHECK_THAT(r.message, Contains("bullet: tunnelled through the floor as its own law predicts "
+                                 "(step 1), final centre"));
+}
+
+TEST_CASE("An engine that declares continuous collision and tunnels FAILs", "[checks][landing]") {
+  const Scene thin = scenario("extreme/thin_floor");
+  const CheckResult r = check_landing(thin, floor_double(false, true), thin.timestep);
+  INFO(r.message);
+  CHECK_FALSE(r.passed);
+  CHECK(r.limit.empty());
+  CHECK_THAT(r.message, Contains("TUNNELLED although the engine declares continuous collision"));
+}
+
+TEST_CASE("Falling through a floor the law would hit FAILs even without continuous collision",
+          "[checks][landing]") {
+  const Scene drop = scenario("drop_on_floor");  // at most 0.23 m per step onto a 1 m floor
+  const CheckResult r = check_landing(drop, floor_double(false, false), drop.timestep);
+  INFO(r.message);
+  CHECK_FALSE(r.passed);
+  CHECK(r.limit.empty());
+  CHECK_THAT(r.message, Contains("OUT OF RANGE"));
+}
+
+TEST_CASE(
+    "A run that ends less than the still window after first contact does not judge "
+    "stillness",
+    "[checks][landing]") {
+  // thin_floor lasts 0.5 s; the cube is stopped at step 1, so the run ends 29/60 s later.
+  const Scene thin = scenario("extreme/thin_floor");
+  const CheckResult r = check_landing(thin, floor_double(true, true), thin.timestep);
+  INFO(r.message);
+  CHECK(r.passed);
+  CHECK(r.limit.empty());
+  CHECK_THAT(r.message, Contains("first contact at step 1 (law: step 1;"));
+  CHECK_THAT(r.message, Contains("stillness not judged: the run ends 0.483 s after first contact "
+                                 "(window 2 s)"));
+  CHECK_THAT(r.message, !Contains("NOT STILL"));
+  // A run long enough is judged over its last 2 s.
+  const Scene drop = scenario("drop_on_floor");
+  const CheckResult d = check_landing(drop, floor_double(true, false), drop.timestep);
+  INFO(d.message);
+  CHECK(d.passed);
+  CHECK_THAT(d.message, Contains("still: max |v| 0 m/s, range 0 m over the last 2 s"));
+}
+
+TEST_CASE("The landing check names the stacked bodies it does not judge, and why",
+          "[checks][landing]") {
+  const Scene stacks = scenario("extreme/mass_ratio");
+  const CheckResult r = check_landing(stacks, floor_double(true, false), stacks.timestep);
+  INFO(r.message);
+  CHECK(r.passed);
+  CHECK(r.limit.empty());
+  CHECK_THAT(r.message, Contains("'heavy_1e3' not judged: lands on dynamic body 'light_1e3' (the "
+                                 "landing oracle covers one body over a static floor)"));
+  CHECK_THAT(r.message, Contains("'light_1e5' not judged: dynamic body 'heavy_1e5' lands on it"));
+  CHECK_THAT(r.message, Contains("no body is judged here: the stacks are covered by `dropcheck "
+                                 "stability`"));
+  CHECK_THAT(r.message, !Contains("first contact"));
+}
