@@ -1,0 +1,78 @@
+#include "harness/measure/law_stability.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "harness/oracles/discrete_law.hpp"
+#include "harness/oracles/own_arithmetic.hpp"
+#include "harness/stability/stability.hpp"
+
+namespace dropcheck {
+namespace {
+
+std::string g(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
+}
+
+// The damping the edge depends on besides the spring: " with k = 20 1/s and a dashpot of 6 1/s".
+std::string damping_text(const SpringModel& s) {
+  std::string out;
+  if (s.k > 0.0) out += " world damping k = " + g(s.k) + " 1/s";
+  if (s.gamma > 0.0) out += std::string(out.empty() ? "" : " and") + " dashpot C/m = " + g(s.gamma) + " 1/s";
+  return out.empty() ? "" : "; with" + out;
+}
+
+bool finite(const BodyState& b) {
+  return b.position.allFinite() && b.velocity.allFinite();
+}
+
+// The first recorded step with a non-finite state in `t`; -1 when every state is finite.
+std::int64_t first_non_finite(const Trajectory& t) {
+  for (std::size_t s = 0; s < t.samples(); ++s)
+    for (std::size_t b = 0; b < t.bodies(); ++b)
+      if (!finite(t.at(s, b))) return t.recorded[s];
+  return -1;
+}
+
+}  // namespace
+
+std::string law_instability(const Scene& scene, Law law, const Timestep& h) {
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (scene.bodies[i].is_static) continue;
+    const std::optional<SpringModel> s = body_spring(scene, i);
+    if (!s || spring_step_stable(law, *s, h.seconds)) continue;
+    // The edge as omega*h: 2 for an undamped spring under every semi-implicit member; drag and a
+    // dashpot move it (stability_theory.cpp). An explicit law has no edge without damping.
+    const double edge = spring_max_stable_dt(law, *s);
+    const std::string bound =
+        edge > 0.0 && std::isfinite(edge) ? " > " + g(s->omega * edge) + ", its stability edge"
+                                          : ", where it is unstable at every step";
+    return "its law (" + law_family_name(law) + ") is unstable at h = " + h.text +
+           ": omega*h = " + g(s->omega * h.seconds) + bound + damping_text(*s) +
+           ", for the spring on '" + scene.bodies[i].name + "'";
+  }
+  return "";
+}
+
+bool blew_up(const Trajectory& run) {
+  return run.status == RunStatus::non_finite || run.status == RunStatus::engine_error ||
+         run.status == RunStatus::crashed;
+}
+
+OwnLawVerdict judge_up_to_blow_up(const EngineInfo& info, const Scene& scene,
+                                  const Trajectory& run) {
+  Trajectory own = predict_own_arithmetic(info, scene, run.h);
+  Trajectory exact = predict_discrete(info.law, scene, run.h);
+  const std::int64_t end = first_non_finite(own);
+  own = before_step(own, end);
+  exact = before_step(exact, end);
+  exact = before_step(exact, first_non_finite(exact));  // long double overflows later, if at all
+  Trajectory stopped = run;  // its samples end where it stopped (harness/core/runner.hpp)
+  stopped.status = RunStatus::ok;
+  stopped.failure.clear();
+  return judge_own_law(info, stopped, own, exact);
+}
+
+}  // namespace dropcheck
