@@ -59,12 +59,15 @@ CheckResult check_own_law(const Scene& scene, const EngineFactory& make, const T
   if (run.status != RunStatus::ok) {
     r.message = std::string("run failed: ") + to_string(run.status) + ": " + run.failure;
     if (unstable.empty() || !blew_up(run)) return r;
+  }
+  if (!unstable.empty()) {
     // Its law blows up at this h: the engine blowing up too is the law's limit, provided it
     // followed the law up to where it stopped or the law left finite values.
-    const OwnLawVerdict v = judge_up_to_blow_up(info, scene, run);
+    const OwnLawVerdict v = judge_while_law_finite(info, scene, run);
     r.passed = v.follows();
     r.limit = r.passed ? unstable : "";
-    r.message += (r.passed ? "; up to step " : "; " + unstable + ", but up to step ") +
+    r.message += std::string(r.message.empty() ? "" : "; ") +
+                 (r.passed ? "up to step " : unstable + ", but up to step ") +
                  std::to_string(v.compared_steps) +
                  (r.passed ? " it follows its law: " : " it departs from its law: ") + v.sentence();
     if (!r.passed) r.message += worst_text(v, run, predict_own_arithmetic(info, scene, h.seconds));
@@ -74,7 +77,6 @@ CheckResult check_own_law(const Scene& scene, const EngineFactory& make, const T
   const OwnLawVerdict v =
       judge_own_law(info, run, own, predict_discrete(info.law, scene, h.seconds));
   r.passed = v.follows();
-  r.limit = r.passed ? unstable : "";
   r.message = v.sentence();
   if (!r.passed) r.message += worst_text(v, run, own);
   return r;

@@ -20,15 +20,18 @@ std::string g(double v) {
 std::string damping_text(const SpringModel& s) {
   std::string out;
   if (s.k > 0.0) out += " world damping k = " + g(s.k) + " 1/s";
-  if (s.gamma > 0.0) out += std::string(out.empty() ? "" : " and") + " dashpot C/m = " + g(s.gamma) + " 1/s";
+  if (s.gamma > 0.0)
+    out += std::string(out.empty() ? "" : " and") + " dashpot C/m = " + g(s.gamma) + " 1/s";
   return out.empty() ? "" : "; with" + out;
 }
 
+// Finite and sane: |x|^2 and |v|^2 finite, as the distances and tolerances computed from them must
+// be (a double law reaching 1e155 m is finite, but its squared norm, hence its norm, is Inf).
 bool finite(const BodyState& b) {
-  return b.position.allFinite() && b.velocity.allFinite();
+  return std::isfinite(b.position.squaredNorm()) && std::isfinite(b.velocity.squaredNorm());
 }
 
-// The first recorded step with a non-finite state in `t`; -1 when every state is finite.
+// The first recorded step with a state that is not finite and sane in `t`; -1 when none.
 std::int64_t first_non_finite(const Trajectory& t) {
   for (std::size_t s = 0; s < t.samples(); ++s)
     for (std::size_t b = 0; b < t.bodies(); ++b)
@@ -46,9 +49,9 @@ std::string law_instability(const Scene& scene, Law law, const Timestep& h) {
     // The edge as omega*h: 2 for an undamped spring under every semi-implicit member; drag and a
     // dashpot move it (stability_theory.cpp). An explicit law has no edge without damping.
     const double edge = spring_max_stable_dt(law, *s);
-    const std::string bound =
-        edge > 0.0 && std::isfinite(edge) ? " > " + g(s->omega * edge) + ", its stability edge"
-                                          : ", where it is unstable at every step";
+    const std::string bound = edge > 0.0 && std::isfinite(edge)
+                                  ? " > " + g(s->omega * edge) + ", its stability edge"
+                                  : ", where it is unstable at every step";
     return "its law (" + law_family_name(law) + ") is unstable at h = " + h.text +
            ": omega*h = " + g(s->omega * h.seconds) + bound + damping_text(*s) +
            ", for the spring on '" + scene.bodies[i].name + "'";
@@ -61,15 +64,16 @@ bool blew_up(const Trajectory& run) {
          run.status == RunStatus::crashed;
 }
 
-OwnLawVerdict judge_up_to_blow_up(const EngineInfo& info, const Scene& scene,
-                                  const Trajectory& run) {
+OwnLawVerdict judge_while_law_finite(const EngineInfo& info, const Scene& scene,
+                                     const Trajectory& run) {
   Trajectory own = predict_own_arithmetic(info, scene, run.h);
   Trajectory exact = predict_discrete(info.law, scene, run.h);
   const std::int64_t end = first_non_finite(own);
   own = before_step(own, end);
   exact = before_step(exact, end);
   exact = before_step(exact, first_non_finite(exact));  // long double overflows later, if at all
-  Trajectory stopped = run;  // its samples end where it stopped (harness/core/runner.hpp)
+  Trajectory stopped =
+      run;  // a failed run's samples end where it stopped (harness/core/runner.hpp)
   stopped.status = RunStatus::ok;
   stopped.failure.clear();
   return judge_own_law(info, stopped, own, exact);

@@ -23,9 +23,11 @@ std::string law_instability(const Scene& scene, Law law, const Timestep& h);
 // memory or time limit.
 bool blew_up(const Trajectory& run);
 
-// `run` (one that blew up) against its own law up to where it stopped or where the law, iterated
-// in the engine's arithmetic, left finite values, whichever comes first; the run's failure itself
-// is not counted (OwnLawVerdict::failure stays empty).
-OwnLawVerdict judge_up_to_blow_up(const EngineInfo& info, const Scene& scene, const Trajectory& run);
+// `run` against its own law (unstable at the run's step) up to where the run stopped or where the
+// law, iterated in the engine's arithmetic, left finite values, whichever comes first: the own-law
+// tolerance scales with the largest finite value the law reaches. A blow-up that ended the run is
+// not counted (OwnLawVerdict::failure stays empty).
+OwnLawVerdict judge_while_law_finite(const EngineInfo& info, const Scene& scene,
+                                     const Trajectory& run);
 
 }  // namespace dropcheck

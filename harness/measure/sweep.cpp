@@ -92,8 +92,9 @@ struct Product {
 // the phase: semi-implicit Euler turns an undamped spring by theta = 2*asin(omega*h/2) per step
 // instead of omega*h (eigenvalues of [[1 - (w*h)^2, h], [-w^2*h, 1]] are exp(+-i*theta)), a
 // relative frequency error r = theta/(omega*h) - 1 = (omega*h)^2/24 + ..., so after T seconds the
-// phase is off by omega*T*r: second order in h, but multiplied by T. While omega*T*r is not small
-// the error is that drift (or saturates at twice the amplitude), not the first-order term.
+// phase is off by omega*T*r: second order in h, but multiplied by T (or by the 2/(gamma + k)
+// seconds a damped oscillation lasts). While omega*T*r is not small the error is that drift (or
+// saturates at twice the amplitude), not the first-order term.
 std::vector<Product> products(const Scene& scene, double h) {
   std::vector<Product> out;
   if (scene.world.damping_rate > 0.0)
@@ -107,7 +108,11 @@ std::vector<Product> products(const Scene& scene, double h) {
     out.push_back({g("omega*h = %.3g", wh) + on, wh});
     if (s->gamma > 0.0) out.push_back({g("gamma*h = %.3g", s->gamma * h) + on, s->gamma * h});
     if (wh < 2.0) {
-      const double drift = s->omega * scene.duration * (2.0 * std::asin(0.5 * wh) / wh - 1.0);
+      // The drift matters while the oscillation lasts: its amplitude decays as exp(-(gamma +
+      // k)*t/2).
+      const double damping = s->gamma + s->k;
+      const double lasts = damping > 0.0 ? std::min(scene.duration, 2.0 / damping) : scene.duration;
+      const double drift = s->omega * lasts * (2.0 * std::asin(0.5 * wh) / wh - 1.0);
       out.push_back(
           {g("phase drift omega*T*(relative frequency error) = %.3g rad", drift) + on, drift});
     }
