@@ -73,9 +73,10 @@ TEST_CASE("ours blowing up where its own law is unstable is a LIMIT naming omega
   CHECK_THAT(r.message, Contains("NaN/Inf") && Contains("it follows its law"));
 }
 
-TEST_CASE("an engine in another arithmetic stopping with an error where its law is unstable is a "
-          "LIMIT",
-          "[checks][limits]") {
+TEST_CASE(
+    "an engine in another arithmetic stopping with an error where its law is unstable is a "
+    "LIMIT",
+    "[checks][limits]") {
   const Scene scene = load_scene("scenarios/extreme/stiff_spring.toml");
   const CheckResult r = check_own_law(scene, guarded(1e10, 1L << 40), kUnstable);
   INFO(r.limit << " | " << r.message);
@@ -130,8 +131,9 @@ TEST_CASE("a pre-asymptotic sweep is extended until its order is in band, and na
   INFO(r.message);
   CHECK(r.passed);
   CHECK(r.limit.empty());
-  CHECK_THAT(r.message, Contains("pre-asymptotic (k*h = 0.5 at the sweep's finest step h = 1/120") &&
-                            Contains("extended by 1 halving") && Contains("0.937"));
+  CHECK_THAT(r.message,
+             Contains("pre-asymptotic (k*h = 0.5 at the sweep's finest step h = 1/120") &&
+                 Contains("extended by 1 halving") && Contains("0.937"));
 }
 
 TEST_CASE("the divergence leaves out the steps where a law is unstable and says so",
@@ -148,9 +150,8 @@ TEST_CASE("a sweep that extends into the first-order band is reached", "[sweep][
   const Scene scene = load_scene("scenarios/extreme/heavy_drag.toml");
   auto error = [](double h) { return 5.0 * h + 400.0 * h * h; };  // h^2 dominates at first
   std::vector<double> h{1.0 / 30, 1.0 / 60}, e{error(h[0]), error(h[1])};
-  const ExtendedSweep x = extend_sweep(scene, h, e, 0.0, [&](double s, std::string&) {
-    return std::optional<double>(error(s));
-  });
+  const ExtendedSweep x = extend_sweep(
+      scene, h, e, 0.0, [&](double s, std::string&) { return std::optional<double>(error(s)); });
   CHECK(x.reached);
   CHECK(x.added >= 2);
   CHECK(x.stopped.empty());
@@ -161,9 +162,8 @@ TEST_CASE("an inconsistent law whose error never shrinks at first order still fa
   const Scene scene = load_scene("scenarios/extreme/heavy_drag.toml");
   auto error = [](double h) { return 0.3 + h; };  // converges to 0.3 m, not to the model
   std::vector<double> h{1.0 / 30, 1.0 / 60}, e{error(h[0]), error(h[1])};
-  const ExtendedSweep x = extend_sweep(scene, h, e, 0.0, [&](double s, std::string&) {
-    return std::optional<double>(error(s));
-  });
+  const ExtendedSweep x = extend_sweep(
+      scene, h, e, 0.0, [&](double s, std::string&) { return std::optional<double>(error(s)); });
   CHECK_FALSE(x.reached);
   CHECK_THAT(x.stopped, Contains("cost cap"));
   CHECK(x.estimate.orders.back() < 0.1);
