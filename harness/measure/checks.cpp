@@ -1,10 +1,13 @@
 #include "harness/measure/checks.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "harness/core/runner.hpp"
+#include "harness/core/timestep.hpp"
 #include "harness/measure/attribution.hpp"
+#include "harness/measure/law_stability.hpp"
 #include "harness/measure/metrics.hpp"
 #include "harness/measure/own_law.hpp"
 #include "harness/measure/sweep.hpp"
@@ -52,8 +55,22 @@ CheckResult check_own_law(const Scene& scene, const EngineFactory& make, const T
   const EngineInfo info = engine->info();
   CheckResult r = result(scene, info.name, "own law at h = " + h.text);
   const Trajectory run = run_scene(*engine, scene, h.seconds);
+  const std::string unstable = law_instability(scene, info.law, h);
   if (run.status != RunStatus::ok) {
     r.message = std::string("run failed: ") + to_string(run.status) + ": " + run.failure;
+    if (unstable.empty() || !blew_up(run)) return r;
+  }
+  if (!unstable.empty()) {
+    // Its law blows up at this h: the engine blowing up too is the law's limit, provided it
+    // followed the law up to where it stopped or the law left finite values.
+    const OwnLawVerdict v = judge_while_law_finite(info, scene, run);
+    r.passed = v.follows();
+    r.limit = r.passed ? unstable : "";
+    r.message += std::string(r.message.empty() ? "" : "; ") +
+                 (r.passed ? "up to step " : unstable + ", but up to step ") +
+                 std::to_string(v.compared_steps) +
+                 (r.passed ? " it follows its law: " : " it departs from its law: ") + v.sentence();
+    if (!r.passed) r.message += worst_text(v, run, predict_own_arithmetic(info, scene, h.seconds));
     return r;
   }
   const Trajectory own = predict_own_arithmetic(info, scene, h.seconds);
@@ -64,6 +81,60 @@ CheckResult check_own_law(const Scene& scene, const EngineFactory& make, const T
   if (!r.passed) r.message += worst_text(v, run, own);
   return r;
 }
+
+namespace {
+
+// A run of an extended sweep keeps at most this many samples (a long scene halved twice has
+// millions of steps; 200000 samples of two bodies take 19 MB).
+constexpr std::int64_t kExtensionSamples = 200000;
+
+RunOptions extension_options(const Scene& scene, double h) {
+  RunOptions o;
+  o.record_every = std::max<std::int64_t>(1, step_count(scene, h) / kExtensionSamples);
+  return o;
+}
+
+std::string orders_text(const std::vector<double>& orders) {
+  std::string out;
+  for (double p : orders) out += std::isfinite(p) ? fmt(" %.3f", p) : std::string(" undefined");
+  return out;
+}
+
+// The error of the next step of a pre-asymptotic sweep. The reference: its run against the
+// analytic solution, provided it follows its own law there too. Another engine: the law part
+// |L_E - L_R| alone (both engines were shown to follow their laws over the scene's sweep; the law
+// part is a property of the two laws).
+ErrorAt extension_error(const Scene& scene, Engine& engine, const EngineInfo& ei,
+                        const EngineInfo& ri, bool is_reference) {
+  return [&scene, &engine, &ei, &ri, is_reference](double h,
+                                                   std::string& why) -> std::optional<double> {
+    const Timestep step{h, step_text(h)};
+    for (const EngineInfo* i : {&ei, &ri})
+      if (std::string u = law_instability(scene, i->law, step); !u.empty()) {
+        why = i->name + ": " + u;
+        return std::nullopt;
+      }
+    const RunOptions o = extension_options(scene, h);
+    if (!is_reference)
+      return compare_worst(predict_discrete(ei.law, scene, h, o),
+                           predict_discrete(ri.law, scene, h, o), scene.tolerance)
+          .max_dx;
+    const Trajectory run = run_scene(engine, scene, h, o);
+    if (run.status != RunStatus::ok) {
+      why = "run failed: " + run.failure;
+      return std::nullopt;
+    }
+    const Trajectory own = predict_own_arithmetic(ei, scene, h, o);
+    const OwnLawVerdict v = judge_own_law(ei, run, own, own);
+    if (!v.follows()) {
+      why = ei.name + " departs from its own law: " + v.sentence();
+      return std::nullopt;
+    }
+    return compare_worst(run, *analytic_trajectory(scene, h, o), scene.tolerance).max_dx;
+  };
+}
+
+}  // namespace
 
 CheckResult check_divergence(const Scene& scene, const EngineFactory& make,
                              const EngineFactory& reference) {
@@ -80,7 +151,18 @@ CheckResult check_divergence(const Scene& scene, const EngineFactory& make,
   }
   std::vector<double> hs, errors;
   double noise = 0.0;
+  std::string left_out, left_out_cause, departs;
   for (const Timestep& h : scene_sweep(scene)) {
+    // A step where either law is unstable measures the blow-up, not the order: left out.
+    std::string unstable = law_instability(scene, ei.law, h);
+    if (unstable.empty() && !is_reference) unstable = law_instability(scene, ri.law, h);
+    if (!unstable.empty()) {
+      left_out += (left_out.empty() ? "" : ", ") + h.text;
+      if (left_out_cause.empty())
+        left_out_cause =
+            (law_instability(scene, ei.law, h).empty() ? ri.name : ei.name) + ": " + unstable;
+      continue;
+    }
     const Trajectory run = run_scene(*engine, scene, h.seconds);
     if (run.status != RunStatus::ok) {
       r.message = "run at h = " + h.text + " failed: " + run.failure;
@@ -93,6 +175,8 @@ CheckResult check_divergence(const Scene& scene, const EngineFactory& make,
       errors.push_back(
           compare_worst(run, *analytic_trajectory(scene, h.seconds), scene.tolerance).max_dx);
       noise = std::max(noise, own_law_tolerance(ei, ae).x);
+      if (departs.empty() && !judge_own_law(ei, run, ae, le).follows())
+        departs = ei.name + " departs from its own law at h = " + h.text;
       continue;
     }
     const Trajectory other = run_scene(*ref, scene, h.seconds);
@@ -105,16 +189,45 @@ CheckResult check_divergence(const Scene& scene, const EngineFactory& make,
     }
     errors.push_back(a.law_part > tolerance::kLawsDifferFactor * a.budget ? a.law_part : 0.0);
   }
-  if (!is_reference && errors.back() == 0.0) {
+  const std::string skipped =
+      left_out.empty() ? ""
+                       : "; left out of the order: h = " + left_out + " (" + left_out_cause + ")";
+  if (hs.size() < 2) {
     r.passed = true;
-    r.message = "same discrete law: divergence within rounding at every step";
+    r.message = "fewer than two steps of the sweep where the laws are stable: no order" + skipped;
     return r;
   }
-  const OrderEstimate o = estimate_order(hs, errors, tolerance::kOrderMeasurableFactor * noise);
+  if (!is_reference && errors.back() == 0.0) {
+    r.passed = true;
+    r.message = "same discrete law: divergence within rounding at every step" + skipped;
+    return r;
+  }
+  const double measurable_noise = tolerance::kOrderMeasurableFactor * noise;
+  const OrderEstimate o = estimate_order(hs, errors, measurable_noise);
+  const std::string band =
+      fmt(" (expected %.1f-%.1f)", tolerance::kFirstOrderLow, tolerance::kFirstOrderHigh);
   r.passed = o.first_order || (is_reference && !o.measurable);
-  r.message = o.text +
-              fmt(" (expected %.1f-%.1f)", tolerance::kFirstOrderLow, tolerance::kFirstOrderHigh) +
-              (o.measurable ? "" : ", at rounding level: order not measurable");
+  r.message = o.text + band + (o.measurable ? "" : ", at rounding level: order not measurable");
+  if (r.passed || !o.measurable) {
+    r.message += skipped;
+    return r;
+  }
+  if (!departs.empty()) {
+    r.message += "; not extended: " + departs + skipped;
+    return r;
+  }
+  // Both engines follow their laws, yet the order is out of band: the scene's steps may be
+  // pre-asymptotic. Halve the finest step until the last order is in band (extend_sweep).
+  const std::string cause = pre_asymptotic_cause(scene, hs.back());
+  const ExtendedSweep x = extend_sweep(scene, hs, errors, measurable_noise,
+                                       extension_error(scene, *engine, ei, ri, is_reference));
+  r.passed = x.reached;
+  r.message = x.estimate.text + band + "; the scene's sweep" +
+              (x.reached ? " is pre-asymptotic (" : " may be pre-asymptotic (") + cause +
+              "): its orders were" + orders_text(o.orders) + "; extended by " +
+              std::to_string(x.added) + " halving" + (x.added == 1 ? "" : "s") +
+              (is_reference ? "" : " (law part alone)") +
+              (x.reached ? ", the last order is in band" : ", stopped: " + x.stopped) + skipped;
   return r;
 }
 

@@ -4,9 +4,12 @@
 #include <cmath>
 
 #include "harness/core/number_format.hpp"
+#include "harness/core/timestep.hpp"
 #include "harness/measure/attribution.hpp"
 #include "harness/measure/metrics.hpp"
 #include "harness/measure/tolerances.hpp"
+#include "harness/stability/stability.hpp"
+#include "harness/stability/stability_theory.hpp"
 
 namespace dropcheck {
 namespace {
@@ -67,6 +70,107 @@ OrderEstimate estimate_order(std::span<const double> h, std::span<const double> 
   for (double p : o.orders)
     o.text += std::isfinite(p) ? " " + fixed(p, 3) : std::string(" undefined");
   return o;
+}
+
+namespace {
+
+// One named product of a rate and the step.
+struct Product {
+  std::string text;
+  double value = 0.0;
+};
+
+// The products of `scene`'s rates with h. A first-order law's error is C*h only once every term
+// of its expansion beyond the first is small against it: the world damping's exp(-k*h) = 1 - k*h +
+// (k*h)^2/2 - ..., a spring's (omega*h)^2 and gamma*h in its per-step map, and, over a long run,
+// the phase: semi-implicit Euler turns an undamped spring by theta = 2*asin(omega*h/2) per step
+// instead of omega*h (eigenvalues of [[1 - (w*h)^2, h], [-w^2*h, 1]] are exp(+-i*theta)), a
+// relative frequency error r = theta/(omega*h) - 1 = (omega*h)^2/24 + ..., so after T seconds the
+// phase is off by omega*T*r: second order in h, but multiplied by T (or by the 2/(gamma + k)
+// seconds a damped oscillation lasts). While omega*T*r is not small the error is that drift (or
+// saturates at twice the amplitude), not the first-order term.
+std::vector<Product> products(const Scene& scene, double h) {
+  std::vector<Product> out;
+  if (scene.world.damping_rate > 0.0)
+    out.push_back({fmt::sprintf("k*h = %.3g", scene.world.damping_rate * h), scene.world.damping_rate * h});
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (scene.bodies[i].is_static) continue;
+    const std::optional<SpringModel> s = body_spring(scene, i);
+    if (!s) continue;
+    const std::string on = " on '" + scene.bodies[i].name + "'";
+    const double wh = s->omega * h;
+    out.push_back({fmt::sprintf("omega*h = %.3g", wh) + on, wh});
+    if (s->gamma > 0.0) out.push_back({fmt::sprintf("gamma*h = %.3g", s->gamma * h) + on, s->gamma * h});
+    if (wh < 2.0) {
+      // The drift matters while the oscillation lasts: its amplitude decays as exp(-(gamma +
+      // k)*t/2).
+      const double damping = s->gamma + s->k;
+      const double lasts = damping > 0.0 ? std::min(scene.duration, 2.0 / damping) : scene.duration;
+      const double drift = s->omega * lasts * (2.0 * std::asin(0.5 * wh) / wh - 1.0);
+      out.push_back(
+          {fmt::sprintf("phase drift omega*T*(relative frequency error) = %.3g rad", drift) + on, drift});
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string step_text(double h) {
+  const double n = std::round(1.0 / h);
+  if (n >= 1.0 && same_step(1.0 / n, h)) return "1/" + std::to_string(static_cast<long long>(n));
+  return fmt::sprintf("%.4g", h);
+}
+
+std::string pre_asymptotic_cause(const Scene& scene, double h) {
+  const std::vector<Product> all = products(scene, h);
+  if (all.empty()) return "no rate in the scene (cause not named)";
+  std::string out;
+  const Product* largest = &all.front();
+  for (const Product& p : all) {
+    if (p.value > largest->value) largest = &p;
+    if (p.value > tolerance::kPreAsymptoticProduct) out += (out.empty() ? "" : ", ") + p.text;
+  }
+  if (out.empty()) out = largest->text;
+  return out + " at the sweep's finest step h = " + step_text(h) + " s";
+}
+
+ExtendedSweep extend_sweep(const Scene& scene, std::vector<double> h, std::vector<double> e,
+                           double noise, const ErrorAt& error_at) {
+  ExtendedSweep x{std::move(h), std::move(e), 0, {}, false, {}};
+  std::int64_t spent = 0;
+  auto judge = [&] {
+    x.estimate = estimate_order(x.h, x.e, noise);
+    const double last = x.estimate.orders.empty() ? NAN : x.estimate.orders.back();
+    x.reached = x.estimate.measurable && last >= tolerance::kFirstOrderLow &&
+                last <= tolerance::kFirstOrderHigh;
+  };
+  judge();
+  while (!x.reached) {
+    const double next = 0.5 * x.h.back();
+    const std::int64_t steps = step_count(scene, next);
+    if (steps > kMaxSteps) {
+      x.stopped = "h = " + step_text(next) + " would take more than the step limit";
+      return x;
+    }
+    if (spent + steps > tolerance::kExtensionSteps) {
+      x.stopped = "h = " + step_text(next) + " would exceed the extension's cost cap of " +
+                  std::to_string(tolerance::kExtensionSteps) + " added steps";
+      return x;
+    }
+    spent += steps;
+    std::string why;
+    const std::optional<double> err = error_at(next, why);
+    if (!err) {
+      x.stopped = "at h = " + step_text(next) + ": " + why;
+      return x;
+    }
+    x.h.push_back(next);
+    x.e.push_back(*err);
+    ++x.added;
+    judge();
+  }
+  return x;
 }
 
 }  // namespace dropcheck

@@ -36,6 +36,17 @@ inline constexpr double kOrderMeasurableFactor = 10.0;
 // Two laws "differ" when their trajectories are this many own-law tolerances apart.
 inline constexpr double kLawsDifferFactor = 10.0;
 
+// --- Pre-asymptotic sweeps, harness/measure/sweep.hpp (extend_sweep) ---------------------------
+// A sweep whose order is out of the first-order band while its engine follows its law is extended
+// with halvings of its finest step; all the added runs of one sweep may take this many steps in
+// all. Measured (release build, `time dropcheck check scenarios/extreme/long_run.toml`, the only
+// shipped scene that reaches the cap): FILLED IN BELOW.
+inline constexpr long long kExtensionSteps = 4'000'000;
+// A product of a rate and the step (k*h, omega*h, gamma*h, the phase drift in rad) above this is
+// named as a cause of a pre-asymptotic sweep. Naming only, no verdict depends on it: the smallest
+// named on the shipped scenes is FILLED IN BELOW.
+inline constexpr double kPreAsymptoticProduct = 0.05;
+
 // --- Landing, harness/measure/sweep.hpp (landing) ----------------------------------------------
 // A landing may rise at most this far above the engine's rest height after first contact (m).
 // Measured: <= 2e-7 m on every contact scene and engine except MuJoCo's defaults (docs/engines.md).

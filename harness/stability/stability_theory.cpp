@@ -65,8 +65,8 @@ StepCoefficients coefficients(Law law, const SpringModel& s, double h) {
   return {};
 }
 
-// The linear springs (rest length 0) acting on body `index`, combined; nullopt if none or if one of
-// them has a rest length (nonlinear: no single w).
+}  // namespace
+
 std::optional<SpringModel> body_spring(const Scene& scene, std::size_t index) {
   double stiffness = 0.0, dashpot = 0.0;
   for (const Force& f : scene.forces) {
@@ -80,8 +80,6 @@ std::optional<SpringModel> body_spring(const Scene& scene, std::size_t index) {
   const double m = scene.bodies[index].mass;
   return SpringModel{std::sqrt(stiffness / m), dashpot / m, scene.world.damping_rate};
 }
-
-}  // namespace
 
 bool spring_step_stable(Law law, const SpringModel& spring, double h) {
   const StepCoefficients c = coefficients(law, spring, h);

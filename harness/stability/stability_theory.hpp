@@ -16,6 +16,10 @@ struct SpringModel {
   double k = 0.0;      // world damping rate, 1/s
 };
 
+// The linear springs (rest length 0) acting on body `index`, combined; nullopt if none or if one of
+// them has a rest length (nonlinear: no single w).
+std::optional<SpringModel> body_spring(const Scene& scene, std::size_t index);
+
 // True when one step of `law` with spring force from the start-of-step state is stable at h
 // (derivation in stability_theory.cpp).
 bool spring_step_stable(Law law, const SpringModel& spring, double h);

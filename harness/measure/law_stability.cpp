@@ -1,0 +1,82 @@
+#include "harness/measure/law_stability.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "harness/oracles/discrete_law.hpp"
+#include "harness/oracles/own_arithmetic.hpp"
+#include "harness/core/number_format.hpp"
+#include "harness/stability/stability.hpp"
+#include "harness/stability/stability_theory.hpp"
+
+namespace dropcheck {
+namespace {
+
+std::string g(double v) {
+  return sig(v, 4);
+}
+
+// The damping the edge depends on besides the spring: " with k = 20 1/s and a dashpot of 6 1/s".
+std::string damping_text(const SpringModel& s) {
+  std::string out;
+  if (s.k > 0.0) out += " world damping k = " + g(s.k) + " 1/s";
+  if (s.gamma > 0.0)
+    out += std::string(out.empty() ? "" : " and") + " dashpot C/m = " + g(s.gamma) + " 1/s";
+  return out.empty() ? "" : "; with" + out;
+}
+
+// Finite and sane: |x|^2 and |v|^2 finite, as the distances and tolerances computed from them must
+// be (a double law reaching 1e155 m is finite, but its squared norm, hence its norm, is Inf).
+bool finite(const BodyState& b) {
+  return std::isfinite(b.position.squaredNorm()) && std::isfinite(b.velocity.squaredNorm());
+}
+
+// The first recorded step with a state that is not finite and sane in `t`; -1 when none.
+std::int64_t first_non_finite(const Trajectory& t) {
+  for (std::size_t s = 0; s < t.samples(); ++s)
+    for (std::size_t b = 0; b < t.bodies(); ++b)
+      if (!finite(t.at(s, b))) return t.recorded[s];
+  return -1;
+}
+
+}  // namespace
+
+std::string law_instability(const Scene& scene, Law law, const Timestep& h) {
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (scene.bodies[i].is_static) continue;
+    const std::optional<SpringModel> s = body_spring(scene, i);
+    if (!s || spring_step_stable(law, *s, h.seconds)) continue;
+    // The edge as omega*h: 2 for an undamped spring under every semi-implicit member; drag and a
+    // dashpot move it (stability_theory.cpp). An explicit law has no edge without damping.
+    const double edge = spring_max_stable_dt(law, *s);
+    const std::string bound = edge > 0.0 && std::isfinite(edge)
+                                  ? " > " + g(s->omega * edge) + ", its stability edge"
+                                  : ", where it is unstable at every step";
+    return "its law (" + law_family_name(law) + ") is unstable at h = " + h.text +
+           ": omega*h = " + g(s->omega * h.seconds) + bound + damping_text(*s) +
+           ", for the spring on '" + scene.bodies[i].name + "'";
+  }
+  return "";
+}
+
+bool blew_up(const Trajectory& run) {
+  return run.status == RunStatus::non_finite || run.status == RunStatus::engine_error ||
+         run.status == RunStatus::crashed;
+}
+
+OwnLawVerdict judge_while_law_finite(const EngineInfo& info, const Scene& scene,
+                                     const Trajectory& run) {
+  Trajectory own = predict_own_arithmetic(info, scene, run.h);
+  Trajectory exact = predict_discrete(info.law, scene, run.h);
+  const std::int64_t end = first_non_finite(own);
+  own = before_step(own, end);
+  exact = before_step(exact, end);
+  exact = before_step(exact, first_non_finite(exact));  // long double overflows later, if at all
+  Trajectory stopped =
+      run;  // a failed run's samples end where it stopped (harness/core/runner.hpp)
+  stopped.status = RunStatus::ok;
+  stopped.failure.clear();
+  return judge_own_law(info, stopped, own, exact);
+}
+
+}  // namespace dropcheck
