@@ -200,7 +200,7 @@ std::vector<std::string> sweep_row(const SceneEvaluation& se, const StepEvaluati
       r.end(),
       {g3(t.median_per_sim_s * 1e3), g3(t.q1_per_sim_s * 1e3) + " .. " + g3(t.q3_per_sim_s * 1e3),
        g3(t.min_per_sim_s * 1e3), percent(t.half_spread()), g3(t.bare_median_per_sim_s * 1e3),
-       percent(t.overhead()), strf("%d x %d", t.samples, t.replicas)});
+       percent(t.overhead()), strf("%d x %d x %d", t.samples, t.replicas, t.repeats)});
   return r;
 }
 
@@ -209,9 +209,9 @@ std::string sweep_table(const SceneEvaluation& se, bool timing) {
   std::vector<std::string> h{"engine", "h", "steps", "status", "error vs " + ref + ": max dx (m)"};
   if (!se.reference.empty()) h.push_back("divergence from " + se.reference + ": max dx (m)");
   if (timing)
-    for (const char* c :
-         {"median (ms per sim s)", "IQR (ms per sim s)", "min (ms per sim s)", "halves differ",
-          "bare step loop median (ms per sim s)", "harness overhead", "samples x replicas"})
+    for (const char* c : {"median (ms per sim s)", "IQR (ms per sim s)", "min (ms per sim s)",
+                          "halves differ", "bare step loop median (ms per sim s)",
+                          "harness overhead", "samples x replicas x repeats"})
       h.push_back(kTimed + std::string(c));
   MarkdownTable t(h, "llrlr");
   for (const EngineEvaluation& ev : se.engines) {
