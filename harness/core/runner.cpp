@@ -23,14 +23,23 @@ bool finite(const BodyState& s) {
 // bits are all ones; adding one to the exponent field then carries into the sign bit, so the OR of
 // (bits & exponent mask) + (one exponent unit) over all numbers has the sign bit set iff some
 // number is not finite. Integer AND, ADD and OR vectorise; the per-body check runs only on failure.
+// Eight independent accumulators (one body and a third per round): with a single one every OR
+// waits for the previous one, and the pass cost half of ours's own step (perf, N = 1000).
 bool all_finite(std::span<const BodyState> states) {
   static_assert(sizeof(BodyState) == 6 * sizeof(double));
   constexpr std::uint64_t kExponent = 0x7ff0000000000000u, kUnit = 0x0010000000000000u;
+  constexpr std::size_t kLanes = 8;
   const auto* d = reinterpret_cast<const double*>(states.data());
-  std::uint64_t any = 0;
-  for (std::size_t k = 0; k < 6 * states.size(); ++k)
-    any |= (std::bit_cast<std::uint64_t>(d[k]) & kExponent) + kUnit;
-  return (any >> 63) == 0;
+  const std::size_t n = 6 * states.size();
+  std::uint64_t any[kLanes] = {};
+  std::size_t k = 0;
+  for (; k + kLanes <= n; k += kLanes)
+    for (std::size_t j = 0; j < kLanes; ++j)
+      any[j] |= (std::bit_cast<std::uint64_t>(d[k + j]) & kExponent) + kUnit;
+  for (; k < n; ++k) any[0] |= (std::bit_cast<std::uint64_t>(d[k]) & kExponent) + kUnit;
+  std::uint64_t all = 0;
+  for (const std::uint64_t a : any) all |= a;
+  return (all >> 63) == 0;
 }
 
 bool has_springs(const Scene& scene) {
@@ -77,6 +86,14 @@ void fail_non_finite(Trajectory& t, std::span<const BodyState> states, std::int6
   t.failure = "body '" + t.body_names[i] + "' has a NaN/Inf state at step " + std::to_string(n);
 }
 
+// True when every component of every force is +0.0 (all bits zero).
+bool all_zero(std::span<const Vec3> forces) {
+  std::uint64_t any = 0;
+  for (const Vec3& f : forces)
+    for (int k = 0; k < 3; ++k) any |= std::bit_cast<std::uint64_t>(f[k]);
+  return any == 0;
+}
+
 // Steps until the end or the first failure; returns normally in both cases. `states` holds the
 // state at step 0 and is reused for every step's read (it stays in cache; only kept steps are
 // copied out). `n` is the step under way, for the caller to report an exception thrown by the
@@ -87,9 +104,14 @@ void step_loop(Engine& engine, const Scene& scene, Trajectory& t, std::int64_t e
   // Constant forces do not depend on the state: summed once, in the same order as every step would.
   const bool state_dependent = has_springs(scene);
   compute_forces(scene, states, forces);
+  // Constant forces that are all +0.0 (free flight, contacts): handed over on step 1 only. An
+  // engine applies a force to the next step only (Engine::set_forces), so it holds zero applied
+  // force after each step, and handing it the same zeros again would change nothing but cost a
+  // pass over every body per step (an engine that keeps the last forces keeps these zeros).
+  const bool no_forces = !state_dependent && all_zero(forces);
   for (n = 1; n <= t.steps; ++n) {
     if (state_dependent) compute_forces(scene, states, forces);
-    engine.set_forces(forces);
+    if (n == 1 || !no_forces) engine.set_forces(forces);
     engine.step();
     engine.read(states);
     if (engine.speed_clamped()) {

@@ -43,15 +43,18 @@ std::vector<double> half(const std::vector<double>& v, std::size_t which) {
 // in this process: a child process would leave this thread idle while the engine runs, so every
 // run would look disturbed (wall time far beyond this thread's CPU time) and be measured twice.
 // Only engines whose isolated run at this step finished are timed (measure/evaluate.cpp).
-double time_full(Engine& engine, const Scene& scene, double h) {
+// `repeats` runs back to back, each loaded afresh; the sum of their stepping loops' wall times.
+double time_full(Engine& engine, const Scene& scene, double h, int repeats) {
   RunOptions in_process;
   in_process.isolation = Isolation::in_process;
-  return run_scene(engine, scene, h, in_process).wall_seconds;
+  double seconds = 0.0;
+  for (int r = 0; r < repeats; ++r) seconds += run_scene(engine, scene, h, in_process).wall_seconds;
+  return seconds;
 }
 
 // The engine alone: load, then step() only. An engine that throws ends the loop (its failure is
 // the run's business, recorded by run_scene; here it only must not abort the timing).
-double time_bare(Engine& engine, const Scene& scene, double h) {
+double time_bare_once(Engine& engine, const Scene& scene, double h) {
   try {
     engine.load(scene, h);
   } catch (const std::exception&) {
@@ -64,6 +67,21 @@ double time_bare(Engine& engine, const Scene& scene, double h) {
   } catch (const std::exception&) {
   }
   return seconds_since(start);
+}
+
+// `repeats` bare loops back to back, each loaded afresh (untimed); the sum of the loops' times.
+double time_bare(Engine& engine, const Scene& scene, double h, int repeats) {
+  double seconds = 0.0;
+  for (int r = 0; r < repeats; ++r) seconds += time_bare_once(engine, scene, h);
+  return seconds;
+}
+
+// Body-steps of one copy of `scene` at h: dynamic bodies (at least 1) times steps (at least 1).
+double body_steps_per_copy(const Scene& scene, double h) {
+  double dynamic = 0.0;
+  for (const Body& b : scene.bodies) dynamic += b.is_static ? 0.0 : 1.0;
+  return std::max(dynamic, 1.0) *
+         static_cast<double>(std::max<std::int64_t>(step_count(scene, h), 1));
 }
 
 // CPU time this thread has used (s): it does not advance while another process has the core.
@@ -114,7 +132,8 @@ Scene replicate(const Scene& scene, int copies) {
     const Vec3 offset = step * c;
     const std::size_t first = out.bodies.size();
     for (Body b : scene.bodies) {
-      b.name += "#" + std::to_string(c);
+      b.name += '#';  // two appends: "#" + to_string trips a GCC 12 -Wstringop-overflow false alarm
+      b.name += std::to_string(c);
       b.position += offset;
       out.bodies.push_back(b);
     }
@@ -134,14 +153,32 @@ double Timing::half_spread() const {
 }
 
 int replicas_for(const Scene& scene, double h, const TimingOptions& options) {
-  double dynamic = 0.0;
-  for (const Body& b : scene.bodies) dynamic += b.is_static ? 0.0 : 1.0;
-  const double per_copy =
-      std::max(dynamic, 1.0) * static_cast<double>(std::max<std::int64_t>(step_count(scene, h), 1));
+  const double per_copy = body_steps_per_copy(scene, h);
   int copies = 1;
   while (copies < options.max_replicas && copies * per_copy < options.body_steps_per_run)
     copies *= 2;
   return std::min(copies, std::max(options.max_replicas, 1));
+}
+
+double nominal_ns_per_body_step(const std::string& engine) {
+  // Bare loop at N = 1000 free cubes on the 2-core VM (bench/results): ours 5.7, ours-f64 6.7,
+  // ode 293, box2d 390, mujoco 861, bullet 920 ns; contact scenes cost the engines more.
+  if (engine == "ours" || engine == "ours-f64") return 4.0;
+  if (engine == "ode") return 250.0;
+  if (engine == "box2d") return 350.0;
+  if (engine == "mujoco") return 700.0;
+  if (engine == "bullet") return 900.0;
+  return 1000.0;
+}
+
+int repeats_for(const Scene& scene, double h, const std::string& engine, int replicas,
+                const TimingOptions& options) {
+  const double sample = body_steps_per_copy(scene, h) * std::max(replicas, 1) * 1e-9 *
+                        nominal_ns_per_body_step(engine);
+  int repeats = 1;
+  while (repeats < options.max_repeats && repeats * sample < options.min_sample_seconds)
+    repeats *= 2;
+  return std::min(repeats, std::max(options.max_repeats, 1));
 }
 
 std::vector<Timing> time_engines(const std::vector<std::pair<std::string, EngineFactory>>& engines,
@@ -150,29 +187,33 @@ std::vector<Timing> time_engines(const std::vector<std::pair<std::string, Engine
   const int replicas = replicas_for(scene, h, options);
   const Scene copies = replicate(scene, replicas);
   std::vector<std::vector<double>> full(ne), bare(ne);
-  std::vector<int> disturbed(ne, 0);
+  std::vector<int> disturbed(ne, 0), repeats(ne, 1);
+  for (std::size_t e = 0; e < ne; ++e)
+    repeats[e] = repeats_for(scene, h, engines[e].first, replicas, options);
   for (int r = -options.warmups; r < options.samples; ++r) {
     for (std::size_t k = 0; k < ne; ++k) {
       const std::size_t e = (r % 2 == 0) ? k : ne - 1 - k;  // alternate the order every round
       std::unique_ptr<Engine> engine = engines[e].second();
       // Untimed first: the engine's code and data back in cache after the other engines ran, so
       // that no figure depends on which engine ran before it.
-      time_bare(*engine, copies, h);
+      time_bare(*engine, copies, h, 1);
       int& d = disturbed[e];
+      const int n = repeats[e];
       const double f =
-          undisturbed([&] { return time_full(*engine, copies, h); }, options.retries, d);
+          undisturbed([&] { return time_full(*engine, copies, h, n); }, options.retries, d);
       const double b =
-          undisturbed([&] { return time_bare(*engine, copies, h); }, options.retries, d);
+          undisturbed([&] { return time_bare(*engine, copies, h, n); }, options.retries, d);
       if (r >= 0) full[e].push_back(f), bare[e].push_back(b);
     }
   }
   std::vector<Timing> out(ne);
-  const double per = 1.0 / (scene.duration * replicas);
   for (std::size_t e = 0; e < ne; ++e) {
+    const double per = 1.0 / (scene.duration * replicas * repeats[e]);
     Timing& t = out[e];
     t.engine = engines[e].first;
     t.h = h;
     t.replicas = replicas;
+    t.repeats = repeats[e];
     t.samples = static_cast<int>(full[e].size());
     t.disturbed = disturbed[e];
     if (full[e].empty()) continue;

@@ -1,6 +1,7 @@
 // Run-time measurement: wall time per simulated second, as the median (with quartiles and minimum)
-// of repeated runs after a warm-up. The work timed in one run is fixed by the scene and h alone
-// (replicas_for): never re-chosen from a measurement, so two runs of the report time the same work.
+// of repeated runs after a warm-up. The work timed in one run is fixed by the scene, h and the
+// engine's name alone (replicas_for, repeats_for): never re-chosen from a measurement, so two runs
+// of the report time the same work.
 // Every run is timed in one of two interleaved halves, whose medians are compared: the report
 // states that agreement as its own run-to-run spread.
 #pragma once
@@ -19,6 +20,11 @@ struct TimingOptions {
   // at most max_replicas) until copies * dynamic bodies * steps reaches it.
   double body_steps_per_run = 8000;
   int max_replicas = 4096;
+  // A timed sample should last at least this long (s) at the engine's nominal cost per body-step
+  // (nominal_ns_per_body_step): the replicated run is repeated back to back (repeats_for), so that
+  // a cheap engine (ours: ~5 ns per body-step) is timed over milliseconds, not microseconds.
+  double min_sample_seconds = 2e-3;
+  int max_repeats = 256;
   int warmups = 1;  // untimed rounds first (page faults, lazy initialisation)
   int samples = 8;  // timed rounds; a multiple of 4, split into two halves by pairs of rounds
   // A run during which another process took the core (wall time beyond the thread's CPU time) is
@@ -30,6 +36,7 @@ struct Timing {
   std::string engine;
   double h = 0.0;
   int replicas = 1;   // copies of the scene's dynamic bodies in one timed run
+  int repeats = 1;    // back-to-back runs (each loaded afresh, untimed) summed into one sample
   int samples = 0;    // timed runs behind each figure below
   int disturbed = 0;  // runs measured again because another process took the core
   // Full harness loop (run_scene), wall seconds per simulated second, per copy of the scene.
@@ -53,6 +60,19 @@ struct Timing {
 // copies * (dynamic bodies, at least 1) * step_count(scene, h) >= options.body_steps_per_run,
 // at most options.max_replicas. A function of the scene and h only.
 int replicas_for(const Scene& scene, double h, const TimingOptions& options);
+
+// A rough cost of one body-step of `engine`'s bare loop (ns), fixed in code from
+// bench/results/debian12-2core-vm.csv (rounded down, so a sample lasts at least as long as
+// targeted on a similar machine), never measured at run time; 1000 ns for an engine not listed
+// (an external engine pays ~8 us per step for the protocol alone).
+double nominal_ns_per_body_step(const std::string& engine);
+
+// Back-to-back runs of the `replicas`-copy scene summed into one timed sample: the smallest power
+// of two with repeats * replicas * body-steps per copy * nominal_ns_per_body_step(engine) >=
+// options.min_sample_seconds, at most options.max_repeats. A function of the scene, h and the
+// engine's name only.
+int repeats_for(const Scene& scene, double h, const std::string& engine, int replicas,
+                const TimingOptions& options);
 
 // The scene copied `copies` times side by side: every body (static floors too, so that each copy
 // lands on its own floor), copy c shifted by c*(x extent of the scene + 10 m) along x, so that the

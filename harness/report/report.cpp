@@ -109,14 +109,19 @@ std::string method(const ReportInput& in) {
     md += fmt::sprintf(
         "- Timing (⏱ wall time): wall seconds per simulated second, median (with interquartile "
         "range and minimum) of %d timed runs after %d warm-up round. The work of one run is "
-        "fixed by the scene and h alone: the scene replicated side by side, the smallest power "
-        "of two copies (at most %d) that holds %.0f body-steps (harness/measure/timing.hpp). "
-        "Every round runs each engine once, in alternating order: an untimed bare loop to warm "
+        "fixed by the scene, h and engine name alone: the scene replicated side by side, the "
+        "smallest power "
+        "of two copies (at most %d) that holds %.0f body-steps, run back to back a power of two "
+        "times (at most %d) so that a sample lasts %.0f ms at the engine's nominal cost per "
+        "body-step, a constant per engine name (harness/measure/timing.hpp): cheap engines are "
+        "timed over milliseconds, not microseconds. Every round runs each engine once, in "
+        "alternating order: an untimed bare loop to warm "
         "it, then the timed full and bare loops. The rounds go by pairs into two halves; "
         "\"halves differ\" compares their medians (see Timing reproducibility). "
         "Harness overhead = full loop (forces, step, read, NaN check, sampling) / bare step() "
         "loop - 1, from the medians.\n",
-        o.samples, o.warmups, o.max_replicas, o.body_steps_per_run);
+        o.samples, o.warmups, o.max_replicas, o.body_steps_per_run, o.max_repeats,
+        1e3 * o.min_sample_seconds);
   md += std::string("- Plots: gnuplot (Debian's gnuplot-nox), `") + kPlotTerminal +
         "`; the data are written with %.9g to a temporary file, and each SVG is moved into "
         "place only when gnuplot succeeded.\n\n";

@@ -203,7 +203,7 @@ std::vector<std::string> sweep_row(const SceneEvaluation& se, const StepEvaluati
                      cell(t.q1_per_sim_s * 1e3) + " .. " + cell(t.q3_per_sim_s * 1e3),
                      cell(t.min_per_sim_s * 1e3), percent(t.half_spread()),
                      cell(t.bare_median_per_sim_s * 1e3), percent(t.overhead()),
-                     fmt::sprintf("%d x %d", t.samples, t.replicas)});
+                     fmt::sprintf("%d x %d x %d", t.samples, t.replicas, t.repeats)});
   return r;
 }
 
@@ -212,9 +212,9 @@ std::string sweep_table(const SceneEvaluation& se, bool timing) {
   std::vector<std::string> h{"engine", "h", "steps", "status", "error vs " + ref + ": max dx (m)"};
   if (!se.reference.empty()) h.push_back("divergence from " + se.reference + ": max dx (m)");
   if (timing)
-    for (const char* c :
-         {"median (ms per sim s)", "IQR (ms per sim s)", "min (ms per sim s)", "halves differ",
-          "bare step loop median (ms per sim s)", "harness overhead", "samples x replicas"})
+    for (const char* c : {"median (ms per sim s)", "IQR (ms per sim s)", "min (ms per sim s)",
+                          "halves differ", "bare step loop median (ms per sim s)",
+                          "harness overhead", "samples x replicas x repeats"})
       h.push_back(kTimed + std::string(c));
   MarkdownTable t(h, "llrlr");
   for (const EngineEvaluation& ev : se.engines) {

@@ -82,6 +82,7 @@ TEST_CASE("timing returns positive figures for every engine", "[timing]") {
   const Scene s = scene();
   TimingOptions fast;  // as little work as possible: this checks the plumbing, not the machine
   fast.body_steps_per_run = 1;
+  fast.min_sample_seconds = 0.0;
   fast.warmups = 0;
   fast.samples = 4;
   const std::vector<std::pair<std::string, EngineFactory>> engines{
@@ -93,6 +94,7 @@ TEST_CASE("timing returns positive figures for every engine", "[timing]") {
     CHECK(t[i].engine == engines[i].first);
     CHECK(t[i].h == 1.0 / 60);
     CHECK(t[i].replicas == 1);
+    CHECK(t[i].repeats == 1);
     CHECK(t[i].samples == 4);
     CHECK(t[i].min_per_sim_s > 0.0);
     CHECK(t[i].q1_per_sim_s >= t[i].min_per_sim_s);
@@ -130,6 +132,50 @@ TEST_CASE("the work of a timed run depends on the scene and h only, never on a m
   const TimingOptions d;
   CHECK(replicas_for(s, 1.0 / 60, d) == replicas_for(s, 1.0 / 60, d));
   CHECK(replicas_for(s, 1.0 / 60, d) == 256);  // 8000: 60 per copy; 128 hold 7680, 256 hold 15360
+}
+
+TEST_CASE("a cheap engine's timed sample repeats the run by a count fixed in code, not measured",
+          "[timing]") {
+  const Scene s = scene();  // 2 dynamic bodies; 1/60: 30 steps, 60 body-steps per copy
+  TimingOptions o;
+  o.min_sample_seconds = 1e-5;
+  CHECK(nominal_ns_per_body_step("ours") == 4.0);
+  CHECK(nominal_ns_per_body_step("ours-f64") == 4.0);
+  CHECK(nominal_ns_per_body_step("exec:python3 engine.py") == 1000.0);  // not listed
+  // ours: 60 * 4 ns = 240 ns per run; 32 runs hold 7.7 us < 10 us, 64 hold 15.4 us.
+  CHECK(repeats_for(s, 1.0 / 60, "ours", 1, o) == 64);
+  // Replicas count: 4 copies are 960 ns per run; 8 runs hold 7.7 us, 16 hold 15.4 us.
+  CHECK(repeats_for(s, 1.0 / 60, "ours", 4, o) == 16);
+  // bullet: 60 * 900 ns = 54 us per run already exceeds 10 us.
+  CHECK(repeats_for(s, 1.0 / 60, "bullet", 1, o) == 1);
+  CHECK(repeats_for(s, 1.0 / 60, "exec:python3 engine.py", 1, o) == 1);
+  o.max_repeats = 8;
+  CHECK(repeats_for(s, 1.0 / 60, "ours", 1, o) == 8);
+  // The defaults: a 2 ms sample. At ours's 256 copies x 60 body-steps x 4 ns = 61 us per run,
+  // 32 runs hold 1.97 ms < 2 ms, 64 hold 3.9 ms.
+  const TimingOptions d;
+  CHECK(repeats_for(s, 1.0 / 60, "ours", replicas_for(s, 1.0 / 60, d), d) == 64);
+  CHECK(repeats_for(s, 1.0 / 60, "mujoco", replicas_for(s, 1.0 / 60, d), d) == 1);
+}
+
+TEST_CASE("a timing with repeats reports per copy and per run, and says how many it summed",
+          "[timing]") {
+  const Scene s = scene();
+  TimingOptions o;
+  o.body_steps_per_run = 1;
+  o.min_sample_seconds = 1e-5;  // ours: 64 repeats of 240 ns (above)
+  o.warmups = 0;
+  o.samples = 4;
+  const std::vector<Timing> t =
+      time_engines({{"ours", [] { return make_engine("ours"); }}}, s, 1.0 / 60, o);
+  REQUIRE(t.size() == 1);
+  CHECK(t[0].replicas == 1);
+  CHECK(t[0].repeats == 64);
+  CHECK(t[0].samples == 4);
+  CHECK(t[0].median_per_sim_s > 0.0);
+  // Per simulated second of one copy: the 64 runs are 32 simulated seconds; the sum of their
+  // stepping loops cannot take less than 0 or (here) anywhere near 1 s per simulated second.
+  CHECK(t[0].median_per_sim_s < 1.0);
 }
 
 TEST_CASE("a timing compares the medians of the two halves of its samples", "[timing]") {
