@@ -3,9 +3,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "harness/core/number_format.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
-#include "harness/core/number_format.hpp"
 #include "harness/stability/stability.hpp"
 #include "harness/stability/stability_theory.hpp"
 

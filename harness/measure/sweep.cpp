@@ -92,7 +92,8 @@ struct Product {
 std::vector<Product> products(const Scene& scene, double h) {
   std::vector<Product> out;
   if (scene.world.damping_rate > 0.0)
-    out.push_back({fmt::sprintf("k*h = %.3g", scene.world.damping_rate * h), scene.world.damping_rate * h});
+    out.push_back(
+        {fmt::sprintf("k*h = %.3g", scene.world.damping_rate * h), scene.world.damping_rate * h});
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     if (scene.bodies[i].is_static) continue;
     const std::optional<SpringModel> s = body_spring(scene, i);
@@ -100,7 +101,8 @@ std::vector<Product> products(const Scene& scene, double h) {
     const std::string on = " on '" + scene.bodies[i].name + "'";
     const double wh = s->omega * h;
     out.push_back({fmt::sprintf("omega*h = %.3g", wh) + on, wh});
-    if (s->gamma > 0.0) out.push_back({fmt::sprintf("gamma*h = %.3g", s->gamma * h) + on, s->gamma * h});
+    if (s->gamma > 0.0)
+      out.push_back({fmt::sprintf("gamma*h = %.3g", s->gamma * h) + on, s->gamma * h});
     if (wh < 2.0) {
       // The drift matters while the oscillation lasts: its amplitude decays as exp(-(gamma +
       // k)*t/2).
@@ -108,7 +110,8 @@ std::vector<Product> products(const Scene& scene, double h) {
       const double lasts = damping > 0.0 ? std::min(scene.duration, 2.0 / damping) : scene.duration;
       const double drift = s->omega * lasts * (2.0 * std::asin(0.5 * wh) / wh - 1.0);
       out.push_back(
-          {fmt::sprintf("phase drift omega*T*(relative frequency error) = %.3g rad", drift) + on, drift});
+          {fmt::sprintf("phase drift omega*T*(relative frequency error) = %.3g rad", drift) + on,
+           drift});
     }
   }
   return out;

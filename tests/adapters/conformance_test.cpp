@@ -279,6 +279,8 @@ TEST_CASE("No engine's landing rebounds at any step of the sweep", "[conformance
         CHECK(std::abs(o.rest_offset - info.rest_offset) <= info.rest_tolerance);
       }
     }
+  }
+}
 
 TEST_CASE("On the thin floor, Box2D's continuous collision lands and the others tunnel as a limit",
           "[conformance][landing]") {
