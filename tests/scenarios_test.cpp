@@ -8,19 +8,9 @@
 #include <vector>
 
 #include "harness/core/scene_loader.hpp"
+#include "tests/shipped_scenes.hpp"
 
-namespace {
-
-std::vector<std::string> shipped_scenes() {
-  std::vector<std::string> files;
-  for (const auto& e :
-       std::filesystem::recursive_directory_iterator(DROPCHECK_SOURCE_DIR "/scenarios"))
-    if (e.is_regular_file() && e.path().extension() == ".toml") files.push_back(e.path().string());
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 TEST_CASE("every scene file shipped in scenarios/ loads without error", "[scenarios][loader]") {
   const std::vector<std::string> files = shipped_scenes();

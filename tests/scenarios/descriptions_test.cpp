@@ -25,6 +25,7 @@
 #include "harness/oracles/landing.hpp"
 #include "harness/stability/stability.hpp"
 #include "harness/stability/stability_theory.hpp"
+#include "tests/shipped_scenes.hpp"
 
 namespace {
 
@@ -459,15 +460,6 @@ std::vector<std::string> description_problems(const Scene& scene) {
     problems.push_back("\"" + it->str() +
                        "\": a figure in no checked phrase (tests/scenarios/descriptions_test.cpp)");
   return problems;
-}
-
-std::vector<std::string> shipped_scenes() {
-  std::vector<std::string> files;
-  for (const auto& e :
-       std::filesystem::recursive_directory_iterator(DROPCHECK_SOURCE_DIR "/scenarios"))
-    if (e.is_regular_file() && e.path().extension() == ".toml") files.push_back(e.path().string());
-  std::sort(files.begin(), files.end());
-  return files;
 }
 
 }  // namespace
