@@ -89,19 +89,21 @@ void describe_engines(const std::vector<EngineSlot>& slots, ReportInput& in) {
   }
 }
 
-// Evaluates each scene, with progress lines "[3/7] wind: bullet 1/120 ..." on `err`.
+// Evaluates each scene, with progress lines "[3/7] wind: bullet 1/120 ..." on `err`; then, unless
+// --no-timing, times them all as one schedule ("timing 61 cells: round 2 of 9 ...").
 void evaluate_all(const std::vector<Scene>& scenes, const std::vector<EngineSlot>& slots,
                   std::size_t total, ReportInput& in, std::ostream& err) {
-  EvaluateOptions options;
-  options.timing = in.timing;
-  in.timing_options = options.timing_options;
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     const std::string prefix =
         "[" + std::to_string(i + 1) + "/" + std::to_string(total) + "] " + scenes[i].name + ": ";
-    in.scenes.push_back(evaluate_scene(scenes[i], slots, options, [&](const std::string& what) {
+    in.scenes.push_back(evaluate_scene(scenes[i], slots, {}, [&](const std::string& what) {
       err << prefix << what << " ...\n" << std::flush;
     }));
   }
+  if (!in.timing) return;
+  time_evaluations(in.scenes, slots, in.timing_options, [&](const std::string& what) {
+    err << what << " ...\n" << std::flush;
+  });
 }
 
 }  // namespace

@@ -204,25 +204,6 @@ void measure_orders(EngineEvaluation& ev, const SceneEvaluation& se) {
   if (ev.name != se.reference) ev.orders_reference = observed_orders(h, div);
 }
 
-// Times, at each step of the sweep, every engine whose run at that step finished.
-void time_sweep(SceneEvaluation& se, const std::vector<EngineSlot>& slots, const EvaluateOptions& o,
-                const Progress& progress) {
-  for (std::size_t i = 0; i < se.sweep.size(); ++i) {
-    std::vector<std::pair<std::string, EngineFactory>> timed;
-    std::vector<StepEvaluation*> targets;
-    for (std::size_t e = 0; e < se.engines.size(); ++e) {
-      EngineEvaluation& ev = se.engines[e];
-      if (!ev.ran() || ev.sweep[i].run.status != RunStatus::ok) continue;
-      timed.emplace_back(ev.name, slots[e].make);
-      targets.push_back(&ev.sweep[i]);
-    }
-    say(progress, "timing " + std::to_string(timed.size()) + " engines at " + se.sweep[i].text);
-    const std::vector<Timing> t =
-        time_engines(timed, se.scene, se.sweep[i].seconds, o.timing_options);
-    for (std::size_t k = 0; k < t.size(); ++k) targets[k]->timing = t[k];
-  }
-}
-
 SceneEvaluation prepare(const Scene& scene, const EvaluateOptions& options) {
   SceneEvaluation se;
   se.scene = scene;
@@ -287,8 +268,33 @@ SceneEvaluation evaluate_scene(const Scene& scene, const std::vector<EngineSlot>
     if (ref && ev.name != ref->name) measure_divergence(ev, *ref, se, refs);
     measure_orders(ev, se);
   }
-  if (options.timing) time_sweep(se, engines, options, progress);
   return se;
+}
+
+void time_evaluations(std::vector<SceneEvaluation>& scenes, const std::vector<EngineSlot>& engines,
+                      const TimingOptions& options, const Progress& progress) {
+  // One cell per scene and step of its sweep: every engine whose run at that step finished.
+  std::vector<TimingCell> cells;
+  std::vector<std::vector<StepEvaluation*>> targets;
+  for (SceneEvaluation& se : scenes)
+    for (std::size_t i = 0; i < se.sweep.size(); ++i) {
+      TimingCell cell{&se.scene, se.sweep[i].seconds, {}};
+      targets.emplace_back();
+      for (std::size_t e = 0; e < se.engines.size(); ++e) {
+        EngineEvaluation& ev = se.engines[e];
+        if (!ev.ran() || ev.sweep[i].run.status != RunStatus::ok) continue;
+        cell.engines.emplace_back(ev.name, engines[e].make);
+        targets.back().push_back(&ev.sweep[i]);
+      }
+      cells.push_back(std::move(cell));
+    }
+  const auto round = [&](int r, int rounds) {
+    say(progress, "timing " + std::to_string(cells.size()) + " cells: round " + std::to_string(r) +
+                      " of " + std::to_string(rounds));
+  };
+  const std::vector<std::vector<Timing>> t = time_cells(cells, options, round);
+  for (std::size_t c = 0; c < cells.size(); ++c)
+    for (std::size_t k = 0; k < t[c].size(); ++k) targets[c][k]->timing = t[c][k];
 }
 
 }  // namespace dropcheck

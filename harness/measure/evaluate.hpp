@@ -5,8 +5,8 @@
 //   contacts);
 //   3. self-consistency: the same engine at a much finer step, where no closed form exists;
 // and against the reference engine (ours-f64) at the same step, split into law part and residual
-// (harness/measure/attribution.hpp). Optionally timed (harness/measure/timing.hpp). Engine-neutral:
-// engines come in as named factories, so the harness does not depend on adapters.
+// (harness/measure/attribution.hpp). Timed apart, all scenes at once (time_evaluations).
+// Engine-neutral: engines come in as named factories, so the harness does not depend on adapters.
 #pragma once
 
 #include <functional>
@@ -34,8 +34,6 @@ struct EngineSlot {
 struct EvaluateOptions {
   std::string reference = "ours-f64";  // divergences are measured from this engine
   int fine_factor = 8;                 // oracle 3 runs at (finest step of the sweep) / fine_factor
-  bool timing = true;                  // time every engine at every step of the sweep
-  TimingOptions timing_options;
 };
 
 // One body's landing in one run (contact scenes): what the run shows against what the continuous
@@ -116,5 +114,12 @@ std::vector<Timestep> sorted_sweep(const Scene& scene);
 // Runs every engine of `engines` that can run `scene` over the sweep and measures it.
 SceneEvaluation evaluate_scene(const Scene& scene, const std::vector<EngineSlot>& engines,
                                const EvaluateOptions& options = {}, const Progress& progress = {});
+
+// Times every engine at every step of every scene's sweep whose run there finished, as one schedule
+// (time_cells, harness/measure/timing.hpp: rounds over all the cells, so that a passing disturbance
+// of the machine costs each cell one sample at most), and stores each figure in its
+// StepEvaluation::timing. `engines` are the slots `scenes` were evaluated with, in the same order.
+void time_evaluations(std::vector<SceneEvaluation>& scenes, const std::vector<EngineSlot>& engines,
+                      const TimingOptions& options = {}, const Progress& progress = {});
 
 }  // namespace dropcheck

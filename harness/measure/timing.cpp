@@ -161,13 +161,14 @@ int replicas_for(const Scene& scene, double h, const TimingOptions& options) {
 }
 
 double nominal_ns_per_body_step(const std::string& engine) {
-  // Bare loop at N = 1000 free cubes on the 2-core VM (bench/results): ours 5.7, ours-f64 6.7,
-  // ode 293, box2d 390, mujoco 861, bullet 920 ns; contact scenes cost the engines more.
-  if (engine == "ours" || engine == "ours-f64") return 4.0;
-  if (engine == "ode") return 250.0;
-  if (engine == "box2d") return 350.0;
-  if (engine == "mujoco") return 700.0;
-  if (engine == "bullet") return 900.0;
+  // Bare loop at N = 1000 free cubes on the 2-core VM, quiet (bench/results, 2026-11-23):
+  // ours 3.72, ours-f64 4.23, ode 189, box2d 259, mujoco 567, bullet 591 ns; contact scenes cost
+  // the engines more. Rounded down.
+  if (engine == "ours" || engine == "ours-f64") return 3.5;
+  if (engine == "ode") return 180.0;
+  if (engine == "box2d") return 250.0;
+  if (engine == "mujoco") return 550.0;
+  if (engine == "bullet") return 580.0;
   return 1000.0;
 }
 
@@ -181,52 +182,99 @@ int repeats_for(const Scene& scene, double h, const std::string& engine, int rep
   return std::min(repeats, std::max(options.max_repeats, 1));
 }
 
-std::vector<Timing> time_engines(const std::vector<std::pair<std::string, EngineFactory>>& engines,
-                                 const Scene& scene, double h, const TimingOptions& options) {
-  const std::size_t ne = engines.size();
-  const int replicas = replicas_for(scene, h, options);
-  const Scene copies = replicate(scene, replicas);
-  std::vector<std::vector<double>> full(ne), bare(ne);
-  std::vector<int> disturbed(ne, 0), repeats(ne, 1);
+namespace {
+
+// One cell while it is being timed: its replicated scene, each engine's repeats and samples.
+struct CellRun {
+  int replicas = 1;
+  Scene copies;
+  std::vector<int> repeats;
+  std::vector<std::vector<double>> full, bare;
+  std::vector<int> disturbed;
+};
+
+CellRun start_cell(const TimingCell& cell, const TimingOptions& options) {
+  CellRun run;
+  const std::size_t ne = cell.engines.size();
+  run.replicas = replicas_for(*cell.scene, cell.h, options);
+  run.copies = replicate(*cell.scene, run.replicas);
+  run.full.resize(ne);
+  run.bare.resize(ne);
+  run.disturbed.assign(ne, 0);
   for (std::size_t e = 0; e < ne; ++e)
-    repeats[e] = repeats_for(scene, h, engines[e].first, replicas, options);
+    run.repeats.push_back(
+        repeats_for(*cell.scene, cell.h, cell.engines[e].first, run.replicas, options));
+  return run;
+}
+
+// One round of one cell: every engine once, forward in even rounds and backward in odd ones. An
+// untimed bare loop first brings the engine's code and data back in cache after whatever ran
+// before, so that no figure depends on which engine or cell ran before it.
+void time_round(const TimingCell& cell, CellRun& run, int round, const TimingOptions& options) {
+  const std::size_t ne = cell.engines.size();
+  for (std::size_t k = 0; k < ne; ++k) {
+    const std::size_t e = (round % 2 == 0) ? k : ne - 1 - k;
+    std::unique_ptr<Engine> engine = cell.engines[e].second();
+    time_bare(*engine, run.copies, cell.h, 1);
+    const int n = run.repeats[e];
+    int& d = run.disturbed[e];
+    const double f =
+        undisturbed([&] { return time_full(*engine, run.copies, cell.h, n); }, options.retries, d);
+    const double b =
+        undisturbed([&] { return time_bare(*engine, run.copies, cell.h, n); }, options.retries, d);
+    if (round >= 0) run.full[e].push_back(f), run.bare[e].push_back(b);
+  }
+}
+
+// Medians, quartiles and halves of engine e's samples, per simulated second of one copy.
+Timing summarise(const TimingCell& cell, const CellRun& run, std::size_t e) {
+  Timing t;
+  t.engine = cell.engines[e].first;
+  t.h = cell.h;
+  t.replicas = run.replicas;
+  t.repeats = run.repeats[e];
+  t.samples = static_cast<int>(run.full[e].size());
+  t.disturbed = run.disturbed[e];
+  const std::vector<double>& full = run.full[e];
+  const std::vector<double>& bare = run.bare[e];
+  if (full.empty()) return t;
+  const double per = 1.0 / (cell.scene->duration * run.replicas * run.repeats[e]);
+  t.min_per_sim_s = *std::min_element(full.begin(), full.end()) * per;
+  t.median_per_sim_s = median(full) * per;
+  t.q1_per_sim_s = quantile(full, 0.25) * per;
+  t.q3_per_sim_s = quantile(full, 0.75) * per;
+  t.half_a_median = median(half(full, 0)) * per;
+  t.half_b_median = median(half(full, 1)) * per;
+  t.bare_min_per_sim_s = *std::min_element(bare.begin(), bare.end()) * per;
+  t.bare_median_per_sim_s = median(bare) * per;
+  return t;
+}
+
+}  // namespace
+
+std::vector<std::vector<Timing>> time_cells(const std::vector<TimingCell>& cells,
+                                            const TimingOptions& options,
+                                            const std::function<void(int, int)>& progress) {
+  std::vector<CellRun> runs;
+  for (const TimingCell& cell : cells) runs.push_back(start_cell(cell, options));
+  const int rounds = options.warmups + options.samples;
   for (int r = -options.warmups; r < options.samples; ++r) {
-    for (std::size_t k = 0; k < ne; ++k) {
-      const std::size_t e = (r % 2 == 0) ? k : ne - 1 - k;  // alternate the order every round
-      std::unique_ptr<Engine> engine = engines[e].second();
-      // Untimed first: the engine's code and data back in cache after the other engines ran, so
-      // that no figure depends on which engine ran before it.
-      time_bare(*engine, copies, h, 1);
-      int& d = disturbed[e];
-      const int n = repeats[e];
-      const double f =
-          undisturbed([&] { return time_full(*engine, copies, h, n); }, options.retries, d);
-      const double b =
-          undisturbed([&] { return time_bare(*engine, copies, h, n); }, options.retries, d);
-      if (r >= 0) full[e].push_back(f), bare[e].push_back(b);
+    if (progress) progress(r + options.warmups + 1, rounds);
+    for (std::size_t k = 0; k < cells.size(); ++k) {
+      const std::size_t c = (r % 2 == 0) ? k : cells.size() - 1 - k;
+      time_round(cells[c], runs[c], r, options);
     }
   }
-  std::vector<Timing> out(ne);
-  for (std::size_t e = 0; e < ne; ++e) {
-    const double per = 1.0 / (scene.duration * replicas * repeats[e]);
-    Timing& t = out[e];
-    t.engine = engines[e].first;
-    t.h = h;
-    t.replicas = replicas;
-    t.repeats = repeats[e];
-    t.samples = static_cast<int>(full[e].size());
-    t.disturbed = disturbed[e];
-    if (full[e].empty()) continue;
-    t.min_per_sim_s = *std::min_element(full[e].begin(), full[e].end()) * per;
-    t.median_per_sim_s = median(full[e]) * per;
-    t.q1_per_sim_s = quantile(full[e], 0.25) * per;
-    t.q3_per_sim_s = quantile(full[e], 0.75) * per;
-    t.half_a_median = median(half(full[e], 0)) * per;
-    t.half_b_median = median(half(full[e], 1)) * per;
-    t.bare_min_per_sim_s = *std::min_element(bare[e].begin(), bare[e].end()) * per;
-    t.bare_median_per_sim_s = median(bare[e]) * per;
-  }
+  std::vector<std::vector<Timing>> out(cells.size());
+  for (std::size_t c = 0; c < cells.size(); ++c)
+    for (std::size_t e = 0; e < cells[c].engines.size(); ++e)
+      out[c].push_back(summarise(cells[c], runs[c], e));
   return out;
+}
+
+std::vector<Timing> time_engines(const std::vector<std::pair<std::string, EngineFactory>>& engines,
+                                 const Scene& scene, double h, const TimingOptions& options) {
+  return time_cells({TimingCell{&scene, h, engines}}, options)[0];
 }
 
 }  // namespace dropcheck

@@ -22,7 +22,7 @@ struct TimingOptions {
   int max_replicas = 4096;
   // A timed sample should last at least this long (s) at the engine's nominal cost per body-step
   // (nominal_ns_per_body_step): the replicated run is repeated back to back (repeats_for), so that
-  // a cheap engine (ours: ~5 ns per body-step) is timed over milliseconds, not microseconds.
+  // a cheap engine (ours: ~4 ns per body-step) is timed over milliseconds, not microseconds.
   double min_sample_seconds = 2e-3;
   int max_repeats = 256;
   int warmups = 1;  // untimed rounds first (page faults, lazy initialisation)
@@ -80,10 +80,26 @@ int repeats_for(const Scene& scene, double h, const std::string& engine, int rep
 // spring's anchor shifted with its body).
 Scene replicate(const Scene& scene, int copies);
 
-// Times each engine on `scene` at step h. Each round runs every engine once (an untimed bare loop
-// to warm its code and data, then the timed full loop and the timed bare loop), in alternating
-// order from round to round, so that drift of the machine (frequency, other load) hits all alike
-// and each engine's samples are spread over the whole window.
+// One cell of a timing schedule: `engines` on `scene` (not owned; it outlives the call) at step h.
+struct TimingCell {
+  const Scene* scene = nullptr;
+  double h = 0.0;
+  std::vector<std::pair<std::string, EngineFactory>> engines;
+};
+
+// Times every engine of every cell, in rounds: each round (warm-ups first, untimed) visits every
+// cell once, forward in even rounds and backward in odd ones, and within a cell runs every engine
+// once (an untimed bare loop to warm its code and data, then the timed full loop and the timed bare
+// loop), also in alternating order. So a disturbance of the machine shorter than a round (another
+// process, the hypervisor, a frequency change) lands in one sample of each cell, which the median
+// discards, instead of in every sample of one cell; and each cell's samples, and both halves of
+// them, are spread over the whole window. `progress` (optional) hears (round, rounds) as each
+// round starts. One vector per cell, in the cell's engine order.
+std::vector<std::vector<Timing>> time_cells(const std::vector<TimingCell>& cells,
+                                            const TimingOptions& options = {},
+                                            const std::function<void(int, int)>& progress = {});
+
+// time_cells on one cell: `engines` on `scene` at step h.
 std::vector<Timing> time_engines(const std::vector<std::pair<std::string, EngineFactory>>& engines,
                                  const Scene& scene, double h, const TimingOptions& options = {});
 

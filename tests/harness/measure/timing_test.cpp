@@ -139,20 +139,20 @@ TEST_CASE("a cheap engine's timed sample repeats the run by a count fixed in cod
   const Scene s = scene();  // 2 dynamic bodies; 1/60: 30 steps, 60 body-steps per copy
   TimingOptions o;
   o.min_sample_seconds = 1e-5;
-  CHECK(nominal_ns_per_body_step("ours") == 4.0);
-  CHECK(nominal_ns_per_body_step("ours-f64") == 4.0);
+  CHECK(nominal_ns_per_body_step("ours") == 3.5);
+  CHECK(nominal_ns_per_body_step("ours-f64") == 3.5);
   CHECK(nominal_ns_per_body_step("exec:python3 engine.py") == 1000.0);  // not listed
-  // ours: 60 * 4 ns = 240 ns per run; 32 runs hold 7.7 us < 10 us, 64 hold 15.4 us.
+  // ours: 60 * 3.5 ns = 210 ns per run; 32 runs hold 6.7 us < 10 us, 64 hold 13.4 us.
   CHECK(repeats_for(s, 1.0 / 60, "ours", 1, o) == 64);
-  // Replicas count: 4 copies are 960 ns per run; 8 runs hold 7.7 us, 16 hold 15.4 us.
+  // Replicas count: 4 copies are 840 ns per run; 8 runs hold 6.7 us, 16 hold 13.4 us.
   CHECK(repeats_for(s, 1.0 / 60, "ours", 4, o) == 16);
-  // bullet: 60 * 900 ns = 54 us per run already exceeds 10 us.
+  // bullet: 60 * 580 ns = 34.8 us per run already exceeds 10 us.
   CHECK(repeats_for(s, 1.0 / 60, "bullet", 1, o) == 1);
   CHECK(repeats_for(s, 1.0 / 60, "exec:python3 engine.py", 1, o) == 1);
   o.max_repeats = 8;
   CHECK(repeats_for(s, 1.0 / 60, "ours", 1, o) == 8);
-  // The defaults: a 2 ms sample. At ours's 256 copies x 60 body-steps x 4 ns = 61 us per run,
-  // 32 runs hold 1.97 ms < 2 ms, 64 hold 3.9 ms.
+  // The defaults: a 2 ms sample. At ours's 256 copies x 60 body-steps x 3.5 ns = 54 us per run,
+  // 32 runs hold 1.72 ms < 2 ms, 64 hold 3.4 ms.
   const TimingOptions d;
   CHECK(repeats_for(s, 1.0 / 60, "ours", replicas_for(s, 1.0 / 60, d), d) == 64);
   CHECK(repeats_for(s, 1.0 / 60, "mujoco", replicas_for(s, 1.0 / 60, d), d) == 1);
@@ -163,7 +163,7 @@ TEST_CASE("a timing with repeats reports per copy and per run, and says how many
   const Scene s = scene();
   TimingOptions o;
   o.body_steps_per_run = 1;
-  o.min_sample_seconds = 1e-5;  // ours: 64 repeats of 240 ns (above)
+  o.min_sample_seconds = 1e-5;  // ours: 64 repeats of 210 ns (above)
   o.warmups = 0;
   o.samples = 4;
   const std::vector<Timing> t =
@@ -187,4 +187,40 @@ TEST_CASE("a timing compares the medians of the two halves of its samples", "[ti
   CHECK(t.half_spread() == Approx(0.1));
   t.half_b_median = 0.0;
   CHECK(t.half_spread() == 0.0);
+}
+
+TEST_CASE("timing goes round all cells, so that no cell's samples share one window", "[timing]") {
+  const Scene s = scene();
+  TimingOptions o;
+  o.body_steps_per_run = 1;
+  o.min_sample_seconds = 0.0;
+  o.warmups = 1;
+  o.samples = 4;
+  std::string order;  // one letter per engine made: one per engine, cell and round
+  const auto engine = [&order](char tag) {
+    return [&order, tag] {
+      order += tag;
+      return make_engine("ours");
+    };
+  };
+  const std::vector<TimingCell> cells{
+      {&s, 1.0 / 60, {{"ours", engine('a')}}},
+      {&s, 1.0 / 120, {{"ours", engine('b')}, {"ours", engine('c')}}}};
+  std::vector<std::pair<int, int>> heard;
+  const auto t = time_cells(cells, o, [&](int r, int n) { heard.emplace_back(r, n); });
+  // Cells and engines alternate direction every round; the warm-up round (-1) goes backward.
+  CHECK(order ==
+        "cba"
+        "abc"
+        "cba"
+        "abc"
+        "cba");
+  CHECK(heard == std::vector<std::pair<int, int>>{{1, 5}, {2, 5}, {3, 5}, {4, 5}, {5, 5}});
+  REQUIRE(t.size() == 2);
+  REQUIRE(t[0].size() == 1);
+  REQUIRE(t[1].size() == 2);
+  CHECK(t[0][0].h == 1.0 / 60);
+  CHECK(t[1][1].h == 1.0 / 120);
+  for (const auto& cell : t)
+    for (const Timing& one : cell) CHECK(one.samples == 4);
 }

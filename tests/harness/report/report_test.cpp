@@ -173,15 +173,15 @@ TEST_CASE("the report refuses to replace a directory it did not write", "[report
 TEST_CASE("with timings the run-time table has marked columns and a work-precision plot",
           "[report]") {
   Scratch dir("timing");
-  EvaluateOptions options;  // as little timing work as possible: this checks the plumbing only
-  options.timing_options.body_steps_per_run = 1;
-  options.timing_options.warmups = 0;
-  options.timing_options.samples = 2;
+  ReportInput in;  // as little timing work as possible: this checks the plumbing only
+  in.timing_options.body_steps_per_run = 1;
+  in.timing_options.warmups = 0;
+  in.timing_options.samples = 2;
   std::vector<EngineSlot> engines;
   for (const char* name : {"ours", "ours-f64"})
     engines.push_back({name, [name] { return make_engine(name); }, ""});
-  ReportInput in;
-  in.scenes.push_back(evaluate_scene(load_scene(dir.file("throw.toml", kThrow)), engines, options));
+  in.scenes.push_back(evaluate_scene(load_scene(dir.file("throw.toml", kThrow)), engines));
+  time_evaluations(in.scenes, engines, in.timing_options);
   for (const EngineSlot& e : engines) in.engines.push_back(e.make()->info());
   write_report(in, dir.path.string());
   const std::string md = slurp(dir.path / "README.md");
