@@ -86,10 +86,13 @@ int cmd_run(const std::vector<std::string>& argv, std::ostream& out, std::ostrea
     runs.push_back(run_scene(*e.engine, scene, dt.seconds));
     print_run(runs.back(), out);
   }
-  if (args.has("--csv"))  // streamed: memory is the trajectories plus a 64 KiB buffer
+  // Both streamed: memory is the trajectories plus a 64 KiB buffer.
+  if (args.has("--csv"))
     write_file_atomic(args.value("--csv"),
                       [&](std::ostream& o) { write_trajectories_csv(o, runs); });
-  if (args.has("--json")) write_file_atomic(args.value("--json"), trajectories_to_json(runs));
+  if (args.has("--json"))
+    write_file_atomic(args.value("--json"),
+                      [&](std::ostream& o) { write_trajectories_json(o, runs); });
   return kExitOk;
 }
 

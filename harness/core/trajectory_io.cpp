@@ -34,25 +34,36 @@ Json json_vec(const Vec3& v) {
   return Json::array({v[0], v[1], v[2]});
 }
 
-Json run_json(const Trajectory& t) {
-  Json run = {{"engine", t.engine},
-              {"scene", t.scene},
-              {"dt", t.h},
-              {"steps", t.steps},
-              {"status", to_string(t.status)},
-              {"failure", t.failure},
-              {"failed_step", t.failed_step},
-              {"clamped_steps", t.clamped_steps}};
-  Json bodies = Json::array();
+// The run's fields before its bodies, as nlohmann writes them, without the closing brace.
+std::string run_head(const Trajectory& t) {
+  const Json run = {{"engine", t.engine},
+                    {"scene", t.scene},
+                    {"dt", t.h},
+                    {"steps", t.steps},
+                    {"status", to_string(t.status)},
+                    {"failure", t.failure},
+                    {"failed_step", t.failed_step},
+                    {"clamped_steps", t.clamped_steps}};
+  std::string head = dump(run);
+  head.pop_back();
+  return head;
+}
+
+// One run as {...,"bodies":[{"name":...,"samples":[[t,[x,y,z],[vx,vy,vz]],...]},...]}, written
+// piece by piece in the bytes nlohmann's compact dump of the whole object would give: memory holds
+// one sample's text, not the run's document.
+void write_run_json(std::ostream& out, const Trajectory& t) {
+  out << run_head(t) << ",\"bodies\":[";
   for (std::size_t b = 0; b < t.bodies(); ++b) {
-    Json samples = Json::array();
-    for (std::size_t s = 0; s < t.samples(); ++s)
-      samples.push_back(Json::array(
-          {t.recorded[s], json_vec(t.at(s, b).position), json_vec(t.at(s, b).velocity)}));
-    bodies.push_back(Json{{"name", t.body_names[b]}, {"samples", std::move(samples)}});
+    out << (b ? ",{\"name\":" : "{\"name\":") << dump(Json(t.body_names[b])) << ",\"samples\":[";
+    for (std::size_t s = 0; s < t.samples(); ++s) {
+      const BodyState& st = t.at(s, b);
+      out << (s ? "," : "")
+          << dump(Json::array({t.recorded[s], json_vec(st.position), json_vec(st.velocity)}));
+    }
+    out << "]}";
   }
-  run["bodies"] = std::move(bodies);
-  return run;
+  out << "]}";
 }
 
 }  // namespace
@@ -84,9 +95,18 @@ void write_trajectories_csv(std::ostream& out, std::span<const Trajectory> runs)
 }
 
 std::string trajectories_to_json(std::span<const Trajectory> runs) {
-  std::string out = "{\"runs\":[";  // one run per line, as before nlohmann wrote the runs
-  for (std::size_t r = 0; r < runs.size(); ++r) out += (r ? ",\n" : "\n") + dump(run_json(runs[r]));
-  return out + "\n]}\n";
+  std::ostringstream out;
+  write_trajectories_json(out, runs);
+  return out.str();
+}
+
+void write_trajectories_json(std::ostream& out, std::span<const Trajectory> runs) {
+  out << "{\"runs\":[";  // one run per line
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    out << (r ? ",\n" : "\n");
+    write_run_json(out, runs[r]);
+  }
+  out << "\n]}\n";
 }
 
 }  // namespace dropcheck

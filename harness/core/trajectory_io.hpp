@@ -19,4 +19,7 @@ void write_trajectories_csv(std::ostream& out, std::span<const Trajectory> runs)
 // {"runs":[{"engine","scene","dt","steps","status",...,"final":[...]}]} with every sample.
 std::string trajectories_to_json(std::span<const Trajectory> runs);
 
+// The same JSON written piece by piece to `out` (memory stays one sample's text).
+void write_trajectories_json(std::ostream& out, std::span<const Trajectory> runs);
+
 }  // namespace dropcheck

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -252,4 +253,28 @@ TEST_CASE("no runs still give a header-only CSV and a well-formed JSON", "[traje
   const std::string json = dropcheck::trajectories_to_json({});
   JsonChecker j{json};
   CHECK(j.document());
+}
+
+TEST_CASE("the streamed JSON has the bytes nlohmann writes for the whole document",
+          "[trajectory_io]") {
+  dropcheck::Trajectory hard = sample_run(), empty = sample_run(), none;
+  hard.body_names[1] = "bad \xff byte, \"quoted\"";  // not UTF-8: written as U+FFFD
+  hard.states[3].velocity.z() = std::numeric_limits<double>::quiet_NaN();
+  empty.recorded.clear();  // bodies without samples
+  empty.states.clear();
+  none.engine = "none";  // no bodies at all
+  const std::vector<dropcheck::Trajectory> runs{hard, empty, none};
+  std::ostringstream streamed;
+  dropcheck::write_trajectories_json(streamed, runs);
+  // Read back and written again whole, each run on its own line, as the old writer did.
+  const auto doc = nlohmann::ordered_json::parse(streamed.str());
+  std::string whole = "{\"runs\":[";
+  for (std::size_t r = 0; r < doc["runs"].size(); ++r)
+    whole += (r ? ",\n" : "\n") + doc["runs"][r].dump();
+  whole += "\n]}\n";
+  CHECK(streamed.str() == whole);
+  CHECK(streamed.str() == dropcheck::trajectories_to_json(runs));
+  CHECK(doc["runs"][0]["bodies"][1]["name"] == "bad \xef\xbf\xbd byte, \"quoted\"");
+  CHECK(doc["runs"][1]["bodies"][0]["samples"].empty());
+  CHECK(doc["runs"][2]["bodies"].empty());
 }
