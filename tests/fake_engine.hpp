@@ -1,6 +1,6 @@
-// A free-flight engine double for the run-loop tests: every body starts at its scene state and moves
-// by x += h*v, then v += h*F (unit mass, no gravity), F being the forces last handed over (zero
-// until then). A test derives from it and places its failures through the hooks.
+// A free-flight engine double for the run-loop tests: every body starts at its scene state and
+// moves by x += h*v, then v += h*F (unit mass, no gravity), F being the forces last handed over
+// (zero until then). A test derives from it and places its failures through the hooks.
 #pragma once
 
 #include <algorithm>
