@@ -1,12 +1,32 @@
 // Helpers shared by the adapter tests (tests/adapters/*_test.cpp): the shipped free-flight scenes,
-// the worst departure of a run from its engine's law, and a drop-on-floor scene built in code.
+// the worst departure of a run from its engine's law, a drop-on-floor scene built in code and how
+// an engine lands on it, and the checks every adapter test repeats (its law in free flight, the
+// docs/engines.md drag figure, the masses of scenarios/wind.toml).
 #pragma once
 
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <memory>
 #include <sstream>
 #include <string>
 
+#include "harness/core/registry.hpp"
+#include "harness/core/runner.hpp"
 #include "harness/core/scene_loader.hpp"
 #include "harness/core/trajectory.hpp"
+#include "harness/oracles/discrete_law.hpp"
+
+// Declares `engine` as make_engine(name), or warns why that engine is unavailable and ends the test
+// case (for the engines a build may leave out).
+#define ENGINE_OR_RETURN(engine, name)                                  \
+  auto engine = ::dropcheck::make_engine(name);                         \
+  if (!engine) {                                                        \
+    WARN(name << ": " << ::dropcheck::engine_unavailable_reason(name)); \
+    return;                                                             \
+  }
 
 namespace dropcheck::testing {
 
@@ -55,6 +75,111 @@ inline Scene drop_on_floor() {
                       .is_static = true});
   s.bodies.push_back({.name = "cube", .position = {0.0, 10.0, 0.0}});
   return s;
+}
+
+// Checks that engine `name` declares `law`, which the conformance suite checks it against (warns
+// and returns when `name` is not built).
+inline void check_declared_law(const std::string& name, const Law& law) {
+  ENGINE_OR_RETURN(engine, name);
+  INFO(name << " declares " << to_string(engine->info().law));
+  CHECK(engine->info().law == law);
+}
+
+// make_engine(name), required to exist (for a test file built only with that engine).
+inline std::unique_ptr<Engine> required_engine(const std::string& name) {
+  auto e = make_engine(name);
+  REQUIRE(e);
+  return e;
+}
+
+// Checks `engine` against its own discrete law in every free-flight scene at the scene's step,
+// 1/30 and 1/240: the worst |dx| of a run of `steps` steps must be at most tolerance(steps).
+inline void check_free_flight_law(Engine& engine,
+                                  const std::function<double(std::int64_t steps)>& tolerance) {
+  for (const char* name : kFreeFlightScenes) {
+    const Scene scene = scenario(name);
+    for (const double h : {scene.timestep.seconds, 1.0 / 30.0, 1.0 / 240.0}) {
+      const Trajectory run = run_scene(engine, scene, h);
+      REQUIRE(run.status == RunStatus::ok);
+      const WorstDx w = worst_dx(run, predict_discrete(engine.info().law, scene, h));
+      INFO(w.where);
+      CHECK(w.dx <= tolerance(run.steps));
+    }
+  }
+}
+
+// docs/engines.md's drag figure: 60 steps of h = 1/60, g = -9.8, f = 0.98, x0 = 10, v0 = 0, m = 1
+// (scenarios/free_fall_drag), required to have all 60 steps.
+inline Trajectory drag_figure_run(Engine& engine) {
+  const Trajectory run = run_scene(engine, scenario("free_fall_drag"), 1.0 / 60.0);
+  REQUIRE(run.recorded.back() == 60);
+  return run;
+}
+
+// Checks that `engine` gives the bodies of scenarios/wind.toml their masses, 3.375 kg (a 1.5 m
+// cube of density 1) and 1 kg, with and without contacts; `mass` reads body i of the loaded engine.
+inline void check_wind_masses(Engine& engine,
+                              const std::function<double(const Engine&, std::size_t)>& mass) {
+  Scene scene = scenario("wind");
+  for (const bool contacts : {false, true}) {
+    scene.world.contacts = contacts;
+    engine.load(scene, 1.0 / 60.0);
+    INFO("contacts = " << contacts);
+    CHECK(mass(engine, 0) == 3.375);
+    CHECK(mass(engine, 1) == 1.0);
+  }
+}
+
+// Landing of body `cube` as seen in a run, measured against the same scene without contacts.
+struct Landing {
+  std::int64_t touch_step = -1;  // first step whose state has the cube's bottom at or below y = 0
+  std::int64_t response_step = -1;  // first step whose state departs from free flight
+  double lowest = 1e300;            // lowest centre height
+  double highest_after = -1e300;    // highest centre height from the response on (rebound)
+  double rest = 0.0;                // final centre height
+  double settled_at = 0.0;          // from then on |v| <= 1e-3 m/s and |y - rest| <= 1e-4 m
+};
+
+// The Landing of body `cube` of a unit cube over a floor whose top is y = 0; a state departs from
+// free flight (`free`) when its height differs by more than `departs` m.
+inline Landing measure_landing(const Trajectory& run, const Trajectory& free, std::size_t cube,
+                               double departs) {
+  Landing l;
+  l.rest = run.final_state(cube).position.y();
+  for (std::size_t s = 0; s < run.samples(); ++s) {
+    const BodyState& b = run.at(s, cube);
+    const double y = b.position.y();
+    if (l.touch_step < 0 && y <= 0.5) l.touch_step = run.recorded[s];
+    if (l.response_step < 0 && std::abs(y - free.at(s, cube).position.y()) > departs)
+      l.response_step = run.recorded[s];
+    if (l.response_step >= 0) l.highest_after = std::max(l.highest_after, y);
+    l.lowest = std::min(l.lowest, y);
+    if (b.velocity.norm() > 1e-3 || std::abs(y - l.rest) > 1e-4)
+      l.settled_at = run.time(std::min(s + 1, run.samples() - 1));
+  }
+  return l;
+}
+
+// A run of drop_on_floor() at 1/60 and how the cube landed, with what the references need.
+struct DropLanding {
+  EngineInfo info;  // the engine's declarations (rest_offset, rest_tolerance)
+  double h = 1.0 / 60.0;
+  // Continuous model: the bottom reaches y = 0 after a fall of 9.5 m at t_c = sqrt(2*9.5/9.8),
+  // 1.3924 s, inside step 84.
+  double t_c = std::sqrt(2.0 * 9.5 / 9.8);
+  Landing l;  // measured against the engine's own law without contacts
+};
+
+// Runs drop_on_floor() on `engine` (required to finish) and measures its landing (see
+// measure_landing for `departs`).
+inline DropLanding land_drop_on_floor(Engine& engine, double departs) {
+  DropLanding d;
+  const Scene scene = drop_on_floor();
+  d.info = engine.info();
+  const Trajectory run = run_scene(engine, scene, d.h);
+  REQUIRE(run.status == RunStatus::ok);
+  d.l = measure_landing(run, predict_discrete(d.info.law, scene, d.h), 1, departs);
+  return d;
 }
 
 }  // namespace dropcheck::testing

@@ -26,37 +26,9 @@ using namespace dropcheck::testing;
 
 namespace {
 
-std::unique_ptr<Engine> box2d() {
-  auto e = make_engine("box2d");
-  REQUIRE(e);
-  return e;
-}
-
-// Landing of body `cube` as seen in a run, measured against the same scene without contacts.
-struct Landing {
-  std::int64_t response_step = -1;  // first step whose state departs from free flight
-  double lowest = 1e300;            // lowest centre height
-  double highest_after = -1e300;    // highest centre height from the response on (rebound)
-  double rest = 0.0;                // final centre height
-  double settled_at = 0.0;          // from then on |v| <= 1e-3 m/s and |y - rest| <= 1e-4 m
-};
-
-Landing measure_landing(const Trajectory& run, const Trajectory& free, std::size_t cube) {
-  Landing l;
-  l.rest = run.final_state(cube).position.y();
-  for (std::size_t s = 0; s < run.samples(); ++s) {
-    const BodyState& b = run.at(s, cube);
-    const double y = b.position.y();
-    // Free flight in float stays within 1e-5 of the law (measured 2.9e-6 before contact).
-    if (l.response_step < 0 && std::abs(y - free.at(s, cube).position.y()) > 1e-4)
-      l.response_step = run.recorded[s];
-    if (l.response_step >= 0) l.highest_after = std::max(l.highest_after, y);
-    l.lowest = std::min(l.lowest, y);
-    if (b.velocity.norm() > 1e-3 || std::abs(y - l.rest) > 1e-4)
-      l.settled_at = run.time(std::min(s + 1, run.samples() - 1));
-  }
-  return l;
-}
+// Free flight in float stays within 1e-5 of the law (measured 2.9e-6 before contact): a state
+// departs from it when its height differs by more than this.
+constexpr double kDeparts = 1e-4;
 
 // Box2D against its own law in float. Each step rounds x += h*v to half an ulp of |x| (3e-7 at
 // 10 m), and the decay Box2D computes, fl(1/fl(1 + h*c)), can only take values 1.2e-7 apart (the
@@ -71,32 +43,16 @@ double f32_law_tolerance(std::int64_t steps) {
 
 TEST_CASE("Box2D follows its own discrete law in every free-flight scene at three steps",
           "[box2d][law]") {
-  auto engine = box2d();
-  for (const char* name : kFreeFlightScenes) {
-    const Scene scene = scenario(name);
-    for (const double h : {scene.timestep.seconds, 1.0 / 30.0, 1.0 / 240.0}) {
-      const Trajectory run = run_scene(*engine, scene, h);
-      REQUIRE(run.status == RunStatus::ok);
-      const WorstDx w = worst_dx(run, predict_discrete(engine->info().law, scene, h));
-      INFO(w.where);
-      // Measured worst per step (1/60, 1/30, 1/240): seed_part3 2.0e-5, 4.1e-6, 1.4e-4;
-      // free_fall 1.1e-6, 5.9e-7, 2.7e-6; free_fall_drag 2.7e-6, 1.3e-6, 1.2e-5;
-      // wind 8.3e-6, 2.1e-6, 6.5e-5; throw_up 4.7e-6, 1.5e-6, 1.7e-5.
-      CHECK(w.dx <= f32_law_tolerance(run.steps));
-    }
-  }
+  // Measured worst per step (1/60, 1/30, 1/240): seed_part3 2.0e-5, 4.1e-6, 1.4e-4;
+  // free_fall 1.1e-6, 5.9e-7, 2.7e-6; free_fall_drag 2.7e-6, 1.3e-6, 1.2e-5;
+  // wind 8.3e-6, 2.1e-6, 6.5e-5; throw_up 4.7e-6, 1.5e-6, 1.7e-5.
+  check_free_flight_law(*required_engine("box2d"), f32_law_tolerance);
 }
 
 TEST_CASE("Box2D reproduces docs/engines.md's drag figure, bit-identical to ours in float",
           "[box2d][law]") {
-  // 60 steps of h = 1/60, g = -9.8, f = 0.98, x0 = 10, v0 = 0, m = 1 (scenarios/free_fall_drag).
-  const Scene scene = scenario("free_fall_drag");
-  auto engine = box2d();
-  auto ours = make_engine("ours");
-  REQUIRE(ours);
-  const Trajectory b = run_scene(*engine, scene, 1.0 / 60.0);
-  const Trajectory o = run_scene(*ours, scene, 1.0 / 60.0);
-  REQUIRE(b.recorded.back() == 60);
+  const Trajectory b = drag_figure_run(*required_engine("box2d"));
+  const Trajectory o = drag_figure_run(*required_engine("ours"));
   // float 1/(1 + h*c) with c = (exp(k*h) - 1)/h rounds to float 0.98: the same float sequence.
   CHECK(b.final_state(0).position.y() == 6.5878987312316895);
   CHECK(b.final_state(0).position.y() == o.final_state(0).position.y());
@@ -106,7 +62,7 @@ TEST_CASE("Box2D reproduces docs/engines.md's drag figure, bit-identical to ours
 TEST_CASE("Box2D refuses a scene outside the x-y plane", "[box2d]") {
   Scene scene = scenario("free_fall");
   scene.bodies[0].velocity = Vec3(0.0, 0.0, 1.0);
-  auto engine = box2d();
+  auto engine = required_engine("box2d");
   CHECK(engine->cannot_run(scene) == "not planar");
   CHECK_THROWS_WITH(engine->load(scene, 1.0 / 60.0), "not planar");
   CHECK(engine->cannot_run(scenario("free_fall")).empty());
@@ -115,7 +71,7 @@ TEST_CASE("Box2D refuses a scene outside the x-y plane", "[box2d]") {
 TEST_CASE("Box2D reports every step on which it clamps a body's speed to 2 m per step",
           "[box2d][clamp]") {
   Scene scene = scenario("free_fall");
-  auto engine = box2d();
+  auto engine = required_engine("box2d");
   SECTION("a body thrown at 200 m/s at 60 Hz is clamped from the first step") {
     scene.bodies[0].velocity = Vec3(200.0, 0.0, 0.0);
     const Trajectory t = run_scene(*engine, scene, 1.0 / 60.0);
@@ -164,29 +120,13 @@ TEST_CASE("Box2D reports every step on which it clamps a body's speed to 2 m per
 }
 
 TEST_CASE("Box2D gives a body the scene's mass with and without fixtures", "[box2d][mass]") {
-  // scenarios/wind.toml: body 0 is 3.375 kg (a 1.5 m cube of density 1), body 1 is 1 kg.
-  Scene scene = scenario("wind");
-  auto engine = box2d();
-  for (const bool contacts : {false, true}) {
-    scene.world.contacts = contacts;  // false: SetMassData; true: density*area of the fixture
-    engine->load(scene, 1.0 / 60.0);
-    INFO("contacts = " << contacts);
-    CHECK(box2d_body_mass(*engine, 0) == 3.375);  // measured exact in float
-    CHECK(box2d_body_mass(*engine, 1) == 1.0);
-  }
+  // Without contacts by SetMassData, with them as density*area of the fixture: measured exact.
+  check_wind_masses(*required_engine("box2d"), box2d_body_mass);
 }
 
 TEST_CASE("A cube dropped on a floor lands on time and rests at Box2D's declared offset",
           "[box2d][contacts]") {
-  const Scene scene = drop_on_floor();
-  auto engine = box2d();
-  const EngineInfo info = engine->info();
-  const double h = 1.0 / 60.0;
-  const Trajectory run = run_scene(*engine, scene, h);
-  REQUIRE(run.status == RunStatus::ok);
-  const Landing l = measure_landing(run, predict_discrete(info.law, scene, h), 1);
-  // Continuous model: the bottom reaches y = 0 after a fall of 9.5 m at t_c = sqrt(2*9.5/9.8).
-  const double t_c = std::sqrt(2.0 * 9.5 / 9.8);  // 1.3924 s, inside step 84
+  const auto [info, h, t_c, l] = land_drop_on_floor(*required_engine("box2d"), kDeparts);
   // Measured: response at step 84 (t = 1.4000, 0.46 step after t_c): the skins touch during step
   // 84 and continuous collision (TOI) stops the cube at y = 0.5111 within that step.
   CHECK(std::abs(static_cast<double>(l.response_step) * h - t_c) <= h);

@@ -15,6 +15,7 @@
 #include "harness/oracles/discrete_law.hpp"
 
 using namespace dropcheck;
+using dropcheck::testing::drag_figure_run;
 using dropcheck::testing::scenario;
 
 namespace {
@@ -64,25 +65,11 @@ Worst worst_vs_law(const Trajectory& run, const Trajectory& law) {
 
 }  // namespace
 
-#define REQUIRE_BULLET(engine)                               \
-  auto engine = make_engine("bullet");                       \
-  if (!engine) {                                             \
-    WARN("bullet: " << engine_unavailable_reason("bullet")); \
-    return;                                                  \
-  }
-
-// Its own law at every step of every shipped scene is checked for every engine by
-// tests/adapters/conformance_test.cpp; here only the declaration it is checked against.
-TEST_CASE("Bullet declares its damping order for the conformance suite", "[bullet][law]") {
-  REQUIRE_BULLET(engine);
-  CHECK(engine->info().law == DampingOrder::BeforeForces);
-}
-
+// Its own law at every step of every shipped scene, and the declaration it is checked against, are
+// in tests/adapters/conformance_test.cpp.
 TEST_CASE("Bullet reproduces docs/engines.md's 60-step drag figure", "[bullet][law]") {
-  REQUIRE_BULLET(engine);
-  // 60 steps of h = 1/60, g = -9.8, f = 0.98, x0 = 10, v0 = 0, m = 1 (scenarios/free_fall_drag).
-  const Trajectory run = run_scene(*engine, scenario("free_fall_drag"), 1.0 / 60.0);
-  REQUIRE(run.recorded.back() == 60);
+  ENGINE_OR_RETURN(engine, "bullet");
+  const Trajectory run = drag_figure_run(*engine);
   const double x = run.final_state(0).position.y();
   if (engine->info().scalar == Scalar::f64) {
     // Measured 6.5182636233228308 exactly (docs/engines.md section 2); 1e-12 leaves room for libm.
@@ -95,7 +82,7 @@ TEST_CASE("Bullet reproduces docs/engines.md's 60-step drag figure", "[bullet][l
 }
 
 TEST_CASE("Bullet refuses a damping rate its per-second parameter cannot hold", "[bullet][law]") {
-  REQUIRE_BULLET(engine);
+  ENGINE_OR_RETURN(engine, "bullet");
   // k = 60 1/s (scenarios/extreme/heavy_drag): d = 1 - exp(-60) = 1 - 8.8e-27 rounds to 1, and
   // Bullet's (1 - d)^h would be 0 instead of exp(-k*h) = 0.61 at 1/120.
   Scene scene = scenario("free_fall");

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <span>
 
+#include "adapter_test_support.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/core/scene_loader.hpp"
@@ -65,6 +66,14 @@ class MisreportingEngine final : public Engine {
 };
 
 }  // namespace
+
+TEST_CASE("Each engine compiled in declares the damping order its own law is checked against",
+          "[conformance][law]") {
+  dropcheck::testing::check_declared_law("bullet", DampingOrder::BeforeForces);
+  dropcheck::testing::check_declared_law("ode", DampingOrder::AfterPosition);
+  dropcheck::testing::check_declared_law("box2d", DampingOrder::AfterForces);
+  dropcheck::testing::check_declared_law("mujoco", DampingOrder::AfterForces);
+}
 
 TEST_CASE("Every compiled engine follows its own law at every step of every free-flight scene",
           "[conformance][reference]") {

@@ -28,94 +28,33 @@ using namespace dropcheck::testing;
 
 namespace {
 
-std::unique_ptr<Engine> mujoco() {
-  auto e = make_engine("mujoco");
-  REQUIRE(e);
-  return e;
-}
-
-// Landing of body `cube` as seen in a run, measured against the same scene without contacts.
-struct Landing {
-  std::int64_t touch_step = -1;  // first step whose state has the cube's bottom at or below y = 0
-  std::int64_t response_step = -1;  // first step whose state departs from free flight
-  double lowest = 1e300;            // lowest centre height
-  double highest_after = -1e300;    // highest centre height from the response on (rebound)
-  double rest = 0.0;                // final centre height
-  double settled_at = 0.0;          // from then on |v| <= 1e-3 m/s and |y - rest| <= 1e-4 m
-};
-
-Landing measure_landing(const Trajectory& run, const Trajectory& free, std::size_t cube) {
-  Landing l;
-  l.rest = run.final_state(cube).position.y();
-  for (std::size_t s = 0; s < run.samples(); ++s) {
-    const BodyState& b = run.at(s, cube);
-    const double y = b.position.y();
-    if (l.touch_step < 0 && y <= 0.5) l.touch_step = run.recorded[s];
-    // Free flight follows the law to 1e-13 (measured 2.8e-14 before contact).
-    if (l.response_step < 0 && std::abs(y - free.at(s, cube).position.y()) > 1e-9)
-      l.response_step = run.recorded[s];
-    if (l.response_step >= 0) l.highest_after = std::max(l.highest_after, y);
-    l.lowest = std::min(l.lowest, y);
-    if (b.velocity.norm() > 1e-3 || std::abs(y - l.rest) > 1e-4)
-      l.settled_at = run.time(std::min(s + 1, run.samples() - 1));
-  }
-  return l;
-}
+// Free flight follows the law to 1e-13 (measured 2.8e-14 before contact): a state departs from it
+// when its height differs by more than this.
+constexpr double kDeparts = 1e-9;
 
 }  // namespace
 
 TEST_CASE("MuJoCo follows its own discrete law in every free-flight scene at three steps",
           "[mujoco][law]") {
-  auto engine = mujoco();
-  for (const char* name : kFreeFlightScenes) {
-    const Scene scene = scenario(name);
-    for (const double h : {scene.timestep.seconds, 1.0 / 30.0, 1.0 / 240.0}) {
-      const Trajectory run = run_scene(*engine, scene, h);
-      REQUIRE(run.status == RunStatus::ok);
-      const WorstDx w = worst_dx(run, predict_discrete(engine->info().law, scene, h));
-      INFO(w.where);
-      // double rounding: measured worst 7.1e-15 m (seed_part3 at 1/240, 720 steps).
-      CHECK(w.dx <= 1e-9);
-    }
-  }
+  // double rounding: measured worst 7.1e-15 m (seed_part3 at 1/240, 720 steps).
+  check_free_flight_law(*required_engine("mujoco"), [](std::int64_t) { return 1e-9; });
 }
 
 TEST_CASE("MuJoCo reproduces docs/engines.md's drag figure, equal to ours in double",
           "[mujoco][law]") {
-  // 60 steps of h = 1/60, g = -9.8, f = 0.98, x0 = 10, v0 = 0, m = 1 (scenarios/free_fall_drag).
-  const Scene scene = scenario("free_fall_drag");
-  auto engine = mujoco();
-  const Trajectory t = run_scene(*engine, scene, 1.0 / 60.0);
-  REQUIRE(t.recorded.back() == 60);
+  const Trajectory t = drag_figure_run(*required_engine("mujoco"));
   // Measured bit-identical (difference 0); implicit damping (m*v + h*F)/(m + h*b) rounds
   // differently from phi*(v + a*h), so allow a few ulps.
   CHECK(t.final_state(0).position.y() == Approx(6.5878983508563724).margin(1e-14));
 }
 
 TEST_CASE("MuJoCo gives a body exactly the scene's mass", "[mujoco][mass]") {
-  // scenarios/wind.toml: body 0 is 3.375 kg (a 1.5 m cube of density 1), body 1 is 1 kg.
-  Scene scene = scenario("wind");
-  auto engine = mujoco();
-  for (const bool contacts : {false, true}) {
-    scene.world.contacts = contacts;
-    engine->load(scene, 1.0 / 60.0);
-    INFO("contacts = " << contacts);
-    CHECK(mujoco_body_mass(*engine, 0) == 3.375);  // <inertial mass>: exact
-    CHECK(mujoco_body_mass(*engine, 1) == 1.0);
-  }
+  check_wind_masses(*required_engine("mujoco"), mujoco_body_mass);  // <inertial mass>: exact
 }
 
 TEST_CASE("A cube dropped on a floor lands, does not rebound and rests at MuJoCo's declared offset",
           "[mujoco][contacts]") {
-  const Scene scene = drop_on_floor();
-  auto engine = mujoco();
-  const EngineInfo info = engine->info();
-  const double h = 1.0 / 60.0;
-  const Trajectory run = run_scene(*engine, scene, h);
-  REQUIRE(run.status == RunStatus::ok);
-  const Landing l = measure_landing(run, predict_discrete(info.law, scene, h), 1);
-  // Continuous model: the bottom reaches y = 0 after a fall of 9.5 m at t_c = sqrt(2*9.5/9.8).
-  const double t_c = std::sqrt(2.0 * 9.5 / 9.8);  // 1.3924 s, inside step 84
+  const auto [info, h, t_c, l] = land_drop_on_floor(*required_engine("mujoco"), kDeparts);
   // Measured: the state of step 84 (t = 1.4000, 0.46 step after t_c) is 0.218 m inside the floor.
   CHECK(std::abs(static_cast<double>(l.touch_step) * h - t_c) <= h);
   // MuJoCo collides the positions at the start of a step (no continuous collision): the contact
@@ -137,7 +76,7 @@ TEST_CASE("A cube dropped on a floor lands, does not rebound and rests at MuJoCo
 TEST_CASE("A model MuJoCo cannot load is an engine error, not an exit", "[mujoco][errors]") {
   Scene scene = scenario("free_fall");
   scene.bodies[0].mass = 0.0;  // in code, past the loader's validation
-  auto engine = mujoco();
+  auto engine = required_engine("mujoco");
   CHECK_THROWS_AS(engine->load(scene, 1.0 / 60.0), EngineError);
   CHECK_THROWS_AS(engine->step(), EngineError);  // nothing half-loaded is left to step
   const Trajectory t = run_scene(*engine, scene, 1.0 / 60.0);
@@ -157,7 +96,7 @@ TEST_CASE("A state MuJoCo resets as unstable is reported, not hidden", "[mujoco]
   // |qvel| > mjMAXVAL (1e10): mj_step warns "bad qvel" and resets the state to qpos0, v = 0.
   Scene scene = scenario("free_fall");
   scene.bodies[0].velocity = Vec3(0.0, -1e11, 0.0);
-  auto engine = mujoco();
+  auto engine = required_engine("mujoco");
   const Trajectory t = run_scene(*engine, scene, 1.0 / 60.0);
   CHECK(t.status == RunStatus::engine_error);
   CHECK(t.failed_step == 1);
@@ -169,6 +108,6 @@ TEST_CASE("MuJoCo names its bodies after the scene's, whatever characters they h
   // The MJCF is text: a name with XML's special characters must be escaped, not break the model.
   Scene scene = scenario("free_fall");
   scene.bodies[0].name = R"(cube "A" <&> 'b')";
-  auto engine = mujoco();
+  auto engine = required_engine("mujoco");
   CHECK(run_scene(*engine, scene, 1.0 / 60.0).status == RunStatus::ok);
 }

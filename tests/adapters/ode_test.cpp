@@ -11,6 +11,7 @@
 #include "harness/core/runner.hpp"
 
 using namespace dropcheck;
+using dropcheck::testing::drag_figure_run;
 using dropcheck::testing::scenario;
 
 namespace {
@@ -24,32 +25,18 @@ Scene massless_cube() {
 
 }  // namespace
 
-#define REQUIRE_ODE(engine)                            \
-  auto engine = make_engine("ode");                    \
-  if (!engine) {                                       \
-    WARN("ode: " << engine_unavailable_reason("ode")); \
-    return;                                            \
-  }
-
-// Its own law at every step of every shipped scene is checked for every engine by
-// tests/adapters/conformance_test.cpp; here only the declaration it is checked against.
-TEST_CASE("ODE declares its damping order for the conformance suite", "[ode][law]") {
-  REQUIRE_ODE(engine);
-  CHECK(engine->info().law == DampingOrder::AfterPosition);
-}
-
+// Its own law at every step of every shipped scene, and the declaration it is checked against, are
+// in tests/adapters/conformance_test.cpp.
 TEST_CASE("ODE reproduces docs/engines.md's 60-step drag figure", "[ode][law]") {
-  REQUIRE_ODE(engine);
-  // 60 steps of h = 1/60, g = -9.8, f = 0.98, x0 = 10, v0 = 0, m = 1 (scenarios/free_fall_drag).
-  const Trajectory run = run_scene(*engine, scenario("free_fall_drag"), 1.0 / 60.0);
-  REQUIRE(run.recorded.back() == 60);
+  ENGINE_OR_RETURN(engine, "ode");
+  const Trajectory run = drag_figure_run(*engine);
   // Measured 6.5182636233228308 exactly (docs/engines.md section 2), Bullet's figure: with v0 = 0
   // damping after the position update gives the same positions as damping before forces.
   CHECK(run.final_state(0).position.y() == Approx(6.5182636233228308).epsilon(0).margin(1e-12));
 }
 
 TEST_CASE("ODE damps slow bodies too: the damping threshold is off", "[ode][law]") {
-  REQUIRE_ODE(engine);
+  ENGINE_OR_RETURN(engine, "ode");
   // ODE's default threshold skips damping while |v| <= 0.01 m/s. A body coasting at 5 mm/s with
   // no gravity must still decay by phi = exp(-k*h) every step: v_n = v0*phi^n.
   Scene scene = scenario("throw_up");
@@ -63,7 +50,7 @@ TEST_CASE("ODE damps slow bodies too: the damping threshold is off", "[ode][law]
 
 TEST_CASE("An error ODE reports becomes an EngineError and a recorded run status, not an abort",
           "[ode][error]") {
-  REQUIRE_ODE(engine);
+  ENGINE_OR_RETURN(engine, "ode");
   // Debian's ODE keeps its debug checks: dBodySetMass asserts dMassCheck, which fails for m = 0.
   // The handler throws from inside ODE; the throw unwinds through ODE's frames to load().
   CHECK_THROWS_AS(engine->load(massless_cube(), 1.0 / 60.0), EngineError);

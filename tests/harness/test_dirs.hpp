@@ -1,4 +1,5 @@
-// Helpers shared by the regression-guard tests: shipped scenes by name and scratch directories.
+// Helpers shared by the tests that read shipped scenes by name or write files: scratch directories
+// and reading a file back whole.
 #pragma once
 
 #include <unistd.h>
@@ -30,7 +31,13 @@ struct ScratchDir {
     std::error_code ec;
     std::filesystem::remove_all(path, ec);
   }
+  // The path of `name` inside the directory.
   std::string file(const std::string& name) const { return (path / name).string(); }
+  // Writes `text` to `name` inside the directory and returns its path.
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(path / name, std::ios::binary) << text;
+    return file(name);
+  }
 };
 
 // The whole content of a file ("" when it cannot be read).

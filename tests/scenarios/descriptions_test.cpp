@@ -167,6 +167,13 @@ std::string range_over_sweep(const Scene& s, const std::smatch& m,
   return lo.empty() ? agrees(m[2], {*std::max_element(all.begin(), all.end())}) : lo;
 }
 
+// One `field` per landing the scene's landing oracle judges (harness/oracles/landing.hpp).
+std::vector<double> per_landing(const Scene& s, double dropcheck::LandingSetup::*field) {
+  std::vector<double> out;
+  for (const dropcheck::LandingSetup& l : dropcheck::landing_setups(s)) out.push_back(l.*field);
+  return out;
+}
+
 const std::vector<Phrase>& phrases() {
   using dropcheck::landing_setups;
   static const std::vector<Phrase> list = {
@@ -200,9 +207,7 @@ const std::vector<Phrase>& phrases() {
       // Landing (harness/oracles/landing.hpp): continuous-model first contact and rest height.
       {"first contact at t = " + N + " s",
        [](const Scene& s, const std::smatch& m) {
-         std::vector<double> t;
-         for (const auto& l : landing_setups(s)) t.push_back(l.contact_time);
-         return agrees(m[1], t);
+         return agrees(m[1], per_landing(s, &dropcheck::LandingSetup::contact_time));
        }},
       {"lands at " + N + " m/s",
        [](const Scene& s, const std::smatch& m) {
@@ -218,9 +223,7 @@ const std::vector<Phrase>& phrases() {
        }},
       {"rests at height " + N + " m",
        [](const Scene& s, const std::smatch& m) {
-         std::vector<double> y;
-         for (const auto& l : landing_setups(s)) y.push_back(l.rest_height);
-         return agrees(m[1], y);
+         return agrees(m[1], per_landing(s, &dropcheck::LandingSetup::rest_height));
        }},
       // Free flight (continuous model, harness/oracles/analytic.hpp).
       {"apex at t = " + N + " s",

@@ -10,11 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "../test_dirs.hpp"
 #include "cli_driver.hpp"
 #include "harness/cli/cli.hpp"
 
 using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
+using dropcheck::testing::slurp;
 
 namespace {
 
@@ -22,13 +24,6 @@ const std::string kSpring = DROPCHECK_SOURCE_DIR "/scenarios/extreme/stiff_sprin
 
 using dropcheck::testing::cli;
 using dropcheck::testing::Result;
-
-std::string read_all(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 }  // namespace
 
@@ -45,7 +40,7 @@ TEST_CASE("stability prints the table and writes max_stable_dt per engine to --j
   CHECK_THAT(r.out, Contains("ours-f64 (f64)   stable            0.033303       0.0333333"));
   CHECK_THAT(r.out, Contains("ours (f32)"));
   CHECK_THAT(r.err, Contains("stability stiff_spring: ours-f64 (f64) stable"));
-  const std::string text = read_all(json);
+  const std::string text = slurp(json);
   CHECK_THAT(text, Contains("\"engine\":\"ours-f64\"") && Contains("\"max_stable_dt\":0.0333030") &&
                        Contains("\"theory_max_dt\":0.03333333") &&
                        Contains("\"limit\":\"unbounded growth\""));

@@ -101,6 +101,24 @@ pid_t fork_plain() {
   return pid;
 }
 
+// `bless` of two scenes into d/set: a.toml named `a` and b.toml named `b` (TOML-escaped by the
+// caller).
+Result bless_two(const ScratchDir& d, const std::string& a, const std::string& b) {
+  put(d.file("a.toml"), scene_text(a));
+  put(d.file("b.toml"), scene_text(b));
+  return cli({"bless", d.file("a.toml"), d.file("b.toml"), "--engine", "ours-f64", "--out",
+              d.file("set")});
+}
+
+// Two files in `d` that cannot be read, each with the reason given: missingEXT (absent) and dirEXT
+// (made a folder here).
+std::vector<std::pair<std::string, std::string>> unreadable_files(const ScratchDir& d,
+                                                                  const std::string& ext) {
+  fs::create_directories(d.path / ("dir" + ext));
+  return {{d.file("missing" + ext), "No such file or directory"},
+          {d.file("dir" + ext), "it is a directory"}};
+}
+
 // The engines ran when the summary's header was printed.
 bool engines_ran(const Result& r) {
   return r.out.find("engine    body") != std::string::npos;
@@ -149,14 +167,6 @@ TEST_CASE("engines with a stray argument is refused naming it", "[cli][hostile]"
   CHECK(r.out.empty());
 }
 
-TEST_CASE("run --dt '' is refused naming --dt before any engine runs", "[cli][hostile]") {
-  ScratchDir d("hostile-dt-empty");
-  const Result r = run_tiny(scene(d), {"--dt", ""});
-  CHECK(r.code == 2);
-  CHECK_THAT(r.err, Contains("--dt") && Contains("empty"));
-  CHECK_FALSE(engines_ran(r));
-}
-
 TEST_CASE("run --csv '' names --csv and writes nothing", "[cli][hostile]") {
   ScratchDir d("hostile-csv-empty");
   const std::string s = scene(d);
@@ -166,40 +176,55 @@ TEST_CASE("run --csv '' names --csv and writes nothing", "[cli][hostile]") {
   CHECK(names(d.path) == std::set<std::string>{"tiny.toml"});
 }
 
-TEST_CASE("stability --json '' names --json", "[cli][hostile]") {
-  ScratchDir d("hostile-json-empty");
-  const Result r = cli({"stability", scene(d), "--engine", "ours-f64", "--json", ""});
-  CHECK(r.code == 2);
-  CHECK_THAT(r.err, Contains("--json"));
-}
-
-TEST_CASE("report --out '' names --out", "[cli][hostile]") {
-  ScratchDir d("hostile-out-empty");
-  const Result r = cli({"report", scene(d), "--engine", "ours", "--out", ""});
-  CHECK(r.code == 2);
-  CHECK_THAT(r.err, Contains("--out"));
-}
-
-TEST_CASE("a single-valued option given twice is refused rather than silently taking one",
-          "[cli][hostile]") {
-  ScratchDir d("hostile-dt-twice");
-  const Result r = run_tiny(scene(d), {"--dt", "1/20", "--dt", "1/10"});
-  CHECK(r.code == 2);
-  CHECK_THAT(r.err, Contains("--dt") && Contains("2 times"));
-}
-
-TEST_CASE("a single-dash word is an unknown option, not a scene file", "[cli][hostile]") {
-  ScratchDir d("hostile-dash");
-  const Result r = run_tiny(scene(d), {"-x"});
-  CHECK(r.code == 2);
-  CHECK_THAT(r.err, Contains("-x") && Contains("unknown option"));
-}
-
-TEST_CASE("a missing value names the option", "[cli][hostile]") {
-  ScratchDir d("hostile-missing-value");
-  const Result r = run_tiny(scene(d), {"--engine"});
-  CHECK(r.code == 2);
-  CHECK_THAT(r.err, Contains("--engine") && Contains("expects a value"));
+TEST_CASE(
+    "a bad option value, a repeated, unknown or valueless option is refused naming it, before any "
+    "engine runs",
+    "[cli][hostile]") {
+  ScratchDir d("hostile-option-refused");
+  const std::string s = scene(d);
+  // Each row: what it is, the command line and what the error says.
+  struct Case {
+    std::string what;
+    std::vector<std::string> argv, says;
+  };
+  const std::vector<Case> cases{
+      {"run --dt '' is refused naming --dt before any engine runs",
+       {"run", s, "--engine", "ours-f64", "--dt", ""},
+       {"--dt", "empty"}},
+      {"stability --json '' names --json",
+       {"stability", s, "--engine", "ours-f64", "--json", ""},
+       {"--json"}},
+      {"report --out '' names --out", {"report", s, "--engine", "ours", "--out", ""}, {"--out"}},
+      {"a single-valued option given twice is refused rather than silently taking one",
+       {"run", s, "--engine", "ours-f64", "--dt", "1/20", "--dt", "1/10"},
+       {"--dt", "2 times"}},
+      {"a single-dash word is an unknown option, not a scene file",
+       {"run", s, "--engine", "ours-f64", "-x"},
+       {"-x", "unknown option"}},
+      {"a missing value names the option",
+       {"run", s, "--engine", "ours-f64", "--engine"},
+       {"--engine", "expects a value"}},
+      {"check without a scene file is refused",
+       {"check", "--engine", "ours"},
+       {"one or more scene FILE"}},
+      {"report --out . is refused",
+       {"report", s, "--engine", "ours", "--no-timing", "--out", "."},
+       {"--out"}},
+      {"report --out /proc/x is refused before any engine runs",
+       {"report", s, "--engine", "ours", "--no-timing", "--out", "/proc/dropcheck-x"},
+       {"--out"}},
+      {"run --json /proc/x is refused before any engine runs",
+       {"run", s, "--engine", "ours-f64", "--json", "/proc/dropcheck-x.json"},
+       {"--json", "cannot write"}},
+  };
+  for (const Case& c : cases) {
+    INFO(c.what);
+    const Result r = cli(c.argv);
+    CHECK(r.code == 2);
+    for (const std::string& text : c.says) CHECK_THAT(r.err, Contains(text));
+    CHECK_THAT(r.err, !Contains("[1/1]"));  // no progress line: nothing was evaluated
+    CHECK_FALSE(engines_ran(r));
+  }
 }
 
 TEST_CASE("diff with one or three folders is refused", "[cli][hostile]") {
@@ -208,12 +233,6 @@ TEST_CASE("diff with one or three folders is refused", "[cli][hostile]") {
   const Result three = cli({"diff", d.path.string(), d.path.string(), d.path.string()});
   CHECK(three.code == 2);
   CHECK_THAT(three.err, Contains("exactly two"));
-}
-
-TEST_CASE("check without a scene file is refused", "[cli][hostile]") {
-  const Result r = cli({"check", "--engine", "ours"});
-  CHECK(r.code == 2);
-  CHECK_THAT(r.err, Contains("one or more scene FILE"));
 }
 
 TEST_CASE("a file named like an option is reachable after --", "[cli][hostile]") {
@@ -227,44 +246,54 @@ TEST_CASE("a file named like an option is reachable after --", "[cli][hostile]")
 // ---------------------------------------------------------------------------------------------
 // An output is never an input, and two outputs never share a path.
 
-TEST_CASE("run S --csv S is refused and the scene is untouched", "[cli][hostile]") {
-  ScratchDir d("hostile-csv-input");
-  const std::string s = scene(d);
-  const std::string before = slurp(s);
-  const Result r = run_tiny(s, {"--csv", s});
-  CHECK(r.code == 2);
-  CHECK_THAT(r.err, Contains("--csv") && Contains("input"));
-  CHECK(slurp(s) == before);
-  CHECK_FALSE(engines_ran(r));
-}
-
-TEST_CASE("run S --json S is refused, also when S is spelled differently", "[cli][hostile]") {
-  ScratchDir d("hostile-json-input");
-  const std::string s = scene(d);
-  const std::string before = slurp(s);
-  const Result r =
-      run_tiny(s, {"--json", (d.path / "." / ".." / d.path.filename() / "tiny.toml").string()});
-  CHECK(r.code == 2);
-  CHECK_THAT(r.err, Contains("--json"));
-  CHECK(slurp(s) == before);
-}
-
-TEST_CASE("run --csv through a symbolic link to the scene is refused", "[cli][hostile]") {
-  ScratchDir d("hostile-csv-link-input");
-  const std::string s = scene(d);
-  fs::create_symlink(s, d.file("link.csv"));
-  const std::string before = slurp(s);
-  CHECK(run_tiny(s, {"--csv", d.file("link.csv")}).code == 2);
-  CHECK(slurp(s) == before);
-}
-
-TEST_CASE("run --csv onto a hard link of the scene is refused", "[cli][hostile]") {
-  ScratchDir d("hostile-csv-hardlink");
-  const std::string s = scene(d);
-  fs::create_hard_link(s, d.file("same.csv"));
-  const std::string before = slurp(s);
-  CHECK(run_tiny(s, {"--csv", d.file("same.csv")}).code == 2);
-  CHECK(slurp(s) == before);
+TEST_CASE(
+    "run with an output that is its own scene, however spelled or linked, is refused before "
+    "any engine runs and the scene is untouched",
+    "[cli][hostile]") {
+  // Each row: what it is, the option, how its path is made from the scratch folder (the scene is
+  // tiny.toml there) and what the error says.
+  struct Case {
+    std::string what, option;
+    std::function<std::string(const ScratchDir&)> output;
+    std::vector<std::string> says;
+  };
+  const std::vector<Case> cases{
+      {"run S --csv S",
+       "--csv",
+       [](const ScratchDir& d) { return d.file("tiny.toml"); },
+       {"--csv", "input"}},
+      {"run S --json S, S spelled differently",
+       "--json",
+       [](const ScratchDir& d) {
+         return (d.path / "." / ".." / d.path.filename() / "tiny.toml").string();
+       },
+       {"--json"}},
+      {"run --csv through a symbolic link to the scene",
+       "--csv",
+       [](const ScratchDir& d) {
+         fs::create_symlink(d.file("tiny.toml"), d.file("link.csv"));
+         return d.file("link.csv");
+       },
+       {}},
+      {"run --csv onto a hard link of the scene",
+       "--csv",
+       [](const ScratchDir& d) {
+         fs::create_hard_link(d.file("tiny.toml"), d.file("same.csv"));
+         return d.file("same.csv");
+       },
+       {}},
+  };
+  for (const Case& c : cases) {
+    INFO(c.what);
+    ScratchDir d("hostile-output-is-input");
+    const std::string s = scene(d);
+    const std::string before = slurp(s);
+    const Result r = run_tiny(s, {c.option, c.output(d)});
+    CHECK(r.code == 2);
+    for (const std::string& text : c.says) CHECK_THAT(r.err, Contains(text));
+    CHECK(slurp(s) == before);
+    CHECK_FALSE(engines_ran(r));
+  }
 }
 
 TEST_CASE("run --csv X --json X is refused before any work and X is not created",
@@ -403,14 +432,6 @@ TEST_CASE("run --csv under a regular file is refused before any engine runs", "[
   CHECK(slurp(d.file("file")) == "x");
 }
 
-TEST_CASE("run --json /proc/x is refused before any engine runs", "[cli][hostile]") {
-  ScratchDir d("hostile-proc");
-  const Result r = run_tiny(scene(d), {"--json", "/proc/dropcheck-x.json"});
-  CHECK(r.code == 2);
-  CHECK_THAT(r.err, Contains("--json") && Contains("cannot write"));
-  CHECK_FALSE(engines_ran(r));
-}
-
 TEST_CASE("run --csv naming a folder (trailing slash, '.') is refused", "[cli][hostile]") {
   ScratchDir d("hostile-csv-slash");
   const std::string s = scene(d);
@@ -425,22 +446,6 @@ TEST_CASE("run --csv into folders that do not exist yet creates them", "[cli][ho
   ScratchDir d("hostile-csv-mkdir");
   REQUIRE(run_tiny(scene(d), {"--csv", d.file("a/b/o.csv")}).code == 0);
   CHECK_THAT(slurp(d.file("a/b/o.csv")), StartsWith("engine,dt"));
-}
-
-TEST_CASE("report --out . is refused", "[cli][hostile]") {
-  ScratchDir d("hostile-report-dot");
-  const Result r = cli({"report", scene(d), "--engine", "ours", "--no-timing", "--out", "."});
-  CHECK(r.code == 2);
-  CHECK_THAT(r.err, Contains("--out"));
-}
-
-TEST_CASE("report --out /proc/x is refused before any engine runs", "[cli][hostile]") {
-  ScratchDir d("hostile-report-proc");
-  const Result r =
-      cli({"report", scene(d), "--engine", "ours", "--no-timing", "--out", "/proc/dropcheck-x"});
-  CHECK(r.code == 2);
-  CHECK_THAT(r.err, Contains("--out"));
-  CHECK(r.err.find("[1/1]") == std::string::npos);  // no progress line: nothing was evaluated
 }
 
 TEST_CASE("report --out under a regular file, or onto one, is refused", "[cli][hostile]") {
@@ -673,10 +678,7 @@ TEST_CASE("bless a scene named with an absolute path writes inside --out only", 
 TEST_CASE("bless two scenes whose names map to one file is refused and writes nothing",
           "[cli][hostile]") {
   ScratchDir d("hostile-bless-collide");
-  put(d.file("a.toml"), scene_text("a/b"));
-  put(d.file("b.toml"), scene_text("a_b"));
-  const Result r = cli({"bless", d.file("a.toml"), d.file("b.toml"), "--engine", "ours-f64",
-                        "--out", d.file("set")});
+  const Result r = bless_two(d, "a/b", "a_b");
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains("a/b") && Contains("a_b") && Contains("distinct names"));
   CHECK_FALSE(fs::exists(d.file("set")));
@@ -685,10 +687,7 @@ TEST_CASE("bless two scenes whose names map to one file is refused and writes no
 TEST_CASE("bless a scene name with a NUL byte neither truncates nor collides silently",
           "[cli][hostile]") {
   ScratchDir d("hostile-bless-nul");
-  put(d.file("a.toml"), scene_text("a\\u0000b"));
-  put(d.file("b.toml"), scene_text("a_b"));
-  const Result r = cli({"bless", d.file("a.toml"), d.file("b.toml"), "--engine", "ours-f64",
-                        "--out", d.file("set")});
+  const Result r = bless_two(d, "a\\u0000b", "a_b");
   CHECK(r.code == 2);
   CHECK_FALSE(fs::exists(d.file("set/a.ours-f64.txt")));
 }
@@ -823,11 +822,8 @@ TEST_CASE(
     "[cli][hostile]") {
   ScratchDir d("hostile-scene-reason");
   const std::string s = scene(d);
-  fs::create_directories(d.path / "dir.toml");
-  const std::vector<std::pair<std::string, std::string>> cases{
-      {d.file("missing.toml"), "No such file or directory"},
-      {d.file("dir.toml"), "it is a directory"},
-      {s + "/x.toml", "Not a directory"}};
+  std::vector<std::pair<std::string, std::string>> cases = unreadable_files(d, ".toml");
+  cases.push_back({s + "/x.toml", "Not a directory"});
   for (const auto& [file, reason] : cases)
     for (const char* command : {"run", "check", "stability"}) {
       const Result r = cli({command, file, "--engine", "ours-f64"});
@@ -841,11 +837,8 @@ TEST_CASE("identify --trajectory names why the CSV cannot be read (missing file;
           "[cli][hostile]") {
   ScratchDir d("hostile-trajectory-reason");
   const std::string s = scene(d);
-  fs::create_directories(d.path / "dir.csv");
-  const std::vector<std::pair<std::string, std::string>> cases{
-      {d.file("missing.csv"), "No such file or directory"},
-      {d.file("dir.csv"), "it is a directory"},
-      {"/dev/zero", "not a regular file"}};
+  std::vector<std::pair<std::string, std::string>> cases = unreadable_files(d, ".csv");
+  cases.push_back({"/dev/zero", "not a regular file"});
   for (const auto& [file, reason] : cases) {
     const Result r = cli({"identify", s, "--trajectory", file});
     INFO(file);

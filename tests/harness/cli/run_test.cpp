@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "../test_dirs.hpp"
 #include "cli_driver.hpp"
 #include "harness/cli/cli.hpp"
 #include "harness/core/registry.hpp"
@@ -19,37 +20,16 @@
 
 using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
+using dropcheck::testing::ScratchDir;
+using dropcheck::testing::slurp;
 
 namespace {
 
 const std::string kWind = DROPCHECK_SOURCE_DIR "/scenarios/wind.toml";  // 2 bodies, a force, 2 s
 const std::string kThrowUp = DROPCHECK_SOURCE_DIR "/scenarios/throw_up.toml";  // v0 != 0, 2 s
 
-// A fresh directory under the system temp dir, removed with everything in it at scope exit.
-struct ScratchDir {
-  fs::path path;
-  explicit ScratchDir(const std::string& tag)
-      : path(fs::temp_directory_path() /
-             ("dropcheck_cli_" + tag + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-};
-
 using dropcheck::testing::cli;
 using dropcheck::testing::Result;
-
-std::string read_all(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::vector<std::string> split(const std::string& text, char sep) {
   std::vector<std::string> out;
@@ -75,10 +55,10 @@ TEST_CASE("run on a missing file exits 2 naming the file on err", "[cli]") {
 TEST_CASE("run on a malformed file exits 2 with the loader's file, key and problem on err",
           "[cli]") {
   ScratchDir dir("malformed");
-  std::ofstream(dir / "bad.toml")
+  std::ofstream(dir.file("bad.toml"))
       << "duration = 1.0\n[world]\ngravity = [0, -9.8, 0]\n"
          "[[body]]\nname = \"cube\"\nposition = [0, 0, 0]\nmass = 0.0\n";
-  const Result r = cli({"run", dir / "bad.toml"});
+  const Result r = cli({"run", dir.file("bad.toml")});
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains("bad.toml:7: body[0].mass: must be > 0 kg"));
 }
@@ -111,8 +91,8 @@ TEST_CASE("run with a bad usage exits 2: no file, two files, an unknown option, 
 
 TEST_CASE("a failing run leaves no output file and no temporary behind", "[cli]") {
   ScratchDir dir("fail");
-  const Result r =
-      cli({"run", kThrowUp, "--dt", "0.7", "--csv", dir / "out.csv", "--json", dir / "out.json"});
+  const Result r = cli({"run", kThrowUp, "--dt", "0.7", "--csv", dir.file("out.csv"), "--json",
+                        dir.file("out.json")});
   CHECK(r.code == 2);
   CHECK(fs::is_empty(dir.path));
 }
@@ -123,10 +103,10 @@ TEST_CASE(
     "[cli]") {
   ScratchDir dir("csv");
   const Result r =
-      cli({"run", kWind, "--engine", "ours", "--engine", "ours-f64", "--csv", dir / "out.csv"});
+      cli({"run", kWind, "--engine", "ours", "--engine", "ours-f64", "--csv", dir.file("out.csv")});
   REQUIRE(r.code == 0);
   CHECK_THAT(r.out, Contains("ours ") && Contains("ours-f64 "));
-  const std::vector<std::string> lines = split(read_all(dir / "out.csv"), '\n');
+  const std::vector<std::string> lines = split(slurp(dir.file("out.csv")), '\n');
   REQUIRE(!lines.empty());
   CHECK(lines[0] == "engine,dt,step,t,body,x,y,z,vx,vy,vz");
 
@@ -161,9 +141,10 @@ TEST_CASE(
 
 TEST_CASE("run --dt 1/120 runs and records at that step", "[cli]") {
   ScratchDir dir("dt");
-  REQUIRE(cli({"run", kThrowUp, "--engine", "ours-f64", "--dt", "1/120", "--csv", dir / "out.csv"})
-              .code == 0);
-  const std::vector<std::string> lines = split(read_all(dir / "out.csv"), '\n');
+  REQUIRE(
+      cli({"run", kThrowUp, "--engine", "ours-f64", "--dt", "1/120", "--csv", dir.file("out.csv")})
+          .code == 0);
+  const std::vector<std::string> lines = split(slurp(dir.file("out.csv")), '\n');
   REQUIRE(lines.size() == 1 + 241);  // 2 s at 1/120, one body, step 0 included
   CHECK(lines.back().rfind("ours-f64,0.0083333333333333332,240,2,cube,", 0) == 0);
 }
@@ -172,10 +153,10 @@ TEST_CASE("running the same scene twice gives byte-identical CSV and JSON", "[cl
   ScratchDir dir("determinism");
   for (const char* n : {"1", "2"})
     REQUIRE(cli({"run", kWind, "--engine", "ours", "--engine", "ours-f64", "--csv",
-                 dir / (std::string(n) + ".csv"), "--json", dir / (std::string(n) + ".json")})
+                 dir.file(std::string(n) + ".csv"), "--json", dir.file(std::string(n) + ".json")})
                 .code == 0);
-  const std::string csv = read_all(dir / "1.csv");
+  const std::string csv = slurp(dir.file("1.csv"));
   CHECK(csv.size() > 10000);  // 2 engines x 121 samples x 2 bodies
-  CHECK(csv == read_all(dir / "2.csv"));
-  CHECK(read_all(dir / "1.json") == read_all(dir / "2.json"));
+  CHECK(csv == slurp(dir.file("2.csv")));
+  CHECK(slurp(dir.file("1.json")) == slurp(dir.file("2.json")));
 }

@@ -10,35 +10,15 @@
 #include <sstream>
 #include <string>
 
+#include "../test_dirs.hpp"
 #include "harness/core/input_error.hpp"
 
 using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
+using dropcheck::testing::ScratchDir;
+using dropcheck::testing::slurp;
 
 namespace {
-
-// A fresh directory under the system temp dir, removed with everything in it at scope exit.
-struct ScratchDir {
-  fs::path path;
-  explicit ScratchDir(const std::string& tag)
-      : path(fs::temp_directory_path() /
-             ("dropcheck_atomic_" + tag + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-};
-
-std::string read_all(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::size_t entries(const fs::path& dir) {
   std::size_t n = 0;
@@ -66,37 +46,37 @@ TEST_CASE("write_file_atomic writes the whole content, bytes included, and no te
   std::string content(1 << 20, 'x');
   content[10] = '\0';
   content[20] = '\n';
-  dropcheck::write_file_atomic(dir / "out.csv", content);
-  CHECK(read_all(dir / "out.csv") == content);
-  CHECK_FALSE(fs::exists(dir / "out.csv.tmp"));
+  dropcheck::write_file_atomic(dir.file("out.csv"), content);
+  CHECK(slurp(dir.file("out.csv")) == content);
+  CHECK_FALSE(fs::exists(dir.file("out.csv.tmp")));
   CHECK(entries(dir.path) == 1);
 }
 
 TEST_CASE("write_file_atomic replaces an existing file and creates missing parent directories",
           "[atomic_file]") {
   ScratchDir dir("replace");
-  dropcheck::write_file_atomic(dir / "a/b/out.json", "first, and longer than the second");
-  dropcheck::write_file_atomic(dir / "a/b/out.json", "second");
-  CHECK(read_all(dir / "a/b/out.json") == "second");
+  dropcheck::write_file_atomic(dir.file("a/b/out.json"), "first, and longer than the second");
+  dropcheck::write_file_atomic(dir.file("a/b/out.json"), "second");
+  CHECK(slurp(dir.file("a/b/out.json")) == "second");
   CHECK(entries(dir.path) == 3);  // a, a/b, a/b/out.json
 }
 
 TEST_CASE("a path under a regular file throws InputError naming the path and leaves nothing",
           "[atomic_file]") {
   ScratchDir dir("notdir");
-  dropcheck::write_file_atomic(dir / "file", "I am not a directory");
-  const std::string target = dir / "file/out.csv";
+  dropcheck::write_file_atomic(dir.file("file"), "I am not a directory");
+  const std::string target = dir.file("file/out.csv");
   CHECK_THAT(write_error(target, "data"),
              Contains(target) && Contains("cannot write") && Contains("Not a directory"));
   CHECK(entries(dir.path) == 1);  // only the regular file: no out.csv, no .tmp
-  CHECK(read_all(dir / "file") == "I am not a directory");
+  CHECK(slurp(dir.file("file")) == "I am not a directory");
 }
 
 TEST_CASE("a target that is a directory throws InputError with the reason and leaves no temporary",
           "[atomic_file]") {
   ScratchDir dir("isdir");
   fs::create_directories(dir.path / "out.csv" / "inside");
-  const std::string target = dir / "out.csv";
+  const std::string target = dir.file("out.csv");
   const std::string msg = write_error(target, "data");
   CHECK_THAT(msg, Contains(target) && Contains("cannot replace the file") && Contains("directory"));
   CHECK_FALSE(fs::exists(target + ".tmp"));

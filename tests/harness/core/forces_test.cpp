@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "harness/core/scene_loader.hpp"
+#include "tests/scene_texts.hpp"
 
 namespace {
 
@@ -12,21 +13,10 @@ using dropcheck::Vec3;
 
 // Three bodies: a static floor (0), "a" (1), "b" (2); `forces` is appended as [[force]] tables.
 dropcheck::Scene with_forces(const std::string& forces) {
-  return dropcheck::parse_scene(R"(
-duration = 1.0
-[world]
-gravity = [0.0, -9.8, 0.0]
-[[body]]
-name = "floor"
-position = [0.0, 0.0, 0.0]
-static = true
-[[body]]
-name = "a"
-position = [0.0, 0.0, 0.0]
-[[body]]
-name = "b"
-position = [0.0, 0.0, 0.0]
-)" + forces,
+  using namespace dropcheck::testing;
+  return dropcheck::parse_scene(scene_head("1.0", "", kEarth) +
+                                    body_text("floor", kZero, "", "static = true\n") +
+                                    body_text("a", kZero) + body_text("b", kZero) + forces,
                                 "forces.toml");
 }
 

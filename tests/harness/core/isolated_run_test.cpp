@@ -17,6 +17,8 @@
 
 #include "harness/core/registry.hpp"
 #include "harness/core/scene_loader.hpp"
+#include "tests/fake_engine.hpp"
+#include "tests/scene_texts.hpp"
 
 using namespace dropcheck;
 using Catch::Matchers::Contains;
@@ -26,31 +28,19 @@ namespace {
 
 enum class Misdeed { none, abort, segfault, exit7, hang, bad_alloc, say_and_abort };
 
-// Free flight x += h*v with one misdeed at step `at` (or during load when at == 0).
-class UnrulyEngine final : public Engine {
+// The free-flight double (tests/fake_engine.hpp) with one misdeed at step `at` (or during load when
+// at == 0). No scene here has a force, so it moves by x += h*v.
+class UnrulyEngine final : public testing::FakeEngine {
  public:
-  UnrulyEngine(Misdeed what, std::int64_t at) : what_(what), at_(at) {}
-  EngineInfo info() const override {
-    EngineInfo i;
-    i.name = "unruly";
-    return i;
-  }
-  void load(const Scene& scene, double h) override {
-    h_ = h;
-    states_.clear();
-    for (const Body& b : scene.bodies) states_.push_back({b.position, b.velocity});
-    if (at_ == 0) misbehave();
-  }
-  void set_forces(std::span<const Vec3>) override {}
-  void step() override {
-    if (++step_ == at_) misbehave();
-    for (BodyState& s : states_) s.position += h_ * s.velocity;
-  }
-  void read(std::span<BodyState> out) const override {
-    std::copy(states_.begin(), states_.end(), out.begin());
-  }
+  UnrulyEngine(Misdeed what, std::int64_t at) : FakeEngine("unruly"), what_(what), at_(at) {}
 
  private:
+  void on_load() override {
+    if (at_ == 0) misbehave();
+  }
+  void before_move(std::int64_t step) override {
+    if (step == at_) misbehave();
+  }
   void misbehave() {
     switch (what_) {
       case Misdeed::none:
@@ -73,22 +63,12 @@ class UnrulyEngine final : public Engine {
   }
   Misdeed what_;
   std::int64_t at_;
-  double h_ = 0.0;
-  std::int64_t step_ = 0;
-  std::vector<BodyState> states_;
 };
 
+// 10 steps of 0.1 s; one body in flight.
 Scene ten_steps() {
-  return parse_scene(R"(
-duration = 1.0
-timestep = "1/10"
-[world]
-gravity = [0.0, -9.8, 0.0]
-[[body]]
-name = "a"
-position = [0.0, 0.0, 0.0]
-velocity = [1.0, 0.0, 0.0]
-)",
+  return parse_scene(testing::scene_head("1.0", "1/10", testing::kEarth) +
+                         testing::body_text("a", testing::kZero, "[1.0, 0.0, 0.0]"),
                      "ten_steps.toml");
 }
 

@@ -11,15 +11,21 @@
 #include "harness/core/registry.hpp"
 #include "harness/core/scene_loader.hpp"
 #include "harness/oracles/discrete_law.hpp"
+#include "tests/fake_engine.hpp"
+#include "tests/scene_texts.hpp"
 
 using Catch::Matchers::Contains;
+using dropcheck::testing::body_text;
+using dropcheck::testing::kEarth;
+using dropcheck::testing::kZero;
+using dropcheck::testing::scene_head;
 
 namespace {
 
-// A scripted engine: x += h*v, v += h*F (unit mass, no gravity), one body state per scene body.
-// It can turn a body's state into NaN on one step, throw on one step or on load, clamp on steps,
-// and it logs the forces and the state each set_forces call saw.
-class ScriptedEngine final : public dropcheck::Engine {
+// The free-flight double (tests/fake_engine.hpp), scripted: it can turn the last body's velocity
+// into NaN on one step, throw on one step or on load, clamp on steps, and it logs the forces each
+// set_forces call saw.
+class ScriptedEngine final : public dropcheck::testing::FakeEngine {
  public:
   std::int64_t nan_at = -1, throw_at = -1;
   double bad_value = std::numeric_limits<double>::quiet_NaN();  // what nan_at writes
@@ -27,58 +33,29 @@ class ScriptedEngine final : public dropcheck::Engine {
   std::vector<std::int64_t> clamp_at;
   std::vector<std::vector<dropcheck::Vec3>> forces_seen;
 
-  dropcheck::EngineInfo info() const override {
-    dropcheck::EngineInfo i;
-    i.name = "scripted";
-    return i;
-  }
-  void load(const dropcheck::Scene& scene, double h) override {
-    if (throw_on_load) throw dropcheck::EngineError("cannot build the world");
-    h_ = h;
-    states_.clear();
-    for (const dropcheck::Body& b : scene.bodies) states_.push_back({b.position, b.velocity});
-  }
-  void set_forces(std::span<const dropcheck::Vec3> f) override {
-    forces_.assign(f.begin(), f.end());
-    forces_seen.push_back(forces_);
-  }
-  void step() override {
-    ++step_;
-    if (step_ == throw_at) throw dropcheck::EngineError("solver exploded");
-    for (std::size_t i = 0; i < states_.size(); ++i) {
-      states_[i].position += h_ * states_[i].velocity;
-      states_[i].velocity += h_ * forces_[i];
-    }
-    if (step_ == nan_at) states_.back().velocity.y() = bad_value;
-  }
-  void read(std::span<dropcheck::BodyState> out) const override {
-    std::copy(states_.begin(), states_.end(), out.begin());
-  }
+  ScriptedEngine() : FakeEngine("scripted") {}
   bool speed_clamped() const override {
-    return std::find(clamp_at.begin(), clamp_at.end(), step_) != clamp_at.end();
+    return std::find(clamp_at.begin(), clamp_at.end(), steps_taken()) != clamp_at.end();
   }
 
  private:
-  double h_ = 0.0;
-  std::int64_t step_ = 0;
-  std::vector<dropcheck::BodyState> states_;
-  std::vector<dropcheck::Vec3> forces_;
+  void on_load() override {
+    if (throw_on_load) throw dropcheck::EngineError("cannot build the world");
+  }
+  void on_forces(const std::vector<dropcheck::Vec3>& f) override { forces_seen.push_back(f); }
+  void before_move(std::int64_t step) override {
+    if (step == throw_at) throw dropcheck::EngineError("solver exploded");
+  }
+  void after_move(std::int64_t step) override {
+    if (step == nan_at) states_.back().velocity.y() = bad_value;
+  }
 };
 
 // 10 steps of 0.1 s; two bodies, a spring on "b" so the forces depend on the state.
 dropcheck::Scene ten_steps() {
-  return dropcheck::parse_scene(R"(
-duration = 1.0
-timestep = "1/10"
-[world]
-gravity = [0.0, 0.0, 0.0]
-[[body]]
-name = "a"
-position = [0.0, 0.0, 0.0]
-velocity = [1.0, 0.0, 0.0]
-[[body]]
-name = "b"
-position = [0.0, 2.0, 0.0]
+  return dropcheck::parse_scene(scene_head("1.0", "1/10", kZero) +
+                                    body_text("a", kZero, "[1.0, 0.0, 0.0]") +
+                                    body_text("b", "[0.0, 2.0, 0.0]") + R"(
 [[force]]
 bodies = ["b"]
 spring = { anchor = [0.0, 0.0, 0.0], stiffness = 3.0, damping = 0.5 }
@@ -171,17 +148,9 @@ TEST_CASE("sampling every few steps hands the engine the same forces as sampling
 }
 
 TEST_CASE("constant forces reach the engine on every step, summed per body", "[runner]") {
-  const dropcheck::Scene s = dropcheck::parse_scene(R"(
-duration = 1.0
-timestep = "1/10"
-[world]
-gravity = [0.0, 0.0, 0.0]
-[[body]]
-name = "a"
-position = [0.0, 0.0, 0.0]
-[[body]]
-name = "b"
-position = [0.0, 2.0, 0.0]
+  const dropcheck::Scene s =
+      dropcheck::parse_scene(scene_head("1.0", "1/10", kZero) + body_text("a", kZero) +
+                                 body_text("b", "[0.0, 2.0, 0.0]") + R"(
 [[force]]
 bodies = ["a"]
 constant = [1.0, 2.0, 0.0]
@@ -189,7 +158,7 @@ constant = [1.0, 2.0, 0.0]
 bodies = ["a", "b"]
 constant = [0.5, 0.0, -1.0]
 )",
-                                                    "constant.toml");
+                             "constant.toml");
   ScriptedEngine e;
   const dropcheck::Trajectory t = dropcheck::run_scene(e, s, 0.1);
   REQUIRE(t.status == dropcheck::RunStatus::ok);
@@ -260,17 +229,8 @@ TEST_CASE("the force handed to step n is the spring force of the state after ste
 }
 
 TEST_CASE("zero constant forces are handed to the engine on the first step only", "[runner]") {
-  const dropcheck::Scene s = dropcheck::parse_scene(R"(
-duration = 1.0
-timestep = "1/10"
-[world]
-gravity = [0.0, 0.0, 0.0]
-[[body]]
-name = "a"
-position = [0.0, 0.0, 0.0]
-velocity = [1.0, 0.0, 0.0]
-)",
-                                                    "free.toml");
+  const dropcheck::Scene s = dropcheck::parse_scene(
+      scene_head("1.0", "1/10", kZero) + body_text("a", kZero, "[1.0, 0.0, 0.0]"), "free.toml");
   ScriptedEngine e;
   const dropcheck::Trajectory t = dropcheck::run_scene(e, s, 0.1);
   REQUIRE(t.status == dropcheck::RunStatus::ok);
@@ -282,22 +242,12 @@ velocity = [1.0, 0.0, 0.0]
 TEST_CASE("every engine runs bit-identically whether or not zero forces are handed every step",
           "[runner]") {
   // A planar free flight with drag and a static floor far below (Box2D runs it too).
-  const dropcheck::Scene s = dropcheck::parse_scene(R"(
-duration = 1.0
-[world]
-gravity = [0.0, -9.8, 0.0]
-linear_damping = 0.7
-[[body]]
-name = "floor"
-static = true
-position = [0.0, -50.0, 0.0]
-half_extents = [5.0, 0.5, 5.0]
-[[body]]
-name = "cube"
-position = [0.0, 10.0, 0.0]
-velocity = [1.0, 2.0, 0.0]
-)",
-                                                    "free_drag.toml");
+  const dropcheck::Scene s =
+      dropcheck::parse_scene(scene_head("1.0", "", kEarth, "linear_damping = 0.7\n") +
+                                 body_text("floor", "[0.0, -50.0, 0.0]", "",
+                                           "static = true\nhalf_extents = [5.0, 0.5, 5.0]\n") +
+                                 body_text("cube", "[0.0, 10.0, 0.0]", "[1.0, 2.0, 0.0]"),
+                             "free_drag.toml");
   const double h = 1.0 / 60;
   for (const std::string& name : dropcheck::available_engine_names()) {
     if (name.rfind("exec:", 0) == 0) continue;
@@ -324,20 +274,13 @@ velocity = [1.0, 2.0, 0.0]
 TEST_CASE("a spring scene on ours-f64 follows its AfterForces law to 1e-12", "[runner][ours]") {
   // Forces from the state at the start of each step in both: the runner hands the engine
   // F(x_n, v_n); predict_discrete evaluates the same F on its own state (long double iteration).
-  const dropcheck::Scene s = dropcheck::parse_scene(R"(
-duration = 2.0
-[world]
-gravity = [0.0, -9.8, 0.0]
-linear_drag = 0.98
-[[body]]
-name = "bob"
-mass = 2.0
-position = [0.5, 4.0, 0.0]
-velocity = [0.0, 1.0, 0.0]
+  const dropcheck::Scene s = dropcheck::parse_scene(
+      scene_head("2.0", "", kEarth, "linear_drag = 0.98\n") +
+          body_text("bob", "[0.5, 4.0, 0.0]", "[0.0, 1.0, 0.0]", "mass = 2.0\n") + R"(
 [[force]]
 spring = { anchor = [0.0, 5.0, 0.0], stiffness = 400.0, damping = 1.5, rest_length = 0.25 }
 )",
-                                                    "spring.toml");
+      "spring.toml");
   auto engine = dropcheck::make_engine("ours-f64");
   REQUIRE(engine);
   const dropcheck::Trajectory run = dropcheck::run_scene(*engine, s, s.timestep.seconds);

@@ -116,35 +116,34 @@ struct JsonChecker {
     numbers.push_back(std::strtod(text.c_str(), &end));
     return *end == '\0';
   }
+  // The items of an object or array after its opening bracket: none, or `item`s separated by
+  // commas, then `close`.
+  template <typename Item>
+  bool items(const char* close, Item item) {
+    ws();
+    if (lit(close)) return true;
+    for (;;) {
+      if (!item()) return false;
+      ws();
+      if (lit(close)) return true;
+      if (!lit(",")) return false;
+    }
+  }
   bool value() {
     ws();
     bool ok = false;
     if (i >= s.size()) return false;
     if (s[i] == '{') {
-      ++i, ws();
-      ok = lit("}");
-      while (!ok) {
+      ++i;
+      ok = items("}", [this] {  // "key": value
         ws();
         if (!string()) return false;
         ws();
-        if (!lit(":") || !value()) return false;
-        ws();
-        if (lit("}"))
-          ok = true;
-        else if (!lit(","))
-          return false;
-      }
+        return lit(":") && value();
+      });
     } else if (s[i] == '[') {
-      ++i, ws();
-      ok = lit("]");
-      while (!ok) {
-        if (!value()) return false;
-        ws();
-        if (lit("]"))
-          ok = true;
-        else if (!lit(","))
-          return false;
-      }
+      ++i;
+      ok = items("]", [this] { return value(); });
     } else if (s[i] == '"') {
       ok = string();
     } else {

@@ -51,6 +51,15 @@ void require_same_bits(const Baseline& a, const Baseline& b) {
   REQUIRE(bits(a.dt.seconds) == bits(b.dt.seconds));
 }
 
+// Blesses free_fall_drag into `dir` with ours-f64 whose drag is moved (tests/harness/
+// moved_drag_engine.hpp), a run that breaks its own law; `refuse_failed` as BlessOptions'.
+BlessOutcome bless_moved_drag(const ScratchDir& dir, bool refuse_failed) {
+  BlessOptions options;
+  options.out_dir = dir.path.string();
+  options.refuse_failed = refuse_failed;
+  return bless({shipped_scene("free_fall_drag")}, {{"ours-f64", make_moved_drag_f64}}, options);
+}
+
 }  // namespace
 
 TEST_CASE("A baseline written as text reads back to the bit", "[baseline]") {
@@ -109,11 +118,7 @@ TEST_CASE(
     "Bless into the golden set refuses a run that breaks its own discrete law and writes nothing",
     "[baseline][bless]") {
   const ScratchDir dir("bless-refuses");
-  BlessOptions options;
-  options.out_dir = dir.path.string();
-  options.refuse_failed = true;  // as for tests/baselines
-  const BlessOutcome out =
-      bless({shipped_scene("free_fall_drag")}, {{"ours-f64", make_moved_drag_f64}}, options);
+  const BlessOutcome out = bless_moved_drag(dir, true);  // refused as for tests/baselines
   REQUIRE(out.refused.size() == 1);
   INFO(out.refused[0]);
   CHECK_THAT(out.refused[0],
@@ -128,12 +133,9 @@ TEST_CASE(
     "Bless --out elsewhere writes a run that breaks its law, the failed tier marked in the file",
     "[baseline][bless]") {
   const ScratchDir dir("bless-marks");
-  BlessOptions options;
-  options.out_dir = dir.path.string();
-  CHECK_FALSE(is_golden_set(options.out_dir));
+  CHECK_FALSE(is_golden_set(dir.path.string()));
   CHECK(is_golden_set("tests/baselines"));
-  const BlessOutcome out =
-      bless({shipped_scene("free_fall_drag")}, {{"ours-f64", make_moved_drag_f64}}, options);
+  const BlessOutcome out = bless_moved_drag(dir, false);
   CHECK(out.refused.empty());
   REQUIRE(out.lines.size() == 1);
   CHECK_THAT(out.lines[0],

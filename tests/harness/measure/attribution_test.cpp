@@ -17,12 +17,8 @@ Scene drop() {
   Scene s;
   s.name = "drop";
   s.duration = 1.0;
-  s.world.gravity = {0.0, -9.8, 0.0};
-  s.world.damping_rate = -std::log(0.98) * 60.0;
-  Body b;
-  b.name = "cube";
-  b.position = {0.0, 10.0, 0.0};
-  s.bodies.push_back(b);
+  s.world = {.gravity = {0.0, -9.8, 0.0}, .damping_rate = -std::log(0.98) * 60.0};
+  s.bodies = {{.name = "cube", .position = {0.0, 10.0, 0.0}}};
   return s;
 }
 

@@ -5,7 +5,10 @@
 // finds nothing). What each declares about continuous collision is a parameter.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <string>
+#include <vector>
 
+#include "../test_dirs.hpp"
 #include "harness/core/scene_loader.hpp"
 #include "harness/measure/checks.hpp"
 #include "harness/oracles/landing.hpp"
@@ -14,10 +17,6 @@ using namespace dropcheck;
 using Catch::Matchers::Contains;
 
 namespace {
-
-Scene scenario(const std::string& stem) {
-  return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + stem + ".toml");
-}
 
 class FloorDouble final : public Engine {
  public:
@@ -68,16 +67,24 @@ class FloorDouble final : public Engine {
   std::vector<double> rest_;
 };
 
-EngineFactory floor_double(bool stops, bool declares_ccd) {
-  return [=] { return std::make_unique<FloorDouble>(stops, declares_ccd); };
+// Which FloorDouble a check runs: one that stops bodies on their floor or one with no floor.
+enum class Floor { none, stops };
+// What that FloorDouble declares about continuous collision.
+enum class Ccd { none, declared };
+
+// The landing check of scenarios/<stem>.toml at the scene's own step, on that FloorDouble.
+CheckResult landing_check(const std::string& stem, Floor floor, Ccd ccd) {
+  const Scene scene = testing::shipped_scene(stem);
+  const bool stops = floor == Floor::stops, declares_ccd = ccd == Ccd::declared;
+  return check_landing(
+      scene, [=] { return std::make_unique<FloorDouble>(stops, declares_ccd); }, scene.timestep);
 }
 
 }  // namespace
 
 TEST_CASE("A body that tunnels as its law predicts, without continuous collision, is a LIMIT",
           "[checks][landing]") {
-  const Scene thin = scenario("extreme/thin_floor");
-  const CheckResult r = check_landing(thin, floor_double(false, false), thin.timestep);
+  const CheckResult r = landing_check("extreme/thin_floor", Floor::none, Ccd::none);
   INFO(r.message);
   CHECK(r.passed);
   CHECK(r.limit ==
@@ -87,23 +94,30 @@ TEST_CASE("A body that tunnels as its law predicts, without continuous collision
                                  "(step 1), final centre"));
 }
 
-TEST_CASE("An engine that declares continuous collision and tunnels FAILs", "[checks][landing]") {
-  const Scene thin = scenario("extreme/thin_floor");
-  const CheckResult r = check_landing(thin, floor_double(false, true), thin.timestep);
-  INFO(r.message);
-  CHECK_FALSE(r.passed);
-  CHECK(r.limit.empty());
-  CHECK_THAT(r.message, Contains("TUNNELLED although the engine declares continuous collision"));
-}
-
-TEST_CASE("Falling through a floor the law would hit FAILs even without continuous collision",
-          "[checks][landing]") {
-  const Scene drop = scenario("drop_on_floor");  // at most 0.23 m per step onto a 1 m floor
-  const CheckResult r = check_landing(drop, floor_double(false, false), drop.timestep);
-  INFO(r.message);
-  CHECK_FALSE(r.passed);
-  CHECK(r.limit.empty());
-  CHECK_THAT(r.message, Contains("OUT OF RANGE"));
+TEST_CASE(
+    "Tunnelling while declaring continuous collision, or falling through a floor the law would "
+    "hit, FAILs with no limit",
+    "[checks][landing]") {
+  // Each row: what it is, the scene, what the engine double declares, what the message says.
+  struct Case {
+    std::string what, stem;
+    Ccd ccd;
+    std::string says;
+  };
+  const std::vector<Case> cases{
+      {"declares continuous collision and tunnels", "extreme/thin_floor", Ccd::declared,
+       "TUNNELLED although the engine declares continuous collision"},
+      // At most 0.23 m per step onto a 1 m floor.
+      {"no continuous collision, falls through a floor its law hits", "drop_on_floor", Ccd::none,
+       "OUT OF RANGE"},
+  };
+  for (const Case& c : cases) {
+    const CheckResult r = landing_check(c.stem, Floor::none, c.ccd);
+    INFO(c.what << ": " << r.message);
+    CHECK_FALSE(r.passed);
+    CHECK(r.limit.empty());
+    CHECK_THAT(r.message, Contains(c.says));
+  }
 }
 
 TEST_CASE(
@@ -111,8 +125,7 @@ TEST_CASE(
     "stillness",
     "[checks][landing]") {
   // thin_floor lasts 0.5 s; the cube is stopped at step 1, so the run ends 29/60 s later.
-  const Scene thin = scenario("extreme/thin_floor");
-  const CheckResult r = check_landing(thin, floor_double(true, true), thin.timestep);
+  const CheckResult r = landing_check("extreme/thin_floor", Floor::stops, Ccd::declared);
   INFO(r.message);
   CHECK(r.passed);
   CHECK(r.limit.empty());
@@ -121,8 +134,7 @@ TEST_CASE(
                                  "(window 2 s)"));
   CHECK_THAT(r.message, !Contains("NOT STILL"));
   // A run long enough is judged over its last 2 s.
-  const Scene drop = scenario("drop_on_floor");
-  const CheckResult d = check_landing(drop, floor_double(true, false), drop.timestep);
+  const CheckResult d = landing_check("drop_on_floor", Floor::stops, Ccd::none);
   INFO(d.message);
   CHECK(d.passed);
   CHECK_THAT(d.message, Contains("still: max |v| 0 m/s, range 0 m over the last 2 s"));
@@ -130,8 +142,7 @@ TEST_CASE(
 
 TEST_CASE("The landing check names the stacked bodies it does not judge, and why",
           "[checks][landing]") {
-  const Scene stacks = scenario("extreme/mass_ratio");
-  const CheckResult r = check_landing(stacks, floor_double(true, false), stacks.timestep);
+  const CheckResult r = landing_check("extreme/mass_ratio", Floor::stops, Ccd::none);
   INFO(r.message);
   CHECK(r.passed);
   CHECK(r.limit.empty());

@@ -4,6 +4,9 @@
 // is extended until its order is in band, and a sweep that never gets there still fails.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "harness/core/registry.hpp"
 #include "harness/core/scene_loader.hpp"
@@ -60,6 +63,14 @@ EngineFactory named(const char* name) {
 }
 const Timestep kUnstable{1.0 / 25, "1/25"};  // omega*h = 2.4 on stiff_spring: beyond 2
 
+// extend_sweep on heavy_drag from h = 1/30 and 1/60, every error, observed or added, from `error`.
+ExtendedSweep sweep_of(double (*error)(double h)) {
+  const Scene scene = load_scene("scenarios/extreme/heavy_drag.toml");
+  std::vector<double> h{1.0 / 30, 1.0 / 60}, e{error(h[0]), error(h[1])};
+  return extend_sweep(scene, h, e, 0.0,
+                      [&](double s, std::string&) { return std::optional<double>(error(s)); });
+}
+
 }  // namespace
 
 TEST_CASE("ours blowing up where its own law is unstable is a LIMIT naming omega*h and the edge",
@@ -85,27 +96,43 @@ TEST_CASE(
   CHECK_THAT(r.message, Contains("huge value") && Contains("order not copied"));
 }
 
-TEST_CASE("an engine blowing up where its law is stable still fails, with no limit",
-          "[checks][limits]") {
-  const Scene scene = load_scene("scenarios/extreme/stiff_spring.toml");
-  const CheckResult r = check_own_law(scene, guarded(1e10, 50), scene.timestep);  // omega*h 1.875
-  CHECK_FALSE(r.passed);
-  CHECK(r.limit.empty());
-  CHECK_THAT(r.message, Contains("run failed") && Contains("huge value at step 50"));
-}
-
-TEST_CASE("an engine that leaves its law where the law is unstable still fails",
-          "[checks][limits]") {
-  const Scene scene = load_scene("scenarios/extreme/stiff_spring_drag.toml");
-  // Runs ours' order (stable at 1/25 here) while declaring Bullet's (unstable): it stays finite
-  // while its declared law grows, so it departs from that law long before the law overflows.
-  REQUIRE_FALSE(law_instability(scene, DampingOrder::BeforeForces, kUnstable).empty());
-  const CheckResult r =
-      check_own_law(scene, guarded(1e10, 1L << 40, DampingOrder::BeforeForces), kUnstable);
-  INFO(r.message);
-  CHECK_FALSE(r.passed);
-  CHECK(r.limit.empty());
-  CHECK_THAT(r.message, Contains("it departs from its law") && Contains("worst at body 'bob'"));
+TEST_CASE(
+    "an engine blowing up where its law is stable, or leaving its law where the law is unstable, "
+    "still fails with no limit",
+    "[checks][limits]") {
+  // The second row's premise: Bullet's order is unstable at 1/25 on stiff_spring_drag.
+  REQUIRE_FALSE(law_instability(load_scene("scenarios/extreme/stiff_spring_drag.toml"),
+                                DampingOrder::BeforeForces, kUnstable)
+                    .empty());
+  // Each row: what it is, its scene, the engine, the step (none: the scene's own) and the message.
+  struct Case {
+    std::string what, scene;
+    EngineFactory engine;
+    std::optional<Timestep> h;
+    std::vector<std::string> says;
+  };
+  const std::vector<Case> cases{
+      {"blowing up where its law is stable (omega*h 1.875 at the scene's step)",
+       "stiff_spring",
+       guarded(1e10, 50),
+       std::nullopt,
+       {"run failed", "huge value at step 50"}},
+      // Runs ours' order (stable at 1/25 here) while declaring Bullet's (unstable): it stays finite
+      // while its declared law grows, so it departs from that law long before the law overflows.
+      {"leaving its declared law where that law is unstable",
+       "stiff_spring_drag",
+       guarded(1e10, 1L << 40, DampingOrder::BeforeForces),
+       kUnstable,
+       {"it departs from its law", "worst at body 'bob'"}},
+  };
+  for (const Case& c : cases) {
+    const Scene scene = load_scene("scenarios/extreme/" + c.scene + ".toml");
+    const CheckResult r = check_own_law(scene, c.engine, c.h.value_or(scene.timestep));
+    INFO(c.what << ": " << r.message);
+    CHECK_FALSE(r.passed);
+    CHECK(r.limit.empty());
+    for (const std::string& text : c.says) CHECK_THAT(r.message, Contains(text));
+  }
 }
 
 TEST_CASE("a law is stable below its edge and unstable above it, with drag moving the edge",
@@ -147,11 +174,8 @@ TEST_CASE("the divergence leaves out the steps where a law is unstable and says 
 }
 
 TEST_CASE("a sweep that extends into the first-order band is reached", "[sweep][limits]") {
-  const Scene scene = load_scene("scenarios/extreme/heavy_drag.toml");
-  auto error = [](double h) { return 5.0 * h + 400.0 * h * h; };  // h^2 dominates at first
-  std::vector<double> h{1.0 / 30, 1.0 / 60}, e{error(h[0]), error(h[1])};
-  const ExtendedSweep x = extend_sweep(
-      scene, h, e, 0.0, [&](double s, std::string&) { return std::optional<double>(error(s)); });
+  // h^2 dominates at first.
+  const ExtendedSweep x = sweep_of([](double h) { return 5.0 * h + 400.0 * h * h; });
   CHECK(x.reached);
   CHECK(x.added >= 2);
   CHECK(x.stopped.empty());
@@ -159,11 +183,8 @@ TEST_CASE("a sweep that extends into the first-order band is reached", "[sweep][
 
 TEST_CASE("an inconsistent law whose error never shrinks at first order still fails",
           "[sweep][limits]") {
-  const Scene scene = load_scene("scenarios/extreme/heavy_drag.toml");
-  auto error = [](double h) { return 0.3 + h; };  // converges to 0.3 m, not to the model
-  std::vector<double> h{1.0 / 30, 1.0 / 60}, e{error(h[0]), error(h[1])};
-  const ExtendedSweep x = extend_sweep(
-      scene, h, e, 0.0, [&](double s, std::string&) { return std::optional<double>(error(s)); });
+  // Converges to 0.3 m, not to the model.
+  const ExtendedSweep x = sweep_of([](double h) { return 0.3 + h; });
   CHECK_FALSE(x.reached);
   CHECK_THAT(x.stopped, Contains("cost cap"));
   CHECK(x.estimate.orders.back() < 0.1);

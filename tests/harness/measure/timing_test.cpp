@@ -18,21 +18,15 @@ Scene scene() {
   Scene s;
   s.name = "timing";
   s.duration = 0.5;
-  s.world.gravity = {0.0, -9.8, 0.0};
-  s.world.damping_rate = 0.5;
-  Body floor, pushed, sprung;
-  floor.name = "floor";
-  floor.half_extents = {5.0, 0.5, 5.0};
-  floor.position = {0.0, -0.5, 0.0};
-  floor.is_static = true;
-  pushed.name = "pushed";
-  pushed.position = {-2.0, 6.0, 0.0};
-  sprung.name = "sprung";
-  sprung.position = {2.0, 4.0, 0.0};
-  sprung.velocity = {0.5, 1.0, 0.0};
-  s.bodies = {floor, pushed, sprung};
-  s.forces.push_back({{1}, ConstantForce{{2.0, 0.0, 0.0}}});
-  s.forces.push_back({{2}, Spring{{2.0, 5.0, 0.0}, 40.0, 0.3, 0.0}});
+  s.world = {.gravity = {0.0, -9.8, 0.0}, .damping_rate = 0.5};
+  s.bodies = {{.name = "floor",
+               .half_extents = {5.0, 0.5, 5.0},
+               .position = {0.0, -0.5, 0.0},
+               .is_static = true},
+              {.name = "pushed", .position = {-2.0, 6.0, 0.0}},
+              {.name = "sprung", .position = {2.0, 4.0, 0.0}, .velocity = {0.5, 1.0, 0.0}}};
+  s.forces = {{{1}, ConstantForce{{2.0, 0.0, 0.0}}},
+              {{2}, Spring{{2.0, 5.0, 0.0}, 40.0, 0.3, 0.0}}};
   return s;
 }
 

@@ -11,41 +11,18 @@
 #include <map>
 #include <sstream>
 
+#include "../test_dirs.hpp"
 #include "harness/cli/cli.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/scene_loader.hpp"
 
 using namespace dropcheck;
 using Catch::Matchers::Contains;
+using dropcheck::testing::ScratchDir;
+using dropcheck::testing::slurp;
 namespace fs = std::filesystem;
 
 namespace {
-
-// A scratch directory under the system's temporary directory, removed at scope exit.
-struct Scratch {
-  fs::path path;
-  explicit Scratch(const std::string& name)
-      : path(fs::temp_directory_path() /
-             ("dropcheck-report-" + name + "-" + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~Scratch() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string file(const std::string& name, const std::string& content = "") const {
-    if (!content.empty()) std::ofstream(path / name, std::ios::binary) << content;
-    return (path / name).string();
-  }
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // Every file of a directory: name -> bytes.
 std::map<std::string, std::string> contents(const fs::path& dir) {
@@ -87,8 +64,8 @@ bool has_gnuplot() {
 }  // namespace
 
 TEST_CASE("the report with --no-timing is byte-identical across two runs", "[report]") {
-  Scratch dir("identical");
-  const std::string scene = dir.file("throw.toml", kThrow);
+  ScratchDir dir("identical");
+  const std::string scene = dir.write("throw.toml", kThrow);
   REQUIRE(report({scene, "--out", dir.file("a"), "--no-timing"}) == kExitOk);
   REQUIRE(report({scene, "--out", dir.file("b"), "--no-timing"}) == kExitOk);
   const auto a = contents(dir.file("a")), b = contents(dir.file("b"));
@@ -103,8 +80,8 @@ TEST_CASE("the report with --no-timing is byte-identical across two runs", "[rep
 
 TEST_CASE("the report has every section and only the metrics that apply to free flight",
           "[report]") {
-  Scratch dir("sections");
-  const std::string scene = dir.file("throw.toml", kThrow);
+  ScratchDir dir("sections");
+  const std::string scene = dir.write("throw.toml", kThrow);
   std::string err;
   REQUIRE(report({scene, "--out", dir.file("out"), "--no-timing"}, &err) == kExitOk);
   CHECK_THAT(err, Contains("[1/1] throw: ours-f64 1/60 ..."));  // progress on stderr
@@ -127,12 +104,12 @@ TEST_CASE("the report has every section and only the metrics that apply to free 
 
 TEST_CASE("a scene without a closed form has no analytic columns and uses the fine-step reference",
           "[report]") {
-  Scratch dir("nonlinear");
+  ScratchDir dir("nonlinear");
   std::string text = kThrow;
   text +=
       "\n[[force]]\nspring = { anchor = [0.0, 9.0, 0.0], stiffness = 50.0, damping = 0.0, "
       "rest_length = 0.5 }\n";
-  const std::string scene = dir.file("pendulum.toml", text);
+  const std::string scene = dir.write("pendulum.toml", text);
   REQUIRE(report({scene, "--out", dir.file("out"), "--no-timing", "--engine", "ours-f64",
                   "--engine", "ours"}) == kExitOk);
   const std::string md = slurp(dir.path / "out" / "README.md");
@@ -145,12 +122,12 @@ TEST_CASE("a scene without a closed form has no analytic columns and uses the fi
 TEST_CASE(
     "a bad scene file exits 2 naming the file and key, and leaves the previous report untouched",
     "[report]") {
-  Scratch dir("atomic");
-  const std::string good = dir.file("throw.toml", kThrow);
+  ScratchDir dir("atomic");
+  const std::string good = dir.write("throw.toml", kThrow);
   const std::string out = dir.file("out");
   REQUIRE(report({good, "--out", out, "--no-timing", "--engine", "ours-f64"}) == kExitOk);
   const auto before = contents(out);
-  const std::string bad = dir.file(
+  const std::string bad = dir.write(
       "bad.toml",
       std::string(kThrow) + "\n[[body]]\nname = \"x\"\nposition = [0.0, 1.0, 0.0]\nmass = -1.0\n");
   std::string err;
@@ -162,8 +139,8 @@ TEST_CASE(
 }
 
 TEST_CASE("the report refuses to replace a directory it did not write", "[report]") {
-  Scratch dir("refuse");
-  const std::string scene = dir.file("throw.toml", kThrow);
+  ScratchDir dir("refuse");
+  const std::string scene = dir.write("throw.toml", kThrow);
   std::string err;
   CHECK(report({scene, "--out", dir.path.string(), "--no-timing"}, &err) == kExitBadInput);
   CHECK_THAT(err, Contains("did not write"));
@@ -172,7 +149,7 @@ TEST_CASE("the report refuses to replace a directory it did not write", "[report
 
 TEST_CASE("with timings the run-time table has marked columns and a work-precision plot",
           "[report]") {
-  Scratch dir("timing");
+  ScratchDir dir("timing");
   ReportInput in;  // as little timing work as possible: this checks the plumbing only
   in.timing_options.body_steps_per_run = 1;
   in.timing_options.warmups = 0;
@@ -180,7 +157,7 @@ TEST_CASE("with timings the run-time table has marked columns and a work-precisi
   std::vector<EngineSlot> engines;
   for (const char* name : {"ours", "ours-f64"})
     engines.push_back({name, [name] { return make_engine(name); }, ""});
-  in.scenes.push_back(evaluate_scene(load_scene(dir.file("throw.toml", kThrow)), engines));
+  in.scenes.push_back(evaluate_scene(load_scene(dir.write("throw.toml", kThrow)), engines));
   time_evaluations(in.scenes, engines, in.timing_options);
   for (const EngineSlot& e : engines) in.engines.push_back(e.make()->info());
   write_report(in, dir.path.string());
