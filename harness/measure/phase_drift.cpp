@@ -137,9 +137,9 @@ DriftVerdict judge_drift(const Scene& scene, Law law, std::span<const double> h,
   v.limit = "pre-asymptotic: the phase drift of semi-implicit Euler over " + sig(t, 4) + " s on '" +
             worst->body + "' is " + sig(drift.front(), 3) + " rad at h = " + step_text(h.front()) +
             " and still " + sig(drift.back(), 3) + " rad at h = " + step_text(h.back()) +
-            " (error predicted " + sig(lower.front(), 3) + ".." + sig(upper.front(), 3) + " m and " +
-            sig(lower[last], 3) + ".." + sig(upper[last], 3) + " m, measured " + sig(e.front(), 3) +
-            " m and " + sig(e[last], 3) +
+            " (error predicted " + sig(lower.front(), 4) + ".." + sig(upper.front(), 4) +
+            " m and " + sig(lower[last], 4) + ".." + sig(upper[last], 4) + " m, measured " +
+            sig(e.front(), 4) + " m and " + sig(e[last], 4) +
             " m): the error is that drift, second order in h, until h is well below "
             "12/(omega^2*T) = " +
             sig(edge, 3) + " s (" + sig(t / edge, 3) + " steps)";

@@ -34,16 +34,16 @@ namespace dropcheck {
 // The drift of one body on an undamped spring at one step h, and the error band it predicts.
 struct DriftPrediction {
   std::string body;
-  double h = 0.0;          // s
-  double omega = 0.0;      // rad/s
-  double theta = 0.0;      // rad turned per step by the law (from its eigenvalues)
-  double relative = 0.0;   // r = theta/(omega*h) - 1
-  double duration = 0.0;   // T: the time of the run's last step (s)
-  double drift = 0.0;      // omega*r*T (rad)
-  double semi_axis = 0.0;  // S (m)
-  double drift_part = 0.0; // P = 2*S*sin(min(drift, pi)/2) (m)
-  double offset = 0.0;     // D = |b - W|, the law's first-order part (m)
-  double lower = 0.0;      // the band the worst error over the run lies in (m)
+  double h = 0.0;           // s
+  double omega = 0.0;       // rad/s
+  double theta = 0.0;       // rad turned per step by the law (from its eigenvalues)
+  double relative = 0.0;    // r = theta/(omega*h) - 1
+  double duration = 0.0;    // T: the time of the run's last step (s)
+  double drift = 0.0;       // omega*r*T (rad)
+  double semi_axis = 0.0;   // S (m)
+  double drift_part = 0.0;  // P = 2*S*sin(min(drift, pi)/2) (m)
+  double offset = 0.0;      // D = |b - W|, the law's first-order part (m)
+  double lower = 0.0;       // the band the worst error over the run lies in (m)
   double upper = 0.0;
 };
 

@@ -36,8 +36,7 @@ TEST_CASE("a run identical to a finite law follows it within a finite tolerance"
   CHECK(v.follows());
 }
 
-TEST_CASE("a law that reaches Inf or NaN gives no tolerance, and nothing follows it",
-          "[own_law]") {
+TEST_CASE("a law that reaches Inf or NaN gives no tolerance, and nothing follows it", "[own_law]") {
   for (double bad : {std::numeric_limits<double>::infinity(), std::nan("")}) {
     const Case c = free_fall();
     Trajectory law = c.law;

@@ -137,8 +137,8 @@ TEST_CASE("errors from a frequency error of the wrong size are not explained by 
           "[phase_drift]") {
   const Scene s = long_spring();
   // The law run with a stiffness 0.1% off: its frequency error is the law's plus 5e-4.
-  const DriftVerdict off = judge_drift(s, kOurs, kSweep, law_errors(long_spring(1.001), s, kSweep),
-                                       0.0);
+  const DriftVerdict off =
+      judge_drift(s, kOurs, kSweep, law_errors(long_spring(1.001), s, kSweep), 0.0);
   INFO(off.text);
   CHECK(off.applies);
   CHECK_FALSE(off.explained);
@@ -166,8 +166,8 @@ TEST_CASE("a long run that follows its law, its sweep kept out of band by the dr
   INFO(r.limit << " | " << r.message);
   CHECK(r.passed);
   CHECK_THAT(r.limit, Contains("pre-asymptotic: the phase drift of semi-implicit Euler"));
-  CHECK_THAT(r.message, Contains("extended by 1 halving, stopped") &&
-                            Contains("measured") && Contains(": within the band"));
+  CHECK_THAT(r.message, Contains("extended by 1 halving, stopped") && Contains("measured") &&
+                            Contains(": within the band"));
 }
 
 TEST_CASE("an engine whose frequency is 0.05% off, or whose spring pushes, still FAILs",
