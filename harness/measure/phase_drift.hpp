@@ -43,8 +43,8 @@ struct DriftPrediction {
   double semi_axis = 0.0;   // S (m)
   double drift_part = 0.0;  // P = 2*S*sin(min(drift, pi)/2) (m)
   double offset = 0.0;      // D = |b - W|, the law's first-order part (m)
-  double lower = 0.0;       // the band the worst error over the run lies in (m)
-  double upper = 0.0;
+  double lower = 0.0;       // lower bound of the worst error over the run (m)
+  double upper = 0.0;       // upper bound of the worst error over the run (m)
 };
 
 // For each dynamic body on an undamped linear spring (rest length 0, no dashpot, no world damping)

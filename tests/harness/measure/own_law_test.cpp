@@ -1,6 +1,7 @@
 // Tests harness/measure/own_law.cpp: the own-law tolerance is finite wherever it passes anything.
 // A law trajectory that reaches Inf or NaN has no tolerance (its scale is NaN), so no run follows
-// it, however close; a NaN departure of the run counts as infinite, never as zero.
+// it, however close; a finite law keeps a finite tolerance even where |x|^2 overflows; a NaN
+// departure of the run counts as infinite, never as zero.
 #include "harness/measure/own_law.hpp"
 
 #include <catch2/catch.hpp>
@@ -49,6 +50,7 @@ TEST_CASE("a law that reaches Inf or NaN gives no tolerance, and nothing follows
     const OwnLawVerdict v = judge_own_law(c.info, run, law, law);
     CHECK_FALSE(v.follows());
     CHECK_THAT(v.sentence(), Contains("TOLERANCE NOT FINITE"));
+    CHECK(v.sentence().find("nan") == std::string::npos);
     // Even a run with the very same non-finite value.
     CHECK_FALSE(judge_own_law(c.info, law, law, law).follows());
   }
@@ -62,4 +64,15 @@ TEST_CASE("a NaN in the run is an infinite departure from a finite law", "[own_l
   CHECK(v.tolerance.finite());
   CHECK(std::isinf(v.residual_v));
   CHECK_FALSE(v.follows());
+}
+
+TEST_CASE("a finite law whose |x| overflows a squared norm still gets a finite tolerance",
+          "[own_law]") {
+  const Case c = free_fall();
+  Trajectory law = c.law;
+  for (BodyState& b : law.states) b.position = Vec3(1e300, -1e300, 0.0);  // |x|^2 = Inf
+  const OwnLawTolerance t = own_law_tolerance(c.info, law);
+  CHECK(t.finite());
+  CHECK(t.x == Approx(4.0 * 0x1p-52 * std::sqrt(2.0) * 1e300));
+  CHECK(judge_own_law(c.info, law, law, law).follows());
 }
