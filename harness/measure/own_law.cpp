@@ -21,11 +21,22 @@ struct Scales {
   double x = 0.0, v = 0.0;
 };
 
+// |a|, without overflow for finite components: norm() squares them (a state at 1e200 m has a
+// finite position and an infinite norm), so it falls back to Eigen's scaled stableNorm() there.
+double length(const Vec3& a) {
+  const double n = a.norm();
+  return std::isinf(n) && a.allFinite() ? a.stableNorm() : n;
+}
+
+// The largest |x| and |v| the law reaches. A non-finite state makes its scale NaN (std::max would
+// skip a NaN and keep the finite part: a law that left finite values must not look finite).
 Scales scales(const Trajectory& law) {
   Scales s;
   for (const BodyState& b : law.states) {
-    s.x = std::max(s.x, b.position.norm());
-    s.v = std::max(s.v, b.velocity.norm());
+    const double x = length(b.position), v = length(b.velocity);
+    if (!std::isfinite(x) || !std::isfinite(v)) return {NAN, NAN};
+    s.x = std::max(s.x, x);
+    s.v = std::max(s.v, v);
   }
   return s;
 }
@@ -39,10 +50,18 @@ OwnLawTolerance tolerance_for(Scalar scalar, bool copied, const Trajectory& law)
   // still rounds its position, a body near the origin its velocity).
   const double scale = std::max(s.x, s.v);
   OwnLawTolerance t{ulps * epsilon(scalar) * scale, ulps * epsilon(scalar) * scale, {}};
+  if (!t.finite()) {
+    t.rule = "none: the law reaches Inf or NaN within the steps compared";
+    return t;
+  }
   t.rule = g3(ulps) + " ulps of " + g3(scale) + " (" + to_string(scalar) +
            (copied ? ", operation order copied)"
                    : ", order not copied: " + g3(tolerance::kStepUlps) + " ulps per step)");
   return t;
+}
+
+double not_nan(double d) {
+  return std::isnan(d) ? INFINITY : d;
 }
 
 }  // namespace
@@ -61,8 +80,13 @@ Trajectory before_step(const Trajectory& t, std::int64_t n) {
   return out;
 }
 
+bool OwnLawTolerance::finite() const {
+  return std::isfinite(x) && std::isfinite(v);
+}
+
 bool OwnLawVerdict::follows() const {
-  return failure.empty() && residual_x <= tolerance.x && residual_v <= tolerance.v;
+  return failure.empty() && tolerance.finite() && residual_x <= tolerance.x &&
+         residual_v <= tolerance.v;
 }
 
 OwnLawVerdict judge_own_law(const EngineInfo& info, const Trajectory& run, const Trajectory& own,
@@ -80,8 +104,9 @@ OwnLawVerdict judge_own_law(const EngineInfo& info, const Trajectory& run, const
     if (r.clamped_from >= 0 && run.recorded[s] >= r.clamped_from) break;
     r.compared_steps = run.recorded[s];
     for (std::size_t b = 0; b < run.bodies(); ++b) {
-      const double dx = (run.at(s, b).position - own.at(s, b).position).norm();
-      const double dv = (run.at(s, b).velocity - own.at(s, b).velocity).norm();
+      // A NaN distance counts as infinite (std::max would skip it).
+      const double dx = not_nan((run.at(s, b).position - own.at(s, b).position).norm());
+      const double dv = not_nan((run.at(s, b).velocity - own.at(s, b).velocity).norm());
       r.residual_x = std::max(r.residual_x, dx);
       r.residual_v = std::max(r.residual_v, dv);
       r.precision = std::max(r.precision, (own.at(s, b).position - exact.at(s, b).position).norm());
@@ -99,9 +124,14 @@ OwnLawVerdict judge_own_law(const EngineInfo& info, const Scene& scene, const Tr
 }
 
 std::string OwnLawVerdict::sentence() const {
+  const std::string bound =
+      tolerance.finite() ? g3(tolerance.x) + " m, " + g3(tolerance.v) + " m/s: " + tolerance.rule
+                         : "NONE: no departure can be bounded";
   std::string s = "max |x - law| " + g3(residual_x) + " m, |v - law| " + g3(residual_v) +
-                  " m/s (tolerance " + g3(tolerance.x) + " m, " + g3(tolerance.v) +
-                  " m/s: " + tolerance.rule + "; law " + law + ")";
+                  " m/s (tolerance " + bound + "; law " + law + ")";
+  if (!tolerance.finite())
+    s += "; TOLERANCE NOT FINITE: the law reaches Inf or NaN within the steps compared (a stable "
+         "law never does; an unstable one is judged only while finite)";
   s += "; precision part " + format_length(precision) + " (own arithmetic vs long-double law)";
   if (clamped_from >= 0)
     s += "; the engine clamped a speed at step " + std::to_string(clamped_from) +

@@ -21,6 +21,9 @@ struct OwnLawTolerance {
   double x = 0.0;    // m
   double v = 0.0;    // m/s
   std::string rule;  // "4 ulps of 12.3 m (f32, operation order copied)"
+
+  // Both bounds finite. A law that reaches Inf or NaN has none (its scale is NaN): nothing follows.
+  bool finite() const;
 };
 
 // THE answer to "what is the own-law tolerance of engine E at step h": from E's arithmetic and its
@@ -42,7 +45,7 @@ struct OwnLawVerdict {
   std::int64_t clamped_from = -1;   // first step the engine clamped a speed; compared before it
   std::int64_t compared_steps = 0;  // last step compared
 
-  // The run finished and stays within tolerance of its own law.
+  // The run finished and stays within a finite tolerance of its own law.
   bool follows() const;
   // "max |x - law| 0 m, |v - law| 0 m/s (tolerance 4 ulps ...); precision part 1.2e-6 m; ..."
   std::string sentence() const;

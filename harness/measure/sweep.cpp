@@ -139,7 +139,7 @@ std::string pre_asymptotic_cause(const Scene& scene, double h) {
 }
 
 ExtendedSweep extend_sweep(const Scene& scene, std::vector<double> h, std::vector<double> e,
-                           double noise, const ErrorAt& error_at) {
+                           double noise, const ErrorAt& error_at, std::int64_t max_added) {
   ExtendedSweep x{std::move(h), std::move(e), 0, {}, false, {}};
   std::int64_t spent = 0;
   auto judge = [&] {
@@ -156,9 +156,9 @@ ExtendedSweep extend_sweep(const Scene& scene, std::vector<double> h, std::vecto
       x.stopped = "h = " + step_text(next) + " would take more than the step limit";
       return x;
     }
-    if (spent + steps > tolerance::kExtensionSteps) {
+    if (spent + steps > max_added) {
       x.stopped = "h = " + step_text(next) + " would exceed the extension's cost cap of " +
-                  std::to_string(tolerance::kExtensionSteps) + " added steps";
+                  std::to_string(max_added) + " added steps";
       return x;
     }
     spent += steps;

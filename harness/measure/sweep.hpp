@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "harness/core/scene.hpp"
+#include "harness/measure/tolerances.hpp"
 
 namespace dropcheck {
 
@@ -54,9 +55,10 @@ struct ExtendedSweep {
 using ErrorAt = std::function<std::optional<double>(double h, std::string& why)>;
 
 // Halves the finest step of (h, e) until the last observed order is in band, within the step
-// limit (kMaxSteps per run) and tolerance::kExtensionSteps added steps per sweep in all.
+// limit (kMaxSteps per run) and `max_added` steps per sweep in all.
 ExtendedSweep extend_sweep(const Scene& scene, std::vector<double> h, std::vector<double> e,
-                           double noise, const ErrorAt& error_at);
+                           double noise, const ErrorAt& error_at,
+                           std::int64_t max_added = tolerance::kExtensionSteps);
 
 // "1/480" when h is 1/N for a whole N, else "%.4g".
 std::string step_text(double h);

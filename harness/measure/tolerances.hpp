@@ -39,13 +39,32 @@ inline constexpr double kLawsDifferFactor = 10.0;
 // --- Pre-asymptotic sweeps, harness/measure/sweep.hpp (extend_sweep) ---------------------------
 // A sweep whose order is out of the first-order band while its engine follows its law is extended
 // with halvings of its finest step; all the added runs of one sweep may take this many steps in
-// all. Measured (release build, `time dropcheck check scenarios/extreme/long_run.toml`, the only
-// shipped scene that reaches the cap): FILLED IN BELOW.
+// all. Measured (release build, `time dropcheck check scenarios/extreme/long_run.toml --engine
+// ours-f64`, three runs): 2.55-2.86 s for the whole check, 425 MB peak. long_run is the only
+// shipped scene that reaches the cap: it adds one halving (h = 1/480, 1.73e6 steps; that run alone
+// takes 0.49 s, `dropcheck run ... --dt 1/480`, then its law in both arithmetics and the closed
+// form), and the next (1/960, 3.46e6 more) would pass the cap. stiff_spring's 9 halvings add 1.23e6
+// steps (its whole check 0.46-0.55 s). Every other shipped scene adds at most 2 halvings.
 inline constexpr long long kExtensionSteps = 4'000'000;
 // A product of a rate and the step (k*h, omega*h, gamma*h, the phase drift in rad) above this is
-// named as a cause of a pre-asymptotic sweep. Naming only, no verdict depends on it: the smallest
-// named on the shipped scenes is FILLED IN BELOW.
+// named as a cause of a pre-asymptotic sweep. Naming only, no verdict depends on it. The products
+// named on the shipped scenes (`dropcheck check scenarios/*.toml scenarios/extreme/*.toml`, every
+// engine): gamma*h = 0.1 (stiff_spring_drag, the smallest), phase drift 0.218 rad
+// (stiff_spring_drag), k*h = 0.333 and 0.5, omega*h = 0.5 and 1, phase drift 0.646 rad (long_run)
+// and 6.43 rad (stiff_spring).
 inline constexpr double kPreAsymptoticProduct = 0.05;
+
+// --- Phase drift of a long run, harness/measure/phase_drift.hpp --------------------------------
+// No constant: the band 2*S*sin(drift/2) +- D of each step's error is derived from the law's
+// eigenvalues and the closed form (an upper bound, and a lower one from the last oscillation),
+// widened only by the reference's rounding (kOrderMeasurableFactor own-law tolerances plus its
+// precision part). The drift is the cause when its part reaches drift_significant_ratio() = 0.155
+// of D at the coarser step of the last pair (derived from kFirstOrderHigh). Measured (`dropcheck
+// check scenarios/extreme/long_run.toml --engine ours-f64`): errors 1.505, 1.451, 0.4865, 0.1261 m
+// at h = 1/60 .. 1/480 in the bands [1.462, 1.543], [1.425, 1.465], [0.4672, 0.4871],
+// [0.1163, 0.1262] m; at the fine steps the error sits 0.6 mm and 0.1 mm under the upper bound (the
+// law's phase offset adds to the drift almost in phase at the run's end), which is why the band is
+// derived rather than a fixed fraction.
 
 // --- Landing, harness/measure/sweep.hpp (landing) ----------------------------------------------
 // A landing may rise at most this far above the engine's rest height after first contact (m).

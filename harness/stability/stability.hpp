@@ -1,61 +1,15 @@
 // Numerical stability: classify one run as stable or by its failure, search the largest stable step
 // per engine by bisection on h, and the theoretical edge of a spring under each damping order.
 // Engine-neutral: works on Scene, Trajectory and the engine's declared scalar and law only.
+//
+// The public story, one header per part:
+//   stability_classify.hpp  classify_run: one run is stable or fails (FailureMode, Verdict), from
+//                           the detectors in stability_growth.hpp and stability_motion.hpp
+//   stability_theory.hpp    a linear spring's stability edge under each member of the law family
+//   stability_search.hpp    the largest stable step of one engine, by bisection on h
+//   stability_study.hpp     one scene on a set of engines: verdict, error, searched and theory edge
+//   stability_io.hpp, stability_report.hpp   the study out: JSON, table, report section
+// Including this header gives the classifier; include the others for their parts.
 #pragma once
 
-#include <cstdint>
-#include <limits>
-#include <optional>
-#include <string>
-#include <vector>
-
-#include "harness/core/engine.hpp"
-#include "harness/core/trajectory.hpp"
-
-namespace dropcheck {
-
-// How a run failed, in order of severity (a run's verdict lists the severest first).
-enum class FailureMode {
-  engine_error,      // the engine threw or reported an error (RunStatus::engine_error)
-  non_finite,        // a NaN/Inf state (RunStatus::non_finite)
-  unbounded_growth,  // energy or speed beyond what the physics allows
-  tunnelled,         // a body ended below (or deep inside) a body it started above; contacts on
-  frozen,            // a coordinate constant over many steps while the physics says it moves
-                     // by more than half a float spacing and the scene's tolerance
-  clamped,           // the engine clamped a speed (Trajectory::clamped_steps > 0)
-};
-
-// Short name of a failure mode ("NaN/Inf", "frozen", ...), as tables print it.
-const char* to_string(FailureMode mode);
-
-// One failure of one run: where it showed first and a sentence saying what happened.
-struct Failure {
-  FailureMode mode = FailureMode::engine_error;
-  std::string body;        // the body concerned; "" for the whole run
-  std::int64_t step = -1;  // first step where it showed
-  std::string what;        // a sentence, without the engine's name in front
-};
-
-// The classification of one run: stable when it has no failure.
-struct Verdict {
-  std::vector<Failure> failures;  // severest first, then by step
-  bool stable() const { return failures.empty(); }
-};
-
-// Thresholds of the classifier (the reasoning behind each is in stability_classify.cpp).
-struct ClassifyOptions {
-  double growth_factor = 10.0;     // late-window vs early-window peak oscillation energy
-  double energy_factor = 1e6;      // peak oscillation energy vs initial
-  double speed_slack = 0.01;       // relative slack on the free-flight speed bound
-  std::int64_t frozen_steps = 20;  // fewest steps of a constant coordinate that count as frozen
-  double contact_gain = 0.5;       // energy gained in a contact scene vs its peak kinetic energy
-};
-
-// Classifies `run` of `scene` on an engine computing in `scalar`. Never throws for a failed run.
-Verdict classify_run(const Scene& scene, const Trajectory& run, Scalar scalar,
-                     const ClassifyOptions& options = {});
-
-// "ours (f32)": the engine's name and scalar, as failure sentences start.
-std::string engine_label(const std::string& engine, Scalar scalar);
-
-}  // namespace dropcheck
+#include "harness/stability/stability_classify.hpp"

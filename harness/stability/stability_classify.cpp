@@ -1,11 +1,15 @@
 // Classification of one run: run status, growth, tunnelling, frozen coordinates, speed clamps.
 // Each detector lives with its reasoning: growth in stability_growth.cpp, tunnelling and frozen
 // coordinates in stability_motion.cpp; the run status and clamps here.
+#include "harness/stability/stability_classify.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <variant>
 
-#include "harness/stability/stability_detail.hpp"
+#include "harness/core/number_format.hpp"
+#include "harness/stability/stability_growth.hpp"
+#include "harness/stability/stability_motion.hpp"
 
 namespace dropcheck {
 

@@ -1,9 +1,11 @@
 // Unbounded growth: energy or speed beyond what the physics allows, per kind of body.
+#include "harness/stability/stability_growth.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <variant>
 
-#include "harness/stability/stability_detail.hpp"
+#include "harness/core/number_format.hpp"
 
 namespace dropcheck::stability_detail {
 namespace {

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "harness/core/number_format.hpp"
 #include "harness/core/trajectory_io.hpp"
-#include "harness/stability/stability_detail.hpp"
 #include "harness/stability/stability_study.hpp"
 
 namespace dropcheck {

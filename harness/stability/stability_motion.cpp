@@ -1,10 +1,12 @@
 // Failures of motion: a body that passed through (or sank into) a body it started above, and a
 // coordinate frozen by precision while the physics says it moves. y is up (docs/design.md).
+#include "harness/stability/stability_motion.hpp"
+
 #include <algorithm>
 #include <cmath>
 
+#include "harness/core/number_format.hpp"
 #include "harness/oracles/analytic.hpp"
-#include "harness/stability/stability_detail.hpp"
 
 namespace dropcheck::stability_detail {
 namespace {

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <filesystem>
 
+#include "harness/core/number_format.hpp"
 #include "harness/core/scene_loader.hpp"
-#include "harness/stability/stability_detail.hpp"
 #include "harness/stability/stability_study.hpp"
 
 namespace dropcheck {

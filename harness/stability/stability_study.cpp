@@ -4,9 +4,9 @@
 
 #include <cmath>
 
+#include "harness/core/number_format.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/oracles/analytic.hpp"
-#include "harness/stability/stability_detail.hpp"
 #include "harness/stability/stability_theory.hpp"
 
 namespace dropcheck {

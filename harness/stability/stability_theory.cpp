@@ -86,6 +86,19 @@ bool spring_step_stable(Law law, const SpringModel& spring, double h) {
   return c.beta > -1.0 && c.beta <= 1.0 && c.a < 2.0 * (1.0 + c.beta);
 }
 
+std::optional<StepRotation> spring_step_rotation(Law law, const SpringModel& spring, double h) {
+  // z^2 - t*z + beta = 0 with t = 1 + beta - A has the pair sqrt(beta)*exp(+-i*theta) when
+  // t^2 < 4*beta, cos(theta) = t/(2*sqrt(beta)). theta is found from 1 - cos(theta) =
+  // 2*sin^2(theta/2) = (2*sqrt(beta) - t)/(2*sqrt(beta)), which keeps its digits at small theta
+  // where acos would not (undamped: beta = 1, 2 - t = A = (w*h)^2, theta = 2*asin(w*h/2)).
+  const StepCoefficients c = coefficients(law, spring, h);
+  if (c.beta <= 0.0) return std::nullopt;
+  const double root = std::sqrt(c.beta), t = 1.0 + c.beta - c.a;
+  const double half_versine = (2.0 * root - t) / (4.0 * root);  // sin^2(theta/2)
+  if (!(half_versine > 0.0 && half_versine < 1.0)) return std::nullopt;
+  return StepRotation{root, 2.0 * std::asin(std::sqrt(half_versine))};
+}
+
 double spring_max_stable_dt(Law law, const SpringModel& spring) {
   // Walk up from a step far inside the stable range in 1% increments to the first unstable h,
   // then bisect that bracket to double precision.

@@ -24,6 +24,16 @@ std::optional<SpringModel> body_spring(const Scene& scene, std::size_t index);
 // (derivation in stability_theory.cpp).
 bool spring_step_stable(Law law, const SpringModel& spring, double h);
 
+// One step of a law on a spring as a rotation: its eigenvalues rho*exp(+-i*theta).
+struct StepRotation {
+  double rho = 0.0;    // modulus: the amplitude factor per step (1 for an undamped spring)
+  double theta = 0.0;  // angle: the phase the discrete oscillation turns per step (rad)
+};
+
+// The complex eigenvalue pair of one step of `law` on `spring` at h; nullopt when the eigenvalues
+// are real (no oscillation: overdamped, or beyond the edge).
+std::optional<StepRotation> spring_step_rotation(Law law, const SpringModel& spring, double h);
+
 // The largest h at which `law` is stable for `spring` (the first edge above h = 0).
 double spring_max_stable_dt(Law law, const SpringModel& spring);
 
