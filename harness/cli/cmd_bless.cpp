@@ -63,7 +63,8 @@ TierResult run_tier(Tier tier, const Scene& scene, const NamedFactory& engine,
   const std::string path = baseline_path(dir, scene.name, engine.first);
   if (tier == Tier::physics) {
     const std::optional<Baseline> baseline = read_baseline_if_present(path);
-    return check_physics(*now, baseline ? &*baseline : nullptr);
+    return check_physics(*now, baseline ? &*baseline : nullptr,
+                         core_checks(scene, engine.second, [] { return make_engine("ours-f64"); }));
   }
   const std::string name = scene.name + " / " + engine.first + " / " + to_string(tier) + ": ";
   if (!now->skipped.empty())
@@ -139,6 +140,7 @@ int write(const Args& args, const std::vector<Scene>& scenes, std::ostream& out,
   BlessOptions options;
   options.out_dir = args.value("--out", "tests/baselines");
   options.commit = source_commit();
+  options.reference = [] { return make_engine("ours-f64"); };
   options.baseline.timing = args.has("--timing");
   const BlessOutcome outcome = bless(scenes, engines_from(args), options);
   for (const std::string& why : outcome.refused) err << "dropcheck bless: refused: " << why << "\n";

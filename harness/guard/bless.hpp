@@ -21,6 +21,9 @@ struct BlessOptions {
   BaselineOptions baseline;                 // sampling; --timing
   bool refuse_failed = false;               // refuse as for the golden set, wherever out_dir is
   std::string baselines_dir = "tests/baselines";  // the baselines tier 3 measures a new scheme from
+  // The engine `dropcheck check` measures divergences from (ours-f64): with it, tier 3 asks the
+  // measurement core where the stored sweep fails (check_physics); without it, it does not.
+  EngineFactory reference;
 };
 
 // True when `dir` is the golden set, tests/baselines under the working directory.

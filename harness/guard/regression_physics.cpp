@@ -125,18 +125,38 @@ std::string order_problem(const Baseline& b, std::string& summary) {
   return {};
 }
 
+// The tier's verdict when the stored sweep failed with `why`: a pass when every check of the core
+// passes (the failure was a limit of the engine's law, which `dropcheck check` names), else `why`.
+TierResult ask_core(const std::string& p, const std::string& why, const CoreChecks& core) {
+  if (!core) return {Verdict::failed, p + why};
+  std::string limits;
+  for (const CheckResult& r : core()) {
+    if (!r.passed) return {Verdict::failed, p + why};
+    if (!r.limit.empty()) limits += (limits.empty() ? "" : "; ") + r.check + ": " + r.limit;
+  }
+  return {Verdict::passed, p + "the checks of `dropcheck check` pass" +
+                               (limits.empty() ? std::string() : ", with LIMITs: " + limits) +
+                               " (the stored sweep alone fails: " + why + ")"};
+}
+
 }  // namespace
 
-TierResult check_physics(const Baseline& now, const Baseline* baseline) {
+CoreChecks core_checks(const Scene& scene, const EngineFactory& engine,
+                       const EngineFactory& reference) {
+  if (!reference) return {};
+  return [&scene, engine, reference] { return check_scene(scene, engine, reference); };
+}
+
+TierResult check_physics(const Baseline& now, const Baseline* baseline, const CoreChecks& core) {
   const std::string p = now.scene + " / " + now.engine + " / physics: ";
   if (!now.skipped.empty())
     return {Verdict::skipped, p + "the engine cannot run this scene: " + now.skipped};
   if (now.status != "ok")
-    return {Verdict::failed, p + "the run at h = " + now.dt.text + " ended: " + now.status};
+    return ask_core(p, "the run at h = " + now.dt.text + " ended: " + now.status, core);
   std::string law, order;
   if (std::string why = law_problem(now, baseline, law); !why.empty())
-    return {Verdict::failed, p + why};
-  if (std::string why = order_problem(now, order); !why.empty()) return {Verdict::failed, p + why};
+    return ask_core(p, why, core);
+  if (std::string why = order_problem(now, order); !why.empty()) return ask_core(p, why, core);
   return {Verdict::passed, p + law + "; " + order};
 }
 

@@ -113,3 +113,31 @@ TEST_CASE(
                                          Contains("ours follows its own law to 0 m"));
   }
 }
+
+TEST_CASE("Tier 3 asks the measurement core when the stored sweep fails, and no bug gets through",
+          "[regression][bugs]") {
+  // A limit of the law the stored sweep cannot see: ours's law is unstable at stiff_spring's
+  // 1/25 (omega*h = 2.4 > 2), so the run ends in NaN; `dropcheck check` names it a LIMIT.
+  const Scene stiff = shipped_scene("extreme/stiff_spring");
+  const Baseline b = make_baseline(stiff, factory("ours"));
+  const CoreChecks core = core_checks(stiff, factory("ours"), factory("ours-f64"));
+  CHECK(check_physics(b).verdict == Verdict::failed);
+  CHECK(!core_checks(stiff, factory("ours"), {}));  // no reference: nothing to ask
+  const TierResult r = check_physics(b, nullptr, core);
+  INFO(r.message);
+  CHECK(r.verdict == Verdict::passed);
+  CHECK_THAT(r.message, Contains("the checks of `dropcheck check` pass, with LIMITs: own law at "
+                                 "h = 1/25: its law (semi-implicit Euler") &&
+                            Contains("unstable at h = 1/25: omega*h = 2.4 > 2") &&
+                            Contains("(the stored sweep alone fails: the run at h = 1/25 ended"));
+  // A broken scheme fails the core too: the tier's own message stands, word for word.
+  const Scene scene = shipped_scene("free_fall_drag");
+  for (const Bug bug : {Bug::drag_twice, Bug::explicit_euler}) {
+    const Baseline broken = make_baseline(scene, buggy_ours(bug));
+    const TierResult alone = check_physics(broken);
+    const TierResult asked =
+        check_physics(broken, nullptr, core_checks(scene, buggy_ours(bug), factory("ours-f64")));
+    CHECK(asked.verdict == Verdict::failed);
+    CHECK(asked.message == alone.message);
+  }
+}
