@@ -1,24 +1,36 @@
+// bare_step_loop: each compiled-in engine's bare stepping loop, by registry name (adapters.hpp).
 #include <stdexcept>
+#include <utility>
 
 #include "adapters.hpp"
 
 namespace dropcheck {
+namespace {
 
-double bare_step_loop(const std::string& engine, const Scene& scene, double h) {
-  if (engine == "ours") return bare_seconds_ours_f32(scene, h);
-  if (engine == "ours-f64") return bare_seconds_ours_f64(scene, h);
+using BareLoop = double (*)(const Scene&, double);
+
+// One row per engine compiled into this build.
+const std::pair<const char*, BareLoop> kBareLoops[] = {
+    {"ours", bare_seconds_ours_f32}, {"ours-f64", bare_seconds_ours_f64},
 #ifdef DROPCHECK_HAVE_BULLET
-  if (engine == "bullet") return bare_seconds_bullet(scene, h);
+    {"bullet", bare_seconds_bullet},
 #endif
 #ifdef DROPCHECK_HAVE_ODE
-  if (engine == "ode") return bare_seconds_ode(scene, h);
+    {"ode", bare_seconds_ode},
 #endif
 #ifdef DROPCHECK_HAVE_BOX2D
-  if (engine == "box2d") return bare_seconds_box2d(scene, h);
+    {"box2d", bare_seconds_box2d},
 #endif
 #ifdef DROPCHECK_HAVE_MUJOCO
-  if (engine == "mujoco") return bare_seconds_mujoco(scene, h);
+    {"mujoco", bare_seconds_mujoco},
 #endif
+};
+
+}  // namespace
+
+double bare_step_loop(const std::string& engine, const Scene& scene, double h) {
+  for (const auto& [name, loop] : kBareLoops)
+    if (engine == name) return loop(scene, h);
   throw std::invalid_argument("bare_step_loop: engine '" + engine + "' is not compiled in");
 }
 

@@ -67,11 +67,26 @@ class OursEngine final : public Engine {
     }
   }
 
+  // Each state constructed in place from the floats (exact: every float is a double).
+  void read_append(std::size_t, std::vector<BodyState>& out) const override {
+    for (const ours::Model<T>& m : models_)
+      out.emplace_back(m.translation.template cast<double>(),
+                       m.rigidBody.velocity.template cast<double>());
+  }
+
  private:
   T h_ = ours::PHYSICS_TIMESTEP<T>;
   ours::World<T> world_;
   std::vector<ours::Model<T>> models_;
 };
+
+// The bare loop of OursEngine<T> (bare_step_loop in adapters.hpp): load untimed, then steps only.
+template <typename T>
+double bare_seconds_ours(const Scene& scene, double h) {
+  OursEngine<T> e;
+  e.load(scene, h);
+  return e.bare_seconds(step_count(scene, h));
+}
 
 }  // namespace
 
@@ -83,15 +98,10 @@ std::unique_ptr<Engine> make_ours_f64() {
 }
 
 double bare_seconds_ours_f32(const Scene& scene, double h) {
-  OursEngine<float> e;
-  e.load(scene, h);
-  return e.bare_seconds(step_count(scene, h));
+  return bare_seconds_ours<float>(scene, h);
 }
-
 double bare_seconds_ours_f64(const Scene& scene, double h) {
-  OursEngine<double> e;
-  e.load(scene, h);
-  return e.bare_seconds(step_count(scene, h));
+  return bare_seconds_ours<double>(scene, h);
 }
 
 }  // namespace dropcheck

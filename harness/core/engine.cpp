@@ -9,6 +9,12 @@ std::string Engine::cannot_run(const Scene& scene) const {
   return {};
 }
 
+void Engine::read_append(std::size_t bodies, std::vector<BodyState>& out) const {
+  const std::size_t at = out.size();
+  out.resize(at + bodies);
+  read(std::span(out).subspan(at, bodies));
+}
+
 const char* to_string(Scalar scalar) {
   return scalar == Scalar::f32 ? "f32" : "f64";
 }

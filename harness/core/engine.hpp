@@ -7,6 +7,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "harness/core/law.hpp"
 #include "harness/core/scene.hpp"
@@ -76,6 +77,12 @@ class Engine {
 
   // The true state of every body after the last step (not an interpolated or stale copy).
   virtual void read(std::span<BodyState> out) const = 0;
+
+  // Appends what read() gives for the scene's `bodies` bodies to the end of `out`. The default
+  // appends zeroed states and reads into them; an adapter may construct the states straight from
+  // its own arrays instead, one pass of stores fewer over fresh memory (the runner keeps a step's
+  // states this way).
+  virtual void read_append(std::size_t bodies, std::vector<BodyState>& out) const;
 
   // True when the last step clamped a body's speed (Box2D moves at most 2 m per step).
   virtual bool speed_clamped() const { return false; }

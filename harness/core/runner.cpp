@@ -68,13 +68,18 @@ Trajectory empty_trajectory(const Engine& engine, const Scene& scene, double h,
   return t;
 }
 
-// Appends a sample: one copy of the states (a memmove into the reserved space; a slot read into
-// directly would first have to be zeroed, which costs a second pass over memory). States first: if
-// either allocation fails, samples() never counts a row that was not stored (recorded before states
-// once let an out-of-memory run print unset rows, zeros, as final states).
-void record(Trajectory& t, std::int64_t step, std::span<const BodyState> states) {
-  t.states.insert(t.states.end(), states.begin(), states.end());
-  t.recorded.push_back(step);
+// Keeps the engine's current state as the next sample's states, at the end of t.states (the
+// storage holds every sample, reserved once, so this never reallocates), and returns them. The
+// engine constructs them there directly (Engine::read_append): no scratch copy, no zero-fill. The
+// sample is counted (t.recorded) only once its states are checked; run_scene_in_process drops
+// states that were not counted.
+std::span<BodyState> read_sample(const Engine& engine, Trajectory& t, std::size_t bodies) {
+  const std::size_t at = t.states.size();
+  engine.read_append(bodies, t.states);
+  if (t.states.size() != at + bodies)
+    throw EngineError("read_append gave " + std::to_string(t.states.size() - at) + " states for " +
+                      std::to_string(bodies) + " bodies");
+  return std::span(t.states).subspan(at, bodies);
 }
 
 // Names the first body with a NaN/Inf state and ends the run there.
@@ -94,31 +99,38 @@ bool all_zero(std::span<const Vec3> forces) {
   return any == 0;
 }
 
-// Steps until the end or the first failure; returns normally in both cases. `states` holds the
-// state at step 0 and is reused for every step's read (it stays in cache; only kept steps are
-// copied out). `n` is the step under way, for the caller to report an exception thrown by the
-// engine.
+// Steps until the end or the first failure; returns normally in both cases. `current` holds the
+// state at step 0 and then each step's state: read into the trajectory's next slot on a kept step,
+// into `scratch` (which stays in cache) otherwise. `n` is the step under way, for the caller to
+// report an exception thrown by the engine.
 void step_loop(Engine& engine, const Scene& scene, Trajectory& t, std::int64_t every,
-               std::vector<BodyState>& states, std::int64_t& n) {
-  std::vector<Vec3> forces(states.size());
+               std::span<BodyState> current, std::int64_t& n) {
+  std::vector<BodyState> scratch(current.size());
+  std::vector<Vec3> forces(current.size());
   // Constant forces do not depend on the state: summed once, in the same order as every step would.
   const bool state_dependent = has_springs(scene);
-  compute_forces(scene, states, forces);
+  compute_forces(scene, current, forces);
   // Constant forces that are all +0.0 (free flight, contacts): handed over on step 1 only. An
   // engine applies a force to the next step only (Engine::set_forces), so it holds zero applied
   // force after each step, and handing it the same zeros again would change nothing but cost a
   // pass over every body per step (an engine that keeps the last forces keeps these zeros).
   const bool no_forces = !state_dependent && all_zero(forces);
   for (n = 1; n <= t.steps; ++n) {
-    if (state_dependent) compute_forces(scene, states, forces);
+    if (state_dependent) compute_forces(scene, current, forces);
     if (n == 1 || !no_forces) engine.set_forces(forces);
     engine.step();
-    engine.read(states);
+    const bool keep = n % every == 0 || n == t.steps;
+    if (keep) {
+      current = read_sample(engine, t, scratch.size());
+    } else {
+      current = scratch;
+      engine.read(current);
+    }
     if (engine.speed_clamped()) {
       if (t.clamped_steps++ == 0) t.first_clamped_step = n;
     }
-    if (!all_finite(states)) return fail_non_finite(t, states, n);
-    if (n % every == 0 || n == t.steps) record(t, n, states);
+    if (!all_finite(current)) return fail_non_finite(t, current, n);
+    if (keep) t.recorded.push_back(n);
   }
 }
 
@@ -135,15 +147,14 @@ Trajectory run_scene_in_process(Engine& engine, const Scene& scene, double h,
                                 const RunOptions& options) {
   const std::int64_t every = options.record_every < 1 ? 1 : options.record_every;
   Trajectory t = empty_trajectory(engine, scene, h, every);
-  std::vector<BodyState> states(scene.bodies.size());
   std::int64_t n = 0;
   auto start = std::chrono::steady_clock::now();
   try {
     engine.load(scene, h);
-    engine.read(states);
-    record(t, 0, states);
+    const std::span<BodyState> initial = read_sample(engine, t, scene.bodies.size());
+    t.recorded.push_back(0);
     start = std::chrono::steady_clock::now();  // time the stepping loop, not the setup
-    step_loop(engine, scene, t, every, states, n);
+    step_loop(engine, scene, t, every, initial, n);
   } catch (const std::bad_alloc&) {
     t.status = RunStatus::out_of_memory;
     t.failed_step = n;
@@ -154,6 +165,7 @@ Trajectory run_scene_in_process(Engine& engine, const Scene& scene, double h,
     t.failure = e.what();
   }
   t.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  t.states.resize(t.samples() * t.bodies());  // drops the slot of a step that failed
   return t;
 }
 

@@ -298,3 +298,32 @@ spring = { anchor = [0.0, 5.0, 0.0], stiffness = 400.0, damping = 1.5, rest_leng
   // The spring really matters: the bob is far from a free fall after 2 s.
   CHECK(std::abs(run.final_state(0).position.y() - 5.0) < 1.0);
 }
+
+TEST_CASE("an engine whose read_append gives the wrong number of states ends as engine_error",
+          "[runner]") {
+  // ours with a read_append that drops the last body: the runner's count check, not a short row.
+  class ShortAppend final : public dropcheck::Engine {
+   public:
+    dropcheck::EngineInfo info() const override { return inner_->info(); }
+    void load(const dropcheck::Scene& s, double h) override { inner_->load(s, h); }
+    void set_forces(std::span<const dropcheck::Vec3> f) override { inner_->set_forces(f); }
+    void step() override { inner_->step(); }
+    void read(std::span<dropcheck::BodyState> out) const override { inner_->read(out); }
+    void read_append(std::size_t bodies, std::vector<dropcheck::BodyState>& out) const override {
+      inner_->read_append(bodies, out);
+      out.pop_back();
+    }
+
+   private:
+    std::unique_ptr<dropcheck::Engine> inner_ = dropcheck::make_engine("ours");
+  };
+  ShortAppend e;
+  dropcheck::Scene s = ten_steps();
+  s.forces.clear();  // ours runs free bodies
+  const dropcheck::Trajectory t = dropcheck::run_scene(e, s, 0.1, {.record_every = 4});
+  CHECK(t.status == dropcheck::RunStatus::engine_error);
+  CHECK(t.failed_step == 0);
+  CHECK_THAT(t.failure, Contains("1 states for 2 bodies"));
+  CHECK(t.samples() == 0);
+  CHECK(t.states.empty());
+}
