@@ -288,11 +288,10 @@ void time_evaluations(std::vector<SceneEvaluation>& scenes, const std::vector<En
       }
       cells.push_back(std::move(cell));
     }
-  const auto round = [&](int r, int rounds) {
-    say(progress, "timing " + std::to_string(cells.size()) + " cells: round " + std::to_string(r) +
-                      " of " + std::to_string(rounds));
+  const auto cell = [&](int c, int n) {
+    say(progress, "timing cell " + std::to_string(c) + " of " + std::to_string(n));
   };
-  const std::vector<std::vector<Timing>> t = time_cells(cells, options, round);
+  const std::vector<std::vector<Timing>> t = time_cells(cells, options, cell);
   for (std::size_t c = 0; c < cells.size(); ++c)
     for (std::size_t k = 0; k < t[c].size(); ++k) targets[c][k]->timing = t[c][k];
 }

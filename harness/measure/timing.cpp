@@ -257,13 +257,16 @@ std::vector<std::vector<Timing>> time_cells(const std::vector<TimingCell>& cells
                                             const std::function<void(int, int)>& progress) {
   std::vector<CellRun> runs;
   for (const TimingCell& cell : cells) runs.push_back(start_cell(cell, options));
-  const int rounds = options.warmups + options.samples;
-  for (int r = -options.warmups; r < options.samples; ++r) {
-    if (progress) progress(r + options.warmups + 1, rounds);
-    for (std::size_t k = 0; k < cells.size(); ++k) {
-      const std::size_t c = (r % 2 == 0) ? k : cells.size() - 1 - k;
+  // Cell after cell, each through all its rounds back to back. Measured: going round all the cells
+  // instead (every round visiting every cell) let two back-to-back reports agree within 10 % on
+  // only 44 % of the cells on a quiet machine (the halves of one report: median difference 14.5 %),
+  // against 93-96 % cell after cell: between two samples of a cell every other cell ran, and its
+  // engines met the caches, heap and clock in another state each time.
+  const int n = static_cast<int>(cells.size());
+  for (int c = 0; c < n; ++c) {
+    if (progress) progress(c + 1, n);
+    for (int r = -options.warmups; r < options.samples; ++r)
       time_round(cells[c], runs[c], r, options);
-    }
   }
   std::vector<std::vector<Timing>> out(cells.size());
   for (std::size_t c = 0; c < cells.size(); ++c)

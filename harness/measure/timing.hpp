@@ -87,14 +87,12 @@ struct TimingCell {
   std::vector<std::pair<std::string, EngineFactory>> engines;
 };
 
-// Times every engine of every cell, in rounds: each round (warm-ups first, untimed) visits every
-// cell once, forward in even rounds and backward in odd ones, and within a cell runs every engine
-// once (an untimed bare loop to warm its code and data, then the timed full loop and the timed bare
-// loop), also in alternating order. So a disturbance of the machine shorter than a round (another
-// process, the hypervisor, a frequency change) lands in one sample of each cell, which the median
-// discards, instead of in every sample of one cell; and each cell's samples, and both halves of
-// them, are spread over the whole window. `progress` (optional) hears (round, rounds) as each
-// round starts. One vector per cell, in the cell's engine order.
+// Times every engine of every cell, cell after cell: each cell runs its rounds back to back
+// (warm-ups first, untimed), and each round runs every engine once (an untimed bare loop to warm
+// its code and data, then the timed full loop and the timed bare loop), in alternating order from
+// round to round, so that drift of the machine hits all engines alike and each engine's samples,
+// and both halves of them, are spread over the cell's whole window. `progress` (optional) hears
+// (cell, cells) as each cell starts. One vector per cell, in the cell's engine order.
 std::vector<std::vector<Timing>> time_cells(const std::vector<TimingCell>& cells,
                                             const TimingOptions& options = {},
                                             const std::function<void(int, int)>& progress = {});
