@@ -21,8 +21,6 @@
 namespace dropcheck {
 namespace {
 
-constexpr const char* kProvenancePrefix = "# dropcheck baseline: ";
-
 std::string sweep_line(const SweepPoint& p) {
   return "sweep h=" + p.dt.text + " steps=" + std::to_string(p.steps) + " status=" + p.status +
          " analytic_max_dx=" + exact(p.analytic_max_dx) +

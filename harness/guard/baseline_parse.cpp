@@ -15,8 +15,6 @@
 namespace dropcheck {
 namespace {
 
-constexpr const char* kProvenancePrefix = "# dropcheck baseline: ";
-
 struct Parser {
   std::string path;
   int line = 0;
