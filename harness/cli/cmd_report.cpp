@@ -6,7 +6,8 @@
 // swapped into place only when complete: a bad scene file exits 2 naming the file, key and problem,
 // and leaves the previous report untouched. DIR is replaced only when dropcheck wrote it (its
 // .dropcheck-manifest, harness/core/output_dir.hpp); that and every other output rule is checked
-// before any engine runs.
+// before any engine runs. With timings, DIR/timings.json keeps them, and the next report into DIR
+// says how far each median moved (the two-run figure of "Timing reproducibility").
 #include <algorithm>
 #include <filesystem>
 
@@ -141,6 +142,11 @@ int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ost
   in.timing = !args.has("--no-timing");
   in.provenance = current_provenance(".", out_dir);
   describe_engines(slots, in);
+  if (in.timing) {  // the report this one replaces, to say how far each median moved
+    in.previous = read_previous_timings(out_dir);
+    if (!in.previous.warning.empty())
+      err << "warning: " << in.previous.warning << "; no comparison with the previous report\n";
+  }
   const std::size_t total = scenes.size() + (files.extreme.empty() ? 0 : 1);
   evaluate_all(scenes, slots, total, in, err);
   if (!files.extreme.empty()) {

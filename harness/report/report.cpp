@@ -149,10 +149,9 @@ std::string overhead(const ReportInput& in) {
          t.str() + "\n";
 }
 
-// Every timing cell of the report: its two halves' medians, as the report's own measure of how
-// far a figure moves from one run to the next.
-std::string reproducibility(const ReportInput& in) {
-  if (!in.timing) return {};
+// The halves of every timing cell: the report's own measure of how far a figure moves from one
+// run to the next.
+std::string halves(const ReportInput& in) {
   std::vector<double> spreads;
   long disturbed = 0, runs = 0;
   for (const SceneEvaluation& se : in.scenes)
@@ -170,7 +169,7 @@ std::string reproducibility(const ReportInput& in) {
   };
   const std::size_t n = spreads.size();
   return fmt::sprintf(
-      "## Timing reproducibility (⏱ wall time)\n\nEach timing cell is measured as two "
+      "Each timing cell is measured as two "
       "halves of its samples, so the report measures its own run-to-run spread: of "
       "%zu cells, the two halves' medians agree within 5 %% in %ld (%.0f %%), within 10 %% in "
       "%ld (%.0f %%); median difference %.1f %%, worst %.1f %%. A difference between two "
@@ -179,6 +178,36 @@ std::string reproducibility(const ReportInput& in) {
       "(wall time beyond the thread's CPU time).\n\n",
       n, static_cast<long>(within(0.05)), 100.0 * within(0.05) / n, static_cast<long>(within(0.10)),
       100.0 * within(0.10) / n, 100.0 * spreads[n / 2], 100.0 * spreads.back(), disturbed, runs);
+}
+
+// This report's medians against those of the report it replaces (its timings.json): the two-run
+// figure when both come from the same commit and CPU, else what the change did to the run time.
+std::string against_previous(const ReportInput& in) {
+  if (!in.previous.record) return in.previous.note + "\n\n";
+  const TimingRecord& before = *in.previous.record;
+  const TimingComparison c = compare_timings(before, timing_record(in.scenes, in.provenance));
+  const bool same = before.commit == in.provenance.commit && before.cpu == in.provenance.cpu &&
+                    in.provenance.commit.find("dirty") == std::string::npos;
+  std::string md = fmt::sprintf(
+      "Against the report this one replaced (commit %s; this one: commit %s): of %zu cells "
+      "timed in both, %zu (%.1f %%) medians agree within %.0f %%; median move %.1f %%. ",
+      before.commit, in.provenance.commit, c.cells, c.agree,
+      c.cells ? 100.0 * c.agree / c.cells : 0.0, 100.0 * c.tolerance, 100.0 * c.median_moved);
+  md += same ? "Same commit and CPU: this is the run-to-run spread of two reports."
+             : "A different commit, CPU or uncommitted change: the moves include what changed.";
+  if (c.worst.empty()) return md + "\n\n";
+  MarkdownTable t({"scene", "engine", "h", "⏱ before (ms per sim s)", "⏱ now (ms per sim s)",
+                   "moved (max/min - 1)"},
+                  "lllr");
+  for (const MovedCell& m : c.worst)
+    t.add({m.now.scene, m.now.engine, m.now.h, cell(m.before.median_ms), cell(m.now.median_ms),
+           std::isfinite(m.moved) ? fmt::sprintf("%.1f %%", 100.0 * m.moved) : kNone});
+  return md + " The cells that moved most:\n\n" + t.str() + "\n";
+}
+
+std::string reproducibility(const ReportInput& in) {
+  if (!in.timing) return {};
+  return "## Timing reproducibility (⏱ wall time)\n\n" + halves(in) + against_previous(in);
 }
 
 std::string determinism(const ReportInput& in) {
@@ -224,8 +253,11 @@ void write_report(const ReportInput& in, const std::string& dir, const Progress&
       outcomes.emplace_back(p.file, render_plot(p.spec, dir, p.file));
     }
   }
-  write_file_atomic((std::filesystem::path(dir) / "README.md").string(),
-                    report_markdown(in, outcomes));
+  const std::filesystem::path folder(dir);
+  write_file_atomic((folder / "README.md").string(), report_markdown(in, outcomes));
+  if (in.timing)
+    write_file_atomic((folder / kTimingsFile).string(),
+                      timing_json(timing_record(in.scenes, in.provenance)));
 }
 
 }  // namespace dropcheck

@@ -10,6 +10,7 @@
 #include "harness/core/engine.hpp"
 #include "harness/core/provenance.hpp"
 #include "harness/measure/evaluate.hpp"
+#include "harness/measure/timing_record.hpp"
 #include "harness/report/plot.hpp"
 #include "harness/report/report_plots.hpp"
 
@@ -24,6 +25,9 @@ struct ReportInput {
   TimingOptions timing_options;  // as used, for the note on how timings are made
   std::string stability;         // Markdown of the stability section ("" when none)
   std::string stability_note;    // shown when `stability` is empty
+  // The timings of the report this one replaces (its timings.json), to say how far each median
+  // moved; without a record, its note says why.
+  PreviousTimings previous;
 };
 
 // Outcome of drawing each plot: file -> "" when drawn, else why not.
@@ -32,7 +36,8 @@ using PlotOutcomes = std::vector<std::pair<std::string, std::string>>;
 // The whole README.md, given the outcome of every plot.
 std::string report_markdown(const ReportInput& input, const PlotOutcomes& plots);
 
-// Draws every plot into `dir` and writes `dir`/README.md. `dir` must exist (a staging directory:
+// Draws every plot into `dir` and writes `dir`/README.md, and, with timings, `dir`/timings.json
+// (timing_record.hpp). `dir` must exist (a staging directory:
 // cmd_report moves it into place). Progress lines go to `progress`.
 void write_report(const ReportInput& input, const std::string& dir, const Progress& progress = {});
 

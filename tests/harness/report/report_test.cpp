@@ -13,6 +13,7 @@
 
 #include "../test_dirs.hpp"
 #include "harness/cli/cli.hpp"
+#include "harness/core/output_dir.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/scene_loader.hpp"
 
@@ -171,4 +172,64 @@ TEST_CASE("with timings the run-time table has marked columns and a work-precisi
   for (const EngineEvaluation& ev : in.scenes[0].engines)
     for (const StepEvaluation& st : ev.sweep) CHECK(st.timing);
   if (has_gnuplot()) CHECK(fs::exists(dir.path / "throw-work-precision.svg"));
+}
+
+TEST_CASE("a report written again into its folder states how far each median moved", "[report]") {
+  ScratchDir dir("previous-timings");
+  const std::string out = dir.file("out");
+  std::vector<EngineSlot> engines{{"ours-f64", [] { return make_engine("ours-f64"); }, ""}};
+  const Scene scene = load_scene(dir.write("throw.toml", kThrow));
+  // One report into `out` as cmd_report writes it (staged, then swapped in), with as little timing
+  // work as possible: this checks the plumbing, not the figures.
+  const auto write = [&] {
+    ReportInput in;
+    in.timing_options.body_steps_per_run = 1;
+    in.timing_options.warmups = 0;
+    in.timing_options.samples = 4;
+    in.provenance.commit = "abc1234";
+    in.engines.push_back(make_engine("ours-f64")->info());
+    in.scenes.push_back(evaluate_scene(scene, engines));
+    time_evaluations(in.scenes, engines, in.timing_options);
+    in.previous = read_previous_timings(out);
+    StagingDir staging(out);
+    write_report(in, staging.path());
+    staging.commit();
+    return in.previous;
+  };
+
+  CHECK(!write().record);
+  CHECK_THAT(slurp(out + "/README.md"), Contains("No earlier timings in this folder"));
+  const TimingRecord first = parse_timing_record(slurp(out + "/timings.json"), "timings.json");
+  REQUIRE(first.cells.size() == 2);  // ours-f64 at 1/30 and 1/60
+  CHECK(first.commit == "abc1234");
+  CHECK(first.cells[1].h == "1/60");
+  CHECK(first.cells[1].median_ms > 0);
+
+  CHECK(write().record);
+  CHECK_THAT(slurp(out + "/README.md"),
+             Contains("Against the report this one replaced (commit abc1234; this one: commit "
+                      "abc1234): of 2 cells timed in both") &&
+                 Contains("Same commit and CPU: this is the run-to-run spread") &&
+                 Contains("| throw | ours-f64 | 1/"));
+
+  // A damaged record is no reason to refuse the report: it says why there is no comparison, and
+  // the record is written afresh.
+  std::ofstream(out + "/timings.json", std::ios::trunc) << "{\"commit\": 1";
+  const PreviousTimings damaged = write();
+  CHECK(!damaged.record);
+  CHECK_THAT(damaged.warning, Contains(out + "/timings.json") && Contains("not a timings record"));
+  CHECK_THAT(slurp(out + "/README.md"), Contains("could not be read"));
+  CHECK(parse_timing_record(slurp(out + "/timings.json"), "t").cells.size() == 2);
+}
+
+TEST_CASE("the timings of a previous report are read only from a regular file", "[report]") {
+  ScratchDir dir("previous-special");
+  CHECK_THAT(read_previous_timings(dir.file("absent")).note, Contains("No earlier timings"));
+  fs::create_directories(dir.path / "dir" / "timings.json");
+  const PreviousTimings d = read_previous_timings(dir.file("dir"));
+  CHECK(!d.record);
+  CHECK_THAT(d.warning, Contains("timings.json") && Contains("it is a directory"));
+  fs::create_directories(dir.path / "link");
+  fs::create_symlink("/dev/zero", dir.path / "link" / "timings.json");
+  CHECK_THAT(read_previous_timings(dir.file("link")).warning, Contains("not a regular file"));
 }
