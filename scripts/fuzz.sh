@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# Fuzzes the scene loader and the baseline parser with libFuzzer (clang, AddressSanitizer and
+# Fuzzes the scene loader, the baseline parser and the timings record reader with libFuzzer (clang, AddressSanitizer and
 # UndefinedBehaviorSanitizer), one target after the other.
 #
-#   scripts/fuzz.sh [SECONDS] [TARGET...]   SECONDS per target (default 600); TARGET scene_loader
-#                                           and/or baseline_parse (default both)
+#   scripts/fuzz.sh [SECONDS] [TARGET...]   SECONDS per target (default 600); TARGET scene_loader,
+#                                           baseline_parse, timing_record (default all three)
 #   scripts/fuzz.sh --build-only            only compile build/fuzz/<target>
 #
-# Seeds: scenarios/ (scenes) and tests/baselines/ (baselines), plus fuzz/regressions/<target>/ (inputs
+# Seeds: scenarios/ (scenes), tests/baselines/ (baselines) and reports/ (timings.json), plus fuzz/regressions/<target>/ (inputs
 # that once found a bug). New corpus entries go to build/fuzz/corpus/<target>/, crashes to
 # build/fuzz/findings/<target>/ (libFuzzer prints the input's path and the reproducer command).
 # Exit status: 0 when every target ran its time without a finding, 1 otherwise.
@@ -24,13 +24,14 @@ for a in "$@"; do
     *) seconds=$a ;;
   esac
 done
-[ ${#targets[@]} -gt 0 ] || targets=(scene_loader baseline_parse)
+[ ${#targets[@]} -gt 0 ] || targets=(scene_loader baseline_parse timing_record)
 
 # The sources a target needs (a static library: only what is referenced gets linked). toml++ is
 # compiled header-only here so that its parser is instrumented too, with its internal debug
 # assertions off as in the library dropcheck links (the loader refuses control characters before
 # toml++ sees them, and hands it ASCII only: harness/core/toml_ascii.hpp).
-sources=("$root"/harness/core/*.cpp "$root"/harness/guard/baseline_parse.cpp "$root"/harness/guard/baseline_io.cpp)
+sources=("$root"/harness/core/*.cpp "$root"/harness/guard/baseline_parse.cpp "$root"/harness/guard/baseline_io.cpp
+         "$root"/harness/measure/timing_record.cpp)
 flags=(-std=c++20 -O1 -g -fno-omit-frame-pointer -fsanitize=fuzzer-no-link,address,undefined
        -fno-sanitize-recover=all -ffp-contract=off -I"$root" -I/usr/include/eigen3
        -DTOML_HEADER_ONLY=1 '-DTOML_ASSERT(expr)=static_assert(true)')
@@ -54,6 +55,7 @@ seeds() {
   case $1 in
     scene_loader) echo "$root/scenarios" ;;
     baseline_parse) echo "$root/tests/baselines" ;;
+    timing_record) echo "$root/reports" ;;
   esac
 }
 

@@ -16,7 +16,8 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-TimedCell timed_cell(const std::string& scene, const std::string& engine, const StepEvaluation& st) {
+TimedCell timed_cell(const std::string& scene, const std::string& engine,
+                     const StepEvaluation& st) {
   const Timing& t = *st.timing;
   return {scene,
           engine,
@@ -78,11 +79,11 @@ struct Reader {
   TimedCell cell(const Json& c, const std::string& name) const {
     if (!c.is_object()) fail(name, std::string("expected an object, got ") + c.type_name());
     const std::string where = name + ".";
-    return {text(c, "scene", where),         text(c, "engine", where),
-            text(c, "h", where),             number(c, "median_ms", where),
-            number(c, "q1_ms", where),       number(c, "q3_ms", where),
-            number(c, "min_ms", where),      number(c, "bare_median_ms", where),
-            count(c, "samples", where),      count(c, "replicas", where),
+    return {text(c, "scene", where),    text(c, "engine", where),
+            text(c, "h", where),        number(c, "median_ms", where),
+            number(c, "q1_ms", where),  number(c, "q3_ms", where),
+            number(c, "min_ms", where), number(c, "bare_median_ms", where),
+            count(c, "samples", where), count(c, "replicas", where),
             count(c, "repeats", where)};
   }
 };
@@ -130,13 +131,14 @@ TimingRecord parse_timing_record(const std::string& text, const std::string& fil
   Json root;
   try {
     root = Json::parse(text);
-  } catch (const Json::parse_error& e) {
+  } catch (const Json::exception& e) {  // a syntax error, or a number beyond double's range
     r.fail("", std::string("not a timings record: ") + e.what());
   }
   if (!root.is_object()) r.fail("", "not a timings record: expected a JSON object");
   TimingRecord record{r.text(root, "commit", ""), r.text(root, "cpu", ""), {}};
   const Json& cells = r.at(root, "cells", "");
-  if (!cells.is_array()) r.fail("cells", std::string("expected an array, got ") + cells.type_name());
+  if (!cells.is_array())
+    r.fail("cells", std::string("expected an array, got ") + cells.type_name());
   for (std::size_t i = 0; i < cells.size(); ++i)
     record.cells.push_back(r.cell(cells[i], "cells[" + std::to_string(i) + "]"));
   return record;

@@ -70,10 +70,10 @@ struct MovedCell {
 // Two records compared cell by cell (same scene, engine and step; a key found twice in either
 // record is left out, as is a cell found in one record only).
 struct TimingComparison {
-  std::size_t cells = 0;     // cells in both records
-  std::size_t agree = 0;     // of them, medians within the tolerance
-  double tolerance = 0.0;    // as given
-  double median_moved = 0.0; // the median of `moved` over the cells
+  std::size_t cells = 0;         // cells in both records
+  std::size_t agree = 0;         // of them, medians within the tolerance
+  double tolerance = 0.0;        // as given
+  double median_moved = 0.0;     // the median of `moved` over the cells
   std::vector<MovedCell> worst;  // the cells that moved most, largest first
 };
 

@@ -14,8 +14,8 @@ namespace {
 
 TimedCell timed(const std::string& scene, const std::string& engine, const std::string& h,
                 double median_ms) {
-  return {scene, engine, h, median_ms, 0.9 * median_ms, 1.1 * median_ms, 0.8 * median_ms,
-          0.5 * median_ms, 8, 4, 2};
+  return {scene,           engine, h, median_ms, 0.9 * median_ms, 1.1 * median_ms, 0.8 * median_ms,
+          0.5 * median_ms, 8,      4, 2};
 }
 
 std::string parse_error(const std::string& text) {
@@ -30,7 +30,8 @@ std::string parse_error(const std::string& text) {
 }  // namespace
 
 TEST_CASE("a timings record reads back exactly what was written", "[timing]") {
-  const TimingRecord r{"abc1234", "CPU \"x\", 2 logical",
+  const TimingRecord r{"abc1234",
+                       "CPU \"x\", 2 logical",
                        {timed("wind", "ours", "1/60", 0.1 / 3), timed("a,b", "ode", "0.01", 1e-300),
                         timed("wind", "bullet", "1/60", 12345.678901234567)}};
   const TimingRecord back = parse_timing_record(timing_json(r), "timings.json");
@@ -55,9 +56,13 @@ TEST_CASE("a bad timings record is refused naming the file, the key and the prob
     return R"({"commit":"c","cpu":"x","cells":[)" + cell + "," + c + "]}";
   };
   CHECK(parse_error(with(cell)) == "(accepted)");
-  CHECK_THAT(parse_error("{\"commit\": "), Contains("out/timings.json") && Contains("not a timings"));
+  CHECK_THAT(parse_error("{\"commit\": "),
+             Contains("out/timings.json") && Contains("not a timings"));
   CHECK_THAT(parse_error("[1, 2]"), Contains("expected a JSON object"));
-  CHECK_THAT(parse_error(R"({"commit":"c","cpu":"x"})"), Contains("cells: required key is missing"));
+  CHECK_THAT(parse_error(R"({"commit":"c","cpu":"x","cells":[{"median_ms":1e999}]})"),
+             Contains("not a timings record") && Contains("number overflow"));
+  CHECK_THAT(parse_error(R"({"commit":"c","cpu":"x"})"),
+             Contains("cells: required key is missing"));
   CHECK_THAT(parse_error(R"({"commit":"c","cpu":"x","cells":{}})"),
              Contains("cells: expected an array, got object"));
   std::string missing = cell;
@@ -65,7 +70,8 @@ TEST_CASE("a bad timings record is refused naming the file, the key and the prob
   CHECK_THAT(parse_error(with(missing)), Contains("cells[1].median_ms: required key is missing"));
   std::string negative = cell;
   negative.replace(negative.find(R"("min_ms":1)"), 10, R"("min_ms":-1)");
-  CHECK_THAT(parse_error(with(negative)), Contains("cells[1].min_ms: expected a finite number >= 0"));
+  CHECK_THAT(parse_error(with(negative)),
+             Contains("cells[1].min_ms: expected a finite number >= 0"));
   std::string text = cell;
   text.replace(text.find(R"("h":"1/60")"), 10, R"("h":60)");
   CHECK_THAT(parse_error(with(text)), Contains("cells[1].h: expected a string, got number"));
@@ -76,11 +82,13 @@ TEST_CASE("a bad timings record is refused naming the file, the key and the prob
 }
 
 TEST_CASE("two timing records are compared on the cells both hold, once each", "[timing]") {
-  const TimingRecord before{"a", "cpu",
+  const TimingRecord before{"a",
+                            "cpu",
                             {timed("s", "ours", "1/60", 1.0), timed("s", "ode", "1/60", 2.0),
                              timed("s", "bullet", "1/60", 3.0), timed("s", "box2d", "1/60", 1.0),
                              timed("s", "box2d", "1/60", 1.0), timed("t", "ours", "1/60", 1.0)}};
-  const TimingRecord now{"a", "cpu",
+  const TimingRecord now{"a",
+                         "cpu",
                          {timed("s", "ours", "1/60", 1.09),    // +9 %: agrees
                           timed("s", "ode", "1/60", 1.6),      // 2 / 1.6 - 1 = 25 %
                           timed("s", "bullet", "1/60", 3.03),  // +1 %
