@@ -47,7 +47,7 @@ build() {
   rm -f "$out/libharness.a"
   ar rcs "$out/libharness.a" "${objs[@]}"
   for t in "${targets[@]}"; do
-    "$cxx" "${flags[@]}" -fsanitize=fuzzer "$root/fuzz/${t}_fuzz.cpp" "$out/libharness.a" -o "$out/$t"
+    "$cxx" "${flags[@]}" -fsanitize=fuzzer "$root/fuzz/${t}_fuzz.cpp" "$out/libharness.a" -lfmt -o "$out/$t"
   done
 }
 
