@@ -147,12 +147,18 @@ TimingRecord parse_timing_record(const std::string& text, const std::string& fil
 PreviousTimings read_previous_timings(const std::string& folder) {
   const std::filesystem::path file = std::filesystem::path(folder) / kTimingsFile;
   std::error_code ec;
-  if (!std::filesystem::exists(std::filesystem::symlink_status(file, ec)))
+  const std::filesystem::file_status status = std::filesystem::symlink_status(file, ec);
+  if (!std::filesystem::exists(status))
     return {std::nullopt,
             "No earlier timings in this folder (" + file.generic_string() +
                 "): write the report into the same folder again for the two-run figure.",
             ""};
   try {
+    // Never through a link: the file a link names is not one dropcheck wrote, and a parse error
+    // would quote its bytes into the report.
+    if (std::filesystem::is_symlink(status))
+      throw InputError(file.generic_string(), 0, "",
+                       "is a symbolic link, not the file a report wrote");
     return {parse_timing_record(read_regular_file(file.string(), std::int64_t{16} << 20,
                                                   "16 MiB, for a timings record"),
                                 file.generic_string()),

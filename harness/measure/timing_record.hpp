@@ -51,7 +51,8 @@ std::string timing_json(const TimingRecord& record);
 TimingRecord parse_timing_record(const std::string& text, const std::string& file);
 
 // The timings of the report in `folder` that a new report will replace: read when `folder`/
-// timings.json exists (a regular file of at most 16 MiB, parse_timing_record), else absent.
+// timings.json exists (a regular file of at most 16 MiB, not a symbolic link, parse_timing_record),
+// else absent.
 // Never throws: a missing or unreadable record leaves `record` empty and `note` says why.
 struct PreviousTimings {
   std::optional<TimingRecord> record;

@@ -222,7 +222,8 @@ TEST_CASE("a report written again into its folder states how far each median mov
   CHECK(parse_timing_record(slurp(out + "/timings.json"), "t").cells.size() == 2);
 }
 
-TEST_CASE("the timings of a previous report are read only from a regular file", "[report]") {
+TEST_CASE("the timings of a previous report are read only from a regular file, never a link",
+          "[report]") {
   ScratchDir dir("previous-special");
   CHECK_THAT(read_previous_timings(dir.file("absent")).note, Contains("No earlier timings"));
   fs::create_directories(dir.path / "dir" / "timings.json");
@@ -231,5 +232,12 @@ TEST_CASE("the timings of a previous report are read only from a regular file", 
   CHECK_THAT(d.warning, Contains("timings.json") && Contains("it is a directory"));
   fs::create_directories(dir.path / "link");
   fs::create_symlink("/dev/zero", dir.path / "link" / "timings.json");
-  CHECK_THAT(read_previous_timings(dir.file("link")).warning, Contains("not a regular file"));
+  CHECK_THAT(read_previous_timings(dir.file("link")).warning, Contains("is a symbolic link"));
+  fs::create_directories(dir.path / "secret");
+  const std::string secret = dir.write("secret/data", "secret text");
+  fs::create_directories(dir.path / "link2");
+  fs::create_symlink(secret, dir.path / "link2" / "timings.json");
+  const PreviousTimings l = read_previous_timings(dir.file("link2"));
+  CHECK(!l.record);
+  CHECK_THAT(l.warning, Contains("is a symbolic link") && !Contains("secret text"));
 }
