@@ -1,5 +1,8 @@
 #include "harness/core/engine.hpp"
 
+#include <bit>
+#include <cstdint>
+
 namespace dropcheck {
 
 std::string Engine::cannot_run(const Scene& scene) const {
@@ -9,10 +12,34 @@ std::string Engine::cannot_run(const Scene& scene) const {
   return {};
 }
 
-void Engine::read_append(std::size_t bodies, std::vector<BodyState>& out) const {
+// A double is NaN or Inf exactly when its 11 exponent bits are all ones; adding one to the exponent
+// field then carries into the sign bit, so the OR of (bits & exponent mask) + (one exponent unit)
+// over all numbers has the sign bit set iff some number is not finite. Integer AND, ADD and OR
+// vectorise. Eight independent accumulators (one body and a third per round): with a single one
+// every OR waits for the previous one, and the pass cost half of ours's own step (perf, N = 1000).
+bool all_finite(std::span<const BodyState> states) {
+  static_assert(sizeof(BodyState) == 6 * sizeof(double));
+  constexpr std::uint64_t kExponent = 0x7ff0000000000000u, kUnit = 0x0010000000000000u;
+  constexpr std::size_t kLanes = 8;
+  const auto* d = reinterpret_cast<const double*>(states.data());
+  const std::size_t n = 6 * states.size();
+  std::uint64_t any[kLanes] = {};
+  std::size_t k = 0;
+  for (; k + kLanes <= n; k += kLanes)
+    for (std::size_t j = 0; j < kLanes; ++j)
+      any[j] |= (std::bit_cast<std::uint64_t>(d[k + j]) & kExponent) + kUnit;
+  for (; k < n; ++k) any[0] |= (std::bit_cast<std::uint64_t>(d[k]) & kExponent) + kUnit;
+  std::uint64_t all = 0;
+  for (const std::uint64_t a : any) all |= a;
+  return (all >> 63) == 0;
+}
+
+bool Engine::read_append(std::size_t bodies, StateBuffer& out, StateUse) const {
   const std::size_t at = out.size();
-  out.resize(at + bodies);
-  read(std::span(out).subspan(at, bodies));
+  out.resize(at + bodies);  // unwritten: read() writes every one
+  const std::span<BodyState> added = std::span(out).subspan(at, bodies);
+  read(added);
+  return all_finite(added);
 }
 
 const char* to_string(Scalar scalar) {

@@ -4,9 +4,11 @@
 
 #include <functional>
 #include <memory>
+#include <new>
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "harness/core/law.hpp"
@@ -56,6 +58,49 @@ struct BodyState {
   Vec3 velocity = Vec3::Zero();
 };
 
+// Allocator of state storage: a state added without a value (resize(n), emplace_back()) is left
+// unwritten, for the caller to write at once, so the runner's states are written once instead of
+// zeroed first and then written (a second pass of stores over fresh memory). Blocks are 64-byte
+// aligned (whole cache lines; StateWriter's streamed stores need 16). Otherwise as std::allocator.
+template <typename T>
+struct UnwrittenAllocator {
+  using value_type = T;
+  static constexpr std::align_val_t kAlign{64};  // one cache line
+
+  UnwrittenAllocator() = default;
+  template <typename U>
+  UnwrittenAllocator(const UnwrittenAllocator<U>&) noexcept {}  // NOLINT: rebinding converts
+
+  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlign)); }
+  void deallocate(T* p, std::size_t) noexcept { ::operator delete(p, kAlign); }
+  // Leaves the object unwritten: an aggregate of doubles (implicitly created by the allocation).
+  template <typename U>
+  void construct(U*) noexcept {}
+  // Any other construction as std::allocator does it.
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+  // Every instance can free what another allocated.
+  template <typename U>
+  bool operator==(const UnwrittenAllocator<U>&) const noexcept {
+    return true;
+  }
+};
+
+// States in body-major runs (Trajectory::states): resize() and emplace_back() without a value leave
+// the new states unwritten (UnwrittenAllocator); write them before anything reads them.
+using StateBuffer = std::vector<BodyState, UnwrittenAllocator<BodyState>>;
+
+// What the states an Engine::read_append adds are for.
+enum class StateUse {
+  next_step,  // read again soon (the next step's forces or checks): keep them in the cache
+  kept,       // kept for after the run only: they may be written around the cache (streamed)
+};
+
+// True when every number of every state is finite (one branch-free pass, engine.cpp).
+bool all_finite(std::span<const BodyState> states);
+
 class Engine {
  public:
   virtual ~Engine() = default;
@@ -78,11 +123,12 @@ class Engine {
   // The true state of every body after the last step (not an interpolated or stale copy).
   virtual void read(std::span<BodyState> out) const = 0;
 
-  // Appends what read() gives for the scene's `bodies` bodies to the end of `out`. The default
-  // appends zeroed states and reads into them; an adapter may construct the states straight from
-  // its own arrays instead, one pass of stores fewer over fresh memory (the runner keeps a step's
-  // states this way).
-  virtual void read_append(std::size_t bodies, std::vector<BodyState>& out) const;
+  // Appends what read() gives for the scene's `bodies` bodies to the end of `out` and returns true
+  // when every number of them is finite: how the runner reads each step. The default appends
+  // unwritten states (StateBuffer), read()s into them and checks them in a second pass
+  // (all_finite); an adapter may instead write them from its own arrays and check them in the same
+  // pass, streamed past the cache when `use` is kept (StateWriter, harness/core/engine_writer.hpp).
+  virtual bool read_append(std::size_t bodies, StateBuffer& out, StateUse use) const;
 
   // True when the last step clamped a body's speed (Box2D moves at most 2 m per step).
   virtual bool speed_clamped() const { return false; }

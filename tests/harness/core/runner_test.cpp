@@ -309,9 +309,11 @@ TEST_CASE("an engine whose read_append gives the wrong number of states ends as 
     void set_forces(std::span<const dropcheck::Vec3> f) override { inner_->set_forces(f); }
     void step() override { inner_->step(); }
     void read(std::span<dropcheck::BodyState> out) const override { inner_->read(out); }
-    void read_append(std::size_t bodies, std::vector<dropcheck::BodyState>& out) const override {
-      inner_->read_append(bodies, out);
+    bool read_append(std::size_t bodies, dropcheck::StateBuffer& out,
+                     dropcheck::StateUse use) const override {
+      const bool finite = inner_->read_append(bodies, out, use);
       out.pop_back();
+      return finite;
     }
 
    private:
