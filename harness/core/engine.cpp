@@ -3,6 +3,10 @@
 #include <bit>
 #include <cstdint>
 
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
 namespace dropcheck {
 
 std::string Engine::cannot_run(const Scene& scene) const {
@@ -10,6 +14,36 @@ std::string Engine::cannot_run(const Scene& scene) const {
   if (scene.world.contacts && !caps.contacts) return "no contacts";
   if (caps.planar_only && !is_planar(scene)) return "not planar";
   return {};
+}
+
+namespace {
+
+constexpr std::align_val_t kStateAlignment{64};           // one cache line
+constexpr std::size_t kHugePage = std::size_t{2} << 20;   // x86-64 transparent huge page
+constexpr std::size_t kHugeBlock = std::size_t{4} << 20;  // from this size on: huge pages
+
+}  // namespace
+
+// Huge pages: a trajectory kept every step is written once, front to back, into fresh memory; with
+// 4 KiB pages each page costs a fault (and the kernel's zeroing) per 85 states. The advice covers
+// the whole 2 MiB pages inside the block (a block keeps malloc's own placement, which reuses freed
+// memory: 2 MiB-aligned blocks came from a fresh mapping each time, every run faulting again). It
+// is best effort: where THP is off it changes nothing, and a failure is ignored.
+void* allocate_states(std::size_t bytes) {
+  void* p = ::operator new(bytes, kStateAlignment);
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  if (bytes >= kHugeBlock) {
+    const std::uintptr_t begin = reinterpret_cast<std::uintptr_t>(p);
+    const std::uintptr_t first = (begin + kHugePage - 1) / kHugePage * kHugePage;
+    const std::uintptr_t last = (begin + bytes) / kHugePage * kHugePage;
+    if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+  }
+#endif
+  return p;
+}
+
+void free_states(void* p, std::size_t) noexcept {
+  ::operator delete(p, kStateAlignment);
 }
 
 // A double is NaN or Inf exactly when its 11 exponent bits are all ones; adding one to the exponent

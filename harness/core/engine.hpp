@@ -2,6 +2,7 @@
 // implement it; they only convert data between a Scene and one engine.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <new>
@@ -58,21 +59,30 @@ struct BodyState {
   Vec3 velocity = Vec3::Zero();
 };
 
+// Storage for states (UnwrittenAllocator): 64-byte aligned (whole cache lines); a block of 4 MiB or
+// more is 2 MiB aligned and asks Linux for transparent huge pages (madvise MADV_HUGEPAGE), so that
+// a long trajectory takes one page fault per 2 MiB instead of one per 4 KiB written (engine.cpp).
+void* allocate_states(std::size_t bytes);
+// Frees what allocate_states(bytes) gave.
+void free_states(void* p, std::size_t bytes) noexcept;
+
 // Allocator of state storage: a state added without a value (resize(n), emplace_back()) is left
 // unwritten, for the caller to write at once, so the runner's states are written once instead of
-// zeroed first and then written (a second pass of stores over fresh memory). Blocks are 64-byte
-// aligned (whole cache lines; StateWriter's streamed stores need 16). Otherwise as std::allocator.
+// zeroed first and then written (a second pass of stores over fresh memory). Blocks come from
+// allocate_states. Otherwise as std::allocator.
 template <typename T>
 struct UnwrittenAllocator {
   using value_type = T;
-  static constexpr std::align_val_t kAlign{64};  // one cache line
 
   UnwrittenAllocator() = default;
   template <typename U>
   UnwrittenAllocator(const UnwrittenAllocator<U>&) noexcept {}  // NOLINT: rebinding converts
 
-  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlign)); }
-  void deallocate(T* p, std::size_t) noexcept { ::operator delete(p, kAlign); }
+  T* allocate(std::size_t n) {
+    if (n > SIZE_MAX / sizeof(T)) throw std::bad_array_new_length();
+    return static_cast<T*>(allocate_states(n * sizeof(T)));
+  }
+  void deallocate(T* p, std::size_t n) noexcept { free_states(p, n * sizeof(T)); }
   // Leaves the object unwritten: an aggregate of doubles (implicitly created by the allocation).
   template <typename U>
   void construct(U*) noexcept {}
