@@ -78,9 +78,10 @@ bool all_zero(std::span<const Vec3> forces) {
 
 // How kept states are written. Streamed past the cache (StateUse::kept) only when nothing reads
 // them during the run (no springs: the next step's forces read the state) and both the run and a
-// step are large: streamed stores win where normal ones would spill out of the caches anyway, and
-// lose on small runs that stay cached (bench/loop_bench.cpp, ours, every step kept, load ~2:
-// N = 1000, 29 MB per run, 15.0 -> 7.4 ns per body-step; N = 100, 2.9 MB, 7.3 -> 9.4 ns).
+// step are large: there normal stores would spill out of the caches anyway, reading each line in
+// before writing it. Measured (bench/loop_bench.cpp, every step kept, min of 6, load ~2), ns per
+// body-step: N = 1000 (29 MB per run) ours 8.93 normal vs 5.93 streamed, ours-f64 10.11 vs 6.87;
+// N = 100 (2.9 MB) and N = 1, streaming everything cost 0-0.5 ns more than normal stores.
 StateUse kept_states_use(const Trajectory& t, std::size_t bodies, bool state_dependent) {
   constexpr std::size_t kMinStep = 4 << 10, kMinRun = 16 << 20;  // bytes
   const std::size_t step_bytes = bodies * sizeof(BodyState);
