@@ -28,7 +28,9 @@ constexpr std::size_t kHugeBlock = std::size_t{4} << 20;  // from this size on: 
 // 4 KiB pages each page costs a fault (and the kernel's zeroing) per 85 states. The advice covers
 // the whole 2 MiB pages inside the block (a block keeps malloc's own placement, which reuses freed
 // memory: 2 MiB-aligned blocks came from a fresh mapping each time, every run faulting again). It
-// is best effort: where THP is off it changes nothing, and a failure is ignored.
+// is best effort: where THP is off it changes nothing, and a failure is ignored. Measured on
+// `dropcheck run scenarios/extreme/long_run.toml --engine ours` (20 MB kept, load ~2): 2293 page
+// faults instead of 11483, stepping loop 15.7 ms instead of 18.5 ms (min of 6).
 void* allocate_states(std::size_t bytes) {
   void* p = ::operator new(bytes, kStateAlignment);
 #if defined(__linux__) && defined(MADV_HUGEPAGE)

@@ -1,10 +1,11 @@
 // StateWriter: how an Engine::read_append override writes states from the engine's own arrays into
 // the unwritten states it appended (StateBuffer) and checks them for NaN/Inf in the same pass.
 //
-// Per body-step this saves, against read() then all_finite() (perf and bench/loop_bench.cpp, ours,
-// N = 1000): the second pass over the states just written, and, for kept states, the cache: a
-// normal store first reads the line it writes into the cache (read for ownership) and evicts the
-// engine's own arrays; a streamed (non-temporal) store writes whole lines to memory directly.
+// Per body-step this saves, against read() then all_finite(): the second pass over the states just
+// written, and, for kept states, the cache: a normal store first reads the line it writes into the
+// cache (read for ownership) and evicts the engine's own arrays; a streamed (non-temporal) store
+// writes whole lines to memory directly. bench/loop_bench.cpp, N = 1000, load ~2, min of 6, ns per
+// body-step, first and last kept / every step kept: ours 7.43 / 11.08 before, 5.89 / 6.20 with it.
 // Header-only: the calls must inline into the adapter's loop.
 #pragma once
 
