@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "adapters.hpp"
+#include "harness/core/engine_writer.hpp"
 #include "ours/physics.hpp"
 
 namespace dropcheck {
@@ -67,14 +68,28 @@ class OursEngine final : public Engine {
     }
   }
 
-  // Each state constructed in place from the floats (exact: every float is a double).
-  void read_append(std::size_t, std::vector<BodyState>& out) const override {
-    for (const ours::Model<T>& m : models_)
-      out.emplace_back(m.translation.template cast<double>(),
-                       m.rigidBody.velocity.template cast<double>());
+  // Each state written once from the bodies' own numbers (exact: every float is a double) and
+  // checked in the same pass; kept states streamed (StateWriter).
+  bool read_append(std::size_t, StateBuffer& out, StateUse use) const override {
+    const std::size_t at = out.size();
+    out.resize(at + models_.size());  // unwritten
+    BodyState* added = out.data() + at;
+    return use == StateUse::kept ? write(StateWriter<true>(added))
+                                 : write(StateWriter<false>(added));
   }
 
  private:
+  // Puts every body's state in order into `w`; true when all are finite.
+  template <typename Writer>
+  bool write(Writer&& w) const {
+    for (const ours::Model<T>& m : models_) {
+      const ours::Vector3<T>& x = m.translation;
+      const ours::Vector3<T>& v = m.rigidBody.velocity;
+      w.put(x.x(), x.y(), x.z(), v.x(), v.y(), v.z());
+    }
+    return w.finish();
+  }
+
   T h_ = ours::PHYSICS_TIMESTEP<T>;
   ours::World<T> world_;
   std::vector<ours::Model<T>> models_;

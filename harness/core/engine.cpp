@@ -1,5 +1,12 @@
 #include "harness/core/engine.hpp"
 
+#include <bit>
+#include <cstdint>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
 namespace dropcheck {
 
 std::string Engine::cannot_run(const Scene& scene) const {
@@ -9,10 +16,66 @@ std::string Engine::cannot_run(const Scene& scene) const {
   return {};
 }
 
-void Engine::read_append(std::size_t bodies, std::vector<BodyState>& out) const {
+namespace {
+
+constexpr std::align_val_t kStateAlignment{64};           // one cache line
+constexpr std::size_t kHugePage = std::size_t{2} << 20;   // x86-64 transparent huge page
+constexpr std::size_t kHugeBlock = std::size_t{4} << 20;  // from this size on: huge pages
+
+}  // namespace
+
+// Huge pages: a trajectory kept every step is written once, front to back, into fresh memory; with
+// 4 KiB pages each page costs a fault (and the kernel's zeroing) per 85 states. The advice covers
+// the whole 2 MiB pages inside the block (a block keeps malloc's own placement, which reuses freed
+// memory: 2 MiB-aligned blocks came from a fresh mapping each time, every run faulting again). It
+// is best effort: where THP is off it changes nothing, and a failure is ignored. Measured on
+// `dropcheck run scenarios/extreme/long_run.toml --engine ours` (20 MB kept, load ~2): 2293 page
+// faults instead of 11483, stepping loop 15.7 ms instead of 18.5 ms (min of 6).
+void* allocate_states(std::size_t bytes) {
+  void* p = ::operator new(bytes, kStateAlignment);
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  if (bytes >= kHugeBlock) {
+    const std::uintptr_t begin = reinterpret_cast<std::uintptr_t>(p);
+    const std::uintptr_t first = (begin + kHugePage - 1) / kHugePage * kHugePage;
+    const std::uintptr_t last = (begin + bytes) / kHugePage * kHugePage;
+    if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+  }
+#endif
+  return p;
+}
+
+void free_states(void* p, std::size_t) noexcept {
+  ::operator delete(p, kStateAlignment);
+}
+
+// A double is NaN or Inf exactly when its 11 exponent bits are all ones; adding one to the exponent
+// field then carries into the sign bit, so the OR of (bits & exponent mask) + (one exponent unit)
+// over all numbers has the sign bit set iff some number is not finite. Integer AND, ADD and OR
+// vectorise. Eight independent accumulators (one body and a third per round): with a single one
+// every OR waits for the previous one, and the pass cost half of ours's own step (perf, N = 1000).
+bool all_finite(std::span<const BodyState> states) {
+  static_assert(sizeof(BodyState) == 6 * sizeof(double));
+  constexpr std::uint64_t kExponent = 0x7ff0000000000000u, kUnit = 0x0010000000000000u;
+  constexpr std::size_t kLanes = 8;
+  const auto* d = reinterpret_cast<const double*>(states.data());
+  const std::size_t n = 6 * states.size();
+  std::uint64_t any[kLanes] = {};
+  std::size_t k = 0;
+  for (; k + kLanes <= n; k += kLanes)
+    for (std::size_t j = 0; j < kLanes; ++j)
+      any[j] |= (std::bit_cast<std::uint64_t>(d[k + j]) & kExponent) + kUnit;
+  for (; k < n; ++k) any[0] |= (std::bit_cast<std::uint64_t>(d[k]) & kExponent) + kUnit;
+  std::uint64_t all = 0;
+  for (const std::uint64_t a : any) all |= a;
+  return (all >> 63) == 0;
+}
+
+bool Engine::read_append(std::size_t bodies, StateBuffer& out, StateUse) const {
   const std::size_t at = out.size();
-  out.resize(at + bodies);
-  read(std::span(out).subspan(at, bodies));
+  out.resize(at + bodies);  // unwritten: read() writes every one
+  const std::span<BodyState> added = std::span(out).subspan(at, bodies);
+  read(added);
+  return all_finite(added);
 }
 
 const char* to_string(Scalar scalar) {

@@ -2,11 +2,14 @@
 // implement it; they only convert data between a Scene and one engine.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <memory>
+#include <new>
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "harness/core/law.hpp"
@@ -56,6 +59,58 @@ struct BodyState {
   Vec3 velocity = Vec3::Zero();
 };
 
+// Storage for states (UnwrittenAllocator): 64-byte aligned (whole cache lines); a block of 4 MiB or
+// more is 2 MiB aligned and asks Linux for transparent huge pages (madvise MADV_HUGEPAGE), so that
+// a long trajectory takes one page fault per 2 MiB instead of one per 4 KiB written (engine.cpp).
+void* allocate_states(std::size_t bytes);
+// Frees what allocate_states(bytes) gave.
+void free_states(void* p, std::size_t bytes) noexcept;
+
+// Allocator of state storage: a state added without a value (resize(n), emplace_back()) is left
+// unwritten, for the caller to write at once, so the runner's states are written once instead of
+// zeroed first and then written (a second pass of stores over fresh memory). Blocks come from
+// allocate_states. Otherwise as std::allocator.
+template <typename T>
+struct UnwrittenAllocator {
+  using value_type = T;
+
+  UnwrittenAllocator() = default;
+  template <typename U>
+  UnwrittenAllocator(const UnwrittenAllocator<U>&) noexcept {}  // NOLINT: rebinding converts
+
+  T* allocate(std::size_t n) {
+    if (n > SIZE_MAX / sizeof(T)) throw std::bad_array_new_length();
+    return static_cast<T*>(allocate_states(n * sizeof(T)));
+  }
+  void deallocate(T* p, std::size_t n) noexcept { free_states(p, n * sizeof(T)); }
+  // Leaves the object unwritten: an aggregate of doubles (implicitly created by the allocation).
+  template <typename U>
+  void construct(U*) noexcept {}
+  // Any other construction as std::allocator does it.
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+  // Every instance can free what another allocated.
+  template <typename U>
+  bool operator==(const UnwrittenAllocator<U>&) const noexcept {
+    return true;
+  }
+};
+
+// States in body-major runs (Trajectory::states): resize() and emplace_back() without a value leave
+// the new states unwritten (UnwrittenAllocator); write them before anything reads them.
+using StateBuffer = std::vector<BodyState, UnwrittenAllocator<BodyState>>;
+
+// What the states an Engine::read_append adds are for.
+enum class StateUse {
+  next_step,  // read again soon (the next step's forces or checks): keep them in the cache
+  kept,       // kept for after the run only: they may be written around the cache (streamed)
+};
+
+// True when every number of every state is finite (one branch-free pass, engine.cpp).
+bool all_finite(std::span<const BodyState> states);
+
 class Engine {
  public:
   virtual ~Engine() = default;
@@ -78,11 +133,12 @@ class Engine {
   // The true state of every body after the last step (not an interpolated or stale copy).
   virtual void read(std::span<BodyState> out) const = 0;
 
-  // Appends what read() gives for the scene's `bodies` bodies to the end of `out`. The default
-  // appends zeroed states and reads into them; an adapter may construct the states straight from
-  // its own arrays instead, one pass of stores fewer over fresh memory (the runner keeps a step's
-  // states this way).
-  virtual void read_append(std::size_t bodies, std::vector<BodyState>& out) const;
+  // Appends what read() gives for the scene's `bodies` bodies to the end of `out` and returns true
+  // when every number of them is finite: how the runner reads each step. The default appends
+  // unwritten states (StateBuffer), read()s into them and checks them in a second pass
+  // (all_finite); an adapter may instead write them from its own arrays and check them in the same
+  // pass, streamed past the cache when `use` is kept (StateWriter, harness/core/engine_writer.hpp).
+  virtual bool read_append(std::size_t bodies, StateBuffer& out, StateUse use) const;
 
   // True when the last step clamped a body's speed (Box2D moves at most 2 m per step).
   virtual bool speed_clamped() const { return false; }

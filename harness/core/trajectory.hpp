@@ -26,7 +26,7 @@ struct Trajectory {
   std::int64_t steps = 0;               // steps the scene asks for
   std::vector<std::string> body_names;  // as in Scene::bodies
   std::vector<std::int64_t> recorded;   // step index of each sample; sample 0 is step 0
-  std::vector<BodyState> states;        // recorded.size() x body_names.size(), sample-major
+  StateBuffer states;                   // recorded.size() x body_names.size(), sample-major
   RunStatus status = RunStatus::ok;
   std::string failure;             // what went wrong, for non-ok status
   std::int64_t failed_step = -1;   // first step that failed

@@ -50,15 +50,15 @@ bool put_states(const WireWrite& write, const Trajectory& t) {
 }
 
 bool get_states(const WireRead& read, Trajectory& t, std::size_t rows) {
-  t.states.resize(rows);
+  t.states.clear();
+  t.states.reserve(rows);
   std::vector<double> buf(kChunk - kChunk % 6);
   for (std::size_t r = 0; r < rows;) {
     const std::size_t n = std::min(rows - r, buf.size() / 6);
     if (!read(buf.data(), n * 6 * sizeof(double))) return false;
-    for (std::size_t k = 0; k < n; ++k, ++r) {
-      t.states[r].position = Vec3(buf[6 * k], buf[6 * k + 1], buf[6 * k + 2]);
-      t.states[r].velocity = Vec3(buf[6 * k + 3], buf[6 * k + 4], buf[6 * k + 5]);
-    }
+    for (std::size_t k = 0; k < n; ++k, ++r)
+      t.states.push_back({Vec3(buf[6 * k], buf[6 * k + 1], buf[6 * k + 2]),
+                          Vec3(buf[6 * k + 3], buf[6 * k + 4], buf[6 * k + 5])});
   }
   return true;
 }

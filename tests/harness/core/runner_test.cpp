@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
+#include <tuple>
 #include <vector>
 
 #include "harness/core/registry.hpp"
@@ -309,9 +310,11 @@ TEST_CASE("an engine whose read_append gives the wrong number of states ends as 
     void set_forces(std::span<const dropcheck::Vec3> f) override { inner_->set_forces(f); }
     void step() override { inner_->step(); }
     void read(std::span<dropcheck::BodyState> out) const override { inner_->read(out); }
-    void read_append(std::size_t bodies, std::vector<dropcheck::BodyState>& out) const override {
-      inner_->read_append(bodies, out);
+    bool read_append(std::size_t bodies, dropcheck::StateBuffer& out,
+                     dropcheck::StateUse use) const override {
+      const bool finite = inner_->read_append(bodies, out, use);
       out.pop_back();
+      return finite;
     }
 
    private:
@@ -326,4 +329,28 @@ TEST_CASE("an engine whose read_append gives the wrong number of states ends as 
   CHECK_THAT(t.failure, Contains("1 states for 2 bodies"));
   CHECK(t.samples() == 0);
   CHECK(t.states.empty());
+}
+
+TEST_CASE("ours and ours-f64 end a run whose state overflows as non_finite, kept step or not",
+          "[runner]") {
+  // h = 0.1, no damping, g below each scalar's range (ours refuses a scene value beyond FLT_MAX):
+  // v = -n * g * h passes the largest number on step 12 in f32 (g = 3e38: 12 * 3e37 > 3.4e38) and
+  // on step 18 in f64 (g = 1e308: 18 * 1e307 > 1.8e308). With record_every = 1 the step is kept,
+  // with 5 it is not: both read paths (StateUse::kept and the scratch) are checked.
+  dropcheck::Scene s = ten_steps();
+  s.forces.clear();  // ours runs free bodies
+  s.duration = 3.0;  // 30 steps
+  s.world.damping_rate = 0.0;
+  for (const auto& [engine, g, step] : {std::tuple{"ours", 3e38, 12}, {"ours-f64", 1e308, 18}}) {
+    s.world.gravity = {0.0, -g, 0.0};
+    for (const std::int64_t every : {1, 5}) {
+      const std::unique_ptr<dropcheck::Engine> e = dropcheck::make_engine(engine);
+      const dropcheck::Trajectory t = dropcheck::run_scene(*e, s, 0.1, {.record_every = every});
+      INFO(engine << ", every " << every);
+      CHECK(t.status == dropcheck::RunStatus::non_finite);
+      CHECK(t.failed_step == step);
+      CHECK(t.states.size() == t.samples() * t.bodies());
+      CHECK(dropcheck::all_finite(t.states));
+    }
+  }
 }

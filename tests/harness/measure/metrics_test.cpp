@@ -88,7 +88,7 @@ TEST_CASE("the worst-body metrics pick the body farthest apart", "[metrics]") {
   Trajectory a = line(0.5, 2, zero), b = line(0.5, 2, zero);
   for (Trajectory* t : {&a, &b}) {
     t->body_names = {"near", "far"};
-    std::vector<BodyState> two;
+    StateBuffer two;
     for (const BodyState& s : t->states) two.insert(two.end(), {s, s});
     t->states = two;
   }
