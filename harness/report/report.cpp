@@ -106,7 +106,7 @@ std::string method(const ReportInput& in) {
       "- Divergence: distance from ours-f64 at the same step; attribution x_E - x_R = (L_E - "
       "L_R) + residual, with L the exact discrete laws (harness/measure/attribution.hpp).\n";
   if (in.timing)
-    md += fmt::sprintf(
+    md += printf_string(
         "- Timing (⏱ wall time): wall seconds per simulated second, median (with interquartile "
         "range and minimum) of %d timed runs after %d warm-up round. The work of one run is "
         "fixed by the scene, h and engine name alone: the scene replicated side by side, the "
@@ -169,7 +169,7 @@ std::string reproducibility(const ReportInput& in) {
     return std::count_if(spreads.begin(), spreads.end(), [&](double s) { return s <= f; });
   };
   const std::size_t n = spreads.size();
-  return fmt::sprintf(
+  return printf_string(
       "## Timing reproducibility (⏱ wall time)\n\nEach timing cell is measured as two "
       "halves of its samples, so the report measures its own run-to-run spread: of "
       "%zu cells, the two halves' medians agree within 5 %% in %ld (%.0f %%), within 10 %% in "
