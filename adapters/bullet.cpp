@@ -119,7 +119,7 @@ std::string damping_problem(double k) {
   const double k_max = (std::log10(2.0 / std::numeric_limits<btScalar>::epsilon()) -
                         tolerance::kMinParameterDigits) *
                        std::log(10.0);
-  return fmt::sprintf(
+  return printf_string(
       "engine limit: damping rate k = %g 1/s: Bullet's per-second damping keeps 1 - d = "
       "exp(-k) to %.1f digits in %s (%g required: k <= %.1f 1/s), so its decay per step "
       "would not be exp(-k*h)",

@@ -5,6 +5,7 @@ set -euo pipefail
 
 DROPCHECK_PACKAGES=(
   cmake g++ gcc make pkg-config        # build (gcc: the C example engine in examples/c)
+  ninja-build                          # the ci preset's generator (scripts/test.sh)
   python3                              # the Python example engines and the bad-engine test doubles
   libeigen3-dev libtomlplusplus-dev    # ours, scene files
   catch2                               # tests

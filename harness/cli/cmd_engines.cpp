@@ -22,8 +22,8 @@ const CommandSpec& engines_spec() {
 int cmd_engines(const std::vector<std::string>& argv, std::ostream& out, std::ostream&) {
   parse_args(engines_spec(), argv);
   const char* row = "%-9s %-14s %-6s %-22s %-36s %s\n";
-  out << fmt::sprintf(row, "engine", "version", "scalar", "capabilities", "discrete law",
-                      "damping mapping");
+  out << printf_string(row, "engine", "version", "scalar", "capabilities", "discrete law",
+                       "damping mapping");
   for (const std::string& name : known_engine_names()) {
     std::unique_ptr<Engine> e = make_engine(name);
     if (!e) {
@@ -33,8 +33,8 @@ int cmd_engines(const std::vector<std::string>& argv, std::ostream& out, std::os
     const EngineInfo i = e->info();
     std::string caps = i.capabilities.contacts ? "free flight, contacts" : "free flight";
     if (i.capabilities.planar_only) caps += ", 2-D";
-    out << fmt::sprintf(row, i.name.c_str(), i.version.c_str(), to_string(i.scalar), caps.c_str(),
-                        to_string(i.law).c_str(), i.damping_mapping.c_str());
+    out << printf_string(row, i.name.c_str(), i.version.c_str(), to_string(i.scalar), caps.c_str(),
+                         to_string(i.law).c_str(), i.damping_mapping.c_str());
   }
   return kExitOk;
 }

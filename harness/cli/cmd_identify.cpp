@@ -76,13 +76,13 @@ Trajectory trajectory_from_file(const std::string& file) {
 }
 
 void print_fits(const Identification& id, std::ostream& out) {
-  out << fmt::sprintf("  %-24s %-38s %12s  %-32s %14s %14s\n", "member", "update", "phi",
-                      "gravity (m/s^2)", "max|x-fit| m", "max|v-fit| m/s");
+  out << printf_string("  %-24s %-38s %12s  %-32s %14s %14s\n", "member", "update", "phi",
+                       "gravity (m/s^2)", "max|x-fit| m", "max|v-fit| m/s");
   for (const MemberFit& m : id.fits) {
     const std::string g =
-        fmt::sprintf("(%.6g, %.6g, %.6g)", m.gravity.x(), m.gravity.y(), m.gravity.z());
-    out << fmt::sprintf("  %-24s %-38s %12.9f  %-32s %14.3g %14.3g\n", law_key(m.law).c_str(),
-                        to_string(m.law).c_str(), m.phi, g.c_str(), m.max_dx, m.max_dv);
+        printf_string("(%.6g, %.6g, %.6g)", m.gravity.x(), m.gravity.y(), m.gravity.z());
+    out << printf_string("  %-24s %-38s %12.9f  %-32s %14.3g %14.3g\n", law_key(m.law).c_str(),
+                         to_string(m.law).c_str(), m.phi, g.c_str(), m.max_dx, m.max_dv);
   }
 }
 
@@ -117,9 +117,9 @@ bool print_verdict(const Identification& id, std::ostream& out) {
     return false;
   }
   out << "best fit: " << law_key(best.law) << " (" << to_string(best.law) << ")"
-      << fmt::sprintf(": residual %.3g m, phi = %.9g, ", best.max_dx, best.phi)
-      << fmt::sprintf("g = (%.6g, %.6g, %.6g); runner-up ", best.gravity.x(), best.gravity.y(),
-                      best.gravity.z())
+      << printf_string(": residual %.3g m, phi = %.9g, ", best.max_dx, best.phi)
+      << printf_string("g = (%.6g, %.6g, %.6g); runner-up ", best.gravity.x(), best.gravity.y(),
+                       best.gravity.z())
       << law_key(next.law) << " at " << g3(next.max_dx) << " m\n";
   return true;
 }

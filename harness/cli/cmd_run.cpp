@@ -19,14 +19,14 @@ namespace dropcheck {
 namespace {
 
 void print_header(const Scene& s, const Timestep& dt, std::ostream& out) {
-  out << fmt::sprintf(
+  out << printf_string(
       "scene %s: %zu bodies, %g s at h = %s (%lld steps), gravity (%g, %g, %g), "
       "damping k = %.6g 1/s, contacts %s\n",
       s.name.c_str(), s.bodies.size(), s.duration, dt.text.c_str(),
       static_cast<long long>(step_count(s, dt.seconds)), s.world.gravity.x(), s.world.gravity.y(),
       s.world.gravity.z(), s.world.damping_rate, s.world.contacts ? "on" : "off");
-  out << fmt::sprintf("%-9s %-10s %13s %13s %13s %12s %12s %12s %8s %9s  %s\n", "engine", "body",
-                      "x", "y", "z", "vx", "vy", "vz", "steps", "wall ms", "status");
+  out << printf_string("%-9s %-10s %13s %13s %13s %12s %12s %12s %8s %9s  %s\n", "engine", "body",
+                       "x", "y", "z", "vx", "vy", "vz", "steps", "wall ms", "status");
 }
 
 void print_run(const Trajectory& t, std::ostream& out) {
@@ -40,11 +40,11 @@ void print_run(const Trajectory& t, std::ostream& out) {
     if (t.status != RunStatus::ok) status += ": " + t.failure;
     if (t.clamped_steps)
       status += " (speed clamped on " + std::to_string(t.clamped_steps) + " steps)";
-    out << fmt::sprintf("%-9s %-10s %13.6f %13.6f %13.6f %12.6f %12.6f %12.6f %8lld %9.3f  %s\n",
-                        t.engine.c_str(), t.body_names[b].c_str(), s.position.x(), s.position.y(),
-                        s.position.z(), s.velocity.x(), s.velocity.y(), s.velocity.z(),
-                        static_cast<long long>(t.recorded.back()), t.wall_seconds * 1e3,
-                        status.c_str());
+    out << printf_string("%-9s %-10s %13.6f %13.6f %13.6f %12.6f %12.6f %12.6f %8lld %9.3f  %s\n",
+                         t.engine.c_str(), t.body_names[b].c_str(), s.position.x(), s.position.y(),
+                         s.position.z(), s.velocity.x(), s.velocity.y(), s.velocity.z(),
+                         static_cast<long long>(t.recorded.back()), t.wall_seconds * 1e3,
+                         status.c_str());
   }
 }
 

@@ -9,6 +9,10 @@
 
 namespace dropcheck {
 
+std::string vprintf_string(fmt::string_view pattern, fmt::printf_args args) {
+  return fmt::vsprintf(pattern, args);
+}
+
 std::string sig(double v, int digits) {
   return fmt::format("{:.{}g}", v, digits);
 }

@@ -82,22 +82,22 @@ std::string Attribution::sentence() const {
     std::string who;
     for (const OwnLawVerdict* v : {&engine_law, &reference_law})
       who += (who.empty() ? "" : "; ") + (departs(*v) ? departure(*v) : follows(*v));
-    why = fmt::sprintf("UNEXPLAINED residual %s: %s; the laws explain %s, %s",
-                       format_length(residual), who, format_length(law_part), precision);
+    why = printf_string("UNEXPLAINED residual %s: %s; the laws explain %s, %s",
+                        format_length(residual), who, format_length(law_part), precision);
   } else if (law_part <= budget) {
     // Same discrete law (or laws that differ by less than rounding): nothing for the laws to split.
-    why = fmt::sprintf(
+    why = printf_string(
         "the two discrete laws agree, so all of it is rounding (%s; residual %s, budget %s)",
         precision, format_length(residual), format_length(budget));
   } else {
     const double share = law_part >= total ? 100.0 : 100.0 * law_part / total;
-    why = fmt::sprintf(
+    why = printf_string(
         "%s from the two discrete laws (damping order); %s; residual %s, within rounding",
         share >= 99.95 ? "all of it" : std::to_string(static_cast<int>(share)) + "%", precision,
         format_length(residual));
   }
-  std::string out = fmt::sprintf("%s vs %s: %s at t = %g s (max %s), %s", engine, reference,
-                                 format_length(final_total), final_t, format_length(total), why);
+  std::string out = printf_string("%s vs %s: %s at t = %g s (max %s), %s", engine, reference,
+                                  format_length(final_total), final_t, format_length(total), why);
   if (clamped_from >= 0)
     out += "; a speed clamp reported by the engine at step " + std::to_string(clamped_from) +
            " ends the comparison there (clamp, not a departure)";

@@ -93,16 +93,16 @@ std::vector<Product> products(const Scene& scene, double h) {
   std::vector<Product> out;
   if (scene.world.damping_rate > 0.0)
     out.push_back(
-        {fmt::sprintf("k*h = %.3g", scene.world.damping_rate * h), scene.world.damping_rate * h});
+        {printf_string("k*h = %.3g", scene.world.damping_rate * h), scene.world.damping_rate * h});
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     if (scene.bodies[i].is_static) continue;
     const std::optional<SpringModel> s = body_spring(scene, i);
     if (!s) continue;
     const std::string on = " on '" + scene.bodies[i].name + "'";
     const double wh = s->omega * h;
-    out.push_back({fmt::sprintf("omega*h = %.3g", wh) + on, wh});
+    out.push_back({printf_string("omega*h = %.3g", wh) + on, wh});
     if (s->gamma > 0.0)
-      out.push_back({fmt::sprintf("gamma*h = %.3g", s->gamma * h) + on, s->gamma * h});
+      out.push_back({printf_string("gamma*h = %.3g", s->gamma * h) + on, s->gamma * h});
     if (wh < 2.0) {
       // The drift matters while the oscillation lasts: its amplitude decays as exp(-(gamma +
       // k)*t/2).
@@ -110,7 +110,7 @@ std::vector<Product> products(const Scene& scene, double h) {
       const double lasts = damping > 0.0 ? std::min(scene.duration, 2.0 / damping) : scene.duration;
       const double drift = s->omega * lasts * (2.0 * std::asin(0.5 * wh) / wh - 1.0);
       out.push_back(
-          {fmt::sprintf("phase drift omega*T*(relative frequency error) = %.3g rad", drift) + on,
+          {printf_string("phase drift omega*T*(relative frequency error) = %.3g rad", drift) + on,
            drift});
     }
   }
@@ -122,7 +122,7 @@ std::vector<Product> products(const Scene& scene, double h) {
 std::string step_text(double h) {
   const double n = std::round(1.0 / h);
   if (n >= 1.0 && same_step(1.0 / n, h)) return "1/" + std::to_string(static_cast<long long>(n));
-  return fmt::sprintf("%.4g", h);
+  return printf_string("%.4g", h);
 }
 
 std::string pre_asymptotic_cause(const Scene& scene, double h) {

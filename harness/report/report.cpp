@@ -106,7 +106,7 @@ std::string method(const ReportInput& in) {
       "- Divergence: distance from ours-f64 at the same step; attribution x_E - x_R = (L_E - "
       "L_R) + residual, with L the exact discrete laws (harness/measure/attribution.hpp).\n";
   if (in.timing)
-    md += fmt::sprintf(
+    md += printf_string(
         "- Timing (⏱ wall time): wall seconds per simulated second, median (with interquartile "
         "range and minimum) of %d timed runs after %d warm-up round. The work of one run is "
         "fixed by the scene, h and engine name alone: the scene replicated side by side, the "
@@ -168,7 +168,7 @@ std::string halves(const ReportInput& in) {
     return std::count_if(spreads.begin(), spreads.end(), [&](double s) { return s <= f; });
   };
   const std::size_t n = spreads.size();
-  return fmt::sprintf(
+  return printf_string(
       "Each timing cell is measured as two "
       "halves of its samples, so the report measures its own run-to-run spread: of "
       "%zu cells, the two halves' medians agree within 5 %% in %ld (%.0f %%), within 10 %% in "
@@ -188,7 +188,7 @@ std::string against_previous(const ReportInput& in) {
   const TimingComparison c = compare_timings(before, timing_record(in.scenes, in.provenance));
   const bool same = before.commit == in.provenance.commit && before.cpu == in.provenance.cpu &&
                     in.provenance.commit.find("dirty") == std::string::npos;
-  std::string md = fmt::sprintf(
+  std::string md = printf_string(
       "Against the report this one replaced (commit %s; this one: commit %s): of %zu cells "
       "timed in both, %zu (%.1f %%) medians agree within %.0f %%; median move %.1f %%. ",
       before.commit, in.provenance.commit, c.cells, c.agree,
@@ -201,7 +201,7 @@ std::string against_previous(const ReportInput& in) {
                   "lllr");
   for (const MovedCell& m : c.worst)
     t.add({m.now.scene, m.now.engine, m.now.h, cell(m.before.median_ms), cell(m.now.median_ms),
-           std::isfinite(m.moved) ? fmt::sprintf("%.1f %%", 100.0 * m.moved) : kNone});
+           std::isfinite(m.moved) ? printf_string("%.1f %%", 100.0 * m.moved) : kNone});
   return md + " The cells that moved most:\n\n" + t.str() + "\n";
 }
 

@@ -45,7 +45,7 @@ std::string order(double p) {
 }
 
 std::string percent(double fraction) {
-  return std::isfinite(fraction) ? fmt::sprintf("%+.0f%%", 100.0 * fraction) : kNone;
+  return std::isfinite(fraction) ? printf_string("%+.0f%%", 100.0 * fraction) : kNone;
 }
 
 std::string when(double t) {

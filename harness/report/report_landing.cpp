@@ -19,7 +19,7 @@ std::string time_or_never(double t) {
 // "yes", "**NO**", or why stillness is not judged (the run ends too soon after first contact).
 std::string still_cell(const LandingObservation& o) {
   if (o.first_contact_step >= 0 && !o.still_judged)
-    return fmt::sprintf("not judged (run ends %.3g s after contact)", o.after_contact);
+    return printf_string("not judged (run ends %.3g s after contact)", o.after_contact);
   return o.still ? "yes" : "**NO**";
 }
 

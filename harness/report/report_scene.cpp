@@ -16,7 +16,7 @@ namespace {
 const char* kTimed = "⏱ ";  // marks the columns that hold wall-clock timings
 
 std::string vec3(const Vec3& v) {
-  return fmt::sprintf("(%g, %g, %g)", v.x(), v.y(), v.z());
+  return printf_string("(%g, %g, %g)", v.x(), v.y(), v.z());
 }
 
 std::string sweep_text(const SceneEvaluation& se) {
@@ -33,7 +33,7 @@ std::string bodies_text(const Scene& scene) {
       s += b.name + " (static, half extents " + vec3(b.half_extents) + " m, at " +
            vec3(b.position) + " m)";
     } else {
-      s += b.name + fmt::sprintf(" (%g kg, half extents ", b.mass) + vec3(b.half_extents) +
+      s += b.name + printf_string(" (%g kg, half extents ", b.mass) + vec3(b.half_extents) +
            " m, from " + vec3(b.position) + " m at " + vec3(b.velocity) + " m/s)";
     }
   }
@@ -47,8 +47,8 @@ std::string force_text(const Scene& scene, const Force& f) {
     return "constant " + vec3(c->force) + " N on " + on;
   const Spring& s = std::get<Spring>(f.law);
   return "spring to " + vec3(s.anchor) +
-         fmt::sprintf(" m, stiffness %g N/m, damping %g N*s/m, rest length %g m on ", s.stiffness,
-                      s.damping, s.rest_length) +
+         printf_string(" m, stiffness %g N/m, damping %g N*s/m, rest length %g m on ", s.stiffness,
+                       s.damping, s.rest_length) +
          on;
 }
 
@@ -82,11 +82,11 @@ std::string intro(const SceneEvaluation& se) {
   const Scene& s = se.scene;
   std::string md = s.description.empty() ? "" : s.description + "\n\n";
   md += "- File: `" + s.source + "`; " + sig(s.duration, 6) + " s" + " at h = " + s.timestep.text +
-        fmt::sprintf(" (%lld steps)", static_cast<long long>(step_count(s, s.timestep.seconds))) +
+        printf_string(" (%lld steps)", static_cast<long long>(step_count(s, s.timestep.seconds))) +
         "; sweep " + sweep_text(se) + "; divergence tolerance " + length(s.tolerance) + ".\n";
   md += "- World: gravity " + vec3(s.world.gravity) +
-        fmt::sprintf(" m/s^2; damping k = %.6g 1/s", s.world.damping_rate) +
-        fmt::sprintf(" (phi = %.6g per step at h = ", decay_per_step(s, s.timestep.seconds)) +
+        printf_string(" m/s^2; damping k = %.6g 1/s", s.world.damping_rate) +
+        printf_string(" (phi = %.6g per step at h = ", decay_per_step(s, s.timestep.seconds)) +
         s.timestep.text + "); contacts " + (s.world.contacts ? "on" : "off") + ".\n";
   md += "- Bodies: " + bodies_text(s) + ".\n";
   for (const Force& f : s.forces) md += "- Force: " + force_text(s, f) + ".\n";
@@ -192,7 +192,8 @@ std::vector<std::string> sweep_row(const SceneEvaluation& se, const StepEvaluati
                                    bool timing) {
   std::string status = to_string(st.run.status);
   if (st.run.clamped_steps)
-    status += fmt::sprintf(", clamped on %lld steps", static_cast<long long>(st.run.clamped_steps));
+    status +=
+        printf_string(", clamped on %lld steps", static_cast<long long>(st.run.clamped_steps));
   std::vector<std::string> r{st.h.text, std::to_string(st.run.steps), status,
                              cell(st.continuous_error())};
   if (!se.reference.empty()) r.push_back(st.vs_reference ? cell(st.vs_reference->max_dx) : kNone);
@@ -203,7 +204,7 @@ std::vector<std::string> sweep_row(const SceneEvaluation& se, const StepEvaluati
                      cell(t.q1_per_sim_s * 1e3) + " .. " + cell(t.q3_per_sim_s * 1e3),
                      cell(t.min_per_sim_s * 1e3), percent(t.half_spread()),
                      cell(t.bare_median_per_sim_s * 1e3), percent(t.overhead()),
-                     fmt::sprintf("%d x %d x %d", t.samples, t.replicas, t.repeats)});
+                     printf_string("%d x %d x %d", t.samples, t.replicas, t.repeats)});
   return r;
 }
 
@@ -282,9 +283,9 @@ std::string failures(const SceneEvaluation& se) {
               " at step " + std::to_string(st.run.failed_step) + ": " + st.run.failure + ".\n";
       if (st.run.clamped_steps)
         md += "- " + ev.name + " at h = " + st.h.text +
-              fmt::sprintf(": speed clamped on %lld steps, first at step %lld.\n",
-                           static_cast<long long>(st.run.clamped_steps),
-                           static_cast<long long>(st.run.first_clamped_step));
+              printf_string(": speed clamped on %lld steps, first at step %lld.\n",
+                            static_cast<long long>(st.run.clamped_steps),
+                            static_cast<long long>(st.run.first_clamped_step));
     }
     if (se.uses_fine && ev.ran() && ev.fine.status != RunStatus::ok)
       md += "- " + ev.name + " at the fine step h = " + se.fine_step.text + ": " + ev.fine.failure +

@@ -22,7 +22,7 @@ std::string engines_run(const SceneEvaluation& se) {
     else
       missing += (missing.empty() ? "" : ", ") + ev.name;
   }
-  std::string s = fmt::sprintf("%zu/%zu", ran, se.engines.size());
+  std::string s = printf_string("%zu/%zu", ran, se.engines.size());
   return missing.empty() ? s : s + " (not " + missing + ")";
 }
 

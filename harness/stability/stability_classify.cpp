@@ -52,8 +52,8 @@ namespace {
 void add_status(const Trajectory& run, std::vector<Failure>& out) {
   if (run.status == RunStatus::engine_error)
     out.push_back({FailureMode::engine_error, "", run.failed_step,
-                   fmt::sprintf("engine error at step %lld: %s",
-                                static_cast<long long>(run.failed_step), run.failure.c_str())});
+                   printf_string("engine error at step %lld: %s",
+                                 static_cast<long long>(run.failed_step), run.failure.c_str())});
   else if (run.status == RunStatus::non_finite)
     out.push_back({FailureMode::non_finite, "", run.failed_step, run.failure});
   else if (run.status != RunStatus::ok)  // crashed, timed out, refused, out of memory
@@ -82,12 +82,12 @@ void add_clamp(const Scene& scene, const Trajectory& run, std::vector<Failure>& 
   }
   out.push_back(
       {FailureMode::clamped, run.body_names[fastest], run.first_clamped_step,
-       fmt::sprintf("speed clamped by the engine on %lld of %lld steps, first at step %lld "
-                    "(t = %.4g s), where body '%s' moves %.3g m per step (|v| = %.4g m/s)",
-                    static_cast<long long>(run.clamped_steps), static_cast<long long>(run.steps),
-                    static_cast<long long>(run.first_clamped_step),
-                    static_cast<double>(run.first_clamped_step) * run.h,
-                    run.body_names[fastest].c_str(), speed * run.h, speed)});
+       printf_string("speed clamped by the engine on %lld of %lld steps, first at step %lld "
+                     "(t = %.4g s), where body '%s' moves %.3g m per step (|v| = %.4g m/s)",
+                     static_cast<long long>(run.clamped_steps), static_cast<long long>(run.steps),
+                     static_cast<long long>(run.first_clamped_step),
+                     static_cast<double>(run.first_clamped_step) * run.h,
+                     run.body_names[fastest].c_str(), speed * run.h, speed)});
 }
 
 }  // namespace

@@ -51,15 +51,15 @@ void spring_growth(const Scene& scene, const Trajectory& run, std::size_t i, con
     const double w = std::sqrt(S / m);
     out.push_back(
         {FailureMode::unbounded_growth, run.body_names[i], run.recorded[s],
-         fmt::sprintf("body '%s': oscillation energy 1/2 m v^2 + 1/2 S |x - x_eq|^2 grew from "
-                      "%.3g J to %.3g J (x%.3g) by step %lld%s (omega*h = %.4g)",
-                      run.body_names[i].c_str(), energy(0), energy(s), energy(s) / e_ref,
-                      static_cast<long long>(run.recorded[s]),
-                      windows ? fmt::sprintf(", %.3g x the peak of the run's first third",
-                                             energy(s) / std::max(early, e_ref))
-                                    .c_str()
-                              : "",
-                      w * run.h)});
+         printf_string("body '%s': oscillation energy 1/2 m v^2 + 1/2 S |x - x_eq|^2 grew from "
+                       "%.3g J to %.3g J (x%.3g) by step %lld%s (omega*h = %.4g)",
+                       run.body_names[i].c_str(), energy(0), energy(s), energy(s) / e_ref,
+                       static_cast<long long>(run.recorded[s]),
+                       windows ? printf_string(", %.3g x the peak of the run's first third",
+                                               energy(s) / std::max(early, e_ref))
+                                     .c_str()
+                               : "",
+                       w * run.h)});
     return;
   }
 }
@@ -84,10 +84,10 @@ void speed_growth(const Scene& scene, const Trajectory& run, std::size_t i, cons
     if (v <= bound * (1.0 + o.speed_slack) + 1e-12) continue;
     out.push_back(
         {FailureMode::unbounded_growth, run.body_names[i], run.recorded[s],
-         fmt::sprintf("body '%s': speed %.4g m/s at step %lld exceeds %.4g m/s, the most this "
-                      "free flight reaches under any first-order damping order (%s)",
-                      run.body_names[i].c_str(), v, static_cast<long long>(run.recorded[s]), bound,
-                      k > 0.0 ? "max(|v0|, (|a|/k)*kh/(1 - exp(-kh)))" : "|v0| + |a|*t")});
+         printf_string("body '%s': speed %.4g m/s at step %lld exceeds %.4g m/s, the most this "
+                       "free flight reaches under any first-order damping order (%s)",
+                       run.body_names[i].c_str(), v, static_cast<long long>(run.recorded[s]), bound,
+                       k > 0.0 ? "max(|v0|, (|a|/k)*kh/(1 - exp(-kh)))" : "|v0| + |a|*t")});
     return;
   }
 }
@@ -130,9 +130,9 @@ void contact_growth(const Scene& scene, const Trajectory& run, const ClassifyOpt
     if (gain <= o.contact_gain * peak_ke || gain <= 1e-9) continue;
     out.push_back(
         {FailureMode::unbounded_growth, "", run.recorded[s],
-         fmt::sprintf("the bodies' mechanical energy rose by %.3g J by step %lld, more than "
-                      "%.2g x their peak kinetic energy %.3g J: contacts added energy",
-                      gain, static_cast<long long>(run.recorded[s]), o.contact_gain, peak_ke)});
+         printf_string("the bodies' mechanical energy rose by %.3g J by step %lld, more than "
+                       "%.2g x their peak kinetic energy %.3g J: contacts added energy",
+                       gain, static_cast<long long>(run.recorded[s]), o.contact_gain, peak_ke)});
     return;
   }
 }

@@ -73,24 +73,24 @@ Json engine_json(const EngineStability& e) {
 
 // "0.0333333" or "-" for a value that is absent.
 std::string cell(std::optional<double> v, const char* pattern = "%.6g") {
-  return v && std::isfinite(*v) ? fmt::sprintf(pattern, *v) : std::string("-");
+  return v && std::isfinite(*v) ? printf_string(pattern, *v) : std::string("-");
 }
 
 }  // namespace
 
 std::string search_summary(const StepSearch& s) {
   std::string out;
-  if (!std::isnan(s.min_stable_dt)) out = fmt::sprintf("frozen below %.4g s; ", s.min_stable_dt);
+  if (!std::isnan(s.min_stable_dt)) out = printf_string("frozen below %.4g s; ", s.min_stable_dt);
   if (std::isnan(s.max_stable_dt) && std::isnan(s.min_unstable_dt))  // rise() found no stable h
-    return out + fmt::sprintf("frozen at every h tried, from %.4g s up to the cap %.4g s", s.start,
-                              s.cap);
+    return out + printf_string("frozen at every h tried, from %.4g s up to the cap %.4g s", s.start,
+                               s.cap);
   if (std::isnan(s.max_stable_dt))
-    return out + fmt::sprintf("%s at every h tried, from %.4g s down to %.4g s",
-                              s.limit ? to_string(*s.limit) : "fails", s.start, s.min_unstable_dt);
+    return out + printf_string("%s at every h tried, from %.4g s down to %.4g s",
+                               s.limit ? to_string(*s.limit) : "fails", s.start, s.min_unstable_dt);
   if (std::isnan(s.min_unstable_dt))
-    return out + fmt::sprintf("no failure up to the cap %.4g s", s.cap);
-  return out + fmt::sprintf("fails at %.6g s (%s)", s.min_unstable_dt,
-                            s.limit ? to_string(*s.limit) : "?");
+    return out + printf_string("no failure up to the cap %.4g s", s.cap);
+  return out + printf_string("fails at %.6g s (%s)", s.min_unstable_dt,
+                             s.limit ? to_string(*s.limit) : "?");
 }
 
 std::string stability_to_json(const SceneStability& s, const SearchOptions& search) {
@@ -103,9 +103,9 @@ std::string stability_to_json(const SceneStability& s, const SearchOptions& sear
       {"steps", s.steps},
       {"no_analytic", s.no_analytic},
       {"search_rule",
-       fmt::sprintf("each probe at step h runs duration' = ceil(min(duration, %lld*dt)/h)*h; "
-                    "bisection to a relative %.3g",
-                    static_cast<long long>(search.horizon_steps), search.rel_tol)}};
+       printf_string("each probe at step h runs duration' = ceil(min(duration, %lld*dt)/h)*h; "
+                     "bisection to a relative %.3g",
+                     static_cast<long long>(search.horizon_steps), search.rel_tol)}};
   std::string out = dump(head);  // then the engines, one a line, as before nlohmann wrote them
   out.pop_back();
   out += ",\"engines\":[";
@@ -115,21 +115,22 @@ std::string stability_to_json(const SceneStability& s, const SearchOptions& sear
 }
 
 std::string stability_to_text(const SceneStability& s) {
-  std::string out = fmt::sprintf("scene %s: h = %s (%lld steps over %g s); analytic oracle: %s\n",
-                                 s.name.c_str(), s.h.text.c_str(), static_cast<long long>(s.steps),
-                                 s.duration, s.no_analytic.empty() ? "yes" : s.no_analytic.c_str());
-  out += fmt::sprintf("%-16s %-17s %-14s %-14s %-12s %s\n", "engine", "at h", "max stable h",
-                      "theory h", "max |dx| m", "search");
+  std::string out =
+      printf_string("scene %s: h = %s (%lld steps over %g s); analytic oracle: %s\n",
+                    s.name.c_str(), s.h.text.c_str(), static_cast<long long>(s.steps), s.duration,
+                    s.no_analytic.empty() ? "yes" : s.no_analytic.c_str());
+  out += printf_string("%-16s %-17s %-14s %-14s %-12s %s\n", "engine", "at h", "max stable h",
+                       "theory h", "max |dx| m", "search");
   std::string sentences;
   for (const EngineStability& e : s.engines) {
     if (!e.ran()) {
-      out += fmt::sprintf("%-16s skipped: %s\n", e.engine.c_str(), e.skipped.c_str());
+      out += printf_string("%-16s skipped: %s\n", e.engine.c_str(), e.skipped.c_str());
       continue;
     }
     const std::string verdict =
         e.verdict.stable() ? "stable" : to_string(e.verdict.failures.front().mode);
     const std::string search = e.search ? search_summary(*e.search) : "-";
-    out += fmt::sprintf(
+    out += printf_string(
         "%-16s %-17s %-14s %-14s %-12s %s\n", e.label().c_str(), verdict.c_str(),
         cell(e.search ? std::optional(e.search->max_stable_dt) : std::nullopt).c_str(),
         cell(e.theory_max_dt).c_str(),

@@ -30,15 +30,15 @@ std::string passage(const Body& a, const Body& b, const Trajectory& run, std::si
     const std::string aside =
         overlap_xz(a, ca, b, cb)
             ? std::string()
-            : fmt::sprintf(", which was pushed aside to x = %.4g, z = %.4g", cb.x(), cb.z());
-    return fmt::sprintf(
+            : printf_string(", which was pushed aside to x = %.4g, z = %.4g", cb.x(), cb.z());
+    return printf_string(
         "ended %s '%s'%s (centres %.4g m apart vertically, %.4g m when resting on it)",
         sep < 0.0 ? "below" : "level with", b.name.c_str(), aside.c_str(), sep, rest);
   }
   const double depth = rest - sep, limit = 0.5 * std::min(a.half_extents.y(), b.half_extents.y());
   if (overlap_xz(a, ca, b, cb) && depth > limit)
-    return fmt::sprintf("sank %.4g m into '%s' (more than a quarter of the thinner box, %.4g m)",
-                        depth, b.name.c_str(), limit);
+    return printf_string("sank %.4g m into '%s' (more than a quarter of the thinner box, %.4g m)",
+                         depth, b.name.c_str(), limit);
   return {};
 }
 
@@ -57,11 +57,11 @@ void check_pair(const Scene& scene, const Trajectory& run, std::size_t ia, std::
   const double travel = run.at(s, ia).velocity.norm() * run.h;
   out.push_back(
       {FailureMode::tunnelled, a.name, run.recorded[s],
-       fmt::sprintf("body '%s' %s; it started above that %s body; from step %lld, moving %.3g m "
-                    "per step (|v|*h) against %.3g m of both boxes' heights",
-                    a.name.c_str(), how.c_str(), b.is_static ? "static" : "dynamic",
-                    static_cast<long long>(run.recorded[s]), travel,
-                    2.0 * (a.half_extents.y() + b.half_extents.y()))});
+       printf_string("body '%s' %s; it started above that %s body; from step %lld, moving %.3g m "
+                     "per step (|v|*h) against %.3g m of both boxes' heights",
+                     a.name.c_str(), how.c_str(), b.is_static ? "static" : "dynamic",
+                     static_cast<long long>(run.recorded[s]), travel,
+                     2.0 * (a.half_extents.y() + b.half_extents.y()))});
 }
 
 }  // namespace
@@ -110,15 +110,15 @@ std::string frozen_sentence(const Trajectory& run, std::size_t i, int c, const S
   const bool rounding = st.max_vh < 0.5 * spacing && st.path_engine > 0.5 * spacing;
   std::string why =
       rounding
-          ? fmt::sprintf(
+          ? printf_string(
                 "v*h = %.2g m to %.2g m per step is below half the %s spacing %.2g m at %.6g m",
                 st.min_vh, st.max_vh, scalar == Scalar::f32 ? "float" : "double", 0.5 * spacing,
                 std::abs(x))
-          : fmt::sprintf(
+          : printf_string(
                 "its own v*h (%.2g m to %.2g m per step, %.2g m in all, against half the spacing "
                 "%.2g m) does not explain it: the engine held it (sleeping or a threshold)",
                 st.min_vh, st.max_vh, st.path_engine, 0.5 * spacing);
-  return fmt::sprintf(
+  return printf_string(
       "body '%s': position frozen at %s = %.6f from step %lld to step %lld while it should "
       "have moved %.3g m: %s",
       run.body_names[i].c_str(), kAxis[c], x, static_cast<long long>(run.recorded[st.first] + 1),

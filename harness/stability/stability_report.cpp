@@ -46,7 +46,7 @@ std::string skipped_cell(const EngineStability* e) {
 std::string verdict_cell(const EngineStability* e) {
   if (!e || !e->ran()) return skipped_cell(e);
   return e->verdict.stable() ? "stable"
-                             : fmt::sprintf("**%s**", to_string(e->verdict.failures.front().mode));
+                             : printf_string("**%s**", to_string(e->verdict.failures.front().mode));
 }
 
 std::string step_cell(const EngineStability* e) {
@@ -55,18 +55,18 @@ std::string step_cell(const EngineStability* e) {
   const StepSearch& s = *e->search;
   std::string out;
   if (std::isnan(s.max_stable_dt))
-    out = fmt::sprintf("none (%s)", s.limit ? to_string(*s.limit) : "fails");
+    out = printf_string("none (%s)", s.limit ? to_string(*s.limit) : "fails");
   else if (std::isnan(s.min_unstable_dt))
-    out = fmt::sprintf(">= %.4g (cap)", s.max_stable_dt);
+    out = printf_string(">= %.4g (cap)", s.max_stable_dt);
   else
-    out = fmt::sprintf("%.4g (%s)", s.max_stable_dt, s.limit ? to_string(*s.limit) : "?");
-  if (e->theory_max_dt) out += fmt::sprintf(" / %.4g", *e->theory_max_dt);
+    out = printf_string("%.4g (%s)", s.max_stable_dt, s.limit ? to_string(*s.limit) : "?");
+  if (e->theory_max_dt) out += printf_string(" / %.4g", *e->theory_max_dt);
   return out;
 }
 
 std::string error_cell(const EngineStability* e) {
   if (!e || !e->ran()) return skipped_cell(e);
-  return e->vs_analytic ? fmt::sprintf("%.2e", e->vs_analytic->max_dx) : std::string("-");
+  return e->vs_analytic ? printf_string("%.2e", e->vs_analytic->max_dx) : std::string("-");
 }
 
 template <typename Cell>
@@ -91,9 +91,9 @@ std::string scene_list(const std::vector<SceneStability>& studies) {
   for (const SceneStability& s : studies) {
     std::string d = s.description;
     std::replace(d.begin(), d.end(), '\n', ' ');
-    out += fmt::sprintf("- `%s` (%s, %lld steps of %s s): ", s.name.c_str(),
-                        std::filesystem::path(s.source).filename().string().c_str(),
-                        static_cast<long long>(s.steps), s.h.text.c_str()) +
+    out += printf_string("- `%s` (%s, %lld steps of %s s): ", s.name.c_str(),
+                         std::filesystem::path(s.source).filename().string().c_str(),
+                         static_cast<long long>(s.steps), s.h.text.c_str()) +
            d + "\n";
   }
   return out;
@@ -125,7 +125,7 @@ std::string stability_report_section(const std::vector<std::string>& extreme_sce
 
   const SearchOptions& so = options.search_options;
   std::string out = "## Stability: stiff and extreme cases\n\n";
-  out += fmt::sprintf(
+  out += printf_string(
       "Each engine runs each scene at the scene's own step h and is classified as stable or by its "
       "severest failure (NaN/Inf, engine error, unbounded growth, tunnelled, frozen, speed "
       "clamped; "

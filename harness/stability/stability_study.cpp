@@ -53,14 +53,14 @@ EngineStability study_engine(const EngineSlot& slot, const Scene& scene, const S
 
 std::string progress_line(const SceneStability& s, const EngineStability& e) {
   if (!e.ran())
-    return fmt::sprintf("stability %s: %s skipped (%s)\n", s.name.c_str(), e.engine.c_str(),
-                        e.skipped.c_str());
+    return printf_string("stability %s: %s skipped (%s)\n", s.name.c_str(), e.engine.c_str(),
+                         e.skipped.c_str());
   const std::string verdict =
       e.verdict.stable() ? std::string("stable") : to_string(e.verdict.failures.front().mode);
   const std::string probes =
-      e.search ? fmt::sprintf(", %d probes", e.search->probes) : std::string();
-  return fmt::sprintf("stability %s: %s %s%s\n", s.name.c_str(), e.label().c_str(), verdict.c_str(),
-                      probes.c_str());
+      e.search ? printf_string(", %d probes", e.search->probes) : std::string();
+  return printf_string("stability %s: %s %s%s\n", s.name.c_str(), e.label().c_str(),
+                       verdict.c_str(), probes.c_str());
 }
 
 }  // namespace
