@@ -186,8 +186,11 @@ std::string against_previous(const ReportInput& in) {
   if (!in.previous.record) return in.previous.note + "\n\n";
   const TimingRecord& before = *in.previous.record;
   const TimingComparison c = compare_timings(before, timing_record(in.scenes, in.provenance));
-  const bool same = before.commit == in.provenance.commit && before.cpu == in.provenance.cpu &&
-                    in.provenance.commit.find("dirty") == std::string::npos;
+  // Same code only when the commit is known and the tree clean (provenance.hpp: "unknown",
+  // "-dirty").
+  const std::string& commit = in.provenance.commit;
+  const bool same = before.commit == commit && before.cpu == in.provenance.cpu &&
+                    commit != "unknown" && commit.find("dirty") == std::string::npos;
   std::string md = printf_string(
       "Against the report this one replaced (commit %s; this one: commit %s): of %zu cells "
       "timed in both, %zu (%.1f %%) medians agree within %.0f %%; median move %.1f %%. ",
