@@ -59,9 +59,10 @@ struct BodyState {
   Vec3 velocity = Vec3::Zero();
 };
 
-// Storage for states (UnwrittenAllocator): 64-byte aligned (whole cache lines); a block of 4 MiB or
-// more is 2 MiB aligned and asks Linux for transparent huge pages (madvise MADV_HUGEPAGE), so that
-// a long trajectory takes one page fault per 2 MiB instead of one per 4 KiB written (engine.cpp).
+// Storage for states (UnwrittenAllocator): 64-byte aligned (whole cache lines); for a block of 4
+// MiB or more, the whole 2 MiB pages inside it are advised as transparent huge pages (madvise
+// MADV_HUGEPAGE, malloc's placement kept), so that a long trajectory takes one page fault per 2 MiB
+// instead of one per 4 KiB written (engine.cpp).
 void* allocate_states(std::size_t bytes);
 // Frees what allocate_states(bytes) gave.
 void free_states(void* p, std::size_t bytes) noexcept;
@@ -83,7 +84,8 @@ struct UnwrittenAllocator {
     return static_cast<T*>(allocate_states(n * sizeof(T)));
   }
   void deallocate(T* p, std::size_t n) noexcept { free_states(p, n * sizeof(T)); }
-  // Leaves the object unwritten: an aggregate of doubles (implicitly created by the allocation).
+  // Leaves the object unwritten: BodyState is an aggregate (an implicit-lifetime type, created by
+  // the allocation); its default member initialisers are skipped on purpose.
   template <typename U>
   void construct(U*) noexcept {}
   // Any other construction as std::allocator does it.

@@ -26,7 +26,9 @@ struct Trajectory {
   std::int64_t steps = 0;               // steps the scene asks for
   std::vector<std::string> body_names;  // as in Scene::bodies
   std::vector<std::int64_t> recorded;   // step index of each sample; sample 0 is step 0
-  StateBuffer states;                   // recorded.size() x body_names.size(), sample-major
+  // recorded.size() x body_names.size(), sample-major. Growing it with resize(n) or emplace_back()
+  // leaves the new states unwritten (UnwrittenAllocator, engine.hpp): write them before any read.
+  StateBuffer states;
   RunStatus status = RunStatus::ok;
   std::string failure;             // what went wrong, for non-ok status
   std::int64_t failed_step = -1;   // first step that failed
