@@ -5,8 +5,7 @@
 // figures: printf_string with a printf pattern ("%.4g", "%13.6f", "%lld"), which writes the bytes
 // printf writes (fmt::vsprintf; fmt 9.1, measured over 9.6 million values: identical, inf/nan and
 // widths included). For new code fmt::format("{:.4g}") is equally fine; give a width an explicit
-// '>'
-// ("{:>13.6f}"): fmt left-aligns inf and nan in a width unless told.
+// '>' ("{:>13.6f}"): fmt left-aligns inf and nan in a width unless told.
 #pragma once
 
 #include <fmt/printf.h>
