@@ -116,7 +116,7 @@ SceneEvaluation evaluate_scene(const Scene& scene, const std::vector<EngineSlot>
                                const EvaluateOptions& options = {}, const Progress& progress = {});
 
 // Times every engine at every step of every scene's sweep whose run there finished, as one schedule
-// (time_cells, harness/measure/timing.hpp), and stores each figure in its StepEvaluation::timing.
+// (time_engines, harness/measure/timing.hpp), and stores each figure in its StepEvaluation::timing.
 // `engines` are the slots `scenes` were evaluated with, in the same order.
 void time_evaluations(std::vector<SceneEvaluation>& scenes, const std::vector<EngineSlot>& engines,
                       const TimingOptions& options = {}, const Progress& progress = {});

@@ -184,6 +184,13 @@ int repeats_for(const Scene& scene, double h, const std::string& engine, int rep
 
 namespace {
 
+// One cell of the timing: `engines` on `scene` (not owned) at step h.
+struct TimingCell {
+  const Scene* scene = nullptr;
+  double h = 0.0;
+  const std::vector<std::pair<std::string, EngineFactory>>& engines;
+};
+
 // One cell while it is being timed: its replicated scene, each engine's repeats and samples.
 struct CellRun {
   int replicas = 1;
@@ -252,32 +259,14 @@ Timing summarise(const TimingCell& cell, const CellRun& run, std::size_t e) {
 
 }  // namespace
 
-std::vector<std::vector<Timing>> time_cells(const std::vector<TimingCell>& cells,
-                                            const TimingOptions& options,
-                                            const std::function<void(int, int)>& progress) {
-  std::vector<CellRun> runs;
-  for (const TimingCell& cell : cells) runs.push_back(start_cell(cell, options));
-  // Cell after cell, each through all its rounds back to back. Measured: going round all the cells
-  // instead (every round visiting every cell) let two back-to-back reports agree within 10 % on
-  // only 44 % of the cells on a quiet machine (the halves of one report: median difference 14.5 %),
-  // against 93-96 % cell after cell: between two samples of a cell every other cell ran, and its
-  // engines met the caches, heap and clock in another state each time.
-  const int n = static_cast<int>(cells.size());
-  for (int c = 0; c < n; ++c) {
-    if (progress) progress(c + 1, n);
-    for (int r = -options.warmups; r < options.samples; ++r)
-      time_round(cells[c], runs[c], r, options);
-  }
-  std::vector<std::vector<Timing>> out(cells.size());
-  for (std::size_t c = 0; c < cells.size(); ++c)
-    for (std::size_t e = 0; e < cells[c].engines.size(); ++e)
-      out[c].push_back(summarise(cells[c], runs[c], e));
-  return out;
-}
-
 std::vector<Timing> time_engines(const std::vector<std::pair<std::string, EngineFactory>>& engines,
                                  const Scene& scene, double h, const TimingOptions& options) {
-  return time_cells({TimingCell{&scene, h, engines}}, options)[0];
+  const TimingCell cell{&scene, h, engines};
+  CellRun run = start_cell(cell, options);
+  for (int r = -options.warmups; r < options.samples; ++r) time_round(cell, run, r, options);
+  std::vector<Timing> out;
+  for (std::size_t e = 0; e < engines.size(); ++e) out.push_back(summarise(cell, run, e));
+  return out;
 }
 
 }  // namespace dropcheck

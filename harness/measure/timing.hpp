@@ -80,24 +80,12 @@ int repeats_for(const Scene& scene, double h, const std::string& engine, int rep
 // spring's anchor shifted with its body).
 Scene replicate(const Scene& scene, int copies);
 
-// One cell of a timing schedule: `engines` on `scene` (not owned; it outlives the call) at step h.
-struct TimingCell {
-  const Scene* scene = nullptr;
-  double h = 0.0;
-  std::vector<std::pair<std::string, EngineFactory>> engines;
-};
-
-// Times every engine of every cell, cell after cell: each cell runs its rounds back to back
-// (warm-ups first, untimed), and each round runs every engine once (an untimed bare loop to warm
+// Times every engine on `scene` at step h (one cell of the report): the rounds back to back
+// (warm-ups first, untimed), each round running every engine once (an untimed bare loop to warm
 // its code and data, then the timed full loop and the timed bare loop), in alternating order from
 // round to round, so that drift of the machine hits all engines alike and each engine's samples,
-// and both halves of them, are spread over the cell's whole window. `progress` (optional) hears
-// (cell, cells) as each cell starts. One vector per cell, in the cell's engine order.
-std::vector<std::vector<Timing>> time_cells(const std::vector<TimingCell>& cells,
-                                            const TimingOptions& options = {},
-                                            const std::function<void(int, int)>& progress = {});
-
-// time_cells on one cell: `engines` on `scene` at step h.
+// and both halves of them, are spread over the cell's whole window. One Timing per engine, in
+// order.
 std::vector<Timing> time_engines(const std::vector<std::pair<std::string, EngineFactory>>& engines,
                                  const Scene& scene, double h, const TimingOptions& options = {});
 
