@@ -16,11 +16,11 @@
 #include <charconv>
 #include <filesystem>
 
-#include "harness/core/child_process.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/core/number_format.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/core/trajectory_io.hpp"
+#include "harness/io/trajectory_io.hpp"
+#include "harness/process/child_process.hpp"
 
 namespace dropcheck {
 namespace {

@@ -1,4 +1,4 @@
-// Fuzz target: the scene loader (harness/core/scene_loader.cpp) on arbitrary bytes. Any input must
+// Fuzz target: the scene loader (harness/scene/scene_loader.cpp) on arbitrary bytes. Any input must
 // either load or be refused with InputError; any other exception, a crash or a sanitizer report is
 // a bug. A scene that loads also goes through the run pre-checks (harness/core/run_limits.cpp) for
 // an f32 and an f64 engine, which read every value of it. Built by scripts/fuzz.sh (libFuzzer,
@@ -9,7 +9,7 @@
 
 #include "harness/core/input_error.hpp"
 #include "harness/core/run_limits.hpp"
-#include "harness/core/scene_loader.hpp"
+#include "harness/scene/scene_loader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -29,8 +29,8 @@ done
 # The sources a target needs (a static library: only what is referenced gets linked). toml++ is
 # compiled header-only here so that its parser is instrumented too, with its internal debug
 # assertions off as in the library dropcheck links (the loader refuses control characters before
-# toml++ sees them, and hands it ASCII only: harness/core/toml_ascii.hpp).
-sources=("$root"/harness/core/*.cpp "$root"/harness/guard/baseline_parse.cpp "$root"/harness/guard/baseline_io.cpp
+# toml++ sees them, and hands it ASCII only: harness/scene/toml_ascii.hpp).
+sources=("$root"/harness/{core,scene,io,process}/*.cpp "$root"/harness/guard/baseline_parse.cpp "$root"/harness/guard/baseline_io.cpp
          "$root"/harness/measure/timing_record.cpp)
 flags=(-std=c++20 -O1 -g -fno-omit-frame-pointer -fsanitize=fuzzer-no-link,address,undefined
        -fno-sanitize-recover=all -ffp-contract=off -I"$root" -I/usr/include/eigen3

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/scene_loader.hpp"
+#include "harness/scene/scene_loader.hpp"
 #include "tests/shipped_scenes.hpp"
 
 namespace {}  // namespace

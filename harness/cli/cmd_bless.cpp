@@ -14,13 +14,13 @@
 #include "cli.hpp"
 #include "harness/core/build_id.hpp"
 #include "harness/core/input_error.hpp"
-#include "harness/core/output_plan.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/core/scene_loader.hpp"
 #include "harness/guard/baseline_io.hpp"
 #include "harness/guard/bless.hpp"
 #include "harness/guard/regression.hpp"
 #include "harness/guard/regression_physics.hpp"
+#include "harness/io/output_plan.hpp"
+#include "harness/scene/scene_loader.hpp"
 
 namespace dropcheck {
 namespace {

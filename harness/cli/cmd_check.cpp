@@ -8,8 +8,8 @@
 #include "cli.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/core/scene_loader.hpp"
 #include "harness/measure/checks.hpp"
+#include "harness/scene/scene_loader.hpp"
 #include "selection.hpp"
 
 namespace dropcheck {

@@ -5,10 +5,10 @@
 // folder holds no baseline file, or --out would land on or inside OLD or NEW.
 #include "args.hpp"
 #include "cli.hpp"
-#include "harness/core/atomic_file.hpp"
 #include "harness/core/input_error.hpp"
-#include "harness/core/output_plan.hpp"
 #include "harness/guard/result_diff.hpp"
+#include "harness/io/atomic_file.hpp"
+#include "harness/io/output_plan.hpp"
 
 namespace dropcheck {
 

@@ -16,9 +16,9 @@
 #include "harness/core/number_format.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
-#include "harness/core/scene_loader.hpp"
-#include "harness/core/trajectory_csv.hpp"
+#include "harness/io/trajectory_csv.hpp"
 #include "harness/oracles/identify.hpp"
+#include "harness/scene/scene_loader.hpp"
 #include "selection.hpp"
 
 namespace dropcheck {

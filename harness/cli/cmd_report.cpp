@@ -5,7 +5,7 @@
 // scene file is loaded before any work starts, and the output is built in a staging directory and
 // swapped into place only when complete: a bad scene file exits 2 naming the file, key and problem,
 // and leaves the previous report untouched. DIR is replaced only when dropcheck wrote it (its
-// .dropcheck-manifest, harness/core/output_dir.hpp); that and every other output rule is checked
+// .dropcheck-manifest, harness/io/output_dir.hpp); that and every other output rule is checked
 // before any engine runs. With timings, DIR/timings.json keeps them, and the next report into DIR
 // says how far each median moved (the two-run figure of "Timing reproducibility").
 #include <algorithm>
@@ -14,11 +14,11 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "harness/core/input_error.hpp"
-#include "harness/core/output_dir.hpp"
-#include "harness/core/output_plan.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/core/scene_loader.hpp"
+#include "harness/io/output_dir.hpp"
+#include "harness/io/output_plan.hpp"
 #include "harness/report/report.hpp"
+#include "harness/scene/scene_loader.hpp"
 #include "harness/stability/stability_report.hpp"
 
 namespace fs = std::filesystem;

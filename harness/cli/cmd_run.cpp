@@ -1,18 +1,18 @@
 // dropcheck run FILE [--engine E]... [--dt H] [--csv OUT] [--json OUT]
 // Runs the scene on each engine and prints a summary: final state per engine and body, steps,
 // wall time, status. Every output path is checked before any engine runs
-// (harness/core/output_plan.hpp); output files are written only after every run finished,
+// (harness/io/output_plan.hpp); output files are written only after every run finished,
 // atomically.
 
 #include "args.hpp"
 #include "cli.hpp"
-#include "harness/core/atomic_file.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/core/number_format.hpp"
-#include "harness/core/output_plan.hpp"
 #include "harness/core/runner.hpp"
-#include "harness/core/scene_loader.hpp"
-#include "harness/core/trajectory_io.hpp"
+#include "harness/io/atomic_file.hpp"
+#include "harness/io/output_plan.hpp"
+#include "harness/io/trajectory_io.hpp"
+#include "harness/scene/scene_loader.hpp"
 #include "selection.hpp"
 
 namespace dropcheck {

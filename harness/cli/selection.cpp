@@ -2,7 +2,7 @@
 
 #include "harness/core/input_error.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/core/timestep.hpp"
+#include "harness/scene/timestep.hpp"
 
 namespace dropcheck {
 

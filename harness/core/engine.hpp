@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "harness/core/law.hpp"
-#include "harness/core/scene.hpp"
+#include "harness/scene/scene.hpp"
 
 namespace dropcheck {
 

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "harness/core/number_format.hpp"
-#include "harness/core/timestep.hpp"
+#include "harness/scene/timestep.hpp"
 
 namespace dropcheck {
 namespace {

@@ -22,9 +22,10 @@ std::int64_t recorded_samples(std::int64_t steps, std::int64_t record_every);
 // Bytes those samples take for `bodies` bodies.
 double trajectory_bytes(double samples, std::size_t bodies);
 
-// Why the run cannot start ("" when it can): more than kMaxSteps steps (harness/core/timestep.hpp),
-// recorded samples over kTrajectoryBudgetBytes, or, for an f32 engine, a scene value whose
-// magnitude exceeds the largest float (3.4e38), which would become Inf inside the engine.
+// Why the run cannot start ("" when it can): more than kMaxSteps steps
+// (harness/scene/timestep.hpp), recorded samples over kTrajectoryBudgetBytes, or, for an f32
+// engine, a scene value whose magnitude exceeds the largest float (3.4e38), which would become Inf
+// inside the engine.
 std::string run_refusal(const EngineInfo& engine, const Scene& scene, double h,
                         const RunOptions& options);
 

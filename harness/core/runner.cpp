@@ -9,8 +9,8 @@
 
 #include "harness/core/engine_writer.hpp"
 #include "harness/core/forces.hpp"
-#include "harness/core/isolated_run.hpp"
 #include "harness/core/run_limits.hpp"
+#include "harness/process/isolated_run.hpp"
 
 namespace dropcheck {
 namespace {

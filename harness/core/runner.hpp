@@ -8,7 +8,7 @@
 
 namespace dropcheck {
 
-// Where a run's engine steps (harness/core/isolated_run.hpp).
+// Where a run's engine steps (harness/process/isolated_run.hpp).
 enum class Isolation {
   process_default,  // whatever set_default_isolation() chose for this process (in_process unless
                     // set)

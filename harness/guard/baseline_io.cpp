@@ -11,12 +11,12 @@
 #include <map>
 #include <sstream>
 
-#include "harness/core/bounded_read.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/core/number_format.hpp"
-#include "harness/core/trajectory_io.hpp"
 #include "harness/guard/baseline.hpp"
 #include "harness/guard/baseline_parse.hpp"
+#include "harness/io/bounded_read.hpp"
+#include "harness/io/trajectory_io.hpp"
 
 namespace dropcheck {
 namespace {

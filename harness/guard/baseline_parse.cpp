@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "harness/core/input_error.hpp"
-#include "harness/core/timestep.hpp"
 #include "harness/guard/baseline.hpp"
+#include "harness/scene/timestep.hpp"
 
 namespace dropcheck {
 namespace {

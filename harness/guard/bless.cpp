@@ -5,12 +5,12 @@
 #include <map>
 #include <sstream>
 
-#include "harness/core/atomic_file.hpp"
-#include "harness/core/file_slug.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/guard/baseline_io.hpp"
 #include "harness/guard/regression.hpp"
 #include "harness/guard/regression_physics.hpp"
+#include "harness/io/atomic_file.hpp"
+#include "harness/io/file_slug.hpp"
 
 namespace dropcheck {
 namespace {

@@ -6,7 +6,7 @@
 #include "harness/core/number_format.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/core/trajectory_hash.hpp"
-#include "harness/core/trajectory_io.hpp"
+#include "harness/io/trajectory_io.hpp"
 #include "harness/measure/tolerances.hpp"
 
 namespace dropcheck {

@@ -5,7 +5,6 @@
 #include <cstdio>
 
 #include "harness/core/runner.hpp"
-#include "harness/core/timestep.hpp"
 #include "harness/measure/attribution.hpp"
 #include "harness/measure/law_stability.hpp"
 #include "harness/measure/metrics.hpp"
@@ -17,6 +16,7 @@
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/oracles/landing.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
+#include "harness/scene/timestep.hpp"
 
 namespace dropcheck {
 namespace {

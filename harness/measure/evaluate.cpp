@@ -7,13 +7,13 @@
 
 #include "harness/core/number_format.hpp"
 #include "harness/core/runner.hpp"
-#include "harness/core/timestep.hpp"
 #include "harness/core/trajectory_hash.hpp"
 #include "harness/measure/own_law.hpp"
 #include "harness/measure/sweep.hpp"
 #include "harness/oracles/analytic.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
+#include "harness/scene/timestep.hpp"
 
 namespace dropcheck {
 namespace {

@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "harness/core/law.hpp"
-#include "harness/core/scene.hpp"
+#include "harness/scene/scene.hpp"
 
 namespace dropcheck {
 

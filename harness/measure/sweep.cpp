@@ -4,10 +4,10 @@
 #include <cmath>
 
 #include "harness/core/number_format.hpp"
-#include "harness/core/timestep.hpp"
 #include "harness/measure/attribution.hpp"
 #include "harness/measure/metrics.hpp"
 #include "harness/measure/tolerances.hpp"
+#include "harness/scene/timestep.hpp"
 #include "harness/stability/stability.hpp"
 #include "harness/stability/stability_theory.hpp"
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/scene.hpp"
 #include "harness/measure/tolerances.hpp"
+#include "harness/scene/scene.hpp"
 
 namespace dropcheck {
 

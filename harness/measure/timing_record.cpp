@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <tuple>
 
-#include "harness/core/bounded_read.hpp"
 #include "harness/core/input_error.hpp"
+#include "harness/io/bounded_read.hpp"
 
 namespace dropcheck {
 namespace {

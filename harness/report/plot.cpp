@@ -16,9 +16,9 @@
 #include <optional>
 #include <sstream>
 
-#include "harness/core/atomic_file.hpp"
 #include "harness/core/number_format.hpp"
-#include "harness/core/signal_cleanup.hpp"
+#include "harness/io/atomic_file.hpp"
+#include "harness/process/signal_cleanup.hpp"
 
 namespace dropcheck {
 namespace {

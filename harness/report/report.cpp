@@ -6,7 +6,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "harness/core/atomic_file.hpp"
+#include "harness/io/atomic_file.hpp"
 #include "harness/report/report_format.hpp"
 #include "harness/report/report_scene.hpp"
 #include "harness/report/report_summary.hpp"

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/file_slug.hpp"
 #include "harness/core/number_format.hpp"
+#include "harness/io/file_slug.hpp"
 
 namespace dropcheck {
 

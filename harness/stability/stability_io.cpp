@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/core/number_format.hpp"
-#include "harness/core/trajectory_io.hpp"
+#include "harness/io/trajectory_io.hpp"
 #include "harness/stability/stability_study.hpp"
 
 namespace dropcheck {

@@ -7,7 +7,7 @@
 #include <filesystem>
 
 #include "harness/core/number_format.hpp"
-#include "harness/core/scene_loader.hpp"
+#include "harness/scene/scene_loader.hpp"
 #include "harness/stability/stability_study.hpp"
 
 namespace dropcheck {

@@ -17,7 +17,7 @@
 
 #include "harness/core/number_format.hpp"
 #include "harness/core/runner.hpp"
-#include "harness/core/trajectory_io.hpp"
+#include "harness/io/trajectory_io.hpp"
 #include "harness/stability/stability.hpp"
 
 namespace dropcheck {

@@ -5,7 +5,7 @@
 #include <optional>
 
 #include "harness/core/law.hpp"
-#include "harness/core/scene.hpp"
+#include "harness/scene/scene.hpp"
 
 namespace dropcheck {
 

@@ -15,9 +15,9 @@
 
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
-#include "harness/core/scene_loader.hpp"
 #include "harness/core/trajectory.hpp"
 #include "harness/oracles/discrete_law.hpp"
+#include "harness/scene/scene_loader.hpp"
 
 // Declares `engine` as make_engine(name), or warns why that engine is unavailable and ends the test
 // case (for the engines a build may leave out).

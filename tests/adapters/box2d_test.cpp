@@ -13,8 +13,8 @@
 #include "adapter_test_support.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
-#include "harness/core/scene_loader.hpp"
 #include "harness/oracles/discrete_law.hpp"
+#include "harness/scene/scene_loader.hpp"
 
 namespace dropcheck {
 // Defined in adapters/box2d.cpp for tests: Box2D's GetMass() of body i of a loaded box2d engine.

@@ -11,12 +11,12 @@
 #include "adapter_test_support.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
-#include "harness/core/scene_loader.hpp"
 #include "harness/measure/checks.hpp"
 #include "harness/measure/own_law.hpp"
 #include "harness/measure/sweep.hpp"
 #include "harness/oracles/landing.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
+#include "harness/scene/scene_loader.hpp"
 
 using namespace dropcheck;
 

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <string>
 
-#include "harness/core/scene_loader.hpp"
+#include "harness/scene/scene_loader.hpp"
 
 namespace dropcheck::testing {
 

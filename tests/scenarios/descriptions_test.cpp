@@ -20,9 +20,9 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/scene_loader.hpp"
 #include "harness/oracles/analytic.hpp"
 #include "harness/oracles/landing.hpp"
+#include "harness/scene/scene_loader.hpp"
 #include "harness/stability/stability.hpp"
 #include "harness/stability/stability_theory.hpp"
 #include "tests/shipped_scenes.hpp"

@@ -23,8 +23,8 @@
 #include "../test_dirs.hpp"
 #include "cli_driver.hpp"
 #include "harness/cli/cli.hpp"
-#include "harness/core/output_dir.hpp"
-#include "harness/core/signal_cleanup.hpp"
+#include "harness/io/output_dir.hpp"
+#include "harness/process/signal_cleanup.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;

@@ -7,8 +7,8 @@
 
 #include "../test_dirs.hpp"
 #include "harness/cli/cli.hpp"
-#include "harness/core/isolated_run.hpp"
 #include "harness/core/registry.hpp"
+#include "harness/process/isolated_run.hpp"
 
 using namespace dropcheck;
 using Catch::Matchers::Contains;

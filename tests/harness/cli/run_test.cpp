@@ -16,7 +16,7 @@
 #include "harness/cli/cli.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
-#include "harness/core/scene_loader.hpp"
+#include "harness/scene/scene_loader.hpp"
 
 using Catch::Matchers::Contains;
 namespace fs = std::filesystem;

@@ -4,7 +4,7 @@
 #include <catch2/catch.hpp>
 #include <vector>
 
-#include "harness/core/scene_loader.hpp"
+#include "harness/scene/scene_loader.hpp"
 #include "tests/scene_texts.hpp"
 
 namespace {

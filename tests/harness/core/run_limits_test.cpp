@@ -5,8 +5,8 @@
 #include <catch2/catch.hpp>
 
 #include "harness/core/registry.hpp"
-#include "harness/core/scene_loader.hpp"
-#include "harness/core/timestep.hpp"
+#include "harness/scene/scene_loader.hpp"
+#include "harness/scene/timestep.hpp"
 
 using namespace dropcheck;
 using Catch::Matchers::Contains;

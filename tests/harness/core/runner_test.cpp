@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "harness/core/registry.hpp"
-#include "harness/core/scene_loader.hpp"
 #include "harness/oracles/discrete_law.hpp"
+#include "harness/scene/scene_loader.hpp"
 #include "tests/fake_engine.hpp"
 #include "tests/scene_texts.hpp"
 

@@ -11,10 +11,10 @@
 #include "../test_dirs.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/core/scene_loader.hpp"
 #include "harness/guard/baseline_io.hpp"
 #include "harness/guard/baseline_parse.hpp"
 #include "harness/guard/bless.hpp"
+#include "harness/scene/scene_loader.hpp"
 
 using namespace dropcheck;
 using namespace dropcheck::testing;

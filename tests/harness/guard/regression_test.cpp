@@ -11,8 +11,8 @@
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/core/trajectory_hash.hpp"
-#include "harness/core/trajectory_io.hpp"
 #include "harness/guard/regression_physics.hpp"
+#include "harness/io/trajectory_io.hpp"
 
 using namespace dropcheck;
 using namespace dropcheck::testing;

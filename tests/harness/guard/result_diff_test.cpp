@@ -6,8 +6,8 @@
 
 #include "../moved_drag_engine.hpp"
 #include "../test_dirs.hpp"
-#include "harness/core/atomic_file.hpp"
 #include "harness/guard/baseline_io.hpp"
+#include "harness/io/atomic_file.hpp"
 
 using namespace dropcheck;
 using namespace dropcheck::testing;

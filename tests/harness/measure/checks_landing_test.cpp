@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "../test_dirs.hpp"
-#include "harness/core/scene_loader.hpp"
 #include "harness/measure/checks.hpp"
 #include "harness/oracles/landing.hpp"
+#include "harness/scene/scene_loader.hpp"
 
 using namespace dropcheck;
 using Catch::Matchers::Contains;

@@ -5,7 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include "harness/core/registry.hpp"
-#include "harness/core/scene_loader.hpp"
+#include "harness/scene/scene_loader.hpp"
 
 using namespace dropcheck;
 

@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "harness/core/registry.hpp"
-#include "harness/core/scene_loader.hpp"
 #include "harness/measure/checks.hpp"
 #include "harness/measure/law_stability.hpp"
 #include "harness/measure/sweep.hpp"
+#include "harness/scene/scene_loader.hpp"
 
 using namespace dropcheck;
 using Catch::Matchers::Contains;

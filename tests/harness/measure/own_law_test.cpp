@@ -9,8 +9,8 @@
 #include <limits>
 
 #include "harness/core/registry.hpp"
-#include "harness/core/scene_loader.hpp"
 #include "harness/oracles/discrete_law.hpp"
+#include "harness/scene/scene_loader.hpp"
 
 using namespace dropcheck;
 using Catch::Matchers::Contains;

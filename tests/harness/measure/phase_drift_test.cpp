@@ -10,11 +10,11 @@
 #include <numbers>
 
 #include "harness/core/registry.hpp"
-#include "harness/core/scene_loader.hpp"
 #include "harness/measure/checks.hpp"
 #include "harness/measure/metrics.hpp"
 #include "harness/oracles/analytic.hpp"
 #include "harness/oracles/discrete_law.hpp"
+#include "harness/scene/scene_loader.hpp"
 
 using namespace dropcheck;
 using Catch::Matchers::Contains;

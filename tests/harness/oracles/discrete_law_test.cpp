@@ -18,7 +18,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "harness/core/scene_loader.hpp"
+#include "harness/scene/scene_loader.hpp"
 #include "tests/scene_texts.hpp"
 
 namespace {

@@ -1,4 +1,4 @@
-// Tests harness/oracles/identify.cpp (and harness/core/trajectory_csv.cpp, its file input): every
+// Tests harness/oracles/identify.cpp (and harness/io/trajectory_csv.cpp, its file input): every
 // built-in engine's law is named from its own trajectory on wind.toml (damping, and a force that
 // differs between bodies, so all five members separate); a non-Euler trajectory fits no member; a
 // gravity-only scene is honestly ambiguous between after-forces and before-forces.
@@ -16,9 +16,9 @@
 #include "harness/core/input_error.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
-#include "harness/core/scene_loader.hpp"
-#include "harness/core/trajectory_csv.hpp"
-#include "harness/core/trajectory_io.hpp"
+#include "harness/io/trajectory_csv.hpp"
+#include "harness/io/trajectory_io.hpp"
+#include "harness/scene/scene_loader.hpp"
 
 using namespace dropcheck;
 using Catch::Matchers::Contains;

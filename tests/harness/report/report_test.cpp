@@ -13,9 +13,9 @@
 
 #include "../test_dirs.hpp"
 #include "harness/cli/cli.hpp"
-#include "harness/core/output_dir.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/core/scene_loader.hpp"
+#include "harness/io/output_dir.hpp"
+#include "harness/scene/scene_loader.hpp"
 
 using namespace dropcheck;
 using Catch::Matchers::Contains;

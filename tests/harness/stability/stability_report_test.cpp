@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "harness/core/registry.hpp"
-#include "harness/core/scene_loader.hpp"
+#include "harness/scene/scene_loader.hpp"
 #include "harness/stability/stability_io.hpp"
 #include "harness/stability/stability_study.hpp"
 

@@ -12,7 +12,7 @@
 
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
-#include "harness/core/scene_loader.hpp"
+#include "harness/scene/scene_loader.hpp"
 #include "harness/stability/stability_search.hpp"
 #include "harness/stability/stability_theory.hpp"
 

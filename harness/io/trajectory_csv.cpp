@@ -1,0 +1,142 @@
+#include "harness/io/trajectory_csv.hpp"
+
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <charconv>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "harness/core/input_error.hpp"
+
+namespace dropcheck {
+namespace {
+
+constexpr const char* kHeader = "engine,dt,step,t,body,x,y,z,vx,vy,vz";
+constexpr const char* kColumns[] = {"engine", "dt", "step", "t",  "body", "x",
+                                    "y",      "z",  "vx",   "vy", "vz"};
+
+// Splits one CSV record (RFC 4180 quoting, as trajectory_io.cpp writes it).
+std::vector<std::string> csv_fields(const std::string& line) {
+  std::vector<std::string> out(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"')
+        out.back() += '"', ++i;
+      else if (c == '"')
+        quoted = false;
+      else
+        out.back() += c;
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      out.emplace_back();
+    } else {
+      out.back() += c;
+    }
+  }
+  return out;
+}
+
+double number(const std::string& s, const std::string& file, int line, const char* column) {
+  double v = 0.0;
+  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || ptr != s.data() + s.size() || s.empty())
+    throw InputError(file, line, column, "'" + s + "' is not a number");
+  return v;
+}
+
+// The run a row belongs to, created on first sight.
+Trajectory& run_for(std::vector<Trajectory>& runs, const std::string& engine, double dt) {
+  for (Trajectory& t : runs)
+    if (t.engine == engine && t.h == dt) return t;
+  Trajectory t;
+  t.engine = engine;
+  t.h = dt;
+  runs.push_back(std::move(t));
+  return runs.back();
+}
+
+// Appends one row to its run: a new sample when the step changes.
+void add_row(Trajectory& t, std::int64_t step, const std::string& body, const BodyState& s,
+             const std::string& file, int line) {
+  const bool new_sample = t.recorded.empty() || t.recorded.back() != step;
+  if (new_sample) {
+    if (!t.recorded.empty() && step <= t.recorded.back())
+      throw InputError(file, line, "step", "steps of engine '" + t.engine + "' must increase");
+    if (t.recorded.size() >= 1 && t.states.size() != t.recorded.size() * t.body_names.size())
+      throw InputError(file, line, "body",
+                       "step " + std::to_string(t.recorded.back()) + " lacks bodies of step " +
+                           std::to_string(t.recorded[0]));
+    t.recorded.push_back(step);
+  }
+  const std::size_t index = t.states.size() - (t.recorded.size() - 1) * t.body_names.size();
+  if (t.recorded.size() == 1) {
+    t.body_names.push_back(body);
+  } else if (index >= t.body_names.size() || t.body_names[index] != body) {
+    throw InputError(
+        file, line, "body",
+        "'" + body + "' where step " + std::to_string(t.recorded[0]) + " has " +
+            (index < t.body_names.size() ? "'" + t.body_names[index] + "'" : "no more bodies"));
+  }
+  t.states.push_back(s);
+}
+
+}  // namespace
+
+std::vector<Trajectory> read_trajectories_csv(const std::string& file) {
+  // The reason, not just the failure: a missing file, no permission, a folder, a device or FIFO
+  // (never read: /dev/zero would never end).
+  struct stat st {};
+  if (::stat(file.c_str(), &st) != 0)
+    throw InputError(file, 0, "",
+                     std::string("cannot read the trajectory file: ") + std::strerror(errno));
+  if (S_ISDIR(st.st_mode))
+    throw InputError(file, 0, "", "cannot read the trajectory file: it is a directory");
+  if (!S_ISREG(st.st_mode))
+    throw InputError(
+        file, 0, "",
+        "cannot read the trajectory file: not a regular file (a device, FIFO or socket)");
+  std::ifstream in(file);
+  if (!in)
+    throw InputError(file, 0, "",
+                     std::string("cannot read the trajectory file: ") + std::strerror(errno));
+  std::string line;
+  if (!std::getline(in, line) || (line.empty() ? line : line.substr(0, line.find('\r'))) != kHeader)
+    throw InputError(file, 1, "", std::string("the header must be ") + kHeader);
+  std::vector<Trajectory> runs;
+  int n = 1;
+  while (std::getline(in, line)) {
+    ++n;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    const std::vector<std::string> f = csv_fields(line);
+    if (f.size() != 11)
+      throw InputError(
+          file, n, "",
+          "expected 11 columns (" + std::string(kHeader) + "), got " + std::to_string(f.size()));
+    const double dt = number(f[1], file, n, kColumns[1]);
+    const double step = number(f[2], file, n, kColumns[2]);
+    if (!(dt > 0.0)) throw InputError(file, n, "dt", "must be > 0");
+    if (step < 0 || step != static_cast<double>(static_cast<std::int64_t>(step)))
+      throw InputError(file, n, "step", "must be a whole number >= 0");
+    BodyState s;
+    for (int i = 0; i < 3; ++i) {
+      s.position[i] = number(f[5 + i], file, n, kColumns[5 + i]);
+      s.velocity[i] = number(f[8 + i], file, n, kColumns[8 + i]);
+    }
+    add_row(run_for(runs, f[0], dt), static_cast<std::int64_t>(step), f[4], s, file, n);
+  }
+  for (Trajectory& t : runs) {
+    if (t.states.size() != t.recorded.size() * t.body_names.size())
+      throw InputError(file, n, "body", "the last step of engine '" + t.engine + "' lacks bodies");
+    t.steps = t.recorded.back();
+  }
+  if (runs.empty()) throw InputError(file, 2, "", "no rows after the header");
+  return runs;
+}
+
+}  // namespace dropcheck

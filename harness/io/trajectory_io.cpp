@@ -1,0 +1,112 @@
+#include "harness/io/trajectory_io.hpp"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "harness/core/number_format.hpp"
+
+namespace dropcheck {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+// ",x,y,z" for each vector.
+void append_csv(std::string& out, const Vec3& v) {
+  for (int i = 0; i < 3; ++i) out += "," + exact(v[i]);
+}
+
+// RFC 4180: a field holding a comma, a quote or a line break is quoted, its quotes doubled.
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+// JSON has no NaN or Inf: nlohmann writes null for them. Names are escaped by construction, and a
+// byte that is not UTF-8 becomes U+FFFD instead of breaking the document.
+std::string dump(const Json& j) {
+  return j.dump(-1, ' ', false, Json::error_handler_t::replace);
+}
+
+Json json_vec(const Vec3& v) {
+  return Json::array({v[0], v[1], v[2]});
+}
+
+// The run's fields before its bodies, as nlohmann writes them, without the closing brace.
+std::string run_head(const Trajectory& t) {
+  const Json run = {{"engine", t.engine},
+                    {"scene", t.scene},
+                    {"dt", t.h},
+                    {"steps", t.steps},
+                    {"status", to_string(t.status)},
+                    {"failure", t.failure},
+                    {"failed_step", t.failed_step},
+                    {"clamped_steps", t.clamped_steps}};
+  std::string head = dump(run);
+  head.pop_back();
+  return head;
+}
+
+// One run as {...,"bodies":[{"name":...,"samples":[[t,[x,y,z],[vx,vy,vz]],...]},...]}, written
+// piece by piece in the bytes nlohmann's compact dump of the whole object would give: memory holds
+// one sample's text, not the run's document.
+void write_run_json(std::ostream& out, const Trajectory& t) {
+  out << run_head(t) << ",\"bodies\":[";
+  for (std::size_t b = 0; b < t.bodies(); ++b) {
+    out << (b ? ",{\"name\":" : "{\"name\":") << dump(Json(t.body_names[b])) << ",\"samples\":[";
+    for (std::size_t s = 0; s < t.samples(); ++s) {
+      const BodyState& st = t.at(s, b);
+      out << (s ? "," : "")
+          << dump(Json::array({t.recorded[s], json_vec(st.position), json_vec(st.velocity)}));
+    }
+    out << "]}";
+  }
+  out << "]}";
+}
+
+}  // namespace
+
+std::string trajectories_to_csv(std::span<const Trajectory> runs) {
+  std::ostringstream out;
+  write_trajectories_csv(out, runs);
+  return out.str();
+}
+
+void write_trajectories_csv(std::ostream& out, std::span<const Trajectory> runs) {
+  out << "engine,dt,step,t,body,x,y,z,vx,vy,vz\n";
+  std::string row;  // reused: one row's text at a time
+  for (const Trajectory& t : runs) {
+    const std::string engine = csv_field(t.engine) + "," + exact(t.h) + ",";
+    for (std::size_t s = 0; s < t.samples(); ++s) {
+      for (std::size_t b = 0; b < t.bodies(); ++b) {
+        const BodyState& st = t.at(s, b);
+        row = engine;
+        row += std::to_string(t.recorded[s]) + "," + exact(t.time(s)) + "," +
+               csv_field(t.body_names[b]);
+        append_csv(row, st.position);
+        append_csv(row, st.velocity);
+        row += '\n';
+        out.write(row.data(), static_cast<std::streamsize>(row.size()));
+      }
+    }
+  }
+}
+
+std::string trajectories_to_json(std::span<const Trajectory> runs) {
+  std::ostringstream out;
+  write_trajectories_json(out, runs);
+  return out.str();
+}
+
+void write_trajectories_json(std::ostream& out, std::span<const Trajectory> runs) {
+  out << "{\"runs\":[";  // one run per line
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    out << (r ? ",\n" : "\n");
+    write_run_json(out, runs[r]);
+  }
+  out << "\n]}\n";
+}
+
+}  // namespace dropcheck

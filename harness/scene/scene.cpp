@@ -1,0 +1,27 @@
+#include "harness/scene/scene.hpp"
+
+#include <cmath>
+
+namespace dropcheck {
+
+std::int64_t step_count(const Scene& scene, double h) {
+  return static_cast<std::int64_t>(std::llround(scene.duration / h));
+}
+
+// dv/dt = -k*v over one step: v(t+h) = v(t)*exp(-k*h).
+double decay_per_step(const Scene& scene, double h) {
+  return std::exp(-scene.world.damping_rate * h);
+}
+
+bool is_planar(const Scene& scene) {
+  if (scene.world.gravity.z() != 0.0) return false;
+  for (const Body& b : scene.bodies)
+    if (b.position.z() != 0.0 || b.velocity.z() != 0.0) return false;
+  for (const Force& f : scene.forces) {
+    if (const auto* c = std::get_if<ConstantForce>(&f.law); c && c->force.z() != 0.0) return false;
+    if (const auto* s = std::get_if<Spring>(&f.law); s && s->anchor.z() != 0.0) return false;
+  }
+  return true;
+}
+
+}  // namespace dropcheck

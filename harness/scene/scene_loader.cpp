@@ -1,0 +1,310 @@
+#include "harness/scene/scene_loader.hpp"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <set>
+
+#include "harness/core/number_format.hpp"
+#include "harness/io/bounded_read.hpp"
+#include "harness/scene/timestep.hpp"
+#include "harness/scene/toml_ascii.hpp"
+
+namespace dropcheck {
+namespace {
+
+// Reads typed values out of one TOML table, throwing InputError with the file, line and key path.
+class Reader {
+ public:
+  Reader(const std::string& file, const toml::table& table, std::string prefix)
+      : file_(file), table_(table), prefix_(std::move(prefix)) {}
+
+  [[noreturn]] void fail(const std::string& key, const std::string& problem,
+                         const toml::node* at = nullptr) const {
+    const toml::node* n = at ? at : table_.get(key);
+    const int line =
+        n ? static_cast<int>(n->source().begin.line) : static_cast<int>(table_.source().begin.line);
+    throw InputError(file_, line, path(key), problem);
+  }
+
+  std::string path(const std::string& key) const {
+    return prefix_.empty() ? key : prefix_ + "." + key;
+  }
+  bool has(const std::string& key) const { return table_.contains(key); }
+  const toml::node* node(const std::string& key) const { return table_.get(key); }
+
+  void only(std::initializer_list<const char*> allowed) const {
+    for (const auto& [k, v] : table_) {
+      bool ok = false;
+      for (const char* a : allowed) ok = ok || k.str() == a;
+      if (!ok) fail(std::string(k.str()), "unknown key", &v);
+    }
+  }
+
+  double number(const std::string& key, const toml::node& n) const {
+    std::optional<double> v = n.value<double>();
+    if (!n.is_number() || !v) fail(key, std::string("expected a number, got ") + type_name(n), &n);
+    if (!std::isfinite(*v)) fail(key, "must be finite, got " + format(*v), &n);
+    return *v;
+  }
+  double number(const std::string& key, double fallback) const {
+    const toml::node* n = node(key);
+    return n ? number(key, *n) : fallback;
+  }
+  double required_number(const std::string& key) const {
+    if (!has(key)) fail(key, "required key is missing");
+    return number(key, *node(key));
+  }
+
+  Vec3 vec3(const std::string& key, const Vec3& fallback, bool required = false) const {
+    const toml::node* n = node(key);
+    if (!n) {
+      if (required) fail(key, "required key is missing");
+      return fallback;
+    }
+    const toml::array* a = n->as_array();
+    if (!a || a->size() != 3) fail(key, "expected an array of 3 numbers [x, y, z]", n);
+    Vec3 out;
+    for (std::size_t i = 0; i < 3; ++i)
+      out[i] = number(key + "[" + std::to_string(i) + "]", *a->get(i));
+    return out;
+  }
+
+  bool boolean(const std::string& key, bool fallback) const {
+    const toml::node* n = node(key);
+    if (!n) return fallback;
+    if (!n->is_boolean()) fail(key, std::string("expected true or false, got ") + type_name(*n), n);
+    return *n->value<bool>();
+  }
+
+  std::string string(const std::string& key, const std::string& fallback) const {
+    const toml::node* n = node(key);
+    if (!n) return fallback;
+    if (!n->is_string()) fail(key, std::string("expected a string, got ") + type_name(*n), n);
+    return *n->value<std::string>();
+  }
+
+  Timestep timestep(const std::string& key, const toml::node& n) const {
+    std::string text;
+    if (n.is_string()) {
+      text = *n.value<std::string>();
+    } else if (n.is_number()) {
+      // Shortest text that reads back to the same double: 0.1 stays "0.1" in messages and output.
+      text = shortest(number(key, n));
+    } else {
+      fail(key, std::string("expected seconds or \"1/N\", got ") + type_name(n), &n);
+    }
+    std::string why;
+    std::optional<Timestep> t = parse_timestep(text, why);
+    if (!t) fail(key, why, &n);
+    return *t;
+  }
+
+  static const char* type_name(const toml::node& n) {
+    switch (n.type()) {
+      case toml::node_type::string:
+        return "a string";
+      case toml::node_type::integer:
+        return "an integer";
+      case toml::node_type::floating_point:
+        return "a number";
+      case toml::node_type::boolean:
+        return "a boolean";
+      case toml::node_type::array:
+        return "an array";
+      case toml::node_type::table:
+        return "a table";
+      default:
+        return "a date or time";
+    }
+  }
+  // A number in a message: 6 significant digits, as the user would print it.
+  static std::string format(double v) { return sig(v, 6); }
+
+  const std::string& file() const { return file_; }
+  const toml::table& table() const { return table_; }
+
+ private:
+  const std::string& file_;
+  const toml::table& table_;
+  std::string prefix_;
+};
+
+const toml::array* array_of_tables(const Reader& r, const std::string& key) {
+  const toml::node* n = r.node(key);
+  if (!n) return nullptr;
+  const toml::array* a = n->as_array();
+  if (!a || !a->is_array_of_tables()) r.fail(key, "expected [[" + key + "]] tables", n);
+  return a;
+}
+
+void check_range(const Reader& r, const std::string& key, bool ok, const std::string& rule) {
+  if (!ok) r.fail(key, rule + ", got " + Reader::format(r.number(key, 0.0)));
+}
+
+void load_times(const Reader& r, Scene& s) {
+  s.duration = r.required_number("duration");
+  check_range(r, "duration", s.duration > 0.0, "must be > 0 seconds");
+  if (r.has("timestep")) s.timestep = r.timestep("timestep", *r.node("timestep"));
+  if (std::string why = step_problem(s.duration, s.timestep.seconds); !why.empty())
+    r.fail("timestep", why);
+  if (const toml::node* n = r.node("timesteps")) {
+    const toml::array* a = n->as_array();
+    if (!a || a->empty()) r.fail("timesteps", "expected a non-empty array of steps", n);
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const std::string key = "timesteps[" + std::to_string(i) + "]";
+      Timestep t = r.timestep(key, *a->get(i));
+      if (std::string why = step_problem(s.duration, t.seconds); !why.empty())
+        r.fail(key, why, a->get(i));
+      s.timesteps.push_back(t);
+    }
+  } else {
+    s.timesteps.push_back(s.timestep);
+  }
+  s.tolerance = r.number("tolerance", s.tolerance);
+  check_range(r, "tolerance", s.tolerance > 0.0, "must be > 0 m");
+}
+
+// linear_drag f is the seed's per-step factor at `timestep`: k = -ln(f)/h, so exp(-k*h) = f.
+void load_world(const Reader& top, Scene& s) {
+  const toml::node* n = top.node("world");
+  if (!n) top.fail("world", "required table [world] is missing");
+  if (!n->is_table()) top.fail("world", "expected a table [world]", n);
+  Reader r(top.file(), *n->as_table(), "world");
+  r.only({"gravity", "linear_drag", "linear_damping", "contacts"});
+  s.world.gravity = r.vec3("gravity", Vec3::Zero(), true);
+  if (r.has("linear_drag") && r.has("linear_damping"))
+    r.fail("linear_damping", "give linear_drag or linear_damping, not both");
+  if (r.has("linear_drag")) {
+    const double f = r.number("linear_drag", 1.0);
+    check_range(r, "linear_drag", f > 0.0 && f <= 1.0, "must be in (0, 1]");
+    s.world.damping_rate = -std::log(f) / s.timestep.seconds;
+  }
+  if (r.has("linear_damping")) {
+    s.world.damping_rate = r.number("linear_damping", 0.0);
+    check_range(r, "linear_damping", s.world.damping_rate >= 0.0, "must be >= 0 (1/s)");
+  }
+  s.world.contacts = r.boolean("contacts", false);
+}
+
+void load_body(const Reader& r, Scene& s) {
+  r.only({"name", "half_extents", "mass", "position", "velocity", "static"});
+  Body b;
+  if (!r.has("name")) r.fail("name", "required key is missing");
+  b.name = r.string("name", "");
+  if (b.name.empty()) r.fail("name", "must not be empty");
+  for (const Body& other : s.bodies)
+    if (other.name == b.name) r.fail("name", "duplicate body name \"" + b.name + "\"");
+  b.half_extents = r.vec3("half_extents", b.half_extents);
+  if (!(b.half_extents.array() > 0.0).all())
+    r.fail("half_extents", "every half extent must be > 0 m");
+  b.mass = r.number("mass", b.mass);
+  check_range(r, "mass", b.mass > 0.0, "must be > 0 kg");
+  b.position = r.vec3("position", Vec3::Zero(), true);
+  b.velocity = r.vec3("velocity", Vec3::Zero());
+  b.is_static = r.boolean("static", false);
+  s.bodies.push_back(b);
+}
+
+std::size_t body_index(const Reader& r, const Scene& s, const std::string& key,
+                       const std::string& name) {
+  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+    if (s.bodies[i].name != name) continue;
+    if (s.bodies[i].is_static)
+      r.fail(key, "body \"" + name + "\" is static; forces act on dynamic bodies");
+    return i;
+  }
+  r.fail(key, "no body named \"" + name + "\"");
+}
+
+Spring load_spring(const Reader& parent, const toml::node& n) {
+  if (!n.is_table())
+    parent.fail("spring", "expected an inline table { anchor = [...], stiffness = ... }", &n);
+  Reader r(parent.file(), *n.as_table(), parent.path("spring"));
+  r.only({"anchor", "stiffness", "damping", "rest_length"});
+  Spring sp;
+  sp.anchor = r.vec3("anchor", Vec3::Zero(), true);
+  sp.stiffness = r.required_number("stiffness");
+  check_range(r, "stiffness", sp.stiffness >= 0.0, "must be >= 0 N/m");
+  sp.damping = r.number("damping", 0.0);
+  check_range(r, "damping", sp.damping >= 0.0, "must be >= 0 N*s/m");
+  sp.rest_length = r.number("rest_length", 0.0);
+  check_range(r, "rest_length", sp.rest_length >= 0.0, "must be >= 0 m");
+  return sp;
+}
+
+void load_force(const Reader& r, Scene& s) {
+  r.only({"bodies", "constant", "spring"});
+  Force f;
+  if (const toml::node* n = r.node("bodies")) {
+    const toml::array* a = n->as_array();
+    if (!a || a->empty()) r.fail("bodies", "expected a non-empty array of body names", n);
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const std::string key = "bodies[" + std::to_string(i) + "]";
+      if (!a->get(i)->is_string()) r.fail(key, "expected a body name (string)", a->get(i));
+      const std::size_t b = body_index(r, s, key, *a->get(i)->value<std::string>());
+      if (std::find(f.bodies.begin(), f.bodies.end(), b) != f.bodies.end())
+        r.fail(key,
+               "body \"" + s.bodies[b].name + "\" is listed twice; the force would act on it twice",
+               a->get(i));
+      f.bodies.push_back(b);
+    }
+  } else {
+    for (std::size_t i = 0; i < s.bodies.size(); ++i)
+      if (!s.bodies[i].is_static) f.bodies.push_back(i);
+  }
+  if (r.has("constant") == r.has("spring"))
+    r.fail("constant", "give exactly one of constant or spring");
+  if (r.has("constant"))
+    f.law = ConstantForce{r.vec3("constant", Vec3::Zero())};
+  else
+    f.law = load_spring(r, *r.node("spring"));
+  s.forces.push_back(f);
+}
+
+Scene build(const toml::table& root, const std::string& path) {
+  Reader r(path, root, "");
+  r.only({"name", "description", "duration", "timestep", "timesteps", "tolerance", "world", "body",
+          "force"});
+  Scene s;
+  s.source = path;
+  s.name = r.string("name", std::filesystem::path(path).stem().string());
+  s.description = r.string("description", "");
+  load_times(r, s);
+  load_world(r, s);
+  const toml::array* bodies = array_of_tables(r, "body");
+  if (!bodies || bodies->empty()) r.fail("body", "a scene needs at least one [[body]]");
+  for (std::size_t i = 0; i < bodies->size(); ++i)
+    load_body(Reader(path, *bodies->get(i)->as_table(), "body[" + std::to_string(i) + "]"), s);
+  if (const toml::array* forces = array_of_tables(r, "force"))
+    for (std::size_t i = 0; i < forces->size(); ++i)
+      load_force(Reader(path, *forces->get(i)->as_table(), "force[" + std::to_string(i) + "]"), s);
+  return s;
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& path) {
+  toml::table root;
+  try {
+    root = toml::parse(toml_as_ascii(text, path), path);
+  } catch (const toml::parse_error& e) {
+    throw InputError(path, static_cast<int>(e.source().begin.line), "",
+                     "TOML syntax error: " + std::string(e.description()));
+  }
+  return build(root, path);
+}
+
+Scene load_scene(const std::string& path) {
+  return parse_scene(read_scene_text(path), path);
+}
+
+std::string read_scene_text(const std::string& path) {
+  return read_regular_file(path, kMaxSceneBytes, "1 MiB, for a scene");
+}
+
+}  // namespace dropcheck

@@ -1,0 +1,275 @@
+// Tests harness/scene/scene_loader.cpp: valid scenes load with their defaults; every malformed
+// scene is an InputError whose message names the file (and line), the key path and the problem.
+#include "harness/scene/scene_loader.hpp"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <string>
+#include <vector>
+
+using Catch::Matchers::Contains;
+
+namespace {
+
+// A minimal valid scene; the malformed cases below change one thing in it.
+const std::string kHead = "duration = 1.0\n";
+const std::string kWorld = "[world]\ngravity = [0.0, -9.8, 0.0]\n";
+const std::string kBody = "[[body]]\nname = \"cube\"\nposition = [0.0, 10.0, 0.0]\n";
+
+std::string scene(const std::string& head, const std::string& world, const std::string& bodies,
+                  const std::string& tail = "") {
+  return head + world + bodies + tail;
+}
+
+// The InputError message of parsing `text` as x.toml, or "(loaded)" when it loads.
+std::string error_of(const std::string& text) {
+  try {
+    dropcheck::parse_scene(text, "x.toml");
+  } catch (const dropcheck::InputError& e) {
+    return e.what();
+  }
+  return "(loaded)";
+}
+
+// Checks that the message names the file, the key and the problem.
+void check_error(const std::string& text, const std::string& key, const std::string& problem) {
+  const std::string msg = error_of(text);
+  INFO(text);
+  CHECK_THAT(msg, Contains("x.toml:") && Contains(key + ": ") && Contains(problem));
+}
+
+}  // namespace
+
+TEST_CASE("a minimal scene loads with the contract's defaults", "[loader]") {
+  const dropcheck::Scene s =
+      dropcheck::parse_scene(scene(kHead, kWorld, kBody), "dir/minimal.toml");
+  CHECK(s.name == "minimal");  // the file's stem
+  CHECK(s.source == "dir/minimal.toml");
+  CHECK(s.duration == 1.0);
+  CHECK(s.timestep.seconds == 1.0 / 60.0);
+  REQUIRE(s.timesteps.size() == 1);
+  CHECK(s.timesteps[0].text == "1/60");
+  CHECK(s.world.gravity == dropcheck::Vec3(0.0, -9.8, 0.0));
+  CHECK(s.world.damping_rate == 0.0);
+  CHECK_FALSE(s.world.contacts);
+  REQUIRE(s.bodies.size() == 1);
+  CHECK(s.bodies[0].half_extents == dropcheck::Vec3(0.5, 0.5, 0.5));
+  CHECK(s.bodies[0].mass == 1.0);
+  CHECK(s.bodies[0].velocity == dropcheck::Vec3::Zero());
+  CHECK_FALSE(s.bodies[0].is_static);
+  CHECK(s.forces.empty());
+}
+
+TEST_CASE("linear_drag 0.98 at 1/60 becomes k = -ln(0.98)*60 and decays by 0.98 per step",
+          "[loader]") {
+  const dropcheck::Scene s =
+      dropcheck::parse_scene(scene(kHead, kWorld + "linear_drag = 0.98\n", kBody), "x.toml");
+  // k = -ln(f)/h, so exp(-k*h) = f at the scene's step.
+  CHECK(s.world.damping_rate ==
+        Approx(-std::log(0.98) * 60.0).epsilon(1e-15));                      // measured 0 (equal)
+  CHECK(std::abs(dropcheck::decay_per_step(s, 1.0 / 60.0) - 0.98) < 1e-15);  // measured 0 (equal)
+  // At another step the same k decays by exp(-k*h), not by 0.98: f = 0.98^(1/2) at 1/120.
+  CHECK(dropcheck::decay_per_step(s, 1.0 / 120.0) ==
+        Approx(std::sqrt(0.98)).epsilon(1e-15));  // measured 0 (equal)
+}
+
+TEST_CASE("linear_damping is the rate k itself and linear_drag = 1 means no damping", "[loader]") {
+  CHECK(dropcheck::parse_scene(scene(kHead, kWorld + "linear_damping = 1.25\n", kBody), "x.toml")
+            .world.damping_rate == 1.25);
+  CHECK(dropcheck::parse_scene(scene(kHead, kWorld + "linear_drag = 1.0\n", kBody), "x.toml")
+            .world.damping_rate == 0.0);
+}
+
+TEST_CASE("integers are accepted where numbers are expected", "[loader]") {
+  const dropcheck::Scene s = dropcheck::parse_scene(
+      "duration = 2\ntimestep = 1\n[world]\ngravity = [0, -10, 0]\n[[body]]\nname = "
+      "\"a\"\nposition = [1, 2, 3]\nmass = 3\n",
+      "x.toml");
+  CHECK(s.duration == 2.0);
+  CHECK(s.timestep.seconds == 1.0);
+  CHECK(s.world.gravity.y() == -10.0);
+  CHECK(s.bodies[0].mass == 3.0);
+}
+
+TEST_CASE("a force without bodies acts on every dynamic body and skips static ones", "[loader]") {
+  const dropcheck::Scene s = dropcheck::parse_scene(
+      scene(kHead, kWorld,
+            "[[body]]\nname = \"floor\"\nposition = [0, 0, 0]\nstatic = true\n" + kBody +
+                "[[body]]\nname = \"b\"\nposition = [0, 0, 0]\n",
+            "[[force]]\nconstant = [2.0, 0.0, 0.0]\n"),
+      "x.toml");
+  REQUIRE(s.forces.size() == 1);
+  CHECK(s.forces[0].bodies == std::vector<std::size_t>{1, 2});
+}
+
+TEST_CASE("an unknown key is rejected naming its full path, at every level", "[loader]") {
+  check_error(scene(kHead + "durration = 2.0\n", kWorld, kBody), "durration", "unknown key");
+  check_error(scene(kHead, kWorld + "gravityy = 1.0\n", kBody), "world.gravityy", "unknown key");
+  check_error(scene(kHead, kWorld, kBody + "colour = \"red\"\n"), "body[0].colour", "unknown key");
+  check_error(scene(kHead, kWorld, kBody, "[[force]]\nconstant = [1, 0, 0]\nstrength = 2\n"),
+              "force[0].strength", "unknown key");
+  check_error(
+      scene(kHead, kWorld, kBody,
+            "[[force]]\nspring = { anchor = [0, 5, 0], stiffness = 4.0, stiffnes = 5.0 }\n"),
+      "force[0].spring.stiffnes", "unknown key");
+}
+
+TEST_CASE("an unknown key's message gives the line it is on", "[loader]") {
+  // Lines: 1 duration, 2 [world], 3 gravity, 4 [[body]], 5 name, 6 position, 7 colour.
+  CHECK_THAT(error_of(scene(kHead, kWorld, kBody + "colour = \"red\"\n")),
+             Contains("x.toml:7: body[0].colour"));
+}
+
+TEST_CASE("a value of the wrong type is rejected naming the key and both types", "[loader]") {
+  check_error(scene(kHead, kWorld, kBody + "mass = \"heavy\"\n"), "body[0].mass",
+              "expected a number, got a string");
+  check_error(scene(kHead, "[world]\ngravity = 9.8\n", kBody), "world.gravity",
+              "expected an array of 3 numbers");
+  check_error(scene(kHead, "[world]\ngravity = [0.0, -9.8]\n", kBody), "world.gravity",
+              "expected an array of 3 numbers");
+  check_error(scene(kHead, "[world]\ngravity = [0.0, \"down\", 0.0]\n", kBody), "world.gravity[1]",
+              "expected a number, got a string");
+  check_error(scene(kHead, kWorld, kBody + "static = 1\n"), "body[0].static",
+              "expected true or false, got an integer");
+  check_error(scene(kHead, kWorld + "contacts = \"yes\"\n", kBody), "world.contacts",
+              "expected true or false, got a string");
+  check_error(scene(kHead + "name = 5\n", kWorld, kBody), "name",
+              "expected a string, got an integer");
+  check_error(scene(kHead + "timestep = true\n", kWorld, kBody), "timestep",
+              "expected seconds or \"1/N\", got a boolean");
+  check_error(scene(kHead, "world = 3\n", kBody), "world", "expected a table");
+  check_error(scene(kHead + "body = 3\n", kWorld, ""), "body", "expected [[body]] tables");
+  check_error(scene(kHead, kWorld, kBody, "[[force]]\nspring = 3\n"), "force[0].spring",
+              "expected an inline table");
+}
+
+TEST_CASE("TOML nan and inf are rejected as non-finite naming the key", "[loader]") {
+  check_error(scene(kHead, kWorld, kBody + "mass = nan\n"), "body[0].mass", "must be finite");
+  check_error(scene(kHead, "[world]\ngravity = [0.0, -inf, 0.0]\n", kBody), "world.gravity[1]",
+              "must be finite");
+  check_error(scene(kHead, kWorld, "[[body]]\nname = \"cube\"\nposition = [0.0, inf, 0.0]\n"),
+              "body[0].position[1]", "must be finite");
+  check_error(scene("duration = inf\n", kWorld, kBody), "duration", "must be finite");
+  check_error(scene(kHead + "timestep = nan\n", kWorld, kBody), "timestep", "must be finite");
+  check_error(scene(kHead, kWorld + "linear_drag = nan\n", kBody), "world.linear_drag",
+              "must be finite");
+}
+
+TEST_CASE("a mass <= 0 is rejected naming the key", "[loader]") {
+  check_error(scene(kHead, kWorld, kBody + "mass = 0.0\n"), "body[0].mass",
+              "must be > 0 kg, got 0");
+  check_error(scene(kHead, kWorld, kBody + "mass = -2.0\n"), "body[0].mass",
+              "must be > 0 kg, got -2");
+}
+
+TEST_CASE("a half extent <= 0 is rejected naming the key", "[loader]") {
+  check_error(scene(kHead, kWorld, kBody + "half_extents = [0.5, 0.0, 0.5]\n"),
+              "body[0].half_extents", "> 0 m");
+  check_error(scene(kHead, kWorld, kBody + "half_extents = [0.5, 0.5, -1.0]\n"),
+              "body[0].half_extents", "> 0 m");
+}
+
+TEST_CASE("linear_drag of 0 or 1.5 is rejected and so are both drag keys together", "[loader]") {
+  check_error(scene(kHead, kWorld + "linear_drag = 0.0\n", kBody), "world.linear_drag",
+              "must be in (0, 1], got 0");
+  check_error(scene(kHead, kWorld + "linear_drag = 1.5\n", kBody), "world.linear_drag",
+              "must be in (0, 1], got 1.5");
+  check_error(scene(kHead, kWorld + "linear_damping = -1.0\n", kBody), "world.linear_damping",
+              "must be >= 0");
+  check_error(scene(kHead, kWorld + "linear_drag = 0.98\nlinear_damping = 1.2\n", kBody),
+              "world.linear_damping", "not both");
+}
+
+TEST_CASE("duplicate body names are rejected naming the name", "[loader]") {
+  check_error(scene(kHead, kWorld, kBody + kBody), "body[1].name", "duplicate body name \"cube\"");
+  check_error(scene(kHead, kWorld, "[[body]]\nname = \"\"\nposition = [0, 0, 0]\n"), "body[0].name",
+              "must not be empty");
+}
+
+TEST_CASE("a force on an unknown or a static body is rejected naming the body", "[loader]") {
+  check_error(
+      scene(kHead, kWorld, kBody, "[[force]]\nbodies = [\"ghost\"]\nconstant = [1, 0, 0]\n"),
+      "force[0].bodies[0]", "no body named \"ghost\"");
+  check_error(scene(kHead, kWorld,
+                    kBody + "[[body]]\nname = \"floor\"\nposition = [0, 0, 0]\nstatic = true\n",
+                    "[[force]]\nbodies = [\"cube\", \"floor\"]\nconstant = [1, 0, 0]\n"),
+              "force[0].bodies[1]", "body \"floor\" is static");
+  check_error(scene(kHead, kWorld, kBody, "[[force]]\nbodies = []\nconstant = [1, 0, 0]\n"),
+              "force[0].bodies", "non-empty array");
+}
+
+TEST_CASE("a force needs exactly one law and a spring's parameters are checked", "[loader]") {
+  check_error(scene(kHead, kWorld, kBody, "[[force]]\nbodies = [\"cube\"]\n"), "force[0].constant",
+              "exactly one");
+  check_error(
+      scene(kHead, kWorld, kBody,
+            "[[force]]\nconstant = [1, 0, 0]\nspring = { anchor = [0, 0, 0], stiffness = 1.0 }\n"),
+      "force[0].constant", "exactly one");
+  check_error(
+      scene(kHead, kWorld, kBody, "[[force]]\nspring = { anchor = [0, 5, 0], stiffness = -1.0 }\n"),
+      "force[0].spring.stiffness", "must be >= 0");
+  check_error(scene(kHead, kWorld, kBody, "[[force]]\nspring = { anchor = [0, 5, 0] }\n"),
+              "force[0].spring.stiffness", "required key is missing");
+}
+
+TEST_CASE("a step count over the limit is rejected with the count and the limit", "[loader]") {
+  // 1e9 s at 1/60 s is 6e10 steps; the limit is kMaxSteps = 2e7.
+  check_error(scene("duration = 1e9\n", kWorld, kBody), "timestep",
+              "60000000000 steps, more than the limit of 20000000");
+  // 1e300 s: a count no integer holds is still printed as a count, not an overflowed integer.
+  check_error(scene("duration = 1e300\n", kWorld, kBody), "timestep", "6e+301 steps");
+}
+
+TEST_CASE("a timestep longer than the duration or not dividing it is rejected", "[loader]") {
+  check_error(scene("duration = 0.01\n", kWorld, kBody), "timestep", "longer than the duration");
+  check_error(scene(kHead + "timestep = 0.3\n", kWorld, kBody), "timestep",
+              "not a whole number of steps");
+  check_error(scene(kHead + "timesteps = [\"1/60\", \"1/30\", 0.7]\n", kWorld, kBody),
+              "timesteps[2]", "not a whole number of steps");
+  check_error(scene("duration = 0.0\n", kWorld, kBody), "duration", "must be > 0 seconds");
+}
+
+TEST_CASE("timestep texts 1/0, abc and -0.1 are rejected quoting the text", "[loader]") {
+  check_error(scene(kHead + "timestep = \"1/0\"\n", kWorld, kBody), "timestep", "\"1/0\"");
+  check_error(scene(kHead + "timestep = \"abc\"\n", kWorld, kBody), "timestep", "\"abc\"");
+  check_error(scene(kHead + "timestep = \"-0.1\"\n", kWorld, kBody), "timestep",
+              "> 0, got \"-0.1\"");
+  check_error(scene(kHead + "timestep = -0.1\n", kWorld, kBody), "timestep", "> 0, got \"-0.1\"");
+  check_error(scene(kHead + "timesteps = []\n", kWorld, kBody), "timesteps", "non-empty array");
+}
+
+TEST_CASE("a missing required key is rejected naming it", "[loader]") {
+  check_error(scene("", kWorld, kBody), "duration", "required key is missing");
+  check_error(scene(kHead, "[world]\nlinear_drag = 0.98\n", kBody), "world.gravity",
+              "required key is missing");
+  check_error(scene(kHead, kWorld, "[[body]]\nname = \"cube\"\n"), "body[0].position",
+              "required key is missing");
+  check_error(scene(kHead, kWorld, "[[body]]\nposition = [0, 0, 0]\n"), "body[0].name",
+              "required key is missing");
+  check_error(scene(kHead, "", kBody), "world", "required table [world] is missing");
+  check_error(scene(kHead, kWorld, ""), "body", "at least one [[body]]");
+}
+
+TEST_CASE("a TOML syntax error gives the file and its line", "[loader]") {
+  const std::string msg =
+      error_of("duration = 1.0\n[world]\ngravity = [0.0, -9.8, 0.0]\nlinear_drag = = 0.98\n");
+  CHECK_THAT(msg, Contains("x.toml:4: ") && Contains("TOML syntax error"));
+}
+
+TEST_CASE("a missing file is an InputError naming the path", "[loader]") {
+  try {
+    dropcheck::load_scene("no/such/dir/scene.toml");
+    FAIL("loaded a file that does not exist");
+  } catch (const dropcheck::InputError& e) {
+    CHECK_THAT(e.what(), Contains("no/such/dir/scene.toml") && Contains("cannot read"));
+  }
+}
+
+TEST_CASE("a directory given as the scene file is an InputError, not an empty scene", "[loader]") {
+  try {
+    dropcheck::load_scene(DROPCHECK_SOURCE_DIR "/scenarios");
+    FAIL("loaded a directory");
+  } catch (const dropcheck::InputError& e) {
+    CHECK_THAT(e.what(), Contains("/scenarios: cannot read"));
+  }
+}
