@@ -80,6 +80,20 @@ std::string excerpt(std::string_view text, std::size_t max_bytes) {
   return out;
 }
 
+std::size_t find_unsafe_byte(std::string_view text) {
+  for (std::size_t i = 0; i < text.size();) {
+    const unsigned char b = static_cast<unsigned char>(text[i]);
+    if ((b >= 0x20 && b < 0x7f) || b == '\t' || b == '\n' || b == '\r') {
+      ++i;
+      continue;
+    }
+    const std::size_t n = b >= 0x80 ? printable_utf8_length(text, i) : 0;
+    if (n == 0) return i;
+    i += n;
+  }
+  return std::string_view::npos;
+}
+
 std::string escape_controls(std::string_view text) {
   std::string out;
   append_escaped(out, text, text.size());

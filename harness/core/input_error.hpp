@@ -24,6 +24,10 @@ inline constexpr std::size_t kExcerptBytes = 60;
 // message never carries more than a short, inert excerpt of what it could not parse.
 std::string excerpt(std::string_view text, std::size_t max_bytes = kExcerptBytes);
 
+// The offset of the first byte excerpt() would escape, other than tab, line feed and carriage
+// return; npos when there is none (the text is UTF-8 with no control character).
+std::size_t find_unsafe_byte(std::string_view text);
+
 // `text` with the same escapes as excerpt() but whole and unquoted: for a name an engine announced
 // or a line it wrote to stderr, printed to a terminal.
 std::string escape_controls(std::string_view text);

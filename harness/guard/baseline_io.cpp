@@ -16,6 +16,7 @@
 #include "harness/guard/baseline.hpp"
 #include "harness/guard/baseline_parse.hpp"
 #include "harness/io/bounded_read.hpp"
+#include "harness/io/file_slug.hpp"
 #include "harness/io/trajectory_io.hpp"
 
 namespace dropcheck {
@@ -75,6 +76,49 @@ std::string baseline_to_text(const Baseline& b) {
   return out + samples_text(b.samples);
 }
 
+namespace {
+
+[[noreturn]] void claim_error(const std::string& path, const std::string& field,
+                              const std::string& stored, const std::string& now) {
+  throw InputError(path, 0, field,
+                   "the baseline says " + excerpt(stored) + ", but it was read for " +
+                       excerpt(now) + "; it is not this run's baseline");
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : " ") + n;
+  return out;
+}
+
+}  // namespace
+
+void check_baseline_claims(const Baseline& stored, const Baseline& now, const std::string& path) {
+  if (stored.scene != now.scene) claim_error(path, "scene", stored.scene, now.scene);
+  if (stored.engine != now.engine) claim_error(path, "engine", stored.engine, now.engine);
+  if (stored.scalar != now.scalar)
+    claim_error(path, "scalar", to_string(stored.scalar), to_string(now.scalar));
+  if (!stored.skipped.empty() || !now.skipped.empty()) return;  // no run: nothing more is claimed
+  if (stored.dt.seconds != now.dt.seconds)
+    claim_error(path, "dt", stored.dt.text + " (" + exact(stored.dt.seconds) + " s)",
+                now.dt.text + " (" + exact(now.dt.seconds) + " s)");
+  if (stored.samples.steps != now.samples.steps)
+    claim_error(path, "steps", std::to_string(stored.samples.steps),
+                std::to_string(now.samples.steps));
+  if (stored.samples.body_names != now.samples.body_names)
+    claim_error(path, "bodies", joined(stored.samples.body_names), joined(now.samples.body_names));
+}
+
+void check_baseline_file_name(const Baseline& b, const std::string& path) {
+  const std::string expected = baseline_file_name(file_slug(b.scene), file_slug(b.engine));
+  const std::string name = std::filesystem::path(path).filename().string();
+  if (name != expected)
+    throw InputError(path, 0, "scene/engine",
+                     "the header names scene " + excerpt(b.scene) + " on engine " +
+                         excerpt(b.engine) + ", whose baseline is " + excerpt(expected) +
+                         ", not this file");
+}
+
 bool same_data(const std::string& a, const std::string& b) {
   auto strip = [](const std::string& text) {
     std::istringstream in(text);
@@ -87,29 +131,31 @@ bool same_data(const std::string& a, const std::string& b) {
   return strip(a) == strip(b);
 }
 
-// Largest baseline file read. A baseline stores every 10th step: the largest run (kMaxSteps steps)
-// of one body is 2e6 sample lines of about 150 bytes, 300 MB; the shipped ones are under 30 KiB.
-constexpr std::int64_t kMaxBaselineBytes = std::int64_t{512} << 20;
+// An entry exists at `path`, whatever it is (a dangling link too: it is refused, not "absent").
+bool entry_exists(const std::string& path) {
+  std::error_code ec;
+  return std::filesystem::symlink_status(path, ec).type() != std::filesystem::file_type::not_found;
+}
 
 std::optional<Baseline> read_baseline_if_present(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) return std::nullopt;
+  if (!entry_exists(path)) return std::nullopt;
   return read_baseline(path);
 }
 
 Baseline read_baseline(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec))
+  if (!entry_exists(path))
     throw InputError(path, 0, "", "no baseline file (run `dropcheck bless` to make it)");
-  const std::string t = read_regular_file(path, kMaxBaselineBytes, "512 MiB, for a baseline");
-  // A control byte (NUL, ESC, ...) never occurs in a baseline: quote no raw bytes back.
-  if (std::any_of(t.begin(), t.end(), [](char c) {
-        return (static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\r' && c != '\t') ||
-               c == 0x7f;
-      }))
-    throw InputError(
-        path, 0, "",
-        "is a binary file, not a baseline (baselines are text written by `dropcheck bless`)");
+  // A baseline folder is data from whoever made it: an entry that is a link, a device, a FIFO or a
+  // folder is refused, never followed out of the folder.
+  const std::string t =
+      read_regular_file(path, kMaxBaselineBytes, "512 MiB, for a baseline", Links::refuse);
+  const char* not_baseline =
+      "is not a baseline (baselines are text written by `dropcheck bless`, whose first line is '# "
+      "dropcheck baseline: ...')";
+  // A control character (NUL, ESC, C1, ...) or invalid UTF-8 never occurs in a baseline, and a
+  // file without the baseline's first line is someone else's: quote none of its bytes back.
+  if (find_unsafe_byte(t) != std::string::npos) throw InputError(path, 0, "", not_baseline);
+  if (t.rfind(kProvenancePrefix, 0) != 0) throw InputError(path, 1, "", not_baseline);
   return parse_baseline(t, path);
 }
 

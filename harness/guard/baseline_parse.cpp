@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "harness/core/input_error.hpp"
+#include "harness/core/number_format.hpp"
 #include "harness/guard/baseline.hpp"
 #include "harness/scene/timestep.hpp"
 
@@ -29,14 +30,17 @@ struct Parser {
     char* end = nullptr;
     errno = 0;
     const double v = std::strtod(text.c_str(), &end);
-    if (text.empty() || *end != '\0') fail(key, "not a number: '" + text + "'");
+    if (text.empty() || *end != '\0') fail(key, "not a number: " + excerpt(text));
     return v;
   }
 
+  // A whole number that fits in 64 bits (strtoll saturates: ERANGE is refused).
   std::int64_t integer(const std::string& text, const std::string& key) const {
     char* end = nullptr;
+    errno = 0;
     const long long v = std::strtoll(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0') fail(key, "not an integer: '" + text + "'");
+    if (text.empty() || *end != '\0' || errno == ERANGE)
+      fail(key, "not an integer: " + excerpt(text));
     return v;
   }
 
@@ -48,12 +52,12 @@ struct Parser {
     std::string word;
     while (in >> word) {
       const std::size_t eq = word.find('=');
-      if (eq == std::string::npos) fail(key, "expected name=value, got '" + word + "'");
+      if (eq == std::string::npos) fail(key, "expected name=value, got " + excerpt(word));
       out[word.substr(0, eq)] = word.substr(eq + 1);
     }
     for (const std::string& e : expected)
       if (!out.count(e)) fail(key, "missing " + e + "=");
-    if (out.size() != expected.size()) fail(key, "unexpected fields in '" + rest + "'");
+    if (out.size() != expected.size()) fail(key, "unexpected fields in " + excerpt(rest));
     return out;
   }
 
@@ -92,7 +96,21 @@ struct Parser {
     std::istringstream in(rest);
     std::string text, seconds, extra;
     if (!(in >> text >> seconds) || (in >> extra)) fail("dt", "expected 'dt TEXT SECONDS'");
-    b.dt = {number(seconds, "dt"), text};
+    // The text is what the step was written as ("1/60"), the number what it was: they must agree.
+    std::string why;
+    const std::optional<Timestep> step = parse_timestep(text, why);
+    if (!step) fail("dt", excerpt(text) + ": " + why);
+    const double s = number(seconds, "dt");
+    if (s != step->seconds)
+      fail("dt", excerpt(text) + " is " + exact(step->seconds) + " s, but the file says " +
+                     excerpt(seconds));
+    b.dt = *step;
+  }
+
+  std::int64_t positive(const std::string& text, const std::string& key) const {
+    const std::int64_t v = integer(text, key);
+    if (v < 1) fail(key, "must be at least 1, got " + excerpt(text));
+    return v;
   }
 
   void bodies(const std::string& rest) {
@@ -117,17 +135,20 @@ struct Parser {
     if (step != t.recorded.back())
       fail("sample", "step " + w[0] + " before every body of step " +
                          std::to_string(t.recorded.back()) + " was listed");
-    if (w[1] != t.body_names[next_body]) fail("sample", "expected body " + t.body_names[next_body]);
+    if (w[1] != t.body_names[next_body])
+      fail("sample",
+           "expected body " + excerpt(t.body_names[next_body]) + ", got " + excerpt(w[1]));
     BodyState s;
-    for (int i = 0; i < 3; ++i) s.position[i] = number(w[2 + i], "sample " + w[1]);
-    for (int i = 0; i < 3; ++i) s.velocity[i] = number(w[5 + i], "sample " + w[1]);
+    const std::string key = "sample " + excerpt(w[1]);
+    for (int i = 0; i < 3; ++i) s.position[i] = number(w[2 + i], key);
+    for (int i = 0; i < 3; ++i) s.velocity[i] = number(w[5 + i], key);
     t.states.push_back(s);
     next_body = (next_body + 1) % t.body_names.size();
   }
 
   Scalar scalar(const std::string& rest) const {
     if (rest == "f32") return Scalar::f32;
-    if (rest != "f64") fail("scalar", "expected f32 or f64, got '" + rest + "'");
+    if (rest != "f64") fail("scalar", "expected f32 or f64, got " + excerpt(rest));
     return Scalar::f64;
   }
 
@@ -149,9 +170,9 @@ struct Parser {
     else if (key == "dt")
       dt(rest);
     else if (key == "steps")
-      b.samples.steps = integer(rest, key);
+      b.samples.steps = positive(rest, key);
     else if (key == "record_every")
-      b.record_every = integer(rest, key);
+      b.record_every = positive(rest, key);
     else if (key == "status")
       b.status = rest;
     else if (key == "hash")
@@ -165,7 +186,32 @@ struct Parser {
     else if (key == "sample")
       sample(rest);
     else
-      fail(key, "unknown record");
+      fail("", "unknown record " + excerpt(key));
+  }
+
+  // The recorded steps are the ones the header says were kept: 0, record_every, 2*record_every,
+  // ... and the last step run, which is `steps` when the run ended ok (earlier when it failed).
+  void check_recorded_steps() {
+    const std::vector<std::int64_t>& r = b.samples.recorded;
+    const std::int64_t every = b.record_every, last = r.back();
+    if (r.front() != 0)
+      fail("sample", "the first sample is step " + std::to_string(r.front()) + ", not 0");
+    for (std::size_t i = 0; i + 1 < r.size(); ++i)
+      if (r[i] != static_cast<std::int64_t>(i) * every)
+        fail("sample", "step " + std::to_string(r[i]) + " where record_every " +
+                           std::to_string(every) + " keeps step " +
+                           std::to_string(static_cast<std::int64_t>(i) * every));
+    if (r.size() > 1 && last <= r[r.size() - 2])
+      fail("sample", "the last step " + std::to_string(last) + " does not follow step " +
+                         std::to_string(r[r.size() - 2]));
+    if (r.size() > 1 && last - r[r.size() - 2] > every)
+      fail("sample", "steps between " + std::to_string(r[r.size() - 2]) + " and " +
+                         std::to_string(last) + " are missing (record_every " +
+                         std::to_string(every) + ")");
+    if (last > b.samples.steps || (b.status == "ok" && last != b.samples.steps))
+      fail("steps", "the header says " + std::to_string(b.samples.steps) +
+                        " steps, but the samples end at step " + std::to_string(last) +
+                        (b.status == "ok" ? " of a run that ended ok" : ""));
   }
 
   void finish() {
@@ -176,6 +222,8 @@ struct Parser {
     if (next_body != 0) fail("sample", "the last step does not list every body");
     if (b.samples.states.size() != b.samples.recorded.size() * b.samples.body_names.size())
       fail("sample", "the samples do not list every body at every step");
+    if (b.dt.text.empty()) fail("dt", "no 'dt' line");
+    check_recorded_steps();
     b.samples.engine = b.engine;
     b.samples.scene = b.scene;
     b.samples.h = b.dt.seconds;

@@ -1,26 +1,26 @@
 #include "harness/guard/bless.hpp"
 
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 
 #include "harness/core/input_error.hpp"
 #include "harness/guard/baseline_io.hpp"
 #include "harness/guard/regression.hpp"
 #include "harness/guard/regression_physics.hpp"
 #include "harness/io/atomic_file.hpp"
+#include "harness/io/bounded_read.hpp"
 #include "harness/io/file_slug.hpp"
 
 namespace dropcheck {
 namespace {
 
+// The file's text, or "" when there is none. Only a regular file is read, never through a link:
+// the folder may come from someone else (output_plan.hpp, write_entry).
 std::string read_or_empty(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return {};
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  std::error_code ec;
+  if (std::filesystem::symlink_status(path, ec).type() == std::filesystem::file_type::not_found)
+    return {};
+  return read_regular_file(path, kMaxBaselineBytes, "512 MiB, for a baseline", Links::refuse);
 }
 
 // Writes one baseline unless the file already holds the same data; returns the log line.
@@ -30,7 +30,7 @@ std::string write_one(const Baseline& b, const std::string& dir) {
   std::string what = b.skipped.empty() ? "hash " + b.hash : "skipped: " + b.skipped;
   if (!b.failed_tiers.empty()) what += "; FAILED " + b.failed_tiers;
   if (!old.empty() && same_data(old, text)) return "unchanged " + path + " (" + what + ")";
-  write_file_atomic(path, text);
+  write_file_atomic(path, text, Links::refuse);
   return (old.empty() ? "new       " : "updated   ") + path + " (" + what + ")";
 }
 

@@ -21,13 +21,29 @@ TierResult result(Verdict v, std::string message) {
 }
 
 // The component (of position when `position`, else velocity) that differs most between a and b.
+// a - b, except that two equal values (infinities too) or two NaNs differ by 0: the same failed run
+// stored twice is identical. A NaN against a number differs by NaN, which every test below counts
+// as more than any tolerance, so a NaN never reads as "identical, 0 m".
+double gap(double a, double b) {
+  return a == b || (std::isnan(a) && std::isnan(b)) ? 0.0 : a - b;
+}
+
+Vec3 gaps(const Vec3& a, const Vec3& b) {
+  return {gap(a[0], b[0]), gap(a[1], b[1]), gap(a[2], b[2])};
+}
+
+bool over(double difference, double tolerance) {
+  return std::isnan(difference) || difference > tolerance;
+}
+
 void worst_component(const BodyState& a, const BodyState& b, bool position, SampleDiff& d) {
   static const char* const kNames[2][3] = {{"vx", "vy", "vz"}, {"x", "y", "z"}};
   const Vec3& va = position ? a.position : a.velocity;
   const Vec3& vb = position ? b.position : b.velocity;
+  const Vec3 g = gaps(va, vb).cwiseAbs();
   int worst = 0;
   for (int i = 1; i < 3; ++i)
-    if (std::abs(va[i] - vb[i]) > std::abs(va[worst] - vb[worst])) worst = i;
+    if (!std::isnan(g[worst]) && over(g[i], g[worst])) worst = i;
   d.component = kNames[position ? 1 : 0][worst];
   d.before = va[worst];
   d.after = vb[worst];
@@ -87,17 +103,18 @@ SampleDiff diff_samples(const Trajectory& before, const Trajectory& after, doubl
     for (std::size_t b = 0; b < before.bodies(); ++b) {
       const BodyState& x = before.at(s, b);
       const BodyState& y = after.at(s, b);
-      const double dx = (x.position - y.position).norm(), dv = (x.velocity - y.velocity).norm();
-      if (dx > d.max_dx || d.max_step < 0) {
+      const double dx = gaps(x.position, y.position).norm();
+      const double dv = gaps(x.velocity, y.velocity).norm();
+      if (d.max_step < 0 || (!std::isnan(d.max_dx) && over(dx, d.max_dx))) {
         d.max_dx = dx;
         d.max_step = before.recorded[s];
         d.max_body = before.body_names[b];
       }
-      if (d.first_step >= 0 || (dx <= tolerance && dv <= tolerance)) continue;
+      if (d.first_step >= 0 || (!over(dx, tolerance) && !over(dv, tolerance))) continue;
       d.first_step = before.recorded[s];
       d.first_body = before.body_names[b];
-      d.first_delta = dx > tolerance ? dx : dv;
-      worst_component(x, y, dx > tolerance, d);
+      d.first_delta = over(dx, tolerance) ? dx : dv;
+      worst_component(x, y, over(dx, tolerance), d);
     }
   }
   return d;

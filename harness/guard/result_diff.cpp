@@ -41,13 +41,13 @@ std::string movement_cells(const Baseline& before, const Baseline& after) {
   const double tol = regression_tolerance(after.scalar);
   const SampleDiff d = diff_samples(before.samples, after.samples, tol);
   if (!d.incomparable.empty()) return "- | " + d.incomparable;
-  std::string cells =
-      d.max_dx == 0.0 ? "0 m | "
-                      : g3_or_dash(d.max_dx) + " m (step " + std::to_string(d.max_step) + ") | ";
+  std::string cells = d.max_dx == 0.0
+                          ? "0 m | "
+                          : sig(d.max_dx, 3) + " m (step " + std::to_string(d.max_step) + ") | ";
   if (d.first_step < 0) return cells + "- (tolerance " + g3_or_dash(tol) + " m)";
+  // sig() prints a NaN as "nan": here it is a stored value, not a missing one.
   return cells + "step " + std::to_string(d.first_step) + ", " + d.first_body + "." + d.component +
-         ": " + digits(d.before, 9) + " -> " + digits(d.after, 9) + " (" +
-         g3_or_dash(d.first_delta) + ")";
+         ": " + sig(d.before, 9) + " -> " + sig(d.after, 9) + " (" + sig(d.first_delta, 3) + ")";
 }
 
 std::string summary_row(const Baseline* before, const Baseline* after) {
@@ -120,13 +120,17 @@ std::string curves_section(const ResultSet& before, const ResultSet& after) {
 }  // namespace
 
 ResultSet load_result_set(const std::string& dir) {
-  if (!std::filesystem::is_directory(dir))
-    throw InputError(dir, 0, "", "not a directory of baseline files");
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec))
+    throw InputError(dir, 0, "", "does not exist or is not a directory of baseline files");
   ResultSet set;
   set.dir = dir;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     if (entry.path().extension() != ".txt") continue;
-    set.runs[entry.path().filename().string()] = read_baseline(entry.path().string());
+    const std::string path = entry.path().string();
+    Baseline b = read_baseline(path);  // a link, device, FIFO or folder here is refused
+    check_baseline_file_name(b, path);
+    set.runs[entry.path().filename().string()] = std::move(b);
   }
   return set;
 }
@@ -136,7 +140,11 @@ Movement classify(const Baseline* before, const Baseline* after) {
   if (!after) return Movement::only_before;
   if (!before->skipped.empty() || !after->skipped.empty())
     return before->skipped.empty() == after->skipped.empty() ? Movement::skipped : Movement::moved;
-  if (before->hash == after->hash && before->status == after->status) return Movement::identical;
+  // The hash is what the file claims; identical means the stored samples agree to the bit too.
+  if (before->hash == after->hash && before->status == after->status) {
+    const SampleDiff same = diff_samples(before->samples, after->samples, 0.0);
+    if (same.incomparable.empty() && same.first_step < 0) return Movement::identical;
+  }
   const double tol = regression_tolerance(after->scalar);
   const SampleDiff d = diff_samples(before->samples, after->samples, tol);
   if (!d.incomparable.empty() || d.first_step >= 0 || before->status != after->status)

@@ -90,7 +90,7 @@ std::string temp_template(const fs::path& target) {
 
 }  // namespace
 
-fs::path output_target(const std::string& path, const std::string& key) {
+fs::path output_target(const std::string& path, const std::string& key, Links links) {
   fs::path p(path);
   for (int hops = 0;; ++hops) {
     struct stat st {};
@@ -99,6 +99,10 @@ fs::path output_target(const std::string& path, const std::string& key) {
       throw InputError(path, 0, key, std::string("cannot inspect: ") + std::strerror(errno));
     }
     if (S_ISREG(st.st_mode)) return p;
+    if (S_ISLNK(st.st_mode) && links == Links::refuse)
+      throw InputError(path, 0, key,
+                       "is a symbolic link; dropcheck never writes through a link in a folder it "
+                       "fills (remove the link, or write elsewhere)");
     if (!S_ISLNK(st.st_mode))
       throw InputError(path, 0, key,
                        std::string("cannot replace the file: it is ") + kind_of(st.st_mode) +
@@ -111,12 +115,14 @@ fs::path output_target(const std::string& path, const std::string& key) {
   }
 }
 
-void write_file_atomic(const std::string& path, const std::string& content) {
-  write_file_atomic(path, [&](std::ostream& out) { out.write(content.data(), content.size()); });
+void write_file_atomic(const std::string& path, const std::string& content, Links links) {
+  write_file_atomic(
+      path, [&](std::ostream& out) { out.write(content.data(), content.size()); }, links);
 }
 
-void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& fill) {
-  const fs::path target = output_target(path);
+void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& fill,
+                       Links links) {
+  const fs::path target = output_target(path, "", links);
   std::error_code ec;
   if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
   std::string tmp = temp_template(target);

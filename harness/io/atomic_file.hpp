@@ -8,21 +8,29 @@
 #include <ostream>
 #include <string>
 
+#include "harness/io/link_policy.hpp"
+
 namespace dropcheck {
 
 // Where a write to `path` lands: `path` itself, or, for a symbolic link, the file it finally
 // points to (relative links resolved from the link's folder). Throws InputError, prefixed by `key`
 // ("--csv"), when that is something other than a regular file or nothing (a folder, a device, a
-// FIFO, a socket), or a link loop.
-std::filesystem::path output_target(const std::string& path, const std::string& key = "");
+// FIFO, a socket), or a link loop. With Links::refuse a symbolic link at `path` is refused too
+// (an entry of a folder dropcheck fills: never written through).
+std::filesystem::path output_target(const std::string& path, const std::string& key = "",
+                                    Links links = Links::follow);
 
 // Writes `content` to output_target(path) atomically, creating missing parent folders. Throws
-// InputError naming the path when it cannot; the previous file is then untouched.
-void write_file_atomic(const std::string& path, const std::string& content);
+// InputError naming the path when it cannot; the previous file is then untouched. With
+// Links::refuse a link at `path` is refused, and the rename replaces the entry itself: a link
+// planted after the check is replaced, never written through.
+void write_file_atomic(const std::string& path, const std::string& content,
+                       Links links = Links::follow);
 
 // The same with the content streamed: `fill` writes it into a buffered stream over the temporary
 // file (64 KiB at a time), so that a large output is never held in memory whole. When `fill`
 // throws, the temporary is removed and the exception passed on; a write error is an InputError.
-void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& fill);
+void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& fill,
+                       Links links = Links::follow);
 
 }  // namespace dropcheck

@@ -25,10 +25,16 @@ struct FdCloser {
 }  // namespace
 
 std::string read_regular_file(const std::string& path, std::int64_t max_bytes,
-                              const std::string& limit_text) {
+                              const std::string& limit_text, Links links) {
   // O_NONBLOCK: opening a FIFO with no writer returns at once instead of waiting for one. fstat on
   // what was opened (not on the name, which may change in between) decides before any read.
-  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  // O_NOFOLLOW: a link as the last component fails with ELOOP instead of being opened.
+  const int nofollow = links == Links::refuse ? O_NOFOLLOW : 0;
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | nofollow);
+  if (fd < 0 && errno == ELOOP && links == Links::refuse)
+    refuse(path,
+           "is a symbolic link; dropcheck never follows a link inside a folder it reads (replace "
+           "it with the file itself)");
   if (fd < 0) refuse(path, std::string("cannot read the file: ") + std::strerror(errno));
   const FdCloser closer{fd};
   struct stat st {};

@@ -71,12 +71,12 @@ void check_not_empty(const std::string& key, const std::string& path) {
     throw InputError("", 0, key, "the path holds a NUL byte");
 }
 
-void check_file(const std::string& key, const std::string& path) {
+void check_file(const std::string& key, const std::string& path, Links links) {
   const fs::path p(path);
   const std::string last = p.filename().string();
   if (last.empty() || last == "." || last == "..")
     throw InputError(path, 0, key, "names a folder; expected a file name");
-  const fs::path target = output_target(path, key);  // refuses folders, devices, FIFOs
+  const fs::path target = output_target(path, key, links);  // refuses folders, devices, FIFOs
   probe_writable(existing_ancestor(target.parent_path(), key, path), key, path);
 }
 
@@ -106,6 +106,10 @@ void OutputPlan::write_file(const std::string& key, const std::string& path) {
   outputs_.push_back({key, path, Output::Kind::file});
 }
 
+void OutputPlan::write_entry(const std::string& key, const std::string& path) {
+  outputs_.push_back({key, path, Output::Kind::entry});
+}
+
 void OutputPlan::write_folder(const std::string& key, const std::string& path) {
   outputs_.push_back({key, path, Output::Kind::folder});
 }
@@ -118,15 +122,16 @@ void OutputPlan::check() const {
   for (std::size_t i = 0; i < outputs_.size(); ++i) {
     const Output& o = outputs_[i];
     check_not_empty(o.key, o.path);
-    if (o.kind == Output::Kind::file)
-      check_file(o.key, o.path);
+    if (o.is_file())
+      check_file(o.key, o.path, o.links());
     else
       check_folder(o.key, o.path, o.kind == Output::Kind::folder);
-    const fs::path target = o.kind == Output::Kind::file ? output_target(o.path) : fs::path(o.path);
+    const fs::path target =
+        o.is_file() ? output_target(o.path, o.key, o.links()) : fs::path(o.path);
     const fs::path out = canonical_path(target);
     for (const std::string& in : inputs_) {
       const fs::path c = canonical_path(in);
-      if (o.kind == Output::Kind::file && (same_file(target, in) || within(out, c)))
+      if (o.is_file() && (same_file(target, in) || within(out, c)))
         throw InputError(
             o.path, 0, o.key,
             "is an input ('" + in + "') or lies inside one; refusing to write over it");
@@ -134,8 +139,8 @@ void OutputPlan::check() const {
         throw InputError(o.path, 0, o.key, "holds the input '" + in + "', and would be replaced");
     }
     for (std::size_t j = 0; j < i; ++j)
-      if (outputs_[j].kind == Output::Kind::file && o.kind == Output::Kind::file &&
-          same_file(output_target(outputs_[j].path), target))
+      if (outputs_[j].is_file() && o.is_file() &&
+          same_file(output_target(outputs_[j].path, "", outputs_[j].links()), target))
         throw InputError(o.path, 0, o.key,
                          "is also the path of " + outputs_[j].key + "; name two different files");
   }

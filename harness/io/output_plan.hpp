@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "harness/io/link_policy.hpp"
+
 namespace dropcheck {
 
 class OutputPlan {
@@ -17,6 +19,9 @@ class OutputPlan {
   void write_folder(const std::string& key, const std::string& path);
   // A folder named by `key` that the command writes files into (bless --out): created if absent.
   void write_into(const std::string& key, const std::string& path);
+  // A file the command writes inside such a folder: like write_file, but a symbolic link there is
+  // refused, never written through (the folder may come from someone else).
+  void write_entry(const std::string& key, const std::string& path);
 
   // Throws InputError naming the option and the problem: an empty path, a path that names a
   // folder where a file is expected, something that is not a regular file, a place that cannot be
@@ -27,7 +32,9 @@ class OutputPlan {
  private:
   struct Output {
     std::string key, path;
-    enum class Kind { file, folder, into } kind;
+    enum class Kind { file, entry, folder, into } kind;
+    bool is_file() const { return kind == Kind::file || kind == Kind::entry; }
+    Links links() const { return kind == Kind::entry ? Links::refuse : Links::follow; }
   };
   std::vector<std::string> inputs_;
   std::vector<Output> outputs_;

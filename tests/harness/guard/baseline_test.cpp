@@ -98,7 +98,7 @@ TEST_CASE("A malformed baseline names the file, line and record", "[baseline]") 
   REQUIRE_THROWS_WITH(parse_baseline(bad, "x.txt"),
                       Catch::Contains("x.txt:") && Catch::Contains("not a number: '0x'"));
   REQUIRE_THROWS_WITH(parse_baseline(good + "colour blue\n", "y.txt"),
-                      Catch::Contains("colour: unknown record"));
+                      Catch::Contains("unknown record 'colour'"));
   REQUIRE_THROWS_WITH(read_baseline("/nonexistent/z.txt"),
                       Catch::Contains("run `dropcheck bless`"));
 }
