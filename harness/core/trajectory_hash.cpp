@@ -9,16 +9,23 @@ namespace {
 // FNV-1a 64: h = (h XOR byte) * 0x100000001b3, starting from 0xcbf29ce484222325.
 struct Fnv1a {
   std::uint64_t h = 0xcbf29ce484222325ull;
+  void add_byte(unsigned char byte) {
+    h ^= byte;
+    h *= 0x100000001b3ull;
+  }
   void add(std::uint64_t word) {
-    for (int i = 0; i < 8; ++i) {
-      h ^= (word >> (8 * i)) & 0xffu;
-      h *= 0x100000001b3ull;
-    }
+    for (int i = 0; i < 8; ++i) add_byte(static_cast<unsigned char>(word >> (8 * i)));
   }
   void add(const Vec3& v) {
     for (int i = 0; i < 3; ++i) add(std::bit_cast<std::uint64_t>(v[i] == 0.0 ? 0.0 : v[i]));
   }
 };
+
+std::string hex16(std::uint64_t h) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
 
 }  // namespace
 
@@ -35,9 +42,13 @@ std::uint64_t trajectory_hash(const Trajectory& t) {
 }
 
 std::string trajectory_hash_hex(const Trajectory& t) {
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(trajectory_hash(t)));
-  return buf;
+  return hex16(trajectory_hash(t));
+}
+
+std::string fnv1a_hex(std::string_view bytes) {
+  Fnv1a f;
+  for (char c : bytes) f.add_byte(static_cast<unsigned char>(c));
+  return hex16(f.h);
 }
 
 }  // namespace dropcheck

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "harness/core/trajectory.hpp"
 
@@ -15,5 +16,9 @@ std::uint64_t trajectory_hash(const Trajectory& t);
 
 // The hash as 16 lower-case hex digits.
 std::string trajectory_hash_hex(const Trajectory& t);
+
+// The same FNV-1a over a byte string, as 16 lower-case hex digits: a stable short name for a long
+// one (harness/io/file_slug.hpp), the same on every build and machine.
+std::string fnv1a_hex(std::string_view bytes);
 
 }  // namespace dropcheck

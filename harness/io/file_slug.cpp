@@ -1,5 +1,7 @@
 #include "harness/io/file_slug.hpp"
 
+#include "harness/core/trajectory_hash.hpp"
+
 namespace dropcheck {
 
 std::string file_slug(const std::string& name) {
@@ -10,6 +12,7 @@ std::string file_slug(const std::string& name) {
     out += keep ? c : '_';
   }
   if (out.empty() || out[0] == '.') out.insert(out.begin(), '_');
+  if (out.size() > kMaxSlugBytes) out = out.substr(0, kMaxSlugBytes - 17) + "~" + fnv1a_hex(name);
   return out;
 }
 

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <stdio.h>  // renameat2
 #include <stdlib.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -153,8 +154,25 @@ StagingDir::~StagingDir() {
   fs::remove_all(path_, ec);
 }
 
+namespace {
+
+// The mode the report folder gets: the replaced folder's own, or what mkdir gives a new folder
+// (0777 less the umask). mkdtemp made the staging folder 0700, private while it is built.
+mode_t folder_mode(const std::string& target) {
+  struct stat st {};
+  if (::stat(target.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) return st.st_mode & 07777;
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  return 0777 & ~mask;
+}
+
+}  // namespace
+
 void StagingDir::commit() {
   write_manifest(path_);
+  if (::chmod(path_.c_str(), folder_mode(target_)) != 0)
+    throw InputError(target_, 0, "",
+                     std::string("cannot set the folder's mode: ") + std::strerror(errno));
   for (int attempt = 0; attempt < 3 && !committed_; ++attempt) {
     check_replaceable(target_);  // again: another run or a person may have written there meanwhile
     if (::renameat2(AT_FDCWD, path_.c_str(), AT_FDCWD, target_.c_str(), RENAME_EXCHANGE) == 0) {
