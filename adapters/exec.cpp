@@ -12,73 +12,24 @@
 #include <toml++/toml.h>
 #include <unistd.h>
 
-#include <cctype>
-#include <charconv>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 
+#include "exec_protocol.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/core/number_format.hpp"
 #include "harness/core/registry.hpp"
+#include "harness/io/bounded_read.hpp"
 #include "harness/io/trajectory_io.hpp"
 #include "harness/process/child_process.hpp"
+#include "harness/scene/toml_ascii.hpp"
 
 namespace dropcheck {
 namespace {
 
-constexpr int kProtocolVersion = 1;
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> tokens;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-    std::size_t j = i;
-    while (j < line.size() && line[j] != ' ' && line[j] != '\t') ++j;
-    if (j > i) tokens.push_back(line.substr(i, j - i));
-    i = j;
-  }
-  return tokens;
-}
-
-// The text after the first token ("error disk full" -> "disk full").
-std::string rest_of(const std::string& line) {
-  const std::size_t sp = line.find_first_of(" \t");
-  if (sp == std::string::npos) return {};
-  const std::size_t start = line.find_first_not_of(" \t", sp);
-  return start == std::string::npos ? std::string() : line.substr(start);
-}
-
-// A line quoted for an error message: at most 80 characters, control bytes shown as '?'.
-std::string quote(const std::string& line) {
-  std::string q = line.substr(0, 80);
-  for (char& c : q)
-    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) == 0x7f) c = '?';
-  return "'" + q + (line.size() > 80 ? "...'" : "'");
-}
-
-bool parse_number(const std::string& token, double& out) {
-  const char* end = token.data() + token.size();
-  const auto [ptr, ec] = std::from_chars(token.data(), end, out);
-  return ec == std::errc() && ptr == end;
-}
-
-bool valid_name(const std::string& name) {
-  if (name.empty() || name.size() > 64) return false;
-  for (char c : name)
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.' &&
-        c != '+')
-      return false;
-  return true;
-}
-
-// Why `name` cannot name an external engine; empty when it can.
-std::string name_problem(const std::string& name) {
-  if (!valid_name(name))
-    return "'" + name + "' is not a valid engine name (1-64 of A-Z a-z 0-9 . _ + -)";
-  for (const std::string& builtin : known_engine_names())
-    if (name == builtin) return "'" + name + "' is the name of a built-in engine; choose another";
-  return {};
-}
+// Largest engine file read (a few lines of TOML in practice).
+constexpr std::int64_t kMaxEngineFileBytes = 64 * 1024;
 
 std::string format_seconds(double s) {
   return sig(s, 6) + " s";
@@ -87,9 +38,11 @@ std::string format_seconds(double s) {
 class ExecEngine final : public Engine {
  public:
   explicit ExecEngine(ExecSpec spec) : spec_(std::move(spec)) {
-    info_.name =
-        spec_.name.empty() ? std::filesystem::path(spec_.command[0]).stem().string() : spec_.name;
+    info_.name = spec_.name.empty()
+                     ? escape_controls(std::filesystem::path(spec_.command[0]).stem().string())
+                     : spec_.name;
     info_.version = "?";
+    info_.own_process = true;
     info_.damping_mapping = "the engine's own (external, docs/protocol.md)";
     try {
       child_ = std::make_unique<ChildProcess>(spec_.command, spec_.cwd);
@@ -160,7 +113,7 @@ class ExecEngine final : public Engine {
     throw EngineError(failure_);
   }
 
-  // How the engine went away: "crashed: SIGSEGV" or "exited early (exited with status 0)".
+  // How the engine went away: "crashed: SIGSEGV" or "exited early (exited with status 1)".
   std::string gone() {
     const std::string status = child_->exit_description(1.0);
     if (status.rfind("crashed", 0) == 0) return "the engine " + status;
@@ -192,94 +145,28 @@ class ExecEngine final : public Engine {
       case IoStatus::closed:
         fail(gone());
     }
-    if (line.rfind("error", 0) == 0 && (line.size() == 5 || line[5] == ' ' || line[5] == '\t'))
-      fail("the engine reported an error: " + rest_of(line));
+    if (is_error_line(line)) fail("the engine reported an error: " + error_text(line));
     return line;
   }
 
-  void garbage(const std::string& expected, const std::string& line) {
-    fail("garbage from the engine: expected " + expected + ", got " + quote(line));
-  }
-
-  // "state N" and 6 numbers (x y z vx vy vz) per body.
   void read_state(std::int64_t n) {
     const std::string line = receive();
-    const std::vector<std::string> t = split(line);
-    const std::string head = "'state " + std::to_string(n) + "'";
-    const std::size_t want = 6 * states_.size();
-    if (t.size() < 2 || t[0] != "state" || t[1] != std::to_string(n))
-      garbage(head + " and " + std::to_string(want) + " numbers", line);
-    const std::size_t got = t.size() - 2;
-    if (got != want) {
-      const std::string per_body = got % 6 == 0 ? " (" + std::to_string(got / 6) + " bodies)" : "";
-      fail("the engine answered " + std::to_string(got) + " numbers" + per_body +
-           ", the scene has " + std::to_string(states_.size()) + " bodies (" +
-           std::to_string(want) + " numbers)");
-    }
-    for (std::size_t i = 0; i < got; ++i) {
-      double v = 0.0;
-      if (!parse_number(t[2 + i], v)) garbage("a number", t[2 + i]);
-      BodyState& s = states_[i / 6];
-      (i % 6 < 3 ? s.position : s.velocity)[static_cast<Eigen::Index>(i % 3)] = v;
+    try {
+      parse_state_line(line, n, states_);
+    } catch (const ProtocolError& e) {
+      fail(e.what());
     }
   }
 
   void handshake() {
     where_ = "at start";
-    const std::string first = receive();
-    const std::vector<std::string> t = split(first);
-    if (t.size() != 2 || t[0] != "dropcheck-engine") garbage("'dropcheck-engine 1'", first);
-    if (t[1] != std::to_string(kProtocolVersion))
-      fail("the engine speaks protocol " + quote(t[1]) + "; dropcheck speaks " +
-           std::to_string(kProtocolVersion));
-    bool name = false, version = false, scalar = false, law = false;
-    for (;;) {
-      const std::string line = receive();
-      const std::vector<std::string> k = split(line);
-      if (k.size() == 1 && k[0] == "ready") break;
-      if (k.empty()) garbage("a handshake line", line);
-      const std::string value = rest_of(line);
-      if (k[0] == "name" && k.size() == 2) {
-        if (spec_.name.empty()) {
-          if (std::string p = name_problem(k[1]); !p.empty()) fail(p);
-          info_.name = k[1];
-        }
-        name = true;
-      } else if (k[0] == "version" && k.size() >= 2) {
-        info_.version = value;
-        version = true;
-      } else if (k[0] == "scalar" && k.size() == 2 && (k[1] == "f32" || k[1] == "f64")) {
-        info_.scalar = k[1] == "f32" ? Scalar::f32 : Scalar::f64;
-        scalar = true;
-      } else if (k[0] == "law" && k.size() == 2 && parse_law_key(k[1])) {
-        info_.law = *parse_law_key(k[1]);
-        law = true;
-      } else if (k[0] == "capabilities") {
-        for (std::size_t i = 1; i < k.size(); ++i) {
-          if (k[i] == "contacts")
-            info_.capabilities.contacts = true;
-          else if (k[i] == "planar-only")
-            info_.capabilities.planar_only = true;
-          else if (k[i] == "continuous-collision")
-            info_.continuous_collision = true;
-          else
-            garbage("capabilities 'contacts', 'planar-only' or 'continuous-collision'", line);
-        }
-      } else if (k[0] == "damping-mapping" && k.size() >= 2) {
-        info_.damping_mapping = value;
-      } else {
-        garbage(
-            "name, version, scalar f32|f64, law KEY, capabilities, damping-mapping or ready "
-            "(law keys: after-forces, before-forces, after-position, after-forces/explicit, "
-            "before-forces/explicit)",
-            line);
+    HandshakeReader reader(info_, !spec_.name.empty(), known_engine_names());
+    try {
+      while (!reader.take(receive())) {
       }
+    } catch (const ProtocolError& e) {
+      fail(e.what());
     }
-    if (!name || !version || !scalar || !law)
-      fail("the handshake lacks " + std::string(!name      ? "name"
-                                                : !version ? "version"
-                                                : !scalar  ? "scalar"
-                                                           : "law"));
   }
 
   ExecSpec spec_;
@@ -305,14 +192,34 @@ int line_of(const toml::node& n) {
   return static_cast<int>(n.source().begin.line);
 }
 
+// Why the command's program cannot be started, when that can be told before starting it: a path
+// (with '/') is resolved against the engine file's folder and must be an executable regular file.
+// A bare name is searched in PATH when the engine starts.
+std::string program_problem(const std::string& program, const std::string& cwd) {
+  if (program.find('/') == std::string::npos) return {};
+  const std::filesystem::path p =
+      program[0] == '/' ? std::filesystem::path(program) : std::filesystem::path(cwd) / program;
+  struct stat st {};
+  if (::stat(p.c_str(), &st) != 0) return excerpt(program) + ": " + std::strerror(errno);
+  if (S_ISDIR(st.st_mode)) return excerpt(program) + " is a folder, not a program";
+  if (!S_ISREG(st.st_mode) || ::access(p.c_str(), X_OK) != 0)
+    return excerpt(program) + " is not an executable file";
+  return {};
+}
+
 ExecSpec parse_engine_file(const std::string& file) {
+  // Read as a scene file is: a regular file of bounded size (a device or FIFO is refused at once),
+  // UTF-8 without control characters, non-ASCII only in strings and comments.
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) throw InputError(file, 0, "", "no such engine file");
+  const std::string text =
+      read_regular_file(file, kMaxEngineFileBytes, "64 KiB, for an engine file");
   toml::table table;
   try {
-    table = toml::parse_file(file);
+    table = toml::parse(toml_as_ascii(text, file), file);
   } catch (const toml::parse_error& e) {
-    const std::string what(e.description());
-    if (!std::filesystem::exists(file)) throw InputError(file, 0, "", "no such engine file");
-    throw InputError(file, static_cast<int>(e.source().begin.line), "", what);
+    throw InputError(file, static_cast<int>(e.source().begin.line), "",
+                     "TOML syntax error: " + std::string(e.description()));
   }
   ExecSpec spec;
   spec.cwd = std::filesystem::absolute(file).parent_path().string();
@@ -322,7 +229,7 @@ ExecSpec parse_engine_file(const std::string& file) {
       const auto* s = node.as_string();
       if (!s) throw InputError(file, line_of(node), k, "must be a string");
       spec.name = s->get();
-      if (std::string p = name_problem(spec.name); !p.empty())
+      if (std::string p = engine_name_problem(spec.name, known_engine_names()); !p.empty())
         throw InputError(file, line_of(node), k, p);
     } else if (k == "command") {
       const auto* a = node.as_array();
@@ -345,6 +252,8 @@ ExecSpec parse_engine_file(const std::string& file) {
   }
   if (spec.command.empty())
     throw InputError(file, 0, "command", "missing (the program and its arguments)");
+  if (std::string p = program_problem(spec.command[0], spec.cwd); !p.empty())
+    throw InputError(file, line_of(*table.get("command")), "command", p);
   return spec;
 }
 
@@ -358,7 +267,8 @@ ExecSpec parse_exec_spec(const std::string& name) {
   if (name.rfind("exec:", 0) != 0) return parse_engine_file(name);
   const std::string path = name.substr(5);
   if (!executable_file(path))
-    throw InputError("", 0, "--engine " + name, "'" + path + "' is not an executable file");
+    throw InputError("", 0, "--engine " + excerpt(name),
+                     excerpt(path) + " is not an executable file");
   ExecSpec spec;
   spec.command = {path.find('/') == std::string::npos ? "./" + path : path};
   return spec;

@@ -21,6 +21,7 @@
 #include "harness/guard/regression_physics.hpp"
 #include "harness/io/output_plan.hpp"
 #include "harness/scene/scene_loader.hpp"
+#include "selection.hpp"
 
 namespace dropcheck {
 namespace {
@@ -52,6 +53,9 @@ std::vector<NamedFactory> engines_from(const Args& args) {
     // name.
     out.push_back({make_engine(name)->info().name, [name] { return make_engine(name); }});
   }
+  std::vector<std::pair<std::string, std::string>> announced;
+  for (std::size_t i = 0; i < out.size(); ++i) announced.emplace_back(names[i], out[i].first);
+  refuse_name_clashes(announced);
   return out;
 }
 

@@ -20,6 +20,7 @@
 #include "harness/report/report.hpp"
 #include "harness/scene/scene_loader.hpp"
 #include "harness/stability/stability_report.hpp"
+#include "selection.hpp"
 
 namespace fs = std::filesystem;
 
@@ -69,7 +70,8 @@ SceneFiles scene_files(const std::vector<std::string>& args) {
 // The engines to run: the --engine names given, or every engine dropcheck knows.
 std::vector<EngineSlot> engine_slots(const std::vector<std::string>& requested) {
   std::vector<EngineSlot> slots;
-  for (const std::string& name : requested.empty() ? known_engine_names() : requested) {
+  const std::vector<std::string> names = requested.empty() ? known_engine_names() : requested;
+  for (const std::string& name : names) {
     const std::string why = engine_unavailable_reason(name);
     if (why.rfind("unknown", 0) == 0) throw InputError("", 0, "--engine " + name, why);
     EngineSlot s{name, {}, why};
@@ -78,6 +80,10 @@ std::vector<EngineSlot> engine_slots(const std::vector<std::string>& requested) 
       s.name = s.make()->info().name;  // an engine file's engine reports under its own name
     slots.push_back(std::move(s));
   }
+  std::vector<std::pair<std::string, std::string>> announced;
+  for (std::size_t i = 0; i < slots.size(); ++i)
+    if (slots[i].make) announced.emplace_back(names[i], slots[i].name);
+  refuse_name_clashes(announced);
   return slots;
 }
 

@@ -48,6 +48,16 @@ void print_run(const Trajectory& t, std::ostream& out) {
   }
 }
 
+// True, with the reason on `err`, when no engine ran the scene to its end: every one failed
+// (error, crash, time-out, out of memory, refused) or was skipped. A blow-up to NaN is a result of
+// the engine's own physics, not a failure of the run.
+bool every_engine_failed(const std::vector<Trajectory>& runs, std::ostream& err) {
+  for (const Trajectory& t : runs)
+    if (t.status == RunStatus::ok || t.status == RunStatus::non_finite) return false;
+  err << "dropcheck run: no engine ran the scene to its end: every one failed or was skipped\n";
+  return true;
+}
+
 }  // namespace
 
 const CommandSpec& run_spec() {
@@ -65,7 +75,7 @@ const CommandSpec& run_spec() {
   return spec;
 }
 
-int cmd_run(const std::vector<std::string>& argv, std::ostream& out, std::ostream&) {
+int cmd_run(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
   const Args args = parse_args(run_spec(), argv);
   OutputPlan plan;
   plan.read(args.positional[0]);
@@ -93,7 +103,7 @@ int cmd_run(const std::vector<std::string>& argv, std::ostream& out, std::ostrea
   if (args.has("--json"))
     write_file_atomic(args.value("--json"),
                       [&](std::ostream& o) { write_trajectories_json(o, runs); });
-  return kExitOk;
+  return every_engine_failed(runs, err) ? kExitCheckFailed : kExitOk;
 }
 
 }  // namespace dropcheck

@@ -5,6 +5,16 @@
 #include "harness/scene/timestep.hpp"
 
 namespace dropcheck {
+void refuse_name_clashes(const std::vector<std::pair<std::string, std::string>>& engines) {
+  for (std::size_t i = 0; i < engines.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (engines[i].second == engines[j].second)
+        throw InputError("", 0, "--engine " + excerpt(engines[i].first),
+                         "announces the name '" + escape_controls(engines[i].second) +
+                             "', as --engine " + excerpt(engines[j].first) +
+                             " does; two engines cannot share a name (set `name` in an engine "
+                             "file)");
+}
 
 std::vector<SelectedEngine> select_engines(const std::vector<std::string>& requested,
                                            const Scene& scene) {
@@ -22,6 +32,10 @@ std::vector<SelectedEngine> select_engines(const std::vector<std::string>& reque
     }
     out.push_back(std::move(s));
   }
+  std::vector<std::pair<std::string, std::string>> announced;
+  for (const SelectedEngine& e : out)
+    if (e.engine) announced.emplace_back(e.name, e.engine->info().name);
+  refuse_name_clashes(announced);
   return out;
 }
 

@@ -3,6 +3,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "harness/core/engine.hpp"
@@ -19,6 +20,10 @@ struct SelectedEngine {
 // every engine compiled in; engines that cannot run `scene` come back with their reason.
 std::vector<SelectedEngine> select_engines(const std::vector<std::string>& requested,
                                            const Scene& scene);
+
+// Two engines that announce one name would share rows, columns and baseline files: refused with an
+// InputError naming both. `engines`: each one's --engine value and the name it announced.
+void refuse_name_clashes(const std::vector<std::pair<std::string, std::string>>& engines);
 
 // --dt as seconds or "1/N", checked against the scene's duration; the scene's step when empty.
 Timestep step_from_flag(const std::string& flag_value, const Scene& scene);

@@ -52,6 +52,10 @@ struct EngineInfo {
   // (continuous collision) against a static floor; false when overlap is tested only at step ends,
   // so a body that jumps over the floor in one step tunnels (a named limit, docs/engines.md 5).
   bool continuous_collision = false;
+  // True for an engine that runs in a process of its own (an external engine, adapters/exec.cpp):
+  // the runner does not fork for it (its crash cannot end dropcheck, and as dropcheck's own child
+  // its death is read truly: "crashed: SIGSEGV"), and checks the run's wall-clock limit per step.
+  bool own_process = false;
 };
 
 struct BodyState {
@@ -149,6 +153,12 @@ class Engine {
 // An engine refused or failed a call; a result to record, never a crash of the harness.
 struct EngineError : std::runtime_error {
   using std::runtime_error::runtime_error;
+};
+
+// A run that passed its wall-clock limit (an engine in its own process, checked per step): the run
+// ends as timed out.
+struct RunTimeLimitExceeded : EngineError {
+  using EngineError::EngineError;
 };
 
 // Makes a fresh engine; how engine-neutral code (timing, evaluation, checks) gets engines.

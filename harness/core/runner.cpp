@@ -133,6 +133,7 @@ void step_loop(Engine& engine, const Scene& scene, Trajectory& t, std::int64_t e
 Trajectory run_scene(Engine& engine, const Scene& scene, double h, const RunOptions& options) {
   if (std::optional<Trajectory> refused = refuse_run(engine.info(), scene, h, options))
     return *refused;
+  if (engine.info().own_process) return run_own_process(engine, scene, h, options);
   if (runs_isolated(options)) return run_isolated(engine, scene, h, options);
   return run_scene_in_process(engine, scene, h, options);
 }
@@ -151,6 +152,10 @@ Trajectory run_scene_in_process(Engine& engine, const Scene& scene, double h,
     t.recorded.push_back(0);
     start = std::chrono::steady_clock::now();  // time the stepping loop, not the setup
     step_loop(engine, scene, t, every, initial, n);
+  } catch (const RunTimeLimitExceeded& e) {
+    t.status = RunStatus::timed_out;
+    t.failed_step = n;
+    t.failure = std::string(e.what()) + "; stopped at step " + std::to_string(n);
   } catch (const std::bad_alloc&) {
     t.status = RunStatus::out_of_memory;
     t.failed_step = n;

@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -14,6 +15,7 @@ namespace dropcheck {
 namespace {
 
 constexpr const char* kHeader = "engine,dt,step,t,body,x,y,z,vx,vy,vz";
+constexpr const char* kByteOrderMark = "\xef\xbb\xbf";  // accepted before the header, as in scenes
 constexpr const char* kColumns[] = {"engine", "dt", "step", "t",  "body", "x",
                                     "y",      "z",  "vx",   "vy", "vz"};
 
@@ -41,12 +43,41 @@ std::vector<std::string> csv_fields(const std::string& line) {
   return out;
 }
 
-double number(const std::string& s, const std::string& file, int line, const char* column) {
+// Longest line read (bytes): a row of dropcheck's is under 300; a longer one is not a trajectory,
+// and reading it whole would cost its size in memory.
+constexpr std::size_t kMaxLine = 64 * 1024;
+
+// The column's name and position for messages: "x (column 6)".
+std::string column_key(int column) {
+  return std::string(kColumns[column]) + " (column " + std::to_string(column + 1) + ")";
+}
+
+// A finite number: NaN and infinities are refused, since every verdict fitted to them is void.
+double number(const std::string& s, const std::string& file, int line, int column) {
   double v = 0.0;
   const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   if (ec != std::errc() || ptr != s.data() + s.size() || s.empty())
-    throw InputError(file, line, column, "'" + s + "' is not a number");
+    throw InputError(file, line, column_key(column), excerpt(s) + " is not a number");
+  if (!std::isfinite(v))
+    throw InputError(file, line, column_key(column),
+                     excerpt(s) + " is not a finite number (no verdict can be fitted to it)");
   return v;
+}
+
+// The next line of `in` without its line break, at most kMaxLine bytes; false at the end.
+bool next_line(std::istream& in, std::string& line, const std::string& file, int n) {
+  line.clear();
+  std::streambuf* buf = in.rdbuf();
+  for (bool any = false;; any = true) {
+    const int c = buf->sbumpc();
+    if (c == std::char_traits<char>::eof()) return any;
+    if (c == '\n') break;
+    if (line.size() == kMaxLine)
+      throw InputError(file, n, "", "a line longer than 64 KiB: not a trajectory CSV");
+    line.push_back(static_cast<char>(c));
+  }
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  return true;
 }
 
 // The run a row belongs to, created on first sight.
@@ -66,7 +97,8 @@ void add_row(Trajectory& t, std::int64_t step, const std::string& body, const Bo
   const bool new_sample = t.recorded.empty() || t.recorded.back() != step;
   if (new_sample) {
     if (!t.recorded.empty() && step <= t.recorded.back())
-      throw InputError(file, line, "step", "steps of engine '" + t.engine + "' must increase");
+      throw InputError(file, line, "step",
+                       "steps of engine " + excerpt(t.engine) + " must increase");
     if (t.recorded.size() >= 1 && t.states.size() != t.recorded.size() * t.body_names.size())
       throw InputError(file, line, "body",
                        "step " + std::to_string(t.recorded.back()) + " lacks bodies of step " +
@@ -79,8 +111,8 @@ void add_row(Trajectory& t, std::int64_t step, const std::string& body, const Bo
   } else if (index >= t.body_names.size() || t.body_names[index] != body) {
     throw InputError(
         file, line, "body",
-        "'" + body + "' where step " + std::to_string(t.recorded[0]) + " has " +
-            (index < t.body_names.size() ? "'" + t.body_names[index] + "'" : "no more bodies"));
+        excerpt(body) + " where step " + std::to_string(t.recorded[0]) + " has " +
+            (index < t.body_names.size() ? excerpt(t.body_names[index]) : "no more bodies"));
   }
   t.states.push_back(s);
 }
@@ -100,39 +132,52 @@ std::vector<Trajectory> read_trajectories_csv(const std::string& file) {
     throw InputError(
         file, 0, "",
         "cannot read the trajectory file: not a regular file (a device, FIFO or socket)");
-  std::ifstream in(file);
+  std::ifstream in(file, std::ios::binary);
   if (!in)
     throw InputError(file, 0, "",
                      std::string("cannot read the trajectory file: ") + std::strerror(errno));
+  return parse_trajectories_csv(in, file);
+}
+
+std::vector<Trajectory> parse_trajectories_csv(std::istream& in, const std::string& file) {
   std::string line;
-  if (!std::getline(in, line) || (line.empty() ? line : line.substr(0, line.find('\r'))) != kHeader)
+  const bool got_header = next_line(in, line, file, 1);
+  if (line.rfind(kByteOrderMark, 0) == 0) line.erase(0, std::strlen(kByteOrderMark));
+  if (!got_header || line != kHeader)
     throw InputError(file, 1, "", std::string("the header must be ") + kHeader);
   std::vector<Trajectory> runs;
   int n = 1;
-  while (std::getline(in, line)) {
+  while (next_line(in, line, file, n + 1)) {
     ++n;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty()) continue;
     const std::vector<std::string> f = csv_fields(line);
     if (f.size() != 11)
       throw InputError(
           file, n, "",
           "expected 11 columns (" + std::string(kHeader) + "), got " + std::to_string(f.size()));
-    const double dt = number(f[1], file, n, kColumns[1]);
-    const double step = number(f[2], file, n, kColumns[2]);
-    if (!(dt > 0.0)) throw InputError(file, n, "dt", "must be > 0");
-    if (step < 0 || step != static_cast<double>(static_cast<std::int64_t>(step)))
-      throw InputError(file, n, "step", "must be a whole number >= 0");
+    const double dt = number(f[1], file, n, 1);
+    const double step = number(f[2], file, n, 2);
+    number(f[3], file, n, 3);  // t: checked, not used (the step and dt give the time exactly)
+    if (!(dt > 0.0)) throw InputError(file, n, column_key(1), "must be > 0");
+    if (step < 0 || step > 9007199254740992.0 ||
+        step != static_cast<double>(static_cast<std::int64_t>(step)))
+      throw InputError(file, n, column_key(2), "must be a whole number >= 0");
     BodyState s;
     for (int i = 0; i < 3; ++i) {
-      s.position[i] = number(f[5 + i], file, n, kColumns[5 + i]);
-      s.velocity[i] = number(f[8 + i], file, n, kColumns[8 + i]);
+      s.position[i] = number(f[5 + i], file, n, 5 + i);
+      s.velocity[i] = number(f[8 + i], file, n, 8 + i);
     }
+    for (int column : {0, 4})  // names reach terminals and reports: no control characters
+      if (f[column].empty() || find_unsafe_byte(f[column]) != std::string::npos ||
+          f[column].find_first_of("\t\r\n") != std::string::npos)
+        throw InputError(file, n, column_key(column),
+                         excerpt(f[column]) + " is not a name (empty, or control characters)");
     add_row(run_for(runs, f[0], dt), static_cast<std::int64_t>(step), f[4], s, file, n);
   }
   for (Trajectory& t : runs) {
     if (t.states.size() != t.recorded.size() * t.body_names.size())
-      throw InputError(file, n, "body", "the last step of engine '" + t.engine + "' lacks bodies");
+      throw InputError(file, n, "body",
+                       "the last step of engine " + excerpt(t.engine) + " lacks bodies");
     t.steps = t.recorded.back();
   }
   if (runs.empty()) throw InputError(file, 2, "", "no rows after the header");

@@ -2,6 +2,7 @@
 // back exactly (numbers through std::from_chars), for commands that analyse a recorded run.
 #pragma once
 
+#include <istream>
 #include <string>
 #include <vector>
 
@@ -11,8 +12,13 @@ namespace dropcheck {
 
 // The runs in `file`, one per (engine, dt), in order of first appearance; each sample holds every
 // body named in that run's first step. Throws InputError (file, line, column, problem) for a
-// missing file, a wrong header, a malformed number or a step whose bodies differ from the first
-// step's.
+// missing file or one that is not a regular file, a wrong header (a UTF-8 byte-order mark before
+// it is accepted), a line over 64 KiB, a malformed or non-finite number (NaN, inf) in any numeric
+// column, or a step whose bodies differ from the first step's. Messages quote only short, escaped
+// excerpts of the file (harness/core/input_error.hpp).
 std::vector<Trajectory> read_trajectories_csv(const std::string& file);
+
+// The same from a stream; `file` names it in messages (what the fuzz target reads).
+std::vector<Trajectory> parse_trajectories_csv(std::istream& in, const std::string& file);
 
 }  // namespace dropcheck

@@ -60,7 +60,12 @@ pid_t spawn(const std::vector<std::string>& argv, const std::string& cwd, int in
   sigaddset(&defaults, SIGPIPE);
   posix_spawnattr_setsigdefault(&attr, &defaults);
   posix_spawnattr_setpgroup(&attr, 0);  // its own process group: stop() kills helpers it started
-  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETPGROUP);
+  sigset_t
+      none;  // the caller holds SIGINT, SIGTERM and SIGHUP back (SignalsDeferred): not the child
+  sigemptyset(&none);
+  posix_spawnattr_setsigmask(&attr, &none);
+  posix_spawnattr_setflags(&attr,
+                           POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK);
 
   std::vector<char*> args;
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
@@ -88,12 +93,17 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::stri
     ::close(in[1]);
     throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
   }
+  // Signals held back from the start of the child until it is registered (KillOnSignal): a Ctrl-C
+  // between the two would leave the engine running.
+  SignalsDeferred deferred;
   try {
     pid_ = spawn(argv, cwd, in[0], out[1]);
   } catch (...) {
     for (int fd : {in[0], in[1], out[0], out[1]}) ::close(fd);
     throw;
   }
+  // Registered before anything else can fail: a signal to dropcheck from here on kills the group.
+  kill_on_signal_ = std::make_unique<KillOnSignal>(-pid_);
   ::close(in[0]);
   ::close(out[1]);
   to_child_ = in[1];
@@ -157,13 +167,32 @@ IoStatus ChildProcess::read_line(std::string& line, double timeout_s) {
   }
 }
 
+// The child's process group is killed before the child is reaped, never after: while the child is
+// an unreaped zombie its pid cannot be given to another process, so kill(-pid) reaches only the
+// helpers it started (a shell wrapper's children, a forked server), never a stranger.
+void ChildProcess::kill_group_and_reap() {
+  ::kill(-pid_, SIGKILL);
+  ::kill(pid_, SIGKILL);  // when it left its group (setpgid), the leader itself
+  while (::waitpid(pid_, &wait_status_, 0) < 0 && errno == EINTR) {
+  }
+  reaped_ = true;
+  kill_on_signal_.reset();
+}
+
 bool ChildProcess::reap(double wait_s) {
   if (reaped_ || pid_ < 0) return true;
   const Clock::time_point deadline = deadline_after(wait_s);
   for (;;) {
-    const pid_t r = ::waitpid(pid_, &wait_status_, WNOHANG);
-    if (r == pid_ || (r < 0 && errno != EINTR)) {
+    // WNOWAIT: learn that it ended without reaping it yet (see kill_group_and_reap).
+    siginfo_t info{};
+    const int r = ::waitid(P_PID, static_cast<id_t>(pid_), &info, WEXITED | WNOHANG | WNOWAIT);
+    if (r == 0 && info.si_pid == pid_) {
+      kill_group_and_reap();
+      return true;
+    }
+    if (r < 0 && errno != EINTR) {  // not our child any more: nothing to reap or describe
       reaped_ = true;
+      wait_status_ = -1;
       return true;
     }
     if (Clock::now() >= deadline) return false;
@@ -174,13 +203,7 @@ bool ChildProcess::reap(double wait_s) {
 void ChildProcess::stop(double grace_s) {
   close_fd(to_child_);
   if (pid_ < 0) return;
-  if (!reap(grace_s)) {
-    ::kill(-pid_, SIGKILL);  // the whole group: a shell wrapper's children too
-    ::kill(pid_, SIGKILL);
-    while (::waitpid(pid_, &wait_status_, 0) < 0 && errno == EINTR) {
-    }
-    reaped_ = true;
-  }
+  if (!reap(grace_s)) kill_group_and_reap();
   close_fd(from_child_);
 }
 
@@ -190,6 +213,7 @@ std::string ChildProcess::exit_description(double wait_s) {
 }
 
 std::string describe_wait_status(int status) {
+  if (status == -1) return "ended, how unknown (not a child of this process)";
   if (WIFEXITED(status)) return "exited with status " + std::to_string(WEXITSTATUS(status));
   if (WIFSIGNALED(status)) {
     const char* abbrev = sigabbrev_np(WTERMSIG(status));

@@ -1,12 +1,18 @@
 // ChildProcess: a program started with its stdin and stdout on pipes, for talking to it line by
 // line in lockstep (adapters/exec.cpp). Every wait is bounded, a dead child never kills the caller
-// (SIGPIPE is ignored; a broken pipe is an error value), and the child never outlives the object.
+// (SIGPIPE is ignored; a broken pipe is an error value), and neither the child nor any helper it
+// started outlives the object: the child leads a process group of its own, and that whole group
+// is killed when the child is reaped (it ended, failed or was stopped) and when dropcheck is
+// stopped by SIGINT, SIGTERM or SIGHUP (KillOnSignal).
 #pragma once
 
 #include <sys/types.h>
 
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "harness/process/signal_cleanup.hpp"
 
 namespace dropcheck {
 
@@ -38,7 +44,7 @@ class ChildProcess {
   IoStatus read_line(std::string& line, double timeout_s);
 
   // Closes the child's stdin (it sees end of input), waits up to `grace_s` for it to exit, then
-  // SIGKILLs it; reaps it either way. Idempotent.
+  // SIGKILLs it; kills its process group and reaps it either way. Idempotent.
   void stop(double grace_s = 0.2);
   // How the child ended, once it has ("exited with status 3", "crashed: SIGSEGV"); waits up to
   // `wait_s` for it to end, "still running" if it has not.
@@ -47,14 +53,16 @@ class ChildProcess {
   pid_t pid() const { return pid_; }  // the child's process id (for tests)
 
  private:
-  bool reap(double wait_s);  // waitpid with a bounded wait; true once reaped
+  bool reap(double wait_s);    // a bounded wait for the child to end; true once it is reaped
+  void kill_group_and_reap();  // SIGKILL to the group and the child, then waitpid
 
   pid_t pid_ = -1;
   int to_child_ = -1;    // our end of the child's stdin
   int from_child_ = -1;  // our end of the child's stdout
   bool reaped_ = false;
-  int wait_status_ = 0;  // from waitpid, valid when reaped_
-  std::string buffer_;   // bytes read past the last line returned
+  int wait_status_ = 0;  // from waitpid, valid when reaped_ (-1: not our child, status unknown)
+  std::unique_ptr<KillOnSignal> kill_on_signal_;  // the group, killed if dropcheck is stopped
+  std::string buffer_;                            // bytes read past the last line returned
 };
 
 // "exited with status 3", "crashed: SIGSEGV" (signal name from the C library), from a waitpid

@@ -15,12 +15,14 @@
 #include <cstdio>
 #include <cstring>
 #include <new>
+#include <optional>
 #include <string>
 #include <system_error>
 
 #include "harness/core/number_format.hpp"
 #include "harness/core/run_limits.hpp"
 #include "harness/io/trajectory_wire.hpp"
+#include "harness/process/signal_cleanup.hpp"
 
 namespace dropcheck {
 namespace {
@@ -105,6 +107,10 @@ bool write_all(int fd, const void* data, std::size_t bytes) {
                              int err_fd) {
   for (int sig : {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGPIPE, SIGTERM})
     std::signal(sig, SIG_DFL);
+  sigset_t deferred;  // the parent held these back around fork() (run_isolated)
+  sigemptyset(&deferred);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&deferred, sig);
+  ::sigprocmask(SIG_UNBLOCK, &deferred, nullptr);
   ::dup2(err_fd, STDERR_FILENO);
   int code = 0;
   try {
@@ -276,7 +282,40 @@ Trajectory child_failure(Trajectory t, int status, const ChildPipes& pipes, cons
   return t;
 }
 
+// An engine in its own process, driven here: the run's wall-clock limit checked after each step.
+class DeadlineEngine final : public Engine {
+ public:
+  DeadlineEngine(Engine& inner, Clock::time_point deadline, double limit)
+      : inner_(inner), deadline_(deadline), limit_(limit) {}
+  EngineInfo info() const override { return inner_.info(); }
+  std::string cannot_run(const Scene& scene) const override { return inner_.cannot_run(scene); }
+  void load(const Scene& scene, double h) override { inner_.load(scene, h); }
+  void set_forces(std::span<const Vec3> forces) override { inner_.set_forces(forces); }
+  void step() override {
+    inner_.step();
+    if (Clock::now() > deadline_)
+      throw RunTimeLimitExceeded("no result within the limit of " + sig(limit_, 6) + " s");
+  }
+  void read(std::span<BodyState> out) const override { inner_.read(out); }
+  bool speed_clamped() const override { return inner_.speed_clamped(); }
+
+ private:
+  Engine& inner_;
+  Clock::time_point deadline_;
+  double limit_;
+};
+
 }  // namespace
+
+Trajectory run_own_process(Engine& engine, const Scene& scene, double h,
+                           const RunOptions& options) {
+  const double limit =
+      options.time_limit_seconds > 0 ? options.time_limit_seconds : kDefaultRunTimeLimitSeconds;
+  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                           std::chrono::duration<double>(std::min(limit, 1e9)));
+  DeadlineEngine bounded(engine, deadline, limit);
+  return run_scene_in_process(bounded, scene, h, options);
+}
 
 void set_default_isolation(Isolation isolation) {
   g_default_isolation = isolation == Isolation::process_default ? Isolation::in_process : isolation;
@@ -307,11 +346,17 @@ Trajectory run_isolated(Engine& engine, const Scene& scene, double h, const RunO
     throw std::system_error(errno, std::generic_category(), "pipe");
   }
   std::fflush(nullptr);  // nothing buffered may be written twice, by parent and child
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    ::close(result[0]);
-    ::close(err[0]);
-    child_main(engine, scene, h, options, *progress, result[1], err[1]);
+  std::optional<KillOnSignal> kill_on_signal;  // dropcheck stopped: the child is killed first
+  pid_t pid = -1;
+  {
+    SignalsDeferred deferred;  // no signal between fork() and the child's registration
+    pid = ::fork();
+    if (pid == 0) {
+      ::close(result[0]);
+      ::close(err[0]);
+      child_main(engine, scene, h, options, *progress, result[1], err[1]);
+    }
+    if (pid > 0) kill_on_signal.emplace(pid);
   }
   ::close(result[1]);
   ::close(err[1]);

@@ -24,8 +24,9 @@ struct Slot {
 };
 Slot g_slots[kSlots];
 
-// Child processes to kill first (0: a free slot).
-constexpr int kChildSlots = 8;
+// Child processes to kill first (0: a free slot; -pid: the process group pid leads). One per
+// external engine alive at once, one per isolated run, one gnuplot.
+constexpr int kChildSlots = 64;
 std::atomic<pid_t> g_children[kChildSlots];
 
 constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
@@ -57,7 +58,10 @@ void remove_folder(const char* path) {
 void on_signal(int sig) {
   for (std::atomic<pid_t>& child : g_children) {  // kill and waitpid are async-signal-safe
     const pid_t pid = child.load();
-    if (pid > 0 && ::kill(pid, SIGKILL) == 0) ::waitpid(pid, nullptr, 0);
+    if (pid == 0) continue;
+    const pid_t leader = pid < 0 ? -pid : pid;
+    const bool sent = ::kill(pid, SIGKILL) == 0;  // a negative pid: the whole group
+    if ((::kill(leader, SIGKILL) == 0 || sent)) ::waitpid(leader, nullptr, 0);
   }
   for (Slot& s : g_slots) {
     const int state = s.state.load();

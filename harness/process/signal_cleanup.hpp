@@ -28,12 +28,14 @@ class CleanupOnSignal {
   int slot_ = -1;
 };
 
-// A child process (gnuplot) killed and reaped by the signal handler, before the paths are removed,
-// while registered: it can then write nothing more into a folder being removed, and does not
-// outlive dropcheck. Unregisters itself at scope exit. Not copyable.
+// A child process (gnuplot, an isolated run) or a whole process group (an external engine and the
+// helpers it started) killed and reaped by the signal handler, before the paths are removed, while
+// registered: it can then write nothing more into a folder being removed, and does not outlive
+// dropcheck. Unregisters itself at scope exit. Not copyable.
 class KillOnSignal {
  public:
-  // Registers `pid` (installing the handlers on first use); inert when the table is full.
+  // Registers `pid`, or with -pid the process group pid leads (installing the handlers on first
+  // use); inert when the table is full.
   explicit KillOnSignal(pid_t pid);
   ~KillOnSignal();
   KillOnSignal(const KillOnSignal&) = delete;

@@ -9,6 +9,7 @@
 #include <initializer_list>
 #include <set>
 
+#include "harness/core/input_error.hpp"
 #include "harness/core/number_format.hpp"
 #include "harness/io/bounded_read.hpp"
 #include "harness/scene/timestep.hpp"
@@ -16,6 +17,9 @@
 
 namespace dropcheck {
 namespace {
+
+// 2^53: every integer up to it in magnitude is exactly a double; past it, not all are.
+constexpr std::int64_t kExactIntegerLimit = std::int64_t{1} << 53;
 
 // Reads typed values out of one TOML table, throwing InputError with the file, line and key path.
 class Reader {
@@ -46,6 +50,13 @@ class Reader {
   }
 
   double number(const std::string& key, const toml::node& n) const {
+    // An integer beyond 2^53 has no exact double (9007199254740993 would silently become ...992).
+    if (const std::optional<std::int64_t> i = n.value_exact<std::int64_t>();
+        n.is_integer() && i && (*i > kExactIntegerLimit || *i < -kExactIntegerLimit))
+      fail(key,
+           "the integer " + std::to_string(*i) +
+               " is too large to be exactly a double (beyond 2^53); write it as a float",
+           &n);
     std::optional<double> v = n.value<double>();
     if (!n.is_number() || !v) fail(key, std::string("expected a number, got ") + type_name(n), &n);
     if (!std::isfinite(*v)) fail(key, "must be finite, got " + format(*v), &n);
@@ -86,6 +97,22 @@ class Reader {
     if (!n) return fallback;
     if (!n->is_string()) fail(key, std::string("expected a string, got ") + type_name(*n), n);
     return *n->value<std::string>();
+  }
+
+  // A name (scene, body): printed on terminals, in reports and file names, so a control character
+  // written as a TOML escape ("\u001b[2J", "\t") is refused like a raw one.
+  std::string name(const std::string& key, const std::string& fallback) const {
+    std::string text = string(key, fallback);
+    for (std::size_t i = 0; i < text.size(); ++i) {
+      const unsigned char b = static_cast<unsigned char>(text[i]);
+      const bool c1 = b == 0xc2 && i + 1 < text.size() &&
+                      static_cast<unsigned char>(text[i + 1]) >= 0x80 &&
+                      static_cast<unsigned char>(text[i + 1]) <= 0x9f;
+      if (b < 0x20 || b == 0x7f || c1)
+        fail(key, "control character " + excerpt(text.substr(i, c1 ? 2 : 1)) +
+                      " in a name (names are printed on terminals and in reports)");
+    }
+    return text;
   }
 
   Timestep timestep(const std::string& key, const toml::node& n) const {
@@ -195,7 +222,7 @@ void load_body(const Reader& r, Scene& s) {
   r.only({"name", "half_extents", "mass", "position", "velocity", "static"});
   Body b;
   if (!r.has("name")) r.fail("name", "required key is missing");
-  b.name = r.string("name", "");
+  b.name = r.name("name", "");
   if (b.name.empty()) r.fail("name", "must not be empty");
   for (const Body& other : s.bodies)
     if (other.name == b.name) r.fail("name", "duplicate body name \"" + b.name + "\"");
@@ -272,7 +299,7 @@ Scene build(const toml::table& root, const std::string& path) {
           "force"});
   Scene s;
   s.source = path;
-  s.name = r.string("name", std::filesystem::path(path).stem().string());
+  s.name = r.name("name", std::filesystem::path(path).stem().string());
   s.description = r.string("description", "");
   load_times(r, s);
   load_world(r, s);

@@ -287,3 +287,66 @@ TEST_CASE("Engine files and exec: paths are validated as input", "[exec]") {
                  err) == kExitBadInput);
   CHECK_THAT(err.str(), Contains("no such engine file"));
 }
+
+TEST_CASE(
+    "An engine file that is a device or folder, or whose command is a folder, is refused "
+    "like a scene file",
+    "[exec]") {
+  const auto error_of = [](const std::string& spec) -> std::string {
+    try {
+      parse_exec_spec(spec);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  const fs::path dir =
+      fs::temp_directory_path() / ("dropcheck_exec_files_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "folder.toml");
+  fs::create_directories(dir / "engine_dir");
+  fs::create_symlink("/dev/zero", dir / "zero.toml");
+  // Refused at once, never read: /dev/zero would never end.
+  CHECK_THAT(error_of((dir / "zero.toml").string()),
+             Contains("zero.toml: cannot read the file: not a regular file (a device, FIFO or "
+                      "socket)"));
+  CHECK_THAT(error_of((dir / "folder.toml").string()),
+             Contains("folder.toml: cannot read the file: it is a directory"));
+  std::ofstream(dir / "e.toml") << "command = [\"./engine_dir\", \"x\"]\n";
+  CHECK(error_of((dir / "e.toml").string()) ==
+        (dir / "e.toml").string() + ":1: command: './engine_dir' is a folder, not a program");
+  std::ofstream(dir / "f.toml") << "command = [\"./missing\"]\n";
+  CHECK_THAT(error_of((dir / "f.toml").string()),
+             Contains(":1: command: './missing': No such file or directory"));
+  std::ofstream(dir / "g.toml") << "name = \"x\"\ncommand = [\"python3\", \"e.py\"]\n"
+                                << "# \x1b[2J\n";
+  CHECK_THAT(error_of((dir / "g.toml").string()), Contains("g.toml:3: control character"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("Two engines that announce the same name are refused as the clash", "[exec][cli]") {
+  const fs::path dir =
+      fs::temp_directory_path() / ("dropcheck_exec_clash_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string py = kSource + "/examples/python/seed_engine.py";
+  std::ofstream(dir / "a.toml") << "command = [\"python3\", \"" << py << "\"]\n";
+  std::ofstream(dir / "b.toml") << "command = [\"python3\", \"" << py << "\"]\n";
+  for (const std::string command : {"run", "check", "report", "bless"}) {
+    INFO(command);
+    std::ostringstream out, err;
+    std::vector<std::string> argv{command,    kSource + "/scenarios/free_fall.toml",
+                                  "--engine", (dir / "a.toml").string(),
+                                  "--engine", (dir / "b.toml").string()};
+    if (command == "report" || command == "bless") {
+      argv.push_back("--out");
+      argv.push_back((dir / ("out-" + command)).string());
+    }
+    CHECK(cli_main(argv, out, err) == kExitBadInput);
+    CHECK_THAT(err.str(), Contains("b.toml'") &&
+                              Contains("announces the name 'seed-python', as "
+                                       "--engine '") &&
+                              Contains("two engines cannot share a name"));
+    CHECK_FALSE(fs::exists(dir / ("out-" + command)));
+  }
+  fs::remove_all(dir);
+}

@@ -153,7 +153,15 @@ TEST_CASE("identify rejects unusable input with the file and the problem", "[ide
         ":1: the header must be");
   fails({"identify", s.source, "--trajectory",
          temp_file("n.csv", header + "ours,0.1,0,0,small,1,2,x,0,0,0\n")},
-        ":2: z: 'x' is not a number");
+        ":2: z (column 8): 'x' is not a number");
+  // No verdict from numbers that are not numbers: refused before any fit, line and column named.
+  fails({"identify", s.source, "--trajectory",
+         temp_file("nan.csv", header + "ours,0.1,0,0,small,1,2,3,0,0,0\n" +
+                                  "ours,0.1,1,0.1,small,nan,2,3,0,0,0\n")},
+        ":3: x (column 6): 'nan' is not a finite number");
+  fails({"identify", s.source, "--trajectory",
+         temp_file("inf.csv", header + "ours,inf,0,0,small,1,2,3,0,0,0\n")},
+        ":2: dt (column 2): 'inf' is not a finite number");
   fails({"identify", s.source, "--trajectory",
          temp_file("b.csv",
                    header + "ours,0.1,0,0,small,1,2,3,0,0,0\nours,0.1,1,0.1,small,1,2,3,0,0,0\n")},

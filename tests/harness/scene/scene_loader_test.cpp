@@ -273,3 +273,29 @@ TEST_CASE("a directory given as the scene file is an InputError, not an empty sc
     CHECK_THAT(e.what(), Contains("/scenarios: cannot read"));
   }
 }
+
+TEST_CASE("a control character in a scene or body name is refused, escaped or raw", "[loader]") {
+  // TOML escapes decode to the bytes a terminal acts on: ESC (clear screen), BEL, NUL, tab, C1.
+  check_error(scene("name = \"a\\u001b[2Jb\"\n" + kHead, kWorld, kBody), "name",
+              "control character '\\x1b' in a name");
+  check_error(scene("name = \"bell\\u0007\"\n" + kHead, kWorld, kBody), "name",
+              "control character '\\x07'");
+  check_error(scene(kHead, kWorld, "[[body]]\nname = \"cu\\tbe\"\n"), "body[0].name",
+              "control character '\\x09'");
+  check_error(scene(kHead, kWorld, "[[body]]\nname = \"nul\\u0000\"\n"), "body[0].name",
+              "control character '\\x00'");
+  check_error(scene(kHead, kWorld, "[[body]]\nname = \"csi\\u009b\"\n"), "body[0].name",
+              "control character '\\xc2\\x9b'");
+  // Printable non-ASCII stays a valid name.
+  CHECK(error_of(scene("name = \"w\\u00fcrfel\"\n" + kHead, kWorld, kBody)) == "(loaded)");
+}
+
+TEST_CASE("an integer too large to be exactly a double is named as such", "[loader]") {
+  // 2^53 + 1 = 9007199254740993 would become ...992 as a double: refused, not rounded.
+  check_error(scene(kHead, kWorld, kBody + "mass = 9007199254740993\n"), "body[0].mass",
+              "the integer 9007199254740993 is too large to be exactly a double (beyond 2^53)");
+  check_error(scene(kHead, kWorld, kBody + "mass = -9007199254740993\n"), "body[0].mass",
+              "too large to be exactly a double");
+  // 2^53 itself is exact, and accepted as a number.
+  CHECK(error_of(scene(kHead, kWorld, kBody + "mass = 9007199254740992\n")) == "(loaded)");
+}

@@ -1,0 +1,167 @@
+#include "exec_protocol.hpp"
+
+#include <cctype>
+#include <charconv>
+
+#include "harness/core/input_error.hpp"
+
+namespace dropcheck {
+namespace {
+
+// Longest free text (version, damping-mapping) kept from a handshake, in bytes: these reach the
+// report's tables and the terminal.
+constexpr std::size_t kMaxFreeText = 200;
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> tokens;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    std::size_t j = i;
+    while (j < line.size() && line[j] != ' ' && line[j] != '\t') ++j;
+    if (j > i) tokens.push_back(line.substr(i, j - i));
+    i = j;
+  }
+  return tokens;
+}
+
+// The text after the first token ("error disk full" -> "disk full").
+std::string rest_of(const std::string& line) {
+  const std::size_t sp = line.find_first_of(" \t");
+  if (sp == std::string::npos) return {};
+  const std::size_t start = line.find_first_not_of(" \t", sp);
+  return start == std::string::npos ? std::string() : line.substr(start);
+}
+
+// Free text an engine announced, as dropcheck keeps it: control bytes escaped, at most
+// kMaxFreeText bytes of it.
+std::string free_text(const std::string& text) {
+  const std::string kept = escape_controls(text.substr(0, kMaxFreeText));
+  return text.size() > kMaxFreeText ? kept + "..." : kept;
+}
+
+bool parse_number(const std::string& token, double& out) {
+  const char* end = token.data() + token.size();
+  const auto [ptr, ec] = std::from_chars(token.data(), end, out);
+  return ec == std::errc() && ptr == end;
+}
+
+bool valid_name(const std::string& name) {
+  if (name.empty() || name.size() > 64) return false;
+  for (char c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.' &&
+        c != '+')
+      return false;
+  return true;
+}
+
+[[noreturn]] void garbage(const std::string& expected, const std::string& got) {
+  throw ProtocolError("garbage from the engine: expected " + expected + ", got " + excerpt(got));
+}
+
+}  // namespace
+
+std::string engine_name_problem(const std::string& name, const std::vector<std::string>& reserved) {
+  if (!valid_name(name))
+    return excerpt(name) + " is not a valid engine name (1-64 of A-Z a-z 0-9 . _ + -)";
+  for (const std::string& builtin : reserved)
+    if (name == builtin) return "'" + name + "' is the name of a built-in engine; choose another";
+  return {};
+}
+
+bool HandshakeReader::take(const std::string& line) {
+  const std::vector<std::string> t = split(line);
+  if (!started_) {
+    first(t, line);
+    started_ = true;
+    return false;
+  }
+  if (t.size() == 1 && t[0] == "ready") {
+    if (!name_ || !version_ || !scalar_ || !law_)
+      throw ProtocolError("the handshake lacks " + std::string(!name_      ? "name"
+                                                               : !version_ ? "version"
+                                                               : !scalar_  ? "scalar"
+                                                                           : "law"));
+    return true;
+  }
+  if (t.empty()) garbage("a handshake line", line);
+  key(t, line);
+  return false;
+}
+
+void HandshakeReader::first(const std::vector<std::string>& t, const std::string& line) {
+  if (t.size() != 2 || t[0] != "dropcheck-engine") garbage("'dropcheck-engine 1'", line);
+  if (t[1] != std::to_string(kProtocolVersion))
+    throw ProtocolError("the engine speaks protocol " + excerpt(t[1]) + "; dropcheck speaks " +
+                        std::to_string(kProtocolVersion));
+}
+
+void HandshakeReader::key(const std::vector<std::string>& k, const std::string& line) {
+  const std::string value = rest_of(line);
+  if (k[0] == "name" && k.size() == 2) {
+    if (!keep_name_) {
+      if (std::string p = engine_name_problem(k[1], reserved_); !p.empty()) throw ProtocolError(p);
+      info_.name = k[1];
+    }
+    name_ = true;
+  } else if (k[0] == "version" && k.size() >= 2) {
+    info_.version = free_text(value);
+    version_ = true;
+  } else if (k[0] == "scalar" && k.size() == 2 && (k[1] == "f32" || k[1] == "f64")) {
+    info_.scalar = k[1] == "f32" ? Scalar::f32 : Scalar::f64;
+    scalar_ = true;
+  } else if (k[0] == "law" && k.size() == 2 && parse_law_key(k[1])) {
+    info_.law = *parse_law_key(k[1]);
+    law_ = true;
+  } else if (k[0] == "capabilities") {
+    for (std::size_t i = 1; i < k.size(); ++i) {
+      if (k[i] == "contacts")
+        info_.capabilities.contacts = true;
+      else if (k[i] == "planar-only")
+        info_.capabilities.planar_only = true;
+      else if (k[i] == "continuous-collision")
+        info_.continuous_collision = true;
+      else
+        garbage("capabilities 'contacts', 'planar-only' or 'continuous-collision'", line);
+    }
+  } else if (k[0] == "damping-mapping" && k.size() >= 2) {
+    info_.damping_mapping = free_text(value);
+  } else {
+    garbage(
+        "name, version, scalar f32|f64, law KEY, capabilities, damping-mapping or ready "
+        "(law keys: after-forces, before-forces, after-position, after-forces/explicit, "
+        "before-forces/explicit)",
+        line);
+  }
+}
+
+void parse_state_line(const std::string& line, std::int64_t n, std::span<BodyState> out) {
+  const std::vector<std::string> t = split(line);
+  const std::string head = "'state " + std::to_string(n) + "'";
+  const std::size_t want = 6 * out.size();
+  if (t.size() < 2 || t[0] != "state" || t[1] != std::to_string(n))
+    garbage(head + " and " + std::to_string(want) + " numbers", line);
+  const std::size_t got = t.size() - 2;
+  if (got != want) {
+    const std::string per_body = got % 6 == 0 ? " (" + std::to_string(got / 6) + " bodies)" : "";
+    throw ProtocolError("the engine answered " + std::to_string(got) + " numbers" + per_body +
+                        ", the scene has " + std::to_string(out.size()) + " bodies (" +
+                        std::to_string(want) + " numbers)");
+  }
+  for (std::size_t i = 0; i < got; ++i) {
+    double v = 0.0;
+    if (!parse_number(t[2 + i], v)) garbage("a number", t[2 + i]);
+    BodyState& s = out[i / 6];
+    (i % 6 < 3 ? s.position : s.velocity)[static_cast<Eigen::Index>(i % 3)] = v;
+  }
+}
+
+bool is_error_line(const std::string& line) {
+  return line.rfind("error", 0) == 0 && (line.size() == 5 || line[5] == ' ' || line[5] == '\t');
+}
+
+std::string error_text(const std::string& line) {
+  return is_error_line(line) ? free_text(rest_of(line)) : std::string();
+}
+
+}  // namespace dropcheck

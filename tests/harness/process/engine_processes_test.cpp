@@ -1,0 +1,157 @@
+// No process left behind, and engine deaths named truly: the dropcheck executable driving an
+// external engine that starts a helper (tests/adapters/helper_engine.py), stopped by SIGTERM,
+// SIGINT or SIGHUP while the engine hangs, or left to finish while the engine fails, crashes or
+// succeeds. After each, no process of the engine (the script or its helper, found in /proc by a tag
+// in their arguments) exists.
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "../test_dirs.hpp"
+
+using Catch::Matchers::Contains;
+using dropcheck::testing::ScratchDir;
+using dropcheck::testing::slurp;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kSource = DROPCHECK_SOURCE_DIR;
+
+// Live (not zombie) processes whose command line contains `tag`.
+std::vector<int> processes_with(const std::string& tag) {
+  std::vector<int> pids;
+  for (const fs::directory_entry& e : fs::directory_iterator("/proc")) {
+    const std::string name = e.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::string cmdline = slurp(e.path().string() + "/cmdline");
+    for (char& c : cmdline)
+      if (c == '\0') c = ' ';
+    const std::string stat = slurp(e.path().string() + "/stat");
+    const std::size_t paren = stat.rfind(')');
+    const bool zombie =
+        paren != std::string::npos && paren + 2 < stat.size() && stat[paren + 2] == 'Z';
+    if (!zombie && cmdline.find(tag) != std::string::npos) pids.push_back(std::stoi(name));
+  }
+  return pids;
+}
+
+// Waits up to `seconds` for `done()`.
+template <class Done>
+bool within(double seconds, Done done) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (!done()) {
+    if (std::chrono::steady_clock::now() > end) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return true;
+}
+
+// A unique tag for this test's engine processes.
+std::string tag_for(const std::string& mode) {
+  return "dropcheck-helper-tag-" + mode + "-" + std::to_string(::getpid());
+}
+
+// An engine file running helper_engine.py in `mode`.
+std::string engine_file(const ScratchDir& d, const std::string& mode, const std::string& tag) {
+  return d.write("helper-" + mode + ".toml", "command = [\"python3\", \"" + kSource +
+                                                 "/tests/adapters/helper_engine.py\", \"" + mode +
+                                                 "\", \"" + tag + "\"]\ntimeout = 60.0\n");
+}
+
+// Starts `dropcheck run free_fall --engine ENGINE_FILE` with its output in `log`; its pid.
+pid_t start_run(const std::string& engine, const std::string& log) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::setpgid(0, 0);  // not in the test runner's group: a signal to it is ours alone
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(fd, STDOUT_FILENO);
+    ::dup2(fd, STDERR_FILENO);
+    sigset_t none;
+    sigemptyset(&none);
+    ::sigprocmask(SIG_SETMASK, &none, nullptr);
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) ::signal(sig, SIG_DFL);
+    const std::string scene = kSource + "/scenarios/free_fall.toml";
+    ::execl(DROPCHECK_EXECUTABLE, "dropcheck", "run", scene.c_str(), "--engine", engine.c_str(),
+            static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  return pid;
+}
+
+int wait_for(pid_t pid) {
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return status;
+}
+
+}  // namespace
+
+TEST_CASE("dropcheck stopped by SIGTERM, SIGINT or SIGHUP kills a hung engine and its helper",
+          "[process][exec]") {
+  for (int sig : {SIGTERM, SIGINT, SIGHUP}) {
+    INFO("signal " << sig);
+    ScratchDir d("engine-processes-hang-" + std::to_string(sig));
+    const std::string tag = tag_for("hang-" + std::to_string(sig));
+    const pid_t pid = start_run(engine_file(d, "hang", tag), d.file("log"));
+    // The script and its helper are up, and the script hangs at step 1 (its 60 s answer timeout
+    // is far off).
+    REQUIRE(within(20.0, [&] { return processes_with(tag).size() >= 2; }));
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    ::kill(pid, sig);
+    const int status = wait_for(pid);
+    CHECK(WIFSIGNALED(status));          // died of the signal, as a shell expects
+    CHECK(processes_with(tag).empty());  // at once: before dropcheck exited
+    for (int p : processes_with(tag)) ::kill(p, SIGKILL);
+  }
+}
+
+TEST_CASE("An engine that starts a helper and exits 1 is named so, and its helper is gone",
+          "[process][exec]") {
+  ScratchDir d("engine-processes-fail");
+  const std::string tag = tag_for("fail");
+  const int status = wait_for(start_run(engine_file(d, "fail", tag), d.file("log")));
+  const std::string log = slurp(d.file("log"));
+  INFO(log);
+  CHECK(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 1);  // its only engine failed: not exit 0
+  CHECK_THAT(log, Contains("at load: the engine exited early (exited with status 1)"));
+  CHECK(processes_with(tag).empty());
+  for (int p : processes_with(tag)) ::kill(p, SIGKILL);
+}
+
+TEST_CASE("An engine killed by a signal is reported as crashed with the signal's name",
+          "[process][exec]") {
+  ScratchDir d("engine-processes-segv");
+  const std::string tag = tag_for("segv");
+  wait_for(start_run(engine_file(d, "segv", tag), d.file("log")));
+  const std::string log = slurp(d.file("log"));
+  INFO(log);
+  CHECK_THAT(log, Contains("at step 1: the engine crashed: SIGSEGV"));
+  CHECK(processes_with(tag).empty());
+  for (int p : processes_with(tag)) ::kill(p, SIGKILL);
+}
+
+TEST_CASE("An engine that starts a helper and succeeds leaves no process behind",
+          "[process][exec]") {
+  ScratchDir d("engine-processes-succeed");
+  const std::string tag = tag_for("succeed");
+  const int status = wait_for(start_run(engine_file(d, "succeed", tag), d.file("log")));
+  const std::string log = slurp(d.file("log"));
+  INFO(log);
+  CHECK(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 0);
+  CHECK_THAT(log, Contains("helper-succeed"));
+  CHECK(processes_with(tag).empty());
+  for (int p : processes_with(tag)) ::kill(p, SIGKILL);
+}
