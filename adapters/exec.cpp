@@ -38,8 +38,11 @@ std::string format_seconds(double s) {
 class ExecEngine final : public Engine {
  public:
   explicit ExecEngine(ExecSpec spec) : spec_(std::move(spec)) {
+    // Until the handshake names it (or when it never does): the engine file's stem, else the
+    // program's, so that two engine files that both fail to start keep apart.
+    const std::string& named_by = spec_.file.empty() ? spec_.command[0] : spec_.file;
     info_.name = spec_.name.empty()
-                     ? escape_controls(std::filesystem::path(spec_.command[0]).stem().string())
+                     ? escape_controls(std::filesystem::path(named_by).stem().string())
                      : spec_.name;
     info_.version = "?";
     info_.own_process = true;
@@ -61,7 +64,7 @@ class ExecEngine final : public Engine {
   EngineInfo info() const override { return info_; }
 
   void load(const Scene& scene, double h) override {
-    if (!failure_.empty()) throw EngineError(failure_);
+    if (!failure_.empty()) rethrow();
     const std::size_t n = scene.bodies.size();
     states_.assign(n, {});
     forces_.assign(n, Vec3::Zero());
@@ -83,7 +86,7 @@ class ExecEngine final : public Engine {
   }
 
   void step() override {
-    if (!failure_.empty()) throw EngineError(failure_);
+    if (!failure_.empty()) rethrow();
     ++step_;
     where_ = "at step " + std::to_string(step_);
     std::string line = "step " + std::to_string(step_);
@@ -106,18 +109,29 @@ class ExecEngine final : public Engine {
     return s;
   }
 
-  // Records the failure, stops the engine and throws: "at step 12: the engine crashed: SIGSEGV".
+  // Records the failure, stops the engine and throws: "at step 12: garbage from the engine ...".
   [[noreturn]] void fail(const std::string& what) {
     failure_ = where_ + ": " + what;
     if (child_) child_->stop();
+    rethrow();
+  }
+
+  // The recorded failure again: EngineDied when the engine's process went away (the run's status
+  // is then crashed, as for a built-in engine whose process died), else EngineError.
+  [[noreturn]] void rethrow() const {
+    if (died_) throw EngineDied(failure_);
     throw EngineError(failure_);
   }
 
-  // How the engine went away: "crashed: SIGSEGV" or "exited early (exited with status 1)".
-  std::string gone() {
+  // The engine's process went away: "the engine crashed: SIGSEGV", "the engine exited early
+  // (exited with status 1)"; one that closed its output but still runs is killed.
+  [[noreturn]] void gone() {
     const std::string status = child_->exit_description(1.0);
-    if (status.rfind("crashed", 0) == 0) return "the engine " + status;
-    return "the engine exited early (" + status + ")";
+    died_ = true;
+    if (status.rfind("crashed", 0) == 0) fail("the engine " + status);
+    if (status == "still running")
+      fail("the engine closed its output but kept running (engine killed)");
+    fail("the engine exited early (" + status + ")");
   }
 
   void send(const std::string& line) {
@@ -128,7 +142,7 @@ class ExecEngine final : public Engine {
         fail("the engine did not read its input within " + format_seconds(spec_.timeout_s) +
              " (timeout; engine killed)");
       default:
-        fail(gone());
+        gone();
     }
   }
 
@@ -143,7 +157,7 @@ class ExecEngine final : public Engine {
       case IoStatus::too_long:
         fail("garbage from the engine: a line longer than 1 MiB");
       case IoStatus::closed:
-        fail(gone());
+        gone();
     }
     if (is_error_line(line)) fail("the engine reported an error: " + error_text(line));
     return line;
@@ -173,6 +187,7 @@ class ExecEngine final : public Engine {
   std::unique_ptr<ChildProcess> child_;
   EngineInfo info_;
   std::string failure_;  // not empty once the engine failed: every later call rethrows it
+  bool died_ = false;    // the failure is the engine's process going away
   std::string where_;    // "at start", "at load", "at step N": prefix of failure messages
   std::vector<BodyState> states_;
   std::vector<Vec3> forces_;
@@ -222,6 +237,7 @@ ExecSpec parse_engine_file(const std::string& file) {
                      "TOML syntax error: " + std::string(e.description()));
   }
   ExecSpec spec;
+  spec.file = file;
   spec.cwd = std::filesystem::absolute(file).parent_path().string();
   for (const auto& [key, node] : table) {
     const std::string k(key.str());

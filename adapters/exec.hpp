@@ -23,6 +23,7 @@ struct ExecSpec {
   std::vector<std::string> command;  // program and arguments (program searched in PATH if no '/')
   std::string cwd;                   // directory to run it in ("" = dropcheck's)
   std::string name;                  // overrides the announced name when not empty
+  std::string file;                  // the engine file it came from ("" for exec:PATH)
   double timeout_s = kDefaultExecTimeout;  // per answer
 };
 

@@ -1,5 +1,6 @@
 #include "exec_protocol.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 
@@ -33,11 +34,17 @@ std::string rest_of(const std::string& line) {
   return start == std::string::npos ? std::string() : line.substr(start);
 }
 
-// Free text an engine announced, as dropcheck keeps it: control bytes escaped, at most
-// kMaxFreeText bytes of it.
+// Free text an engine announced, as dropcheck keeps it: control bytes escaped (\xNN), then cut to
+// at most kMaxFreeText bytes (never inside an escape or a UTF-8 character) with "..." after a cut.
 std::string free_text(const std::string& text) {
-  const std::string kept = escape_controls(text.substr(0, kMaxFreeText));
-  return text.size() > kMaxFreeText ? kept + "..." : kept;
+  std::size_t take = std::min(text.size(), kMaxFreeText);
+  std::string kept = escape_controls(text.substr(0, take));
+  while (kept.size() > kMaxFreeText) {  // escapes grew it: give back input bytes until it fits
+    take -= 1;
+    while (take > 0 && (static_cast<unsigned char>(text[take]) & 0xc0) == 0x80) --take;
+    kept = escape_controls(text.substr(0, take));
+  }
+  return take < text.size() ? kept + "..." : kept;
 }
 
 bool parse_number(const std::string& token, double& out) {
@@ -70,6 +77,9 @@ std::string engine_name_problem(const std::string& name, const std::vector<std::
 }
 
 bool HandshakeReader::take(const std::string& line) {
+  if (++lines_ > kMaxHandshakeLines)
+    throw ProtocolError("garbage from the engine: a handshake of more than " +
+                        std::to_string(kMaxHandshakeLines) + " lines without 'ready'");
   const std::vector<std::string> t = split(line);
   if (!started_) {
     first(t, line);

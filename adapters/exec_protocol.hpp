@@ -33,6 +33,10 @@ std::string engine_name_problem(const std::string& name, const std::vector<std::
 // optional capabilities and damping-mapping lines, then "ready".
 class HandshakeReader {
  public:
+  // Lines a handshake may take before "ready" (it needs 6; each line restarts the answer timeout,
+  // so without a bound an engine could talk forever).
+  static constexpr int kMaxHandshakeLines = 64;
+
   // `info` receives what the engine announces; `keep_name`: the engine file named it already;
   // `reserved`: names it may not announce (the built-in engines').
   HandshakeReader(EngineInfo& info, bool keep_name, std::vector<std::string> reserved)
@@ -48,6 +52,7 @@ class HandshakeReader {
   bool keep_name_;
   std::vector<std::string> reserved_;
   bool started_ = false;
+  int lines_ = 0;
   bool name_ = false, version_ = false, scalar_ = false, law_ = false;
 };
 
@@ -57,8 +62,8 @@ void parse_state_line(const std::string& line, std::int64_t n, std::span<BodySta
 
 // True for an "error TEXT" line (the engine gives up, docs/protocol.md).
 bool is_error_line(const std::string& line);
-// The TEXT of an "error TEXT" line, control bytes escaped, at most 200 bytes of it; empty when
-// `line` is not one.
+// The TEXT of an "error TEXT" line, control bytes escaped (\xNN), cut to at most 200 bytes (plus
+// "..." after a cut); empty when `line` is not one.
 std::string error_text(const std::string& line);
 
 }  // namespace dropcheck

@@ -43,12 +43,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         ready = handshake.take(line);
         if (ready) {
           require_inert(info.name, 64);
-          require_inert(info.version, 256);
-          require_inert(info.damping_mapping, 256);
+          require_inert(info.version, 203);
+          require_inert(info.damping_mapping, 203);
           if (info.name == "ours" || info.name == "bullet") std::abort();  // reserved
         }
       } else if (dropcheck::is_error_line(line)) {
-        require_inert(dropcheck::error_text(line), 256);
+        require_inert(dropcheck::error_text(line), 203);
       } else {
         dropcheck::parse_state_line(line, step++, states);
       }

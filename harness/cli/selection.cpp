@@ -24,7 +24,8 @@ std::vector<SelectedEngine> select_engines(const std::vector<std::string>& reque
     SelectedEngine s{name, make_engine(name), {}};
     if (!s.engine) {
       const std::string why = engine_unavailable_reason(name);
-      if (why.rfind("unknown", 0) == 0) throw InputError("", 0, "--engine " + name, why);
+      if (why.rfind("unknown", 0) == 0)
+        throw InputError("", 0, "--engine " + escape_controls(name), why);
       s.skipped_because = why;
     } else if (std::string why = s.engine->cannot_run(scene); !why.empty()) {
       s.engine.reset();

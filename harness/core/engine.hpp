@@ -155,6 +155,12 @@ struct EngineError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// An engine whose own process went away (an external engine that crashed or exited): the run ends
+// as crashed, like a built-in engine whose isolated process died.
+struct EngineDied : EngineError {
+  using EngineError::EngineError;
+};
+
 // A run that passed its wall-clock limit (an engine in its own process, checked per step): the run
 // ends as timed out.
 struct RunTimeLimitExceeded : EngineError {

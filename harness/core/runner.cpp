@@ -152,6 +152,10 @@ Trajectory run_scene_in_process(Engine& engine, const Scene& scene, double h,
     t.recorded.push_back(0);
     start = std::chrono::steady_clock::now();  // time the stepping loop, not the setup
     step_loop(engine, scene, t, every, initial, n);
+  } catch (const EngineDied& e) {
+    t.status = RunStatus::crashed;
+    t.failed_step = n;
+    t.failure = e.what();
   } catch (const RunTimeLimitExceeded& e) {
     t.status = RunStatus::timed_out;
     t.failed_step = n;

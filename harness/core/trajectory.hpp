@@ -14,9 +14,11 @@ enum class RunStatus {
   non_finite,     // a position or velocity became NaN or Inf (recorded up to the step before)
   engine_error,   // the engine threw or reported an error
   out_of_memory,  // an allocation failed (std::bad_alloc); samples up to then are kept
-  crashed,        // the isolated engine process died (signal or exit); no samples
-  timed_out,      // the isolated engine process exceeded the wall-clock limit and was killed
-  refused,        // not started: the run exceeds a limit (harness/core/run_limits.hpp)
+  crashed,    // the engine's process died (signal or exit): an isolated run's (no samples) or an
+              // external engine's (samples up to the step before)
+  timed_out,  // the run exceeded the wall-clock limit: an isolated process is killed, an external
+              // engine stopped after its step
+  refused,    // not started: the run exceeds a limit (harness/core/run_limits.hpp)
 };
 
 struct Trajectory {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "harness/core/input_error.hpp"
@@ -70,7 +71,10 @@ bool next_line(std::istream& in, std::string& line, const std::string& file, int
   std::streambuf* buf = in.rdbuf();
   for (bool any = false;; any = true) {
     const int c = buf->sbumpc();
-    if (c == std::char_traits<char>::eof()) return any;
+    if (c == std::char_traits<char>::eof()) {
+      if (!line.empty() && line.back() == '\r') line.pop_back();  // CRLF without a last newline
+      return any;
+    }
     if (c == '\n') break;
     if (line.size() == kMaxLine)
       throw InputError(file, n, "", "a line longer than 64 KiB: not a trajectory CSV");
@@ -80,15 +84,18 @@ bool next_line(std::istream& in, std::string& line, const std::string& file, int
   return true;
 }
 
-// The run a row belongs to, created on first sight.
-Trajectory& run_for(std::vector<Trajectory>& runs, const std::string& engine, double dt) {
-  for (Trajectory& t : runs)
-    if (t.engine == engine && t.h == dt) return t;
-  Trajectory t;
-  t.engine = engine;
-  t.h = dt;
-  runs.push_back(std::move(t));
-  return runs.back();
+// The run a row belongs to, created on first sight; `index` finds it by (engine, dt) in log time.
+Trajectory& run_for(std::vector<Trajectory>& runs,
+                    std::map<std::pair<std::string, double>, std::size_t>& index,
+                    const std::string& engine, double dt) {
+  const auto [it, added] = index.try_emplace({engine, dt}, runs.size());
+  if (added) {
+    Trajectory t;
+    t.engine = engine;
+    t.h = dt;
+    runs.push_back(std::move(t));
+  }
+  return runs[it->second];
 }
 
 // Appends one row to its run: a new sample when the step changes.
@@ -146,6 +153,7 @@ std::vector<Trajectory> parse_trajectories_csv(std::istream& in, const std::stri
   if (!got_header || line != kHeader)
     throw InputError(file, 1, "", std::string("the header must be ") + kHeader);
   std::vector<Trajectory> runs;
+  std::map<std::pair<std::string, double>, std::size_t> index;  // runs by (engine, dt)
   int n = 1;
   while (next_line(in, line, file, n + 1)) {
     ++n;
@@ -162,6 +170,10 @@ std::vector<Trajectory> parse_trajectories_csv(std::istream& in, const std::stri
     if (step < 0 || step > 9007199254740992.0 ||
         step != static_cast<double>(static_cast<std::int64_t>(step)))
       throw InputError(file, n, column_key(2), "must be a whole number >= 0");
+    if (!std::isfinite(step * dt))  // the time dropcheck uses, step x dt, overflows
+      throw InputError(
+          file, n, column_key(2),
+          "step x dt is not a finite time (" + excerpt(f[2]) + " x " + excerpt(f[1]) + ")");
     BodyState s;
     for (int i = 0; i < 3; ++i) {
       s.position[i] = number(f[5 + i], file, n, 5 + i);
@@ -172,7 +184,7 @@ std::vector<Trajectory> parse_trajectories_csv(std::istream& in, const std::stri
           f[column].find_first_of("\t\r\n") != std::string::npos)
         throw InputError(file, n, column_key(column),
                          excerpt(f[column]) + " is not a name (empty, or control characters)");
-    add_row(run_for(runs, f[0], dt), static_cast<std::int64_t>(step), f[4], s, file, n);
+    add_row(run_for(runs, index, f[0], dt), static_cast<std::int64_t>(step), f[4], s, file, n);
   }
   for (Trajectory& t : runs) {
     if (t.states.size() != t.recorded.size() * t.body_names.size())

@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "harness/core/input_error.hpp"
+
 extern char** environ;
 
 namespace dropcheck {
@@ -21,10 +23,13 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // A write to a pipe whose reader died raises SIGPIPE, which would kill dropcheck: ignore it once,
-// process-wide, so that write() fails with EPIPE instead. The child gets the default back.
+// process-wide, so that write() fails with EPIPE instead. The child gets the default back. And
+// SIGCHLD at its default: a parent that started dropcheck with it ignored would pass that on, and
+// the kernel would then reap every child itself, so no death could be named and no group killed.
 void ignore_sigpipe() {
   static const bool done = [] {
     std::signal(SIGPIPE, SIG_IGN);
+    std::signal(SIGCHLD, SIG_DFL);
     return true;
   }();
   (void)done;
@@ -75,8 +80,9 @@ pid_t spawn(const std::vector<std::string>& argv, const std::string& cwd, int in
   posix_spawn_file_actions_destroy(&actions);
   posix_spawnattr_destroy(&attr);
   if (rc != 0)
-    throw std::runtime_error("cannot start '" + argv[0] + "'" + (cwd.empty() ? "" : " in " + cwd) +
-                             ": " + std::strerror(rc));
+    throw std::runtime_error("cannot start " + excerpt(argv[0]) +
+                             (cwd.empty() ? "" : " in " + escape_controls(cwd)) + ": " +
+                             std::strerror(rc));
   return pid;
 }
 
@@ -103,7 +109,7 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::stri
     throw;
   }
   // Registered before anything else can fail: a signal to dropcheck from here on kills the group.
-  kill_on_signal_ = std::make_unique<KillOnSignal>(-pid_);
+  kill_on_signal_.emplace(-pid_);  // no allocation: nothing can fail between spawn and this
   ::close(in[0]);
   ::close(out[1]);
   to_child_ = in[1];
@@ -172,11 +178,16 @@ IoStatus ChildProcess::read_line(std::string& line, double timeout_s) {
 // helpers it started (a shell wrapper's children, a forked server), never a stranger.
 void ChildProcess::kill_group_and_reap() {
   ::kill(-pid_, SIGKILL);
-  ::kill(pid_, SIGKILL);  // when it left its group (setpgid), the leader itself
-  while (::waitpid(pid_, &wait_status_, 0) < 0 && errno == EINTR) {
+  ::kill(pid_, SIGKILL);    // when it left its group (setpgid), the leader itself
+  kill_on_signal_.reset();  // killed already: the signal handler must not reach the pid once freed
+  for (;;) {
+    if (::waitpid(pid_, &wait_status_, 0) == pid_) break;
+    if (errno != EINTR) {  // reaped by someone else: how it ended is unknown
+      wait_status_ = -1;
+      break;
+    }
   }
   reaped_ = true;
-  kill_on_signal_.reset();
 }
 
 bool ChildProcess::reap(double wait_s) {
@@ -193,6 +204,7 @@ bool ChildProcess::reap(double wait_s) {
     if (r < 0 && errno != EINTR) {  // not our child any more: nothing to reap or describe
       reaped_ = true;
       wait_status_ = -1;
+      kill_on_signal_.reset();
       return true;
     }
     if (Clock::now() >= deadline) return false;

@@ -8,7 +8,7 @@
 
 #include <sys/types.h>
 
-#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -61,8 +61,8 @@ class ChildProcess {
   int from_child_ = -1;  // our end of the child's stdout
   bool reaped_ = false;
   int wait_status_ = 0;  // from waitpid, valid when reaped_ (-1: not our child, status unknown)
-  std::unique_ptr<KillOnSignal> kill_on_signal_;  // the group, killed if dropcheck is stopped
-  std::string buffer_;                            // bytes read past the last line returned
+  std::optional<KillOnSignal> kill_on_signal_;  // the group, killed if dropcheck is stopped
+  std::string buffer_;                          // bytes read past the last line returned
 };
 
 // "exited with status 3", "crashed: SIGSEGV" (signal name from the C library), from a waitpid

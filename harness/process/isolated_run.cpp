@@ -19,6 +19,7 @@
 #include <string>
 #include <system_error>
 
+#include "harness/core/input_error.hpp"
 #include "harness/core/number_format.hpp"
 #include "harness/core/run_limits.hpp"
 #include "harness/io/trajectory_wire.hpp"
@@ -105,7 +106,9 @@ bool write_all(int fd, const void* data, std::size_t bytes) {
 [[noreturn]] void child_main(Engine& engine, const Scene& scene, double h,
                              const RunOptions& options, Progress& progress, int result_fd,
                              int err_fd) {
-  for (int sig : {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGPIPE, SIGTERM})
+  // SIGINT and SIGHUP too: dropcheck's own handler (signal_cleanup.hpp) acts on the parent's
+  // files and children, never from here.
+  for (int sig : {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGPIPE, SIGTERM, SIGINT, SIGHUP})
     std::signal(sig, SIG_DFL);
   sigset_t deferred;  // the parent held these back around fork() (run_isolated)
   sigemptyset(&deferred);
@@ -175,15 +178,14 @@ class ChildPipes {
 
   bool timed_out() const { return timed_out_; }
 
-  // The last non-empty line the child wrote to stderr, cut to 300 characters, controls removed.
+  // The last non-empty line the child wrote to stderr, cut to 300 bytes, controls escaped.
   std::string last_line() const {
     std::string s = tail_;
     while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ')) s.pop_back();
     s = s.substr(s.find_last_of('\n') == std::string::npos ? 0 : s.find_last_of('\n') + 1);
-    if (s.size() > 300) s = s.substr(0, 300) + "...";
-    for (char& c : s)
-      if (static_cast<unsigned char>(c) < 0x20) c = ' ';
-    return s;
+    const bool cut = s.size() > 300;
+    if (cut) s = s.substr(0, 300);
+    return escape_controls(s) + (cut ? "..." : "");  // inert on a terminal: \xNN for controls
   }
 
  private:
@@ -234,8 +236,13 @@ class ChildPipes {
   std::string tail_;
 };
 
-// Waits for `pid`, retrying after signals; its wait status (or -1).
-int reap(pid_t pid) {
+// Waits for `pid` to end, unregisters it from the signal handler while it is still a zombie (so
+// that the handler never signals a pid freed by reaping), then reaps it; its wait status (or -1).
+int reap(pid_t pid, std::optional<KillOnSignal>& kill_on_signal) {
+  siginfo_t info{};
+  while (::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOWAIT) < 0 && errno == EINTR) {
+  }
+  kill_on_signal.reset();
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0)
     if (errno != EINTR) return -1;
@@ -376,7 +383,7 @@ Trajectory run_isolated(Engine& engine, const Scene& scene, double h, const RunO
                                    [&pipes](void* d, std::size_t n) { return pipes.read(d, n); });
   if (!pipes.timed_out()) pipes.drain();
   if (pipes.timed_out()) ::kill(pid, SIGKILL);
-  const int status = reap(pid);
+  const int status = reap(pid, kill_on_signal);
   const bool clean = status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
   if (got && clean && !pipes.timed_out()) return t;
   failed.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -245,7 +245,7 @@ std::size_t body_index(const Reader& r, const Scene& s, const std::string& key,
       r.fail(key, "body \"" + name + "\" is static; forces act on dynamic bodies");
     return i;
   }
-  r.fail(key, "no body named \"" + name + "\"");
+  r.fail(key, "no body named " + excerpt(name));
 }
 
 Spring load_spring(const Reader& parent, const toml::node& n) {

@@ -7,10 +7,16 @@ examples/python/seed_engine.py that goes wrong at step STEP in the way MODE name
   error         answers 'error out of memory'
   handshake     announces protocol 2 instead of 1 (STEP unused)
   silent        never reads nor writes (STEP unused)
-Usage: bad_engine.py MODE STEP
+  fail          exits with status 1 when the scene arrives (STEP unused)
+  none          never misbehaves (the seed engine)
+With TAG, it first starts a helper: a second Python process that sleeps 300 s with TAG among its
+arguments, in the engine's process group (tests/harness/process/engine_processes_test.cpp finds
+both in /proc by TAG, and checks that neither outlives the run).
+Usage: bad_engine.py MODE STEP [TAG]
 """
 import os
 import signal
+import subprocess
 import sys
 import time
 
@@ -18,6 +24,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import seed_engine  # noqa: E402
 
 MODE, AT = sys.argv[1], int(sys.argv[2])
+TAG = sys.argv[3] if len(sys.argv) > 3 else None
 
 
 def reply(line):
@@ -43,6 +50,9 @@ def misbehave(step, world):
 
 
 def main():
+    if TAG:
+        subprocess.Popen([sys.executable, "-c", "import time; time.sleep(300)", TAG],
+                         stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     if MODE == "silent":
         time.sleep(60)
     reply("dropcheck-engine %d" % (2 if MODE == "handshake" else 1))
@@ -52,11 +62,13 @@ def main():
     for line in sys.stdin:
         t = line.split()
         if t[0] == "scene":
+            if MODE == "fail":
+                sys.exit(1)
             world = seed_engine.read_scene(line)
             reply("state 0 " + seed_engine.fmt(world["bodies"]))
         elif t[0] == "step":
             n = int(t[1])
-            if n == AT:
+            if n == AT and MODE != "none":
                 misbehave(n, world)
                 continue
             forces = [float(c) for c in t[2:]]

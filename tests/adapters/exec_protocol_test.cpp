@@ -56,6 +56,11 @@ TEST_CASE("text an engine announces is kept with its control characters escaped"
   CHECK(error_text("error disk\x1b[31m full") == "disk\\x1b[31m full");
   CHECK(error_text(std::string("error ") + std::string(5000, 'x')).size() == 203);
   CHECK(error_text("errors are fine") == "");
+  // Escapes count against the 200 bytes (found by fuzz/exec_protocol_fuzz.cpp): 300 ESC bytes keep
+  // 50 escapes, never half of one.
+  const std::string escaped = error_text("error " + std::string(300, '\x1b'));
+  CHECK(escaped.size() == 203);
+  CHECK(escaped.substr(196) == "\\x1b...");
 }
 
 TEST_CASE("a refusal quotes at most a short, escaped excerpt of the engine's line", "[exec]") {
@@ -72,4 +77,7 @@ TEST_CASE("a refusal quotes at most a short, escaped excerpt of the engine's lin
              Contains("'\\x1b[2J' is not a valid engine name"));
   CHECK_THAT(refusal({"dropcheck-engine 1", "name e", "ready"}),
              Contains("the handshake lacks version"));
+  std::vector<std::string> endless{"dropcheck-engine 1"};
+  endless.resize(100, "version 1");
+  CHECK_THAT(refusal(endless), Contains("a handshake of more than 64 lines without 'ready'"));
 }

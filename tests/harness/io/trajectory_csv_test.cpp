@@ -46,6 +46,12 @@ TEST_CASE("a NaN or infinite number in any numeric column is refused with line a
   CHECK_THAT(error_of(kHeader + "e,1e999,0,0,c,0,10,0,0,0,0\n"),
              Contains("run.csv:2: dt (column 2): '1e999' is not a number"));
   CHECK(error_of(kHeader + kRow0 + "e,0.5,1,0.5,c,0,9,0,0,-1,0\n") == "(read)");
+  // Each number finite, but step x dt, the time dropcheck uses, is not.
+  CHECK_THAT(
+      error_of(kHeader + "e,1e308,0,0,c,0,10,0,0,0,0\ne,1e308,2,0,c,0,10,0,0,0,0\n"),
+      Contains("run.csv:3: step (column 3): step x dt is not a finite time ('2' x '1e308')"));
+  // CRLF line ends, the last line without one.
+  CHECK(parse(kHeader + "e,0.5,0,0,c,0,10,0,0,0,0\r\ne,0.5,1,0.5,c,0,9,0,0,-1,0\r").size() == 1);
 }
 
 TEST_CASE("a UTF-8 byte-order mark before the header is accepted, as in scenes", "[csv]") {

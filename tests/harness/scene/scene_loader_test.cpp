@@ -189,7 +189,7 @@ TEST_CASE("duplicate body names are rejected naming the name", "[loader]") {
 TEST_CASE("a force on an unknown or a static body is rejected naming the body", "[loader]") {
   check_error(
       scene(kHead, kWorld, kBody, "[[force]]\nbodies = [\"ghost\"]\nconstant = [1, 0, 0]\n"),
-      "force[0].bodies[0]", "no body named \"ghost\"");
+      "force[0].bodies[0]", "no body named 'ghost'");
   check_error(scene(kHead, kWorld,
                     kBody + "[[body]]\nname = \"floor\"\nposition = [0, 0, 0]\nstatic = true\n",
                     "[[force]]\nbodies = [\"cube\", \"floor\"]\nconstant = [1, 0, 0]\n"),
