@@ -14,6 +14,7 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "harness/core/input_error.hpp"
+#include "harness/core/number_format.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/io/output_dir.hpp"
 #include "harness/io/output_plan.hpp"
@@ -73,7 +74,8 @@ std::vector<EngineSlot> engine_slots(const std::vector<std::string>& requested) 
   const std::vector<std::string> names = requested.empty() ? known_engine_names() : requested;
   for (const std::string& name : names) {
     const std::string why = engine_unavailable_reason(name);
-    if (why.rfind("unknown", 0) == 0) throw InputError("", 0, "--engine " + name, why);
+    if (why.rfind("unknown", 0) == 0)
+      throw InputError("", 0, "--engine " + escape_controls(name), why);
     EngineSlot s{name, {}, why};
     if (why.empty()) s.make = [name] { return make_engine(name); };
     if (why.empty())
@@ -113,6 +115,22 @@ void evaluate_all(const std::vector<Scene>& scenes, const std::vector<EngineSlot
   });
 }
 
+// Prints the cells the slowdown alert flagged; kExitCheckFailed when there are some and the user
+// asked to fail on them.
+int slowdown_exit(const ReportInput& in, bool fail, std::ostream& err) {
+  if (!in.timing || !in.compare.record) {
+    if (fail) err << "warning: --fail-on-slowdown: nothing to compare with; no cell judged\n";
+    return kExitOk;
+  }
+  const std::vector<Slowdown> slow =
+      slowdowns(*in.compare.record, timing_record(in.scenes, in.provenance));
+  for (const Slowdown& s : slow)
+    err << "slowdown: " << s.cell.scene << " / " << s.cell.engine << " / h = " << s.cell.h << ": "
+        << to_string(kAlertFigure) << " rose " << printf_string("%.1f %%", 100.0 * s.cell.moved)
+        << printf_string(" (threshold %.0f %%)", 100.0 * s.threshold) << "\n";
+  return fail && !slow.empty() ? kExitCheckFailed : kExitOk;
+}
+
 }  // namespace
 
 const CommandSpec& report_spec() {
@@ -126,7 +144,11 @@ const CommandSpec& report_spec() {
       {{"--out", "DIR", "the report folder, replaced whole (default: reports)"},
        {"--engine", "E", "an engine to include (repeatable; default: every engine dropcheck knows)",
         true},
-       {"--no-timing", "", "leave out the wall-clock timings"}}};
+       {"--no-timing", "", "leave out the wall-clock timings"},
+       {"--compare-timings", "FILE",
+        "the timings.json the slowdown alert compares with (default: the one in --out)"},
+       {"--fail-on-slowdown", "",
+        "exit 1 when the slowdown alert flags a cell (the report is written all the same)"}}};
   return spec;
 }
 
@@ -148,10 +170,16 @@ int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ost
   in.timing = !args.has("--no-timing");
   in.provenance = current_provenance(".", out_dir);
   describe_engines(slots, in);
-  if (in.timing) {  // the report this one replaces, to say how far each median moved
+  if (!in.timing && (args.has("--compare-timings") || args.has("--fail-on-slowdown")))
+    throw InputError("", 0, "--compare-timings/--fail-on-slowdown",
+                     "need the timings: drop --no-timing");
+  if (in.timing) {  // the report this one replaces, to say how far each figure moved
     in.previous = read_previous_timings(out_dir);
     if (!in.previous.warning.empty())
       err << "warning: " << in.previous.warning << "; no comparison with the previous report\n";
+    in.compare = in.previous;
+    if (args.has("--compare-timings"))  // before any work: a bad file is a usage error
+      in.compare = {read_timing_record(args.value("--compare-timings")), "", ""};
   }
   const std::size_t total = scenes.size() + (files.extreme.empty() ? 0 : 1);
   evaluate_all(scenes, slots, total, in, err);
@@ -167,7 +195,7 @@ int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ost
   staging.commit();
   out << "wrote " << (fs::path(out_dir) / "README.md").generic_string() << " (" << scenes.size()
       << " scenes)\n";
-  return kExitOk;
+  return slowdown_exit(in, args.has("--fail-on-slowdown"), err);
 }
 
 }  // namespace dropcheck

@@ -79,8 +79,8 @@ SweepPoint measure(const Scene& scene, const EngineInfo& info, const Trajectory&
 void add_timing(const Scene& scene, const EngineFactory& make, const std::string& name,
                 SweepPoint& p) {
   const std::vector<Timing> t = time_engines({{name, make}}, scene, p.dt.seconds);
-  p.wall_min = t.front().min_per_sim_s;
-  p.wall_median = t.front().median_per_sim_s;
+  p.wall_min = t.front().of(Statistic::min);
+  p.wall_median = t.front().of(Statistic::median);
   p.replicas = t.front().replicas;
 }
 

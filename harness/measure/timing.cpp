@@ -6,6 +6,7 @@
 #include <variant>
 
 #include "harness/core/runner.hpp"
+#include "harness/measure/calibration.hpp"
 
 namespace dropcheck {
 namespace {
@@ -14,29 +15,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// The q-quantile of v (0 <= q <= 1), linear between order statistics; 0 for an empty v.
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const double at = q * static_cast<double>(v.size() - 1);
-  const std::size_t i = static_cast<std::size_t>(at);
-  if (i + 1 >= v.size()) return v.back();
-  return v[i] + (at - static_cast<double>(i)) * (v[i + 1] - v[i]);
-}
-
-double median(const std::vector<double>& v) {
-  return quantile(v, 0.5);
-}
-
-// The samples of one half: rounds 0, 1, 4, 5, 8, 9, ... (which = 0) or 2, 3, 6, 7, ... (which = 1).
-// By pairs of rounds, so that each half holds as many forward as reversed rounds.
-std::vector<double> half(const std::vector<double>& v, std::size_t which) {
-  std::vector<double> out;
-  for (std::size_t i = 0; i < v.size(); ++i)
-    if ((i / 2) % 2 == which) out.push_back(v[i]);
-  return out;
 }
 
 // The full harness loop (forces, step, read, NaN check, a sample every step) as run_scene does it,
@@ -146,10 +124,47 @@ Scene replicate(const Scene& scene, int copies) {
   return out;
 }
 
-double Timing::half_spread() const {
-  const double lo = std::min(half_a_median, half_b_median),
-               hi = std::max(half_a_median, half_b_median);
-  return lo > 0.0 ? hi / lo - 1.0 : 0.0;
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const double at = q * static_cast<double>(v.size() - 1);
+  const std::size_t i = static_cast<std::size_t>(at);
+  if (i + 1 >= v.size()) return v.back();
+  return v[i] + (at - static_cast<double>(i)) * (v[i + 1] - v[i]);
+}
+
+const char* to_string(Statistic s) {
+  switch (s) {
+    case Statistic::min:
+      return "minimum";
+    case Statistic::q25:
+      return "lower quartile";
+    case Statistic::median:
+      return "median";
+  }
+  return "?";
+}
+
+double statistic(const std::vector<double>& samples, Statistic s) {
+  switch (s) {
+    case Statistic::min:
+      return quantile(samples, 0.0);
+    case Statistic::q25:
+      return quantile(samples, 0.25);
+    case Statistic::median:
+      return quantile(samples, 0.5);
+  }
+  return 0.0;
+}
+
+double Timing::ratio(Statistic s) const {
+  const double reference = statistic(calibration, s);
+  return reference > 0.0 ? of(s) / reference : 0.0;
+}
+
+double Timing::overhead() const {
+  const double bare_median = bare_of(Statistic::median);
+  return bare_median > 0 ? of(Statistic::median) / bare_median - 1 : 0;
 }
 
 int replicas_for(const Scene& scene, double h, const TimingOptions& options) {
@@ -197,6 +212,7 @@ struct CellRun {
   Scene copies;
   std::vector<int> repeats;
   std::vector<std::vector<double>> full, bare;
+  std::vector<double> calibration;  // one per timed round
   std::vector<int> disturbed;
 };
 
@@ -219,6 +235,10 @@ CellRun start_cell(const TimingCell& cell, const TimingOptions& options) {
 // before, so that no figure depends on which engine or cell ran before it.
 void time_round(const TimingCell& cell, CellRun& run, int round, const TimingOptions& options) {
   const std::size_t ne = cell.engines.size();
+  int calibration_disturbed = 0;
+  const double c =
+      undisturbed([] { return time_calibration(); }, options.retries, calibration_disturbed);
+  if (round >= 0) run.calibration.push_back(c);
   for (std::size_t k = 0; k < ne; ++k) {
     const std::size_t e = (round % 2 == 0) ? k : ne - 1 - k;
     std::unique_ptr<Engine> engine = cell.engines[e].second();
@@ -233,27 +253,18 @@ void time_round(const TimingCell& cell, CellRun& run, int round, const TimingOpt
   }
 }
 
-// Medians, quartiles and halves of engine e's samples, per simulated second of one copy.
+// Engine e's samples, per simulated second of one copy, and the cell's calibration samples.
 Timing summarise(const TimingCell& cell, const CellRun& run, std::size_t e) {
   Timing t;
   t.engine = cell.engines[e].first;
   t.h = cell.h;
   t.replicas = run.replicas;
   t.repeats = run.repeats[e];
-  t.samples = static_cast<int>(run.full[e].size());
   t.disturbed = run.disturbed[e];
-  const std::vector<double>& full = run.full[e];
-  const std::vector<double>& bare = run.bare[e];
-  if (full.empty()) return t;
   const double per = 1.0 / (cell.scene->duration * run.replicas * run.repeats[e]);
-  t.min_per_sim_s = *std::min_element(full.begin(), full.end()) * per;
-  t.median_per_sim_s = median(full) * per;
-  t.q1_per_sim_s = quantile(full, 0.25) * per;
-  t.q3_per_sim_s = quantile(full, 0.75) * per;
-  t.half_a_median = median(half(full, 0)) * per;
-  t.half_b_median = median(half(full, 1)) * per;
-  t.bare_min_per_sim_s = *std::min_element(bare.begin(), bare.end()) * per;
-  t.bare_median_per_sim_s = median(bare) * per;
+  for (double s : run.full[e]) t.full.push_back(s * per);
+  for (double s : run.bare[e]) t.bare.push_back(s * per);
+  t.calibration = run.calibration;
   return t;
 }
 

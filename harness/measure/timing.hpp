@@ -1,9 +1,9 @@
-// Run-time measurement: wall time per simulated second, as the median (with quartiles and minimum)
-// of repeated runs after a warm-up. The work timed in one run is fixed by the scene, h and the
-// engine's name alone (replicas_for, repeats_for): never re-chosen from a measurement, so two runs
-// of the report time the same work.
-// Every run is timed in one of two interleaved halves, whose medians are compared: the report
-// states that agreement as its own run-to-run spread.
+// Run-time measurement: wall time per simulated second, from repeated runs after a warm-up. The
+// work timed in one run is fixed by the scene, h and the engine's name alone (replicas_for,
+// repeats_for): never re-chosen from a measurement, so two runs of the report time the same work.
+// Every round also times a fixed calibration loop (calibration.hpp), so that each engine's cost is
+// also stated relative to a reference measured in the same rounds: a ratio a reader on another
+// machine can compare.
 #pragma once
 
 #include <functional>
@@ -26,34 +26,51 @@ struct TimingOptions {
   double min_sample_seconds = 2e-3;
   int max_repeats = 256;
   int warmups = 1;  // untimed rounds first (page faults, lazy initialisation)
-  int samples = 8;  // timed rounds; a multiple of 4, split into two halves by pairs of rounds
+  int samples = 8;  // timed rounds
   // A run during which another process took the core (wall time beyond the thread's CPU time) is
   // run again, at most this many times.
   int retries = 1;
 };
+
+// A statistic of a cell's samples. kHeadline is the one the report leads with, plots and alerts
+// on; the others are kept as columns.
+enum class Statistic { min, q25, median };
+const char* to_string(Statistic s);
+
+// The figure that reproduces best between two reports on a shared machine, measured on this
+// project's 2-core VM over three pairs of back-to-back reports, quiet, and four with a noisy
+// neighbour (172 cells each): within 10 % in 98.8-100 % of cells with a median move of 1.3-2.5 %,
+// where the median gave 98.8-100 % and 1.4-3.0 % (report.cpp kWhyHeadline, README "Timings and
+// benchmarks"). The machine's speed changes for seconds at a time and slows a run, never speeds it
+// up, so the fastest of eight runs is the least disturbed one.
+inline constexpr Statistic kHeadline = Statistic::min;
+
+// The statistic of `samples` (0 for none); quantiles linear between order statistics.
+double statistic(const std::vector<double>& samples, Statistic s);
+// The q-quantile of `samples` (0 <= q <= 1), linear between order statistics; 0 for none.
+double quantile(std::vector<double> samples, double q);
 
 struct Timing {
   std::string engine;
   double h = 0.0;
   int replicas = 1;   // copies of the scene's dynamic bodies in one timed run
   int repeats = 1;    // back-to-back runs (each loaded afresh, untimed) summed into one sample
-  int samples = 0;    // timed runs behind each figure below
   int disturbed = 0;  // runs measured again because another process took the core
-  // Full harness loop (run_scene), wall seconds per simulated second, per copy of the scene.
-  double min_per_sim_s = 0.0;
-  double median_per_sim_s = 0.0;
-  double q1_per_sim_s = 0.0;  // first and third quartile: the interquartile range is the spread
-  double q3_per_sim_s = 0.0;
-  double half_a_median = 0.0;       // median of rounds 0, 1, 4, 5, ... (per sim s)
-  double half_b_median = 0.0;       // median of rounds 2, 3, 6, 7, ...
-  double bare_min_per_sim_s = 0.0;  // the engine's bare step() loop, no forces/reads/sampling
-  double bare_median_per_sim_s = 0.0;
+  // Every timed sample in round order, wall seconds per simulated second of one copy: the full
+  // harness loop (run_scene) and the engine's bare step() loop (no forces, reads or sampling).
+  std::vector<double> full, bare;
+  // The calibration loop (calibration.hpp) timed once in each of the same rounds, in seconds.
+  std::vector<double> calibration;
+
+  int samples() const { return static_cast<int>(full.size()); }
+  double of(Statistic s) const { return statistic(full, s); }
+  double bare_of(Statistic s) const { return statistic(bare, s); }
+  double headline() const { return of(kHeadline); }
+  // The headline over the calibration loop's, both measured in the same rounds: the engine's cost
+  // in calibration loops per simulated second, which moves less with the machine than either.
+  double ratio(Statistic s = kHeadline) const;
   // Harness overhead: (full loop - bare loop) / bare loop, from the medians.
-  double overhead() const {
-    return bare_median_per_sim_s > 0 ? median_per_sim_s / bare_median_per_sim_s - 1 : 0;
-  }
-  // How far the two halves' medians differ: max/min - 1 (0.1 = 10 %); 0 when either is 0.
-  double half_spread() const;
+  double overhead() const;
 };
 
 // Copies of `scene` one timed run holds at step h: the smallest power of two with
@@ -81,11 +98,11 @@ int repeats_for(const Scene& scene, double h, const std::string& engine, int rep
 Scene replicate(const Scene& scene, int copies);
 
 // Times every engine on `scene` at step h (one cell of the report): the rounds back to back
-// (warm-ups first, untimed), each round running every engine once (an untimed bare loop to warm
-// its code and data, then the timed full loop and the timed bare loop), in alternating order from
-// round to round, so that drift of the machine hits all engines alike and each engine's samples,
-// and both halves of them, are spread over the cell's whole window. One Timing per engine, in
-// order.
+// (warm-ups first, untimed), each round timing the calibration loop, then running every engine
+// once (an untimed bare loop to warm its code and data, then the timed full loop and the timed bare
+// loop), in alternating order from round to round, so that drift of the machine hits all engines
+// alike and each engine's samples are spread over the cell's whole window. One Timing per engine,
+// in order.
 std::vector<Timing> time_engines(const std::vector<std::pair<std::string, EngineFactory>>& engines,
                                  const Scene& scene, double h, const TimingOptions& options = {});
 

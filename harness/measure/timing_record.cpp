@@ -16,34 +16,33 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
+std::vector<double> in_ms(const std::vector<double>& seconds) {
+  std::vector<double> out;
+  for (double s : seconds) out.push_back(1e3 * s);
+  return out;
+}
+
 TimedCell timed_cell(const std::string& scene, const std::string& engine,
                      const StepEvaluation& st) {
   const Timing& t = *st.timing;
-  return {scene,
-          engine,
-          st.h.text,
-          1e3 * t.median_per_sim_s,
-          1e3 * t.q1_per_sim_s,
-          1e3 * t.q3_per_sim_s,
-          1e3 * t.min_per_sim_s,
-          1e3 * t.bare_median_per_sim_s,
-          t.samples,
-          t.replicas,
-          t.repeats};
+  return {scene,      engine,   st.h.text, in_ms(t.full), in_ms(t.bare), in_ms(t.calibration),
+          t.replicas, t.repeats};
 }
 
+// The samples are the record; the headline, ratio and median beside them are for a reader of the
+// file, and are derived again from the samples when it is read.
 Json cell_json(const TimedCell& c) {
   return {{"scene", c.scene},
           {"engine", c.engine},
           {"h", c.h},
-          {"median_ms", c.median_ms},
-          {"q1_ms", c.q1_ms},
-          {"q3_ms", c.q3_ms},
-          {"min_ms", c.min_ms},
-          {"bare_median_ms", c.bare_median_ms},
-          {"samples", c.samples},
+          {"headline_ms", c.value({})},
+          {"ratio", c.value({kHeadline, true})},
+          {"median_ms", c.value({Statistic::median, false})},
           {"replicas", c.replicas},
-          {"repeats", c.repeats}};
+          {"repeats", c.repeats},
+          {"samples_ms", c.full_ms},
+          {"bare_samples_ms", c.bare_ms},
+          {"calibration_ms", c.calibration_ms}};
 }
 
 // Reads the typed values of a parsed record, naming the key of the first that is wrong.
@@ -70,6 +69,23 @@ struct Reader {
     if (!std::isfinite(x) || x < 0) fail(where + key, "expected a finite number >= 0");
     return x;
   }
+  std::vector<double> samples(const Json& object, const std::string& key,
+                              const std::string& where) const {
+    const Json& v = at(object, key, where);
+    if (!v.is_array() || v.empty() || v.size() > 4096)
+      fail(where + key, "expected an array of 1 to 4096 numbers");
+    std::vector<double> out;
+    for (std::size_t i = 0; i < v.size(); ++i) out.push_back(number(v, i, where + key));
+    return out;
+  }
+  double number(const Json& array, std::size_t i, const std::string& key) const {
+    const Json& v = array[i];
+    const std::string at_i = key + "[" + std::to_string(i) + "]";
+    if (!v.is_number()) fail(at_i, std::string("expected a number, got ") + v.type_name());
+    const double x = v.get<double>();
+    if (!std::isfinite(x) || x < 0) fail(at_i, "expected a finite number >= 0");
+    return x;
+  }
   int count(const Json& object, const std::string& key, const std::string& where) const {
     const Json& v = at(object, key, where);
     if (!v.is_number_integer() || v.get<long long>() < 0 || v.get<long long>() > 1 << 30)
@@ -79,12 +95,17 @@ struct Reader {
   TimedCell cell(const Json& c, const std::string& name) const {
     if (!c.is_object()) fail(name, std::string("expected an object, got ") + c.type_name());
     const std::string where = name + ".";
-    return {text(c, "scene", where),    text(c, "engine", where),
-            text(c, "h", where),        number(c, "median_ms", where),
-            number(c, "q1_ms", where),  number(c, "q3_ms", where),
-            number(c, "min_ms", where), number(c, "bare_median_ms", where),
-            count(c, "samples", where), count(c, "replicas", where),
-            count(c, "repeats", where)};
+    TimedCell out{text(c, "scene", where),
+                  text(c, "engine", where),
+                  text(c, "h", where),
+                  samples(c, "samples_ms", where),
+                  samples(c, "bare_samples_ms", where),
+                  samples(c, "calibration_ms", where),
+                  count(c, "replicas", where),
+                  count(c, "repeats", where)};
+    if (out.bare_ms.size() != out.full_ms.size() || out.calibration_ms.size() != out.full_ms.size())
+      fail(where + "samples_ms", "samples_ms, bare_samples_ms and calibration_ms differ in length");
+    return out;
   }
 };
 
@@ -100,14 +121,41 @@ std::map<Key, const TimedCell*> by_key(const TimingRecord& record) {
   return out;
 }
 
-// max/min - 1 of two medians: 0 when both are 0, infinite when only one is.
+// max/min - 1 of two figures: 0 when both are 0, infinite when only one is.
 double moved(double a, double b) {
   const double lo = std::min(a, b), hi = std::max(a, b);
   if (hi == 0) return 0.0;
   return lo == 0 ? INFINITY : hi / lo - 1;
 }
 
+// The alert's thresholds: per engine, the largest move of kAlertFigure measured between two reports
+// of the same code on this project's 2-core machine, quiet (six reports back to back at commit
+// 3b02bad plus the timing change, five consecutive pairs, 172 cells each), times 1.5, rounded up
+// to a whole percent. Measured largest moves: ours 3.55 % (throw_3d 1/60), ours-f64 11.37 %
+// (throw_up 1/240), bullet 5.06 % (wind 1/30), ode 5.81 % (wind 1/30), box2d 4.33 % (drop_on_floor
+// 1/30), mujoco 12.19 % (seed_part3 1/60). The absolute minimum moved up to 8.2 %, 10.7 %, 10.0 %,
+// 7.4 %, 8.1 % and 15.1 % in the same pairs: the ratio is the steadier figure.
+struct Threshold {
+  const char* engine;
+  double rise;
+};
+constexpr Threshold kThresholds[] = {{"ours", 0.06}, {"ours-f64", 0.18}, {"bullet", 0.08},
+                                     {"ode", 0.09},  {"box2d", 0.07},    {"mujoco", 0.19}};
+// An engine not measured (an external one): the largest of the above.
+constexpr double kUnmeasuredThreshold = 0.19;
+
 }  // namespace
+
+std::string to_string(TimingFigure f) {
+  return std::string(to_string(f.statistic)) + (f.ratio ? " / calibration" : "");
+}
+
+double TimedCell::value(TimingFigure f) const {
+  const double v = statistic(full_ms, f.statistic);
+  if (!f.ratio) return v;
+  const double reference = statistic(calibration_ms, f.statistic);
+  return reference > 0.0 ? v / reference : 0.0;
+}
 
 TimingRecord timing_record(const std::vector<SceneEvaluation>& scenes, const Provenance& p) {
   TimingRecord r{p.commit, p.cpu, {}};
@@ -144,6 +192,11 @@ TimingRecord parse_timing_record(const std::string& text, const std::string& fil
   return record;
 }
 
+TimingRecord read_timing_record(const std::string& file) {
+  return parse_timing_record(
+      read_regular_file(file, std::int64_t{16} << 20, "16 MiB, for a timings record"), file);
+}
+
 PreviousTimings read_previous_timings(const std::string& folder) {
   const std::filesystem::path file = std::filesystem::path(folder) / kTimingsFile;
   std::error_code ec;
@@ -159,10 +212,7 @@ PreviousTimings read_previous_timings(const std::string& folder) {
     if (std::filesystem::is_symlink(status))
       throw InputError(file.generic_string(), 0, "",
                        "is a symbolic link, not the file a report wrote");
-    return {parse_timing_record(read_regular_file(file.string(), std::int64_t{16} << 20,
-                                                  "16 MiB, for a timings record"),
-                                file.generic_string()),
-            "", ""};
+    return {read_timing_record(file.generic_string()), "", ""};
   } catch (const InputError& e) {
     return {std::nullopt,
             std::string("The timings of the report this one replaced could not be read (") +
@@ -171,17 +221,49 @@ PreviousTimings read_previous_timings(const std::string& folder) {
   }
 }
 
-TimingComparison compare_timings(const TimingRecord& before, const TimingRecord& now,
-                                 double tolerance, std::size_t keep) {
-  TimingComparison out;
-  out.tolerance = tolerance;
+namespace {
+
+// Every cell found once in each record, with its figure before and now (moved left at 0).
+std::vector<MovedCell> pairs(const TimingRecord& before, const TimingRecord& now, TimingFigure f) {
   const std::map<Key, const TimedCell*> old = by_key(before);
   std::vector<MovedCell> all;
   for (const auto& [key, cell] : by_key(now)) {
     const auto it = old.find(key);
     if (!cell || it == old.end() || !it->second) continue;
-    all.push_back({*it->second, *cell, moved(it->second->median_ms, cell->median_ms)});
+    all.push_back({cell->scene, cell->engine, cell->h, it->second->value(f), cell->value(f), 0.0});
   }
+  return all;
+}
+
+}  // namespace
+
+double slowdown_threshold(const std::string& engine) {
+  for (const Threshold& t : kThresholds)
+    if (engine == t.engine) return t.rise;
+  return kUnmeasuredThreshold;
+}
+
+std::vector<Slowdown> slowdowns(const TimingRecord& before, const TimingRecord& now) {
+  std::vector<Slowdown> out;
+  for (MovedCell& m : pairs(before, now, kAlertFigure)) {
+    if (!(m.before > 0.0)) continue;
+    m.moved = m.now / m.before - 1.0;
+    const double threshold = slowdown_threshold(m.engine);
+    if (m.moved > threshold) out.push_back({m, threshold});
+  }
+  std::stable_sort(out.begin(), out.end(), [](const Slowdown& a, const Slowdown& b) {
+    return a.cell.moved > b.cell.moved;
+  });
+  return out;
+}
+
+TimingComparison compare_timings(const TimingRecord& before, const TimingRecord& now,
+                                 TimingFigure figure, double tolerance, std::size_t keep) {
+  TimingComparison out;
+  out.figure = figure;
+  out.tolerance = tolerance;
+  std::vector<MovedCell> all = pairs(before, now, figure);
+  for (MovedCell& m : all) m.moved = moved(m.before, m.now);
   out.cells = all.size();
   out.agree = std::count_if(all.begin(), all.end(),
                             [&](const MovedCell& m) { return m.moved <= tolerance; });

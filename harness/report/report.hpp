@@ -25,9 +25,12 @@ struct ReportInput {
   TimingOptions timing_options;  // as used, for the note on how timings are made
   std::string stability;         // Markdown of the stability section ("" when none)
   std::string stability_note;    // shown when `stability` is empty
-  // The timings of the report this one replaces (its timings.json), to say how far each median
+  // The timings of the report this one replaces (its timings.json), to say how far each figure
   // moved; without a record, its note says why.
   PreviousTimings previous;
+  // The timings the slowdown alert compares with: `report --compare-timings FILE`, else
+  // `previous`.
+  PreviousTimings compare;
 };
 
 // Outcome of drawing each plot: file -> "" when drawn, else why not.

@@ -200,11 +200,11 @@ std::vector<std::string> sweep_row(const SceneEvaluation& se, const StepEvaluati
   if (!timing) return r;
   if (!st.timing) return r;
   const Timing& t = *st.timing;
-  r.insert(r.end(), {cell(t.median_per_sim_s * 1e3),
-                     cell(t.q1_per_sim_s * 1e3) + " .. " + cell(t.q3_per_sim_s * 1e3),
-                     cell(t.min_per_sim_s * 1e3), percent(t.half_spread()),
-                     cell(t.bare_median_per_sim_s * 1e3), percent(t.overhead()),
-                     printf_string("%d x %d x %d", t.samples, t.replicas, t.repeats)});
+  r.insert(r.end(), {cell(t.headline() * 1e3), cell(t.ratio()), cell(t.of(Statistic::median) * 1e3),
+                     cell(statistic(t.full, Statistic::q25) * 1e3) + " .. " +
+                         cell(quantile(t.full, 0.75) * 1e3),
+                     cell(t.bare_of(Statistic::median) * 1e3), percent(t.overhead()),
+                     printf_string("%d x %d x %d", t.samples(), t.replicas, t.repeats)});
   return r;
 }
 
@@ -213,8 +213,8 @@ std::string sweep_table(const SceneEvaluation& se, bool timing) {
   std::vector<std::string> h{"engine", "h", "steps", "status", "error vs " + ref + ": max dx (m)"};
   if (!se.reference.empty()) h.push_back("divergence from " + se.reference + ": max dx (m)");
   if (timing)
-    for (const char* c : {"median (ms per sim s)", "IQR (ms per sim s)", "min (ms per sim s)",
-                          "halves differ", "bare step loop median (ms per sim s)",
+    for (const char* c : {"min (ms per sim s)", "min / calibration", "median (ms per sim s)",
+                          "IQR (ms per sim s)", "bare step loop median (ms per sim s)",
                           "harness overhead", "samples x replicas x repeats"})
       h.push_back(kTimed + std::string(c));
   MarkdownTable t(h, "llrlr");
@@ -234,9 +234,9 @@ std::string run_time(const SceneEvaluation& se, const std::vector<ReportPlot>& p
   std::string md =
       timing ? "#### Error against run time (⏱ wall time)\n\n" : "#### Error against run time\n\n";
   md += timing ? "Columns marked ⏱ and the work-precision plot are wall-clock timings (the only "
-                 "figures that change between runs). \"halves differ\": the medians of the two "
-                 "halves of the samples (rounds 0, 1, 4, 5, ... and 2, 3, 6, 7, ...), max/min - "
-                 "1.\n\n"
+                 "figures that change between runs). The minimum is the headline; \"min / "
+                 "calibration\" divides it by the minimum of the calibration loop timed in the "
+                 "same rounds, a ratio to compare across machines (Timing reproducibility).\n\n"
                : "Timings omitted (--no-timing).\n\n";
   md += sweep_table(se, timing) + "\n";
   for (const ReportPlot& p : plots)

@@ -89,16 +89,20 @@ TEST_CASE("timing returns positive figures for every engine", "[timing]") {
     CHECK(t[i].h == 1.0 / 60);
     CHECK(t[i].replicas == 1);
     CHECK(t[i].repeats == 1);
-    CHECK(t[i].samples == 4);
-    CHECK(t[i].min_per_sim_s > 0.0);
-    CHECK(t[i].q1_per_sim_s >= t[i].min_per_sim_s);
-    CHECK(t[i].median_per_sim_s >= t[i].q1_per_sim_s);
-    CHECK(t[i].q3_per_sim_s >= t[i].median_per_sim_s);
-    CHECK(t[i].half_a_median > 0.0);
-    CHECK(t[i].half_b_median > 0.0);
-    CHECK(t[i].half_spread() >= 0.0);
-    CHECK(t[i].bare_min_per_sim_s > 0.0);
-    CHECK(t[i].bare_median_per_sim_s >= t[i].bare_min_per_sim_s);
+    CHECK(t[i].samples() == 4);
+    REQUIRE(t[i].bare.size() == 4);
+    REQUIRE(t[i].calibration.size() == 4);  // one calibration loop in each timed round
+    CHECK(t[i].headline() > 0.0);
+    CHECK(t[i].of(Statistic::q25) >= t[i].headline());
+    CHECK(t[i].of(Statistic::median) >= t[i].of(Statistic::q25));
+    CHECK(t[i].bare_of(Statistic::min) > 0.0);
+    CHECK(t[i].ratio() == t[i].headline() / statistic(t[i].calibration, Statistic::min));
+  }
+  // Both engines were timed against the same calibration rounds.
+  CHECK(t[0].calibration == t[1].calibration);
+  for (double c : t[0].calibration) {
+    CHECK(c > 0.0);
+    CHECK(c < 1.0);
   }
 }
 
@@ -165,22 +169,27 @@ TEST_CASE("a timing with repeats reports per copy and per run, and says how many
   REQUIRE(t.size() == 1);
   CHECK(t[0].replicas == 1);
   CHECK(t[0].repeats == 64);
-  CHECK(t[0].samples == 4);
-  CHECK(t[0].median_per_sim_s > 0.0);
+  CHECK(t[0].samples() == 4);
+  CHECK(t[0].of(Statistic::median) > 0.0);
   // Per simulated second of one copy: the 64 runs are 32 simulated seconds; the sum of their
   // stepping loops cannot take less than 0 or (here) anywhere near 1 s per simulated second.
-  CHECK(t[0].median_per_sim_s < 1.0);
+  CHECK(t[0].of(Statistic::median) < 1.0);
 }
 
-TEST_CASE("a timing compares the medians of the two halves of its samples", "[timing]") {
+TEST_CASE("a timing's statistics are order statistics of its samples", "[timing]") {
   Timing t;
-  t.half_a_median = 1.0;
-  t.half_b_median = 1.1;
-  CHECK(t.half_spread() == Approx(0.1));
-  std::swap(t.half_a_median, t.half_b_median);
-  CHECK(t.half_spread() == Approx(0.1));
-  t.half_b_median = 0.0;
-  CHECK(t.half_spread() == 0.0);
+  t.full = {4.0, 1.0, 3.0, 2.0, 5.0};
+  t.bare = {1.0, 1.0, 2.0, 2.0, 2.0};
+  t.calibration = {0.5, 0.25, 1.0, 1.0, 1.0};
+  CHECK(t.headline() == 1.0);  // kHeadline: the minimum
+  CHECK(t.of(Statistic::q25) == 2.0);
+  CHECK(t.of(Statistic::median) == 3.0);
+  CHECK(t.ratio() == 4.0);                   // 1.0 / 0.25
+  CHECK(t.ratio(Statistic::median) == 3.0);  // 3.0 / 1.0
+  CHECK(t.overhead() == Approx(0.5));        // medians 3.0 / 2.0 - 1
+  CHECK(statistic({}, Statistic::median) == 0.0);
+  CHECK(quantile({1.0, 2.0}, 0.75) == 1.75);
+  CHECK(Timing{}.ratio() == 0.0);
 }
 
 TEST_CASE("timing runs every engine once a round, alternating from round to round", "[timing]") {
@@ -211,6 +220,6 @@ TEST_CASE("timing runs every engine once a round, alternating from round to roun
   CHECK(t[1].engine == "ours-again");
   for (const Timing& one : t) {
     CHECK(one.h == 1.0 / 120);
-    CHECK(one.samples == 4);
+    CHECK(one.samples() == 4);
   }
 }

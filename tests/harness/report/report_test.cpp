@@ -163,8 +163,10 @@ TEST_CASE("with timings the run-time table has marked columns and a work-precisi
   for (const EngineSlot& e : engines) in.engines.push_back(e.make()->info());
   write_report(in, dir.path.string());
   const std::string md = slurp(dir.path / "README.md");
-  CHECK_THAT(md, Contains("⏱ median (ms per sim s)") && Contains("⏱ IQR (ms per sim s)") &&
-                     Contains("⏱ halves differ") && Contains("⏱ harness overhead") &&
+  CHECK_THAT(md, Contains("⏱ min (ms per sim s)") && Contains("⏱ min / calibration") &&
+                     Contains("⏱ median (ms per sim s)") && Contains("⏱ IQR (ms per sim s)") &&
+                     Contains("⏱ harness overhead") &&
+                     Contains("## Slowdown alert (⏱ wall time)") &&
                      Contains("## Harness overhead (⏱ wall time)") &&
                      Contains("## Timing reproducibility (⏱ wall time)") &&
                      Contains("#### Error against run time (⏱ wall time)") &&
@@ -203,13 +205,19 @@ TEST_CASE("a report written again into its folder states how far each median mov
   REQUIRE(first.cells.size() == 2);  // ours-f64 at 1/30 and 1/60
   CHECK(first.commit == "abc1234");
   CHECK(first.cells[1].h == "1/60");
-  CHECK(first.cells[1].median_ms > 0);
+  CHECK(first.cells[1].value({}) > 0);
+  CHECK(first.cells[1].full_ms.size() == 4);
+  CHECK(first.cells[1].calibration_ms.size() == 4);
+  CHECK_THAT(slurp(out + "/README.md"),
+             Contains("## Slowdown alert") && Contains("Nothing to compare with"));
 
   CHECK(write().record);
   CHECK_THAT(slurp(out + "/README.md"),
              Contains("Against the report this one replaced (commit abc1234; this one: commit "
-                      "abc1234): of 2 cells timed in both") &&
+                      "abc1234), per figure") &&
                  Contains("Same commit and CPU: this is the run-to-run spread") &&
+                 Contains("| minimum (headline) | ") &&
+                 Contains("| minimum / calibration (side by side) | ") && Contains(" of 2 (") &&
                  Contains("| throw | ours-f64 | 1/"));
 
   // A damaged record is no reason to refuse the report: it says why there is no comparison, and

@@ -1,0 +1,138 @@
+// Does the slowdown alert catch a real slowdown? Times every cell of the shipped scenes twice, as
+// `dropcheck report` does (time_evaluations), the second time with one engine made 20 % slower,
+// and prints which cells the alert (slowdowns(), harness/measure/timing_record.hpp) flags: the
+// slowed engine's cells it catches, and any other engine's cell it flags (a false alarm).
+//
+//   dropcheck_slowdown_alert [--engine E] [--percent P] [SCENE_DIR]   (defaults: ours, 20,
+//   scenarios)
+//
+// The slowdown is a test double, SlowedEngine: after each step() of the real engine it spins for
+// P % of that cell's own headline per step, measured in the first pass, so the second pass's full
+// loop is P % slower by construction, and exactly that engine's. Wall-clock figures: run it on a
+// quiet machine (each pass takes about as long as a report's timings, a minute here).
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "harness/core/number_format.hpp"
+#include "harness/core/provenance.hpp"
+#include "harness/core/registry.hpp"
+#include "harness/measure/evaluate.hpp"
+#include "harness/measure/timing_record.hpp"
+#include "harness/scene/scene_loader.hpp"
+#include "harness/scene/timestep.hpp"
+
+namespace dropcheck {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Extra seconds per step by (scene, h): P % of the first pass's headline for one step of the
+// replicated run.
+using ExtraPerStep = std::map<std::pair<std::string, double>, double>;
+
+class SlowedEngine final : public Engine {
+ public:
+  SlowedEngine(std::unique_ptr<Engine> inner, const ExtraPerStep& extra)
+      : inner_(std::move(inner)), extra_(extra) {}
+  EngineInfo info() const override { return inner_->info(); }
+  std::string cannot_run(const Scene& scene) const override { return inner_->cannot_run(scene); }
+  void load(const Scene& scene, double h) override {
+    inner_->load(scene, h);
+    const auto it = extra_.find({scene.name, h});
+    spin_ = std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(it == extra_.end() ? 0.0 : it->second));
+  }
+  void set_forces(std::span<const Vec3> forces) override { inner_->set_forces(forces); }
+  void step() override {
+    const Clock::time_point until = Clock::now() + spin_;
+    inner_->step();
+    while (Clock::now() < until) {
+    }
+  }
+  void read(std::span<BodyState> out) const override { inner_->read(out); }
+  bool speed_clamped() const override { return inner_->speed_clamped(); }
+
+ private:
+  std::unique_ptr<Engine> inner_;
+  const ExtraPerStep& extra_;
+  Clock::duration spin_{};
+};
+
+std::vector<Scene> shipped(const std::string& dir) {
+  std::vector<std::string> files;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    if (e.path().extension() == ".toml") files.push_back(e.path().string());
+  std::sort(files.begin(), files.end());
+  std::vector<Scene> out;
+  for (const std::string& f : files) out.push_back(load_scene(f));
+  return out;
+}
+
+TimingRecord time_all(const std::vector<Scene>& scenes, const std::vector<EngineSlot>& slots) {
+  std::vector<SceneEvaluation> evaluated;
+  for (const Scene& s : scenes) evaluated.push_back(evaluate_scene(s, slots));
+  time_evaluations(evaluated, slots);
+  return timing_record(evaluated, current_provenance("."));
+}
+
+int run(int argc, char** argv) {
+  std::string slowed = "ours", dir = "scenarios";
+  double percent = 20.0;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--engine" && i + 1 < argc)
+      slowed = argv[++i];
+    else if (a == "--percent" && i + 1 < argc)
+      percent = std::stod(argv[++i]);
+    else
+      dir = a;
+  }
+  const std::vector<Scene> scenes = shipped(dir);
+  std::vector<EngineSlot> slots;
+  for (const std::string& name : available_engine_names())
+    slots.push_back({name, [name] { return make_engine(name); }, ""});
+
+  std::cerr << "pass 1 of 2: every cell as it is\n";
+  const TimingRecord before = time_all(scenes, slots);
+  ExtraPerStep extra;
+  for (const TimedCell& c : before.cells) {
+    if (c.engine != slowed) continue;
+    std::string why;
+    const double h = parse_timestep(c.h, why)->seconds;
+    const double headline_s = c.value({}) * 1e-3;  // per simulated second, per copy
+    extra[{c.scene, h}] = percent / 100.0 * headline_s * h * c.replicas;
+  }
+  for (EngineSlot& s : slots)
+    if (s.name == slowed)
+      s.make = [&extra, slowed] {
+        return std::make_unique<SlowedEngine>(make_engine(slowed), extra);
+      };
+  std::cerr << "pass 2 of 2: " << slowed << " slowed by " << percent << " %\n";
+  const TimingRecord after = time_all(scenes, slots);
+
+  std::size_t cells = 0, caught = 0, false_alarms = 0, others = 0;
+  for (const TimedCell& c : after.cells) (c.engine == slowed ? cells : others)++;
+  for (const Slowdown& s : slowdowns(before, after)) {
+    (s.cell.engine == slowed ? caught : false_alarms)++;
+    std::cout << "flagged: " << s.cell.scene << " / " << s.cell.engine << " / h = " << s.cell.h
+              << printf_string(": rose %.1f %% (threshold %.0f %%)\n", 100.0 * s.cell.moved,
+                               100.0 * s.threshold);
+  }
+  std::cout << printf_string(
+      "%s slowed by %.0f %%: %zu of %zu of its cells flagged; %zu of %zu other cells flagged "
+      "(false alarms) ⏱\n",
+      slowed, percent, caught, cells, false_alarms, others);
+  return 0;
+}
+
+}  // namespace
+}  // namespace dropcheck
+
+int main(int argc, char** argv) {
+  return dropcheck::run(argc, argv);
+}
