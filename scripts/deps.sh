@@ -12,6 +12,7 @@ DROPCHECK_PACKAGES=(
   libcli11-dev                         # command-line parsing (header-only CLI11)
   nlohmann-json3-dev                   # JSON output, every name escaped by construction
   libfmt-dev                           # number formatting (harness/core/number_format.hpp)
+  libboost-math-dev                    # Jacobi elliptic functions (harness/oracles/free_rotation)
   libbullet-dev libode-dev libbox2d-dev libmujoco-dev libqhull-dev  # the engines compared
   libgl-dev                            # MuJoCo's CMake package requires OpenGL to be findable
   gnuplot-nox                          # report plots (SVG)

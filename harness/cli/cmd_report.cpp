@@ -148,7 +148,10 @@ const CommandSpec& report_spec() {
        {"--compare-timings", "FILE",
         "the timings.json the slowdown alert compares with (default: the one in --out)"},
        {"--fail-on-slowdown", "",
-        "exit 1 when the slowdown alert flags a cell (the report is written all the same)"}}};
+        "exit 1 when the slowdown alert flags a cell (the report is written all the same)"},
+       {"--timing-smoke", "",
+        "time as little work as possible (2 rounds, no warm-up, the smallest runs): checks the "
+        "timing and the alert in seconds; its figures mean nothing"}}};
   return spec;
 }
 
@@ -170,8 +173,15 @@ int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ost
   in.timing = !args.has("--no-timing");
   in.provenance = current_provenance(".", out_dir);
   describe_engines(slots, in);
-  if (!in.timing && (args.has("--compare-timings") || args.has("--fail-on-slowdown")))
-    throw InputError("", 0, "--compare-timings/--fail-on-slowdown",
+  if (args.has("--timing-smoke")) {
+    in.timing_options.body_steps_per_run = 1;
+    in.timing_options.min_sample_seconds = 0.0;
+    in.timing_options.warmups = 0;
+    in.timing_options.samples = 2;
+  }
+  if (!in.timing && (args.has("--compare-timings") || args.has("--fail-on-slowdown") ||
+                     args.has("--timing-smoke")))
+    throw InputError("", 0, "--compare-timings/--fail-on-slowdown/--timing-smoke",
                      "need the timings: drop --no-timing");
   if (in.timing) {  // the report this one replaces, to say how far each figure moved
     in.previous = read_previous_timings(out_dir);

@@ -39,8 +39,10 @@ TEST_CASE("report --fail-on-slowdown exits 1 naming the cells that slowed, 0 whe
   ScratchDir d("report-slowdown");
   const std::string scene = d.write("fall.toml", scene_head("0.5", "1/60", kEarth) +
                                                      body_text("cube", "[0.0, 10.0, 0.0]", kZero));
-  const std::vector<std::string> report{"report",    scene,      "--out",
-                                        d.file("r"), "--engine", "ours-f64"};
+  // --timing-smoke: the plumbing, not the figures (a full timing of ours under the sanitizers at
+  // -O0 takes minutes).
+  const std::vector<std::string> report{"report",   scene,      "--out",         d.file("r"),
+                                        "--engine", "ours-f64", "--timing-smoke"};
   REQUIRE(cli(report).code == 0);
   const std::string record = slurp(d.file("r/timings.json"));
   // The same cells, as if measured on a build twice as fast: now every cell is 100 % slower.
