@@ -13,6 +13,7 @@ std::string Engine::cannot_run(const Scene& scene) const {
   const Capabilities caps = info().capabilities;
   if (scene.world.contacts && !caps.contacts) return "no contacts";
   if (caps.planar_only && !is_planar(scene)) return "not planar";
+  if (needs_rotation(scene)) return "rotation: this engine's adapter does not rotate bodies yet";
   return {};
 }
 

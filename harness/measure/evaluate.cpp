@@ -205,8 +205,7 @@ void measure_orders(EngineEvaluation& ev, const SceneEvaluation& se) {
 }
 
 SceneEvaluation prepare(const Scene& scene, const EvaluateOptions& options) {
-  SceneEvaluation se;
-  se.scene = scene;
+  SceneEvaluation se(scene);
   se.sweep = sorted_sweep(scene);
   se.default_index = default_index(se.sweep, scene);
   se.no_analytic = analytic_unavailable(scene);

@@ -89,6 +89,10 @@ struct EngineEvaluation {
 };
 
 struct SceneEvaluation {
+  // Copy-constructed from the scene, never assigned one: g++ 12 -O2 flags the assignment of the
+  // forces' std::variant as maybe-uninitialized (a false positive -Werror would fail the build on).
+  explicit SceneEvaluation(const Scene& s) : scene(s) {}
+
   Scene scene;
   std::vector<Timestep> sweep;  // the scene's steps, default included, largest first
   std::size_t default_index = 0;

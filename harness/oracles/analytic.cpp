@@ -102,6 +102,7 @@ BodyState spring_flight(const Body& b, const Linear& l, double k, double t) {
 
 std::string analytic_unavailable(const Scene& scene) {
   if (scene.world.contacts) return "contacts (see the landing oracle)";
+  if (needs_rotation(scene)) return "rotation (free_rotation.hpp covers torque-free spin)";
   for (const Force& f : scene.forces)
     if (const auto* s = std::get_if<Spring>(&f.law); s && s->rest_length != 0.0)
       return "spring with a rest length (nonlinear)";

@@ -13,6 +13,20 @@ double decay_per_step(const Scene& scene, double h) {
   return std::exp(-scene.world.damping_rate * h);
 }
 
+Vec3 box_inertia(double mass, const Vec3& h) {
+  const Vec3 sq = h.cwiseProduct(h);
+  return mass / 3.0 * Vec3(sq.y() + sq.z(), sq.z() + sq.x(), sq.x() + sq.y());
+}
+
+bool needs_rotation(const Scene& scene) {
+  for (const Body& b : scene.bodies)
+    if (b.orientation.coeffs() != Quat::Identity().coeffs() || b.angular_velocity != Vec3::Zero())
+      return true;
+  for (const Torque& t : scene.torques)
+    if (t.torque != Vec3::Zero()) return true;
+  return false;
+}
+
 bool is_planar(const Scene& scene) {
   if (scene.world.gravity.z() != 0.0) return false;
   for (const Body& b : scene.bodies)

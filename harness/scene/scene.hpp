@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <string>
 #include <variant>
@@ -11,6 +12,7 @@
 namespace dropcheck {
 
 using Vec3 = Eigen::Vector3d;
+using Quat = Eigen::Quaterniond;
 
 // A step size as the user wrote it ("1/60" or "0.01") and its value in seconds.
 struct Timestep {
@@ -25,7 +27,17 @@ struct Body {
   Vec3 position = Vec3::Zero();      // m, centre of the box
   Vec3 velocity = Vec3::Zero();      // m/s
   bool is_static = false;
+  // Rotation. A scene that gives none of these keys does not rotate (needs_rotation is false) and
+  // runs exactly as a translation-only scene.
+  Quat orientation = Quat::Identity();   // unit quaternion, body frame to world frame
+  Vec3 angular_velocity = Vec3::Zero();  // rad/s, world frame
+  Vec3 inertia = Vec3::Zero();  // principal moments in the body frame, kg m^2 (the loader sets
+                                // them: given, or a uniform box: I_x = m/3*(hy^2 + hz^2), ...)
 };
+
+// The principal moments of a uniform box of mass m and half extents h: m/3*(hy^2 + hz^2) about x
+// and cyclic (m/12*(b^2 + c^2) with full sides b = 2*hy, c = 2*hz).
+Vec3 box_inertia(double mass, const Vec3& half_extents);
 
 // F = constant (N), every step.
 struct ConstantForce {
@@ -47,10 +59,17 @@ struct Force {
   std::variant<ConstantForce, Spring> law;
 };
 
+// tau = constant (N m, world frame), every step, on each body listed.
+struct Torque {
+  std::vector<std::size_t> bodies;  // indices into Scene::bodies (dynamic bodies only)
+  Vec3 torque = Vec3::Zero();
+};
+
 struct World {
-  Vec3 gravity = Vec3::Zero();  // m/s^2, y up
-  double damping_rate = 0.0;    // k in 1/s: dv/dt = ... - k*v; per-step decay phi = exp(-k*h)
-  bool contacts = false;        // false: no collision shapes at all
+  Vec3 gravity = Vec3::Zero();        // m/s^2, y up
+  double damping_rate = 0.0;          // k in 1/s: dv/dt = ... - k*v; per-step decay phi = exp(-k*h)
+  double angular_damping_rate = 0.0;  // the same for the angular velocity: dw/dt = ... - k_a*w
+  bool contacts = false;              // false: no collision shapes at all
 };
 
 struct Scene {
@@ -63,6 +82,7 @@ struct Scene {
   World world;
   std::vector<Body> bodies;
   std::vector<Force> forces;
+  std::vector<Torque> torques;
   double tolerance = 1e-3;  // m: |dx| above this counts as diverged (time to divergence)
 };
 
@@ -74,5 +94,9 @@ double decay_per_step(const Scene& scene, double h);
 
 // True when every body, velocity, force and gravity lies in the x-y plane (z components zero).
 bool is_planar(const Scene& scene);
+
+// True when some body starts turned or turning, or a torque acts: then the scene's outcome depends
+// on rotation, and an engine that does not rotate bodies cannot run it.
+bool needs_rotation(const Scene& scene);
 
 }  // namespace dropcheck

@@ -197,29 +197,74 @@ void load_times(const Reader& r, Scene& s) {
 }
 
 // linear_drag f is the seed's per-step factor at `timestep`: k = -ln(f)/h, so exp(-k*h) = f.
+// The same for a damping rate given as `drag_key` (the seed's factor) or `rate_key` (k itself).
+double damping_rate(const Reader& r, const std::string& drag_key, const std::string& rate_key,
+                    const Scene& s) {
+  if (r.has(drag_key) && r.has(rate_key))
+    r.fail(rate_key, "give " + drag_key + " or " + rate_key + ", not both");
+  if (r.has(drag_key)) {
+    const double f = r.number(drag_key, 1.0);
+    check_range(r, drag_key, f > 0.0 && f <= 1.0, "must be in (0, 1]");
+    return -std::log(f) / s.timestep.seconds;
+  }
+  const double k = r.number(rate_key, 0.0);
+  check_range(r, rate_key, k >= 0.0, "must be >= 0 (1/s)");
+  return k;
+}
+
 void load_world(const Reader& top, Scene& s) {
   const toml::node* n = top.node("world");
   if (!n) top.fail("world", "required table [world] is missing");
   if (!n->is_table()) top.fail("world", "expected a table [world]", n);
   Reader r(top.file(), *n->as_table(), "world");
-  r.only({"gravity", "linear_drag", "linear_damping", "contacts"});
+  r.only(
+      {"gravity", "linear_drag", "linear_damping", "angular_drag", "angular_damping", "contacts"});
   s.world.gravity = r.vec3("gravity", Vec3::Zero(), true);
-  if (r.has("linear_drag") && r.has("linear_damping"))
-    r.fail("linear_damping", "give linear_drag or linear_damping, not both");
-  if (r.has("linear_drag")) {
-    const double f = r.number("linear_drag", 1.0);
-    check_range(r, "linear_drag", f > 0.0 && f <= 1.0, "must be in (0, 1]");
-    s.world.damping_rate = -std::log(f) / s.timestep.seconds;
-  }
-  if (r.has("linear_damping")) {
-    s.world.damping_rate = r.number("linear_damping", 0.0);
-    check_range(r, "linear_damping", s.world.damping_rate >= 0.0, "must be >= 0 (1/s)");
-  }
+  s.world.damping_rate = damping_rate(r, "linear_drag", "linear_damping", s);
+  s.world.angular_damping_rate = damping_rate(r, "angular_drag", "angular_damping", s);
   s.world.contacts = r.boolean("contacts", false);
 }
 
+// How far a given orientation's norm may be from 1: rounding of 17 significant digits per
+// component, with room to spare (a quaternion typed to 4 digits, 0.7071, is 2e-5 off: refused).
+constexpr double kUnitTolerance = 1e-12;
+
+// orientation = [w, x, y, z] (unit), angular_velocity = [x, y, z] (rad/s, world frame), inertia =
+// [Ixx, Iyy, Izz] (principal moments in the body frame; default: a uniform box).
+void load_rotation(const Reader& r, Body& b) {
+  if (const toml::node* n = r.node("orientation")) {
+    const toml::array* a = n->as_array();
+    if (!a || a->size() != 4) r.fail("orientation", "expected a unit quaternion [w, x, y, z]", n);
+    double q[4];
+    for (std::size_t i = 0; i < 4; ++i)
+      q[i] = r.number("orientation[" + std::to_string(i) + "]", *a->get(i));
+    b.orientation = Quat(q[0], q[1], q[2], q[3]);
+    const double norm = b.orientation.norm();
+    if (!(std::abs(norm - 1.0) <= kUnitTolerance))
+      r.fail("orientation", "not a unit quaternion: its norm is " + shortest(norm) +
+                                " (1 within 1e-12 expected; give every component to 17 digits)");
+    b.orientation.normalize();
+  }
+  b.angular_velocity = r.vec3("angular_velocity", Vec3::Zero());
+  b.inertia = box_inertia(b.mass, b.half_extents);
+  if (r.has("inertia")) {
+    b.inertia = r.vec3("inertia", b.inertia);
+    if (!(b.inertia.array() > 0.0).all())
+      r.fail("inertia", "every principal moment must be > 0 kg m^2");
+    const char* axes[] = {"Ixx", "Iyy", "Izz"};
+    for (int i = 0; i < 3; ++i) {
+      const double others = b.inertia[(i + 1) % 3] + b.inertia[(i + 2) % 3];
+      if (b.inertia[i] > others * (1.0 + kUnitTolerance))  // equality: a flat plate
+        r.fail("inertia", std::string(axes[i]) + " = " + shortest(b.inertia[i]) +
+                              " exceeds the sum of the other two (" + shortest(others) +
+                              "): no body has these moments (triangle inequality)");
+    }
+  }
+}
+
 void load_body(const Reader& r, Scene& s) {
-  r.only({"name", "half_extents", "mass", "position", "velocity", "static"});
+  r.only({"name", "half_extents", "mass", "position", "velocity", "static", "orientation",
+          "angular_velocity", "inertia"});
   Body b;
   if (!r.has("name")) r.fail("name", "required key is missing");
   b.name = r.name("name", "");
@@ -234,6 +279,7 @@ void load_body(const Reader& r, Scene& s) {
   b.position = r.vec3("position", Vec3::Zero(), true);
   b.velocity = r.vec3("velocity", Vec3::Zero());
   b.is_static = r.boolean("static", false);
+  load_rotation(r, b);
   s.bodies.push_back(b);
 }
 
@@ -264,9 +310,9 @@ Spring load_spring(const Reader& parent, const toml::node& n) {
   return sp;
 }
 
-void load_force(const Reader& r, Scene& s) {
-  r.only({"bodies", "constant", "spring"});
-  Force f;
+// `bodies = [names]` of a [[force]] or [[torque]] (`what`), or every dynamic body when absent.
+std::vector<std::size_t> acted_on(const Reader& r, const Scene& s, const std::string& what) {
+  std::vector<std::size_t> out;
   if (const toml::node* n = r.node("bodies")) {
     const toml::array* a = n->as_array();
     if (!a || a->empty()) r.fail("bodies", "expected a non-empty array of body names", n);
@@ -274,16 +320,33 @@ void load_force(const Reader& r, Scene& s) {
       const std::string key = "bodies[" + std::to_string(i) + "]";
       if (!a->get(i)->is_string()) r.fail(key, "expected a body name (string)", a->get(i));
       const std::size_t b = body_index(r, s, key, *a->get(i)->value<std::string>());
-      if (std::find(f.bodies.begin(), f.bodies.end(), b) != f.bodies.end())
+      if (std::find(out.begin(), out.end(), b) != out.end())
         r.fail(key,
-               "body \"" + s.bodies[b].name + "\" is listed twice; the force would act on it twice",
+               "body \"" + s.bodies[b].name + "\" is listed twice; the " + what +
+                   " would act on it twice",
                a->get(i));
-      f.bodies.push_back(b);
+      out.push_back(b);
     }
   } else {
     for (std::size_t i = 0; i < s.bodies.size(); ++i)
-      if (!s.bodies[i].is_static) f.bodies.push_back(i);
+      if (!s.bodies[i].is_static) out.push_back(i);
   }
+  return out;
+}
+
+// [[torque]]: constant = [x, y, z] (N m, world frame) on the bodies listed (default: all dynamic).
+void load_torque(const Reader& r, Scene& s) {
+  r.only({"bodies", "constant"});
+  Torque t;
+  t.bodies = acted_on(r, s, "torque");
+  t.torque = r.vec3("constant", Vec3::Zero(), true);
+  s.torques.push_back(t);
+}
+
+void load_force(const Reader& r, Scene& s) {
+  r.only({"bodies", "constant", "spring"});
+  Force f;
+  f.bodies = acted_on(r, s, "force");
   if (r.has("constant") == r.has("spring"))
     r.fail("constant", "give exactly one of constant or spring");
   if (r.has("constant"))
@@ -296,7 +359,7 @@ void load_force(const Reader& r, Scene& s) {
 Scene build(const toml::table& root, const std::string& path) {
   Reader r(path, root, "");
   r.only({"name", "description", "duration", "timestep", "timesteps", "tolerance", "world", "body",
-          "force"});
+          "force", "torque"});
   Scene s;
   s.source = path;
   s.name = r.name("name", std::filesystem::path(path).stem().string());
@@ -310,6 +373,10 @@ Scene build(const toml::table& root, const std::string& path) {
   if (const toml::array* forces = array_of_tables(r, "force"))
     for (std::size_t i = 0; i < forces->size(); ++i)
       load_force(Reader(path, *forces->get(i)->as_table(), "force[" + std::to_string(i) + "]"), s);
+  if (const toml::array* torques = array_of_tables(r, "torque"))
+    for (std::size_t i = 0; i < torques->size(); ++i)
+      load_torque(Reader(path, *torques->get(i)->as_table(), "torque[" + std::to_string(i) + "]"),
+                  s);
   return s;
 }
 

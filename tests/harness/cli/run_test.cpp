@@ -160,3 +160,18 @@ TEST_CASE("running the same scene twice gives byte-identical CSV and JSON", "[cl
   CHECK(csv == slurp(dir.file("2.csv")));
   CHECK(slurp(dir.file("1.json")) == slurp(dir.file("2.json")));
 }
+
+TEST_CASE("a rotating scene is skipped with the reason by every engine that does not rotate yet",
+          "[cli][rotation]") {
+  ScratchDir d("run-rotation");
+  const std::string scene =
+      d.write("spin.toml",
+              "duration = 0.5\n[world]\ngravity = [0.0, -9.8, 0.0]\n[[body]]\nname = "
+              "\"c\"\nposition = [0.0, 10.0, 0.0]\nangular_velocity = [0.0, 0.0, 1.0]\n");
+  const dropcheck::testing::Result r =
+      dropcheck::testing::cli({"run", scene, "--engine", "ours", "--engine", "ours-f64"});
+  CHECK(r.code == 1);  // no engine ran it
+  CHECK_THAT(r.out, Contains("ours  skipped: rotation: this engine's adapter does not rotate "
+                             "bodies yet"));
+  CHECK_THAT(r.err, Contains("no engine ran the scene to its end"));
+}

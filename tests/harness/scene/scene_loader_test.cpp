@@ -299,3 +299,58 @@ TEST_CASE("an integer too large to be exactly a double is named as such", "[load
   // 2^53 itself is exact, and accepted as a number.
   CHECK(error_of(scene(kHead, kWorld, kBody + "mass = 9007199254740992\n")) == "(loaded)");
 }
+
+TEST_CASE("rotation keys: defaults change nothing, given ones are kept, and the scene rotates",
+          "[loader][rotation]") {
+  const dropcheck::Scene plain = dropcheck::parse_scene(scene(kHead, kWorld, kBody), "x.toml");
+  const dropcheck::Body& b = plain.bodies[0];
+  CHECK(b.orientation.coeffs() == dropcheck::Quat::Identity().coeffs());
+  CHECK(b.angular_velocity == dropcheck::Vec3::Zero());
+  // A uniform unit cube of 1 kg: m/12*(1 + 1) = 1/6 about every axis.
+  CHECK(b.inertia.isApprox(dropcheck::Vec3::Constant(1.0 / 6.0), 1e-15));
+  CHECK(plain.world.angular_damping_rate == 0.0);
+  CHECK_FALSE(dropcheck::needs_rotation(plain));
+
+  const dropcheck::Scene spun = dropcheck::parse_scene(
+      scene(kHead, "[world]\ngravity = [0.0, -9.8, 0.0]\nangular_drag = 0.98\n",
+            kBody + "orientation = [0.0, 1.0, 0.0, 0.0]\nangular_velocity = [0.1, 5.0, 0.1]\n"
+                    "inertia = [0.8083333333333333, 0.6833333333333333, 0.14166666666666666]\n",
+            "[[torque]]\nconstant = [0.0, 0.0, 2.0]\n"),
+      "x.toml");
+  CHECK(spun.bodies[0].orientation.x() == 1.0);
+  CHECK(spun.bodies[0].angular_velocity == dropcheck::Vec3(0.1, 5.0, 0.1));
+  CHECK(spun.bodies[0].inertia.z() == 0.14166666666666666);
+  CHECK(spun.world.angular_damping_rate == Approx(-std::log(0.98) * 60.0));
+  REQUIRE(spun.torques.size() == 1);
+  CHECK(spun.torques[0].bodies == std::vector<std::size_t>{0});
+  CHECK(spun.torques[0].torque == dropcheck::Vec3(0.0, 0.0, 2.0));
+  CHECK(dropcheck::needs_rotation(spun));
+}
+
+TEST_CASE("a quaternion that is not unit, or moments no body has, are refused naming the key",
+          "[loader][rotation]") {
+  check_error(scene(kHead, kWorld, kBody + "orientation = [0.7071, 0.7071, 0.0, 0.0]\n"),
+              "body[0].orientation", "not a unit quaternion: its norm is 0.99999");
+  check_error(scene(kHead, kWorld, kBody + "orientation = [1.0, 0.0, 0.0]\n"),
+              "body[0].orientation", "expected a unit quaternion [w, x, y, z]");
+  check_error(scene(kHead, kWorld, kBody + "inertia = [1.0, 0.0, 1.0]\n"), "body[0].inertia",
+              "every principal moment must be > 0");
+  check_error(scene(kHead, kWorld, kBody + "inertia = [1.0, -1.0, 1.0]\n"), "body[0].inertia",
+              "every principal moment must be > 0");
+  check_error(scene(kHead, kWorld, kBody + "inertia = [1.0, 1.0, 3.0]\n"), "body[0].inertia",
+              "Izz = 3 exceeds the sum of the other two (2)");
+  check_error(scene(kHead, kWorld, kBody + "inertia = [5.0, 1.0, 3.0]\n"), "body[0].inertia",
+              "Ixx = 5 exceeds the sum of the other two (4)");
+  check_error(scene(kHead, kWorld, kBody + "angular_velocity = [1.0, nan, 0.0]\n"),
+              "body[0].angular_velocity[1]", "must be finite");
+  check_error(scene(kHead,
+                    "[world]\ngravity = [0.0, 0.0, 0.0]\nangular_drag = 0.9\n"
+                    "angular_damping = 1.0\n",
+                    kBody),
+              "world.angular_damping", "give angular_drag or angular_damping, not both");
+  check_error(
+      scene(kHead, kWorld, kBody, "[[torque]]\nbodies = [\"ghost\"]\nconstant = [1, 0, 0]\n"),
+      "torque[0].bodies[0]", "no body named 'ghost'");
+  // A flat plate's moments meet the triangle inequality with equality: accepted.
+  CHECK(error_of(scene(kHead, kWorld, kBody + "inertia = [1.0, 2.0, 3.0]\n")) == "(loaded)");
+}
