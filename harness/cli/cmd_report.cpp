@@ -115,19 +115,31 @@ void evaluate_all(const std::vector<Scene>& scenes, const std::vector<EngineSlot
   });
 }
 
-// Prints the cells the slowdown alert flagged; kExitCheckFailed when there are some and the user
-// asked to fail on them.
+// Prints the cells the slowdown alert flagged and how many it judged; with --fail-on-slowdown,
+// kExitCheckFailed when it flagged one, and kExitBadInput when it could judge none (no record, or
+// one whose cells do not match this report's): a gate that checked nothing must not pass.
 int slowdown_exit(const ReportInput& in, bool fail, std::ostream& err) {
-  if (!in.timing || !in.compare.record) {
-    if (fail) err << "warning: --fail-on-slowdown: nothing to compare with; no cell judged\n";
-    return kExitOk;
+  const PreviousTimings& compare = in.compare.record ? in.compare : in.previous;
+  if (!in.timing || !compare.record) {
+    if (!fail) return kExitOk;
+    err << "dropcheck report: --fail-on-slowdown: no timings to compare with (give "
+           "--compare-timings FILE); no cell judged\n";
+    return kExitBadInput;
   }
-  const std::vector<Slowdown> slow =
-      slowdowns(*in.compare.record, timing_record(in.scenes, in.provenance));
+  const TimingRecord now = timing_record(in.scenes, in.provenance);
+  std::size_t judged = 0;
+  const std::vector<Slowdown> slow = slowdowns(*compare.record, now, &judged);
   for (const Slowdown& s : slow)
     err << "slowdown: " << s.cell.scene << " / " << s.cell.engine << " / h = " << s.cell.h << ": "
         << to_string(kAlertFigure) << " rose " << printf_string("%.1f %%", 100.0 * s.cell.moved)
         << printf_string(" (threshold %.0f %%)", 100.0 * s.threshold) << "\n";
+  err << "slowdown alert: " << judged << " of " << now.cells.size() << " cells judged, "
+      << slow.size() << " flagged\n";
+  if (fail && judged == 0) {
+    err << "dropcheck report: --fail-on-slowdown: no cell of this report matches one timed the "
+           "same way in the record compared with\n";
+    return kExitBadInput;
+  }
   return fail && !slow.empty() ? kExitCheckFailed : kExitOk;
 }
 

@@ -60,7 +60,12 @@ struct Reader {
   std::string text(const Json& object, const std::string& key, const std::string& where) const {
     const Json& v = at(object, key, where);
     if (!v.is_string()) fail(where + key, std::string("expected a string, got ") + v.type_name());
-    return v.get<std::string>();
+    const std::string s = v.get<std::string>();
+    // Printed into the report and on terminals: short and inert, as dropcheck writes them.
+    if (s.size() > 256 || find_unsafe_byte(s) != std::string::npos ||
+        s.find_first_of("\t\r\n") != std::string::npos)
+      fail(where + key, "expected a short text without control characters, got " + excerpt(s));
+    return s;
   }
   double number(const Json& object, const std::string& key, const std::string& where) const {
     const Json& v = at(object, key, where);
@@ -69,13 +74,19 @@ struct Reader {
     if (!std::isfinite(x) || x < 0) fail(where + key, "expected a finite number >= 0");
     return x;
   }
-  std::vector<double> samples(const Json& object, const std::string& key,
-                              const std::string& where) const {
+  // `positive`: a time that is a divisor (an engine's sample, a calibration) must be > 0; a bare
+  // loop that could not load is 0.
+  std::vector<double> samples(const Json& object, const std::string& key, const std::string& where,
+                              bool positive = true) const {
     const Json& v = at(object, key, where);
     if (!v.is_array() || v.empty() || v.size() > 4096)
       fail(where + key, "expected an array of 1 to 4096 numbers");
     std::vector<double> out;
-    for (std::size_t i = 0; i < v.size(); ++i) out.push_back(number(v, i, where + key));
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      out.push_back(number(v, i, where + key));
+      if (positive && !(out.back() > 0.0))
+        fail(where + key + "[" + std::to_string(i) + "]", "expected a time > 0");
+    }
     return out;
   }
   double number(const Json& array, std::size_t i, const std::string& key) const {
@@ -88,8 +99,8 @@ struct Reader {
   }
   int count(const Json& object, const std::string& key, const std::string& where) const {
     const Json& v = at(object, key, where);
-    if (!v.is_number_integer() || v.get<long long>() < 0 || v.get<long long>() > 1 << 30)
-      fail(where + key, "expected a whole number from 0 to 2^30");
+    if (!v.is_number_integer() || v.get<long long>() < 1 || v.get<long long>() > 1 << 30)
+      fail(where + key, "expected a whole number from 1 to 2^30");
     return v.get<int>();
   }
   TimedCell cell(const Json& c, const std::string& name) const {
@@ -99,7 +110,7 @@ struct Reader {
                   text(c, "engine", where),
                   text(c, "h", where),
                   samples(c, "samples_ms", where),
-                  samples(c, "bare_samples_ms", where),
+                  samples(c, "bare_samples_ms", where, false),
                   samples(c, "calibration_ms", where),
                   count(c, "replicas", where),
                   count(c, "repeats", where)};
@@ -180,7 +191,7 @@ TimingRecord parse_timing_record(const std::string& text, const std::string& fil
   try {
     root = Json::parse(text);
   } catch (const Json::exception& e) {  // a syntax error, or a number beyond double's range
-    r.fail("", std::string("not a timings record: ") + e.what());
+    r.fail("", "not a timings record: " + excerpt(e.what(), 120));
   }
   if (!root.is_object()) r.fail("", "not a timings record: expected a JSON object");
   TimingRecord record{r.text(root, "commit", ""), r.text(root, "cpu", ""), {}};
@@ -192,9 +203,9 @@ TimingRecord parse_timing_record(const std::string& text, const std::string& fil
   return record;
 }
 
-TimingRecord read_timing_record(const std::string& file) {
+TimingRecord read_timing_record(const std::string& file, Links links) {
   return parse_timing_record(
-      read_regular_file(file, std::int64_t{16} << 20, "16 MiB, for a timings record"), file);
+      read_regular_file(file, std::int64_t{16} << 20, "16 MiB, for a timings record", links), file);
 }
 
 PreviousTimings read_previous_timings(const std::string& folder) {
@@ -212,7 +223,7 @@ PreviousTimings read_previous_timings(const std::string& folder) {
     if (std::filesystem::is_symlink(status))
       throw InputError(file.generic_string(), 0, "",
                        "is a symbolic link, not the file a report wrote");
-    return {read_timing_record(file.generic_string()), "", ""};
+    return {read_timing_record(file.generic_string(), Links::refuse), "", ""};  // O_NOFOLLOW too
   } catch (const InputError& e) {
     return {std::nullopt,
             std::string("The timings of the report this one replaced could not be read (") +
@@ -223,15 +234,34 @@ PreviousTimings read_previous_timings(const std::string& folder) {
 
 namespace {
 
-// Every cell found once in each record, with its figure before and now (moved left at 0).
-std::vector<MovedCell> pairs(const TimingRecord& before, const TimingRecord& now, TimingFigure f) {
+// True when two cells timed the same work the same way: the same copies, repeats and number of
+// samples (a --timing-smoke record, another scene under the same name or another engine's nominal
+// cost is not comparable).
+bool comparable(const TimedCell& a, const TimedCell& b) {
+  return a.replicas == b.replicas && a.repeats == b.repeats && a.full_ms.size() == b.full_ms.size();
+}
+
+// Every cell found once in each record and comparable, with its figure before and now (moved left
+// at 0); `skipped` counts the cells of `now` left out.
+std::vector<MovedCell> pairs(const TimingRecord& before, const TimingRecord& now, TimingFigure f,
+                             std::size_t* skipped = nullptr) {
   const std::map<Key, const TimedCell*> old = by_key(before);
   std::vector<MovedCell> all;
+  std::size_t left_out = 0;
   for (const auto& [key, cell] : by_key(now)) {
     const auto it = old.find(key);
-    if (!cell || it == old.end() || !it->second) continue;
-    all.push_back({cell->scene, cell->engine, cell->h, it->second->value(f), cell->value(f), 0.0});
+    if (!cell || it == old.end() || !it->second || !comparable(*cell, *it->second)) {
+      ++left_out;
+      continue;
+    }
+    const double a = it->second->value(f), b = cell->value(f);
+    if (!(std::isfinite(a) && std::isfinite(b) && a > 0.0 && b > 0.0)) {
+      ++left_out;
+      continue;
+    }
+    all.push_back({cell->scene, cell->engine, cell->h, a, b, 0.0});
   }
+  if (skipped) *skipped = left_out;
   return all;
 }
 
@@ -243,10 +273,12 @@ double slowdown_threshold(const std::string& engine) {
   return kUnmeasuredThreshold;
 }
 
-std::vector<Slowdown> slowdowns(const TimingRecord& before, const TimingRecord& now) {
+std::vector<Slowdown> slowdowns(const TimingRecord& before, const TimingRecord& now,
+                                std::size_t* judged) {
   std::vector<Slowdown> out;
-  for (MovedCell& m : pairs(before, now, kAlertFigure)) {
-    if (!(m.before > 0.0)) continue;
+  std::vector<MovedCell> cells = pairs(before, now, kAlertFigure);
+  if (judged) *judged = cells.size();
+  for (MovedCell& m : cells) {
     m.moved = m.now / m.before - 1.0;
     const double threshold = slowdown_threshold(m.engine);
     if (m.moved > threshold) out.push_back({m, threshold});

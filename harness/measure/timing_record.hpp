@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "harness/core/provenance.hpp"
+#include "harness/io/link_policy.hpp"
 #include "harness/measure/evaluate.hpp"
 #include "harness/measure/timing.hpp"
 
@@ -60,7 +61,8 @@ TimingRecord parse_timing_record(const std::string& text, const std::string& fil
 
 // A timings.json named by the user (`report --compare-timings FILE`): a regular file of at most
 // 16 MiB, read with parse_timing_record. Throws InputError naming the file and the problem.
-TimingRecord read_timing_record(const std::string& file);
+// With Links::refuse a symbolic link at `file` is refused when it is opened (O_NOFOLLOW).
+TimingRecord read_timing_record(const std::string& file, Links links = Links::follow);
 
 // The timings of the report in `folder` that a new report will replace: read when `folder`/
 // timings.json exists (a regular file of at most 16 MiB, not a symbolic link, parse_timing_record),
@@ -111,7 +113,10 @@ struct Slowdown {
   MovedCell cell;          // `moved` here is now / before - 1, signed
   double threshold = 0.0;  // the threshold it crossed
 };
-std::vector<Slowdown> slowdowns(const TimingRecord& before, const TimingRecord& now);
+// `judged` (when given) receives how many cells were compared: a cell of `now` is judged only when
+// `before` holds it once, timed the same way (copies, repeats, number of samples) and finite.
+std::vector<Slowdown> slowdowns(const TimingRecord& before, const TimingRecord& now,
+                                std::size_t* judged = nullptr);
 
 // How far (now / before - 1) a cell's kAlertFigure may rise before it is called a slowdown: the
 // largest two-run move measured for that engine's cells, times 1.5 (timing_record.cpp).

@@ -167,7 +167,7 @@ constexpr const char* kWhyHeadline =
     "slows a run and never speeds it up, so the fastest of the runs is the least disturbed; the "
     "calibration loop, timed in the same rounds, is slowed by the same spells.";
 
-// "ours 12 %, ours-f64 12 %, ...": the alert's threshold for each engine of the report.
+// "ours 6 %, ours-f64 18 %, ...": the alert's threshold for each engine of the report.
 std::string threshold_list(const ReportInput& in) {
   std::string out;
   for (const EngineInfo& e : in.engines)
@@ -247,16 +247,23 @@ std::string reproducibility(const ReportInput& in) {
 std::string slowdown_section(const ReportInput& in) {
   if (!in.timing) return {};
   std::string md = "## Slowdown alert (⏱ wall time)\n\n";
-  if (!in.compare.record)
-    return md + "Nothing to compare with: " + in.compare.note +
+  const PreviousTimings& compare = in.compare.record ? in.compare : in.previous;
+  if (!compare.record)
+    return md + "Nothing to compare with: " + compare.note +
            " (`dropcheck report --compare-timings FILE` names a timings.json).\n\n";
-  const TimingRecord& before = *in.compare.record;
-  const std::vector<Slowdown> slow = slowdowns(before, timing_record(in.scenes, in.provenance));
+  const TimingRecord& before = *compare.record;
+  const TimingRecord now = timing_record(in.scenes, in.provenance);
+  std::size_t judged = 0;
+  const std::vector<Slowdown> slow = slowdowns(before, now, &judged);
   md += printf_string(
       "Against the timings of commit %s: a cell is flagged when its %s rose by more than 1.5 "
       "times the largest move that six reports of the same code showed for that engine on this "
       "project's machine (%s; an engine not measured there: the largest). ",
       before.commit, to_string(kAlertFigure), threshold_list(in));
+  md += printf_string(
+      "%zu of this report's %zu cells were judged (a cell is judged when the record holds it "
+      "once, timed the same way: copies, repeats, samples). ",
+      judged, now.cells.size());
   if (before.cpu != in.provenance.cpu)
     md += "The record comes from another CPU (" + before.cpu +
           "): the ratio to the calibration loop compares across machines better than times do, "
@@ -269,7 +276,10 @@ std::string slowdown_section(const ReportInput& in) {
     t.add({s.cell.scene, s.cell.engine, s.cell.h, cell(s.cell.before), cell(s.cell.now),
            printf_string("%.1f %%", 100.0 * s.cell.moved),
            printf_string("%.0f %%", 100.0 * s.threshold)});
-  return md + printf_string("**%zu cells are flagged:**\n\n", slow.size()) + t.str() + "\n";
+  return md +
+         printf_string("**%zu %s flagged:**\n\n", slow.size(),
+                       slow.size() == 1 ? "cell is" : "cells are") +
+         t.str() + "\n";
 }
 
 std::string determinism(const ReportInput& in) {

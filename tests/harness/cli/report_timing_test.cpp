@@ -45,8 +45,9 @@ TEST_CASE("report --fail-on-slowdown exits 1 naming the cells that slowed, 0 whe
                                         "--engine", "ours-f64", "--timing-smoke"};
   REQUIRE(cli(report).code == 0);
   const std::string record = slurp(d.file("r/timings.json"));
-  // The same cells, as if measured on a build twice as fast: now every cell is 100 % slower.
-  std::ofstream(d.file("faster.json")) << scaled(record, 0.5);
+  // The same cells, as if measured on a build 100 times as fast: now every cell is far slower (a
+  // margin no noise of these smoke timings reaches).
+  std::ofstream(d.file("faster.json")) << scaled(record, 0.01);
   std::vector<std::string> args = report;
   args.insert(args.end(), {"--compare-timings", d.file("faster.json"), "--fail-on-slowdown"});
   const Result slow = cli(args);
@@ -54,13 +55,22 @@ TEST_CASE("report --fail-on-slowdown exits 1 naming the cells that slowed, 0 whe
   CHECK_THAT(slow.err,
              Contains("slowdown: fall / ours-f64 / h = 1/60: minimum / calibration rose"));
   CHECK_THAT(slurp(d.file("r/README.md")), Contains("cells are flagged"));
-  // Against a build twice as slow nothing is flagged.
-  std::ofstream(d.file("slower.json")) << scaled(record, 2.0);
+  // Against a build 100 times as slow nothing is flagged.
+  std::ofstream(d.file("slower.json")) << scaled(record, 100.0);
   args[args.size() - 2] = d.file("slower.json");
   const Result fine = cli(args);
   CHECK(fine.code == 0);
   CHECK(fine.err.find("slowdown:") == std::string::npos);
   CHECK_THAT(slurp(d.file("r/README.md")), Contains("No cell is flagged"));
+  CHECK_THAT(fine.err, Contains("slowdown alert: 3 of 3 cells judged, 0 flagged"));
+  // A record none of whose cells match (another scene): the gate judged nothing, and says so.
+  nlohmann::ordered_json other = nlohmann::ordered_json::parse(record);
+  for (auto& cell : other["cells"]) cell["scene"] = "another";
+  std::ofstream(d.file("other.json")) << other.dump();
+  args[args.size() - 2] = d.file("other.json");
+  const Result none = cli(args);
+  CHECK(none.code == 2);
+  CHECK_THAT(none.err, Contains("0 of 3 cells judged") && Contains("no cell of this report"));
 }
 
 TEST_CASE("report --compare-timings with a bad file is refused before any work", "[cli][timing]") {

@@ -168,4 +168,12 @@ TEST_CASE("the slowdown alert flags a cell whose headline rose past its engine's
     for (double& x : c.calibration_ms) x *= 1.3;
   }
   CHECK(slowdowns(before, slower_machine).empty());
+  // Cells timed another way (other copies, repeats or number of samples) are not judged.
+  TimingRecord other_work = now;
+  for (TimedCell& c : other_work.cells) c.replicas *= 2;
+  std::size_t judged = 99;
+  CHECK(slowdowns(before, other_work, &judged).empty());
+  CHECK(judged == 0);
+  slowdowns(before, now, &judged);
+  CHECK(judged == 3);
 }
