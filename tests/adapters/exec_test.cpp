@@ -73,6 +73,16 @@ Trajectory run_bad(const std::string& mode, int at, double timeout_s = 2.0) {
   return t;
 }
 
+// The InputError message of parse_exec_spec(spec), or "no error".
+std::string error_of(const std::string& spec) {
+  try {
+    parse_exec_spec(spec);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
 std::string write_file(const std::string& name, const std::string& text) {
   const fs::path p =
       fs::temp_directory_path() / ("dropcheck_exec_" + std::to_string(::getpid()) + "_" + name);
@@ -254,14 +264,6 @@ TEST_CASE("The handshake declares continuous collision with the capability conti
 }
 
 TEST_CASE("Engine files and exec: paths are validated as input", "[exec]") {
-  const auto error_of = [](const std::string& spec) -> std::string {
-    try {
-      parse_exec_spec(spec);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "no error";
-  };
   CHECK(is_exec_spec("exec:./x"));
   CHECK(is_exec_spec("a/b.toml"));
   CHECK_FALSE(is_exec_spec("ours"));
@@ -293,14 +295,6 @@ TEST_CASE(
     "An engine file that is a device or folder, or whose command is a folder, is refused "
     "like a scene file",
     "[exec]") {
-  const auto error_of = [](const std::string& spec) -> std::string {
-    try {
-      parse_exec_spec(spec);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "no error";
-  };
   const fs::path dir =
       fs::temp_directory_path() / ("dropcheck_exec_files_" + std::to_string(::getpid()));
   fs::remove_all(dir);
