@@ -106,6 +106,8 @@ struct Reader {
   TimedCell cell(const Json& c, const std::string& name) const {
     if (!c.is_object()) fail(name, std::string("expected an object, got ") + c.type_name());
     const std::string where = name + ".";
+    if (c.contains("median_ms") && !c.contains("samples_ms"))
+      fail(name, "written by an older dropcheck, which kept no samples: write the report again");
     TimedCell out{text(c, "scene", where),
                   text(c, "engine", where),
                   text(c, "h", where),

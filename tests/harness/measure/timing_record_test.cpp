@@ -177,3 +177,13 @@ TEST_CASE("the slowdown alert flags a cell whose headline rose past its engine's
   slowdowns(before, now, &judged);
   CHECK(judged == 3);
 }
+
+TEST_CASE("a timings.json from before samples were kept is named as such", "[timing]") {
+  const std::string old =
+      "{\"commit\": \"a\", \"cpu\": \"c\", \"cells\": [{\"scene\": \"s\", \"engine\": "
+      "\"ode\", \"h\": \"1/60\", \"median_ms\": 1.0, \"q1_ms\": 1.0, \"q3_ms\": 1.0, "
+      "\"min_ms\": 1.0, \"bare_median_ms\": 1.0, \"samples\": 8, \"replicas\": 1, "
+      "\"repeats\": 1}]}";
+  CHECK_THAT(parse_error(old), Contains("cells[0]: written by an older dropcheck, which kept no "
+                                        "samples: write the report again"));
+}
