@@ -198,11 +198,6 @@ bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
-bool executable_file(const std::string& path) {
-  struct stat st {};
-  return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && ::access(path.c_str(), X_OK) == 0;
-}
-
 int line_of(const toml::node& n) {
   return static_cast<int>(n.source().begin.line);
 }
@@ -212,8 +207,9 @@ int line_of(const toml::node& n) {
 // A bare name is searched in PATH when the engine starts.
 std::string program_problem(const std::string& program, const std::string& cwd) {
   if (program.find('/') == std::string::npos) return {};
-  const std::filesystem::path p =
-      program[0] == '/' ? std::filesystem::path(program) : std::filesystem::path(cwd) / program;
+  const std::filesystem::path p = program[0] == '/' || cwd.empty()
+                                      ? std::filesystem::path(program)
+                                      : std::filesystem::path(cwd) / program;
   struct stat st {};
   if (::stat(p.c_str(), &st) != 0) return excerpt(program) + ": " + std::strerror(errno);
   if (S_ISDIR(st.st_mode)) return excerpt(program) + " is a folder, not a program";
@@ -282,11 +278,10 @@ bool is_exec_spec(const std::string& name) {
 ExecSpec parse_exec_spec(const std::string& name) {
   if (name.rfind("exec:", 0) != 0) return parse_engine_file(name);
   const std::string path = name.substr(5);
-  if (!executable_file(path))
-    throw InputError("", 0, "--engine " + excerpt(name),
-                     excerpt(path) + " is not an executable file");
   ExecSpec spec;
   spec.command = {path.find('/') == std::string::npos ? "./" + path : path};
+  if (std::string p = program_problem(spec.command[0], ""); !p.empty())
+    throw InputError("", 0, "--engine " + excerpt(name), p);
   return spec;
 }
 

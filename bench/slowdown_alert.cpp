@@ -60,27 +60,22 @@ double spins_per_second() {
 
 // The engine with a fixed amount of extra work after each step: no clock is read per step (two
 // clock reads would cost more than the extra itself in a cheap engine's step).
-class SlowedEngine final : public Engine {
+class SlowedEngine final : public ForwardingEngine {
  public:
-  SlowedEngine(std::unique_ptr<Engine> inner, const ExtraPerStep& extra, double rate)
-      : inner_(std::move(inner)), extra_(extra), rate_(rate) {}
-  EngineInfo info() const override { return inner_->info(); }
-  std::string cannot_run(const Scene& scene) const override { return inner_->cannot_run(scene); }
+  SlowedEngine(std::unique_ptr<Engine> owned, const ExtraPerStep& extra, double rate)
+      : ForwardingEngine(*owned), owned_(std::move(owned)), extra_(extra), rate_(rate) {}
   void load(const Scene& scene, double h) override {
-    inner_->load(scene, h);
+    inner_.load(scene, h);
     const auto it = extra_.find({scene.name, h});
     spins_ = static_cast<std::uint64_t>((it == extra_.end() ? 0.0 : it->second) * rate_ + 0.5);
   }
-  void set_forces(std::span<const Vec3> forces) override { inner_->set_forces(forces); }
   void step() override {
-    inner_->step();
+    inner_.step();
     spin(spins_);
   }
-  void read(std::span<BodyState> out) const override { inner_->read(out); }
-  bool speed_clamped() const override { return inner_->speed_clamped(); }
 
  private:
-  std::unique_ptr<Engine> inner_;
+  std::unique_ptr<Engine> owned_;
   const ExtraPerStep& extra_;
   double rate_;
   std::uint64_t spins_ = 0;

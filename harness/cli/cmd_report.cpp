@@ -119,28 +119,27 @@ void evaluate_all(const std::vector<Scene>& scenes, const std::vector<EngineSlot
 // kExitCheckFailed when it flagged one, and kExitBadInput when it could judge none (no record, or
 // one whose cells do not match this report's): a gate that checked nothing must not pass.
 int slowdown_exit(const ReportInput& in, bool fail, std::ostream& err) {
-  const PreviousTimings& compare = in.compare.record ? in.compare : in.previous;
-  if (!in.timing || !compare.record) {
+  if (!in.timing) return kExitOk;
+  const TimingRecord now = timing_record(in.scenes, in.provenance);
+  const SlowdownAlert alert = slowdown_alert(in, now);
+  if (!alert.before) {
     if (!fail) return kExitOk;
     err << "dropcheck report: --fail-on-slowdown: no timings to compare with (give "
            "--compare-timings FILE); no cell judged\n";
     return kExitBadInput;
   }
-  const TimingRecord now = timing_record(in.scenes, in.provenance);
-  std::size_t judged = 0;
-  const std::vector<Slowdown> slow = slowdowns(*compare.record, now, &judged);
-  for (const Slowdown& s : slow)
+  for (const Slowdown& s : alert.flagged)
     err << "slowdown: " << s.cell.scene << " / " << s.cell.engine << " / h = " << s.cell.h << ": "
         << to_string(kAlertFigure) << " rose " << printf_string("%.1f %%", 100.0 * s.cell.moved)
         << printf_string(" (threshold %.0f %%)", 100.0 * s.threshold) << "\n";
-  err << "slowdown alert: " << judged << " of " << now.cells.size() << " cells judged, "
-      << slow.size() << " flagged\n";
-  if (fail && judged == 0) {
+  err << "slowdown alert: " << alert.judged << " of " << now.cells.size() << " cells judged, "
+      << alert.flagged.size() << " flagged\n";
+  if (fail && alert.judged == 0) {
     err << "dropcheck report: --fail-on-slowdown: no cell of this report matches one timed the "
            "same way in the record compared with\n";
     return kExitBadInput;
   }
-  return fail && !slow.empty() ? kExitCheckFailed : kExitOk;
+  return fail && !alert.flagged.empty() ? kExitCheckFailed : kExitOk;
 }
 
 }  // namespace
@@ -199,7 +198,6 @@ int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ost
     in.previous = read_previous_timings(out_dir);
     if (!in.previous.warning.empty())
       err << "warning: " << in.previous.warning << "; no comparison with the previous report\n";
-    in.compare = in.previous;
     if (args.has("--compare-timings"))  // before any work: a bad file is a usage error
       in.compare = {read_timing_record(args.value("--compare-timings")), "", ""};
   }

@@ -150,6 +150,27 @@ class Engine {
   virtual bool speed_clamped() const { return false; }
 };
 
+// An Engine that passes every call on to another: the base of wrappers that add one thing to a run
+// (counting steps, a deadline, a test double's extra work) and override only the calls they add
+// it to. read_append is passed on too, so the wrapped engine keeps its own fast read.
+class ForwardingEngine : public Engine {
+ public:
+  explicit ForwardingEngine(Engine& inner) : inner_(inner) {}
+  EngineInfo info() const override { return inner_.info(); }
+  std::string cannot_run(const Scene& scene) const override { return inner_.cannot_run(scene); }
+  void load(const Scene& scene, double h) override { inner_.load(scene, h); }
+  void set_forces(std::span<const Vec3> forces) override { inner_.set_forces(forces); }
+  void step() override { inner_.step(); }
+  void read(std::span<BodyState> out) const override { inner_.read(out); }
+  bool read_append(std::size_t bodies, StateBuffer& out, StateUse use) const override {
+    return inner_.read_append(bodies, out, use);
+  }
+  bool speed_clamped() const override { return inner_.speed_clamped(); }
+
+ protected:
+  Engine& inner_;
+};
+
 // An engine refused or failed a call; a result to record, never a crash of the harness.
 struct EngineError : std::runtime_error {
   using std::runtime_error::runtime_error;

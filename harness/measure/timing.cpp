@@ -157,9 +157,14 @@ double statistic(const std::vector<double>& samples, Statistic s) {
   return 0.0;
 }
 
-double Timing::ratio(Statistic s) const {
+double ratio_of(const std::vector<double>& samples, const std::vector<double>& calibration,
+                Statistic s) {
   const double reference = statistic(calibration, s);
-  return reference > 0.0 ? of(s) / reference : 0.0;
+  return reference > 0.0 ? statistic(samples, s) / reference : 0.0;
+}
+
+double Timing::ratio(Statistic s) const {
+  return ratio_of(full, calibration, s);
 }
 
 double Timing::overhead() const {

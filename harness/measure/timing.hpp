@@ -47,6 +47,10 @@ inline constexpr Statistic kHeadline = Statistic::min;
 
 // The statistic of `samples` (0 for none); quantiles linear between order statistics.
 double statistic(const std::vector<double>& samples, Statistic s);
+// The statistic of `samples` over the same statistic of the calibration loop timed in the same
+// rounds (the side-by-side ratio); 0 when there is no calibration.
+double ratio_of(const std::vector<double>& samples, const std::vector<double>& calibration,
+                Statistic s);
 // The q-quantile of `samples` (0 <= q <= 1), linear between order statistics; 0 for none.
 double quantile(std::vector<double> samples, double q);
 

@@ -164,10 +164,7 @@ std::string to_string(TimingFigure f) {
 }
 
 double TimedCell::value(TimingFigure f) const {
-  const double v = statistic(full_ms, f.statistic);
-  if (!f.ratio) return v;
-  const double reference = statistic(calibration_ms, f.statistic);
-  return reference > 0.0 ? v / reference : 0.0;
+  return f.ratio ? ratio_of(full_ms, calibration_ms, f.statistic) : statistic(full_ms, f.statistic);
 }
 
 TimingRecord timing_record(const std::vector<SceneEvaluation>& scenes, const Provenance& p) {
@@ -243,27 +240,18 @@ bool comparable(const TimedCell& a, const TimedCell& b) {
   return a.replicas == b.replicas && a.repeats == b.repeats && a.full_ms.size() == b.full_ms.size();
 }
 
-// Every cell found once in each record and comparable, with its figure before and now (moved left
-// at 0); `skipped` counts the cells of `now` left out.
-std::vector<MovedCell> pairs(const TimingRecord& before, const TimingRecord& now, TimingFigure f,
-                             std::size_t* skipped = nullptr) {
+// Every cell found once in each record, comparable and finite, with its figure before and now
+// (moved left at 0).
+std::vector<MovedCell> pairs(const TimingRecord& before, const TimingRecord& now, TimingFigure f) {
   const std::map<Key, const TimedCell*> old = by_key(before);
   std::vector<MovedCell> all;
-  std::size_t left_out = 0;
   for (const auto& [key, cell] : by_key(now)) {
     const auto it = old.find(key);
-    if (!cell || it == old.end() || !it->second || !comparable(*cell, *it->second)) {
-      ++left_out;
-      continue;
-    }
+    if (!cell || it == old.end() || !it->second || !comparable(*cell, *it->second)) continue;
     const double a = it->second->value(f), b = cell->value(f);
-    if (!(std::isfinite(a) && std::isfinite(b) && a > 0.0 && b > 0.0)) {
-      ++left_out;
-      continue;
-    }
-    all.push_back({cell->scene, cell->engine, cell->h, a, b, 0.0});
+    if (std::isfinite(a) && std::isfinite(b) && a > 0.0 && b > 0.0)
+      all.push_back({cell->scene, cell->engine, cell->h, a, b, 0.0});
   }
-  if (skipped) *skipped = left_out;
   return all;
 }
 

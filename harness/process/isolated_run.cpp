@@ -66,25 +66,20 @@ class SharedProgress {
 };
 
 // The engine as the child drives it, counting completed steps into the shared page.
-class ProgressEngine final : public Engine {
+class ProgressEngine final : public ForwardingEngine {
  public:
-  ProgressEngine(Engine& inner, Progress& progress) : inner_(inner), progress_(progress) {}
-  EngineInfo info() const override { return inner_.info(); }
-  std::string cannot_run(const Scene& scene) const override { return inner_.cannot_run(scene); }
+  ProgressEngine(Engine& inner, Progress& progress)
+      : ForwardingEngine(inner), progress_(progress) {}
   void load(const Scene& scene, double h) override {
     inner_.load(scene, h);
     progress_.phase.store(1, std::memory_order_relaxed);
   }
-  void set_forces(std::span<const Vec3> forces) override { inner_.set_forces(forces); }
   void step() override {
     inner_.step();
     progress_.completed.fetch_add(1, std::memory_order_relaxed);
   }
-  void read(std::span<BodyState> out) const override { inner_.read(out); }
-  bool speed_clamped() const override { return inner_.speed_clamped(); }
 
  private:
-  Engine& inner_;
   Progress& progress_;
 };
 
@@ -290,24 +285,17 @@ Trajectory child_failure(Trajectory t, int status, const ChildPipes& pipes, cons
 }
 
 // An engine in its own process, driven here: the run's wall-clock limit checked after each step.
-class DeadlineEngine final : public Engine {
+class DeadlineEngine final : public ForwardingEngine {
  public:
   DeadlineEngine(Engine& inner, Clock::time_point deadline, double limit)
-      : inner_(inner), deadline_(deadline), limit_(limit) {}
-  EngineInfo info() const override { return inner_.info(); }
-  std::string cannot_run(const Scene& scene) const override { return inner_.cannot_run(scene); }
-  void load(const Scene& scene, double h) override { inner_.load(scene, h); }
-  void set_forces(std::span<const Vec3> forces) override { inner_.set_forces(forces); }
+      : ForwardingEngine(inner), deadline_(deadline), limit_(limit) {}
   void step() override {
     inner_.step();
     if (Clock::now() > deadline_)
       throw RunTimeLimitExceeded("no result within the limit of " + sig(limit_, 6) + " s");
   }
-  void read(std::span<BodyState> out) const override { inner_.read(out); }
-  bool speed_clamped() const override { return inner_.speed_clamped(); }
 
  private:
-  Engine& inner_;
   Clock::time_point deadline_;
   double limit_;
 };

@@ -198,10 +198,9 @@ std::string largest_move(const TimingComparison& c) {
 
 // This report's figures against those of the report it replaces (its timings.json): the two-run
 // spread when both come from the same commit and CPU, else what the change did to the run time.
-std::string against_previous(const ReportInput& in) {
+std::string against_previous(const ReportInput& in, const TimingRecord& now) {
   if (!in.previous.record) return in.previous.note + "\n\n";
   const TimingRecord& before = *in.previous.record;
-  const TimingRecord now = timing_record(in.scenes, in.provenance);
   // Same code only when the commit is known and the tree clean (provenance.hpp: "unknown",
   // "-dirty").
   const std::string& commit = in.provenance.commit;
@@ -235,26 +234,25 @@ std::string against_previous(const ReportInput& in) {
   return md + "The cells whose headline moved most:\n\n" + w.str() + "\n";
 }
 
-std::string reproducibility(const ReportInput& in) {
+std::string reproducibility(const ReportInput& in, const TimingRecord& now) {
   if (!in.timing) return {};
   return "## Timing reproducibility (⏱ wall time)\n\n" + std::string(kWhyHeadline) + "\n\n" +
-         against_previous(in);
+         against_previous(in, now);
 }
 
 // The slowdown alert: every cell whose minimum over the calibration rose by more than two reports
 // of the same code move for its engine, against `report --compare-timings FILE` or the report
 // replaced.
-std::string slowdown_section(const ReportInput& in) {
+std::string slowdown_section(const ReportInput& in, const TimingRecord& now) {
   if (!in.timing) return {};
   std::string md = "## Slowdown alert (⏱ wall time)\n\n";
-  const PreviousTimings& compare = in.compare.record ? in.compare : in.previous;
-  if (!compare.record)
-    return md + "Nothing to compare with: " + compare.note +
+  const SlowdownAlert alert = slowdown_alert(in, now);
+  if (!alert.before)
+    return md + "Nothing to compare with: " + alert.note +
            " (`dropcheck report --compare-timings FILE` names a timings.json).\n\n";
-  const TimingRecord& before = *compare.record;
-  const TimingRecord now = timing_record(in.scenes, in.provenance);
-  std::size_t judged = 0;
-  const std::vector<Slowdown> slow = slowdowns(before, now, &judged);
+  const TimingRecord& before = *alert.before;
+  const std::vector<Slowdown>& slow = alert.flagged;
+  const std::size_t judged = alert.judged;
   md += printf_string(
       "Against the timings of commit %s: a cell is flagged when its %s rose by more than 1.5 "
       "times the largest move that six reports of the same code showed for that engine on this "
@@ -308,10 +306,24 @@ std::string stability(const ReportInput& in) {
 
 }  // namespace
 
+SlowdownAlert slowdown_alert(const ReportInput& in, const TimingRecord& now) {
+  const PreviousTimings& compare = in.compare.record ? in.compare : in.previous;
+  SlowdownAlert alert;
+  if (!compare.record) {
+    alert.note = compare.note;
+    return alert;
+  }
+  alert.before = &*compare.record;
+  alert.flagged = slowdowns(*alert.before, now, &alert.judged);
+  return alert;
+}
+
 std::string report_markdown(const ReportInput& in, const PlotOutcomes& plots) {
   const std::vector<std::vector<ReportPlot>> all = report_plots(in);
+  const TimingRecord now = in.timing ? timing_record(in.scenes, in.provenance) : TimingRecord{};
   std::string md = intro(in) + summary(in) + provenance(in.provenance) + engines(in) + method(in) +
-                   overhead(in) + reproducibility(in) + slowdown_section(in) + "## Scenes\n\n";
+                   overhead(in) + reproducibility(in, now) + slowdown_section(in, now) +
+                   "## Scenes\n\n";
   for (std::size_t i = 0; i < in.scenes.size(); ++i)
     md += scene_section(in.scenes[i], all[i], plots, in.timing);
   return md + determinism(in) + stability(in);

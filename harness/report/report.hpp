@@ -28,10 +28,20 @@ struct ReportInput {
   // The timings of the report this one replaces (its timings.json), to say how far each figure
   // moved; without a record, its note says why.
   PreviousTimings previous;
-  // The timings the slowdown alert compares with: `report --compare-timings FILE`, else
-  // `previous`.
+  // The timings the slowdown alert compares with: `report --compare-timings FILE`; without a
+  // record here, the alert uses `previous` (slowdown_alert).
   PreviousTimings compare;
 };
+
+// The slowdown alert of a report whose timings are `now`: against `compare`, or without it against
+// `previous`; the one place that chooses, for the report's section and `--fail-on-slowdown`.
+struct SlowdownAlert {
+  const TimingRecord* before = nullptr;  // nullptr: nothing to compare with (see `note`)
+  std::string note;
+  std::vector<Slowdown> flagged;  // largest rise first
+  std::size_t judged = 0;         // cells compared (timed the same way in both records)
+};
+SlowdownAlert slowdown_alert(const ReportInput& in, const TimingRecord& now);
 
 // Outcome of drawing each plot: file -> "" when drawn, else why not.
 using PlotOutcomes = std::vector<std::pair<std::string, std::string>>;

@@ -268,7 +268,7 @@ TEST_CASE("Engine files and exec: paths are validated as input", "[exec]") {
   CHECK(is_exec_spec("a/b.toml"));
   CHECK_FALSE(is_exec_spec("ours"));
   CHECK_THAT(error_of("/nonexistent/e.toml"), Contains("/nonexistent/e.toml: no such engine file"));
-  CHECK_THAT(error_of("exec:/nonexistent"), Contains("'/nonexistent' is not an executable file"));
+  CHECK_THAT(error_of("exec:/nonexistent"), Contains("'/nonexistent': No such file or directory"));
   CHECK_THAT(error_of(write_file("a.toml", "name = \"x\"\n")), Contains("command: missing"));
   CHECK_THAT(error_of(write_file("b.toml", "command = [\"x\"]\nspeed = 3\n")),
              Contains(":2: speed: unknown key (known: name, command, timeout)"));
