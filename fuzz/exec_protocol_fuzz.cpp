@@ -17,8 +17,7 @@
 namespace {
 
 void require_inert(const std::string& text, std::size_t max_bytes) {
-  if (text.size() > max_bytes || dropcheck::find_unsafe_byte(text) != std::string::npos ||
-      text.find_first_of("\t\r\n") != std::string::npos)
+  if (text.size() > max_bytes || dropcheck::find_unsafe_in_line(text) != std::string::npos)
     std::abort();
 }
 

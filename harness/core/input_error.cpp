@@ -94,6 +94,10 @@ std::size_t find_unsafe_byte(std::string_view text) {
   return std::string_view::npos;
 }
 
+std::size_t find_unsafe_in_line(std::string_view text) {
+  return std::min(find_unsafe_byte(text), text.find_first_of("\t\r\n"));
+}
+
 std::string escape_controls(std::string_view text) {
   std::string out;
   append_escaped(out, text, text.size());

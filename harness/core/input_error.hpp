@@ -28,6 +28,10 @@ std::string excerpt(std::string_view text, std::size_t max_bytes = kExcerptBytes
 // return; npos when there is none (the text is UTF-8 with no control character).
 std::size_t find_unsafe_byte(std::string_view text);
 
+// The same for one line of text that is printed as a name or a field: tab, line feed and carriage
+// return count as unsafe too. npos when the text is inert on a terminal.
+std::size_t find_unsafe_in_line(std::string_view text);
+
 // `text` with the same escapes as excerpt() but whole and unquoted: for a name an engine announced
 // or a line it wrote to stderr, printed to a terminal.
 std::string escape_controls(std::string_view text);

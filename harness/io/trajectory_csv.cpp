@@ -180,8 +180,7 @@ std::vector<Trajectory> parse_trajectories_csv(std::istream& in, const std::stri
       s.velocity[i] = number(f[8 + i], file, n, 8 + i);
     }
     for (int column : {0, 4})  // names reach terminals and reports: no control characters
-      if (f[column].empty() || find_unsafe_byte(f[column]) != std::string::npos ||
-          f[column].find_first_of("\t\r\n") != std::string::npos)
+      if (f[column].empty() || find_unsafe_in_line(f[column]) != std::string::npos)
         throw InputError(file, n, column_key(column),
                          excerpt(f[column]) + " is not a name (empty, or control characters)");
     add_row(run_for(runs, index, f[0], dt), static_cast<std::int64_t>(step), f[4], s, file, n);

@@ -62,8 +62,7 @@ struct Reader {
     if (!v.is_string()) fail(where + key, std::string("expected a string, got ") + v.type_name());
     const std::string s = v.get<std::string>();
     // Printed into the report and on terminals: short and inert, as dropcheck writes them.
-    if (s.size() > 256 || find_unsafe_byte(s) != std::string::npos ||
-        s.find_first_of("\t\r\n") != std::string::npos)
+    if (s.size() > 256 || find_unsafe_in_line(s) != std::string::npos)
       fail(where + key, "expected a short text without control characters, got " + excerpt(s));
     return s;
   }

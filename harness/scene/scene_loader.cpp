@@ -103,14 +103,10 @@ class Reader {
   // written as a TOML escape ("\u001b[2J", "\t") is refused like a raw one.
   std::string name(const std::string& key, const std::string& fallback) const {
     std::string text = string(key, fallback);
-    for (std::size_t i = 0; i < text.size(); ++i) {
-      const unsigned char b = static_cast<unsigned char>(text[i]);
-      const bool c1 = b == 0xc2 && i + 1 < text.size() &&
-                      static_cast<unsigned char>(text[i + 1]) >= 0x80 &&
-                      static_cast<unsigned char>(text[i + 1]) <= 0x9f;
-      if (b < 0x20 || b == 0x7f || c1)
-        fail(key, "control character " + excerpt(text.substr(i, c1 ? 2 : 1)) +
-                      " in a name (names are printed on terminals and in reports)");
+    if (const std::size_t i = find_unsafe_in_line(text); i != std::string::npos) {
+      const bool c1 = static_cast<unsigned char>(text[i]) == 0xc2;  // U+0080..U+009F, 2 bytes
+      fail(key, "control character " + excerpt(text.substr(i, c1 ? 2 : 1)) +
+                    " in a name (names are printed on terminals and in reports)");
     }
     return text;
   }

@@ -44,3 +44,16 @@ TEST_CASE("escape_controls keeps the whole text, escaped and unquoted", "[input_
   CHECK(escape_controls("engine \x1b[2Jgone") == "engine \\x1b[2Jgone");
   CHECK(escape_controls(std::string(100, 'n')) == std::string(100, 'n'));
 }
+
+TEST_CASE("a line is inert when it holds no control character, no line break and no tab",
+          "[input]") {
+  using dropcheck::find_unsafe_byte;
+  using dropcheck::find_unsafe_in_line;
+  CHECK(find_unsafe_in_line("w\xc3\xbcrfel 1/60") == std::string::npos);  // UTF-8 is fine
+  CHECK(find_unsafe_in_line("a\tb") == 1);  // in a file, find_unsafe_byte allows a tab
+  CHECK(find_unsafe_byte("a\tb") == std::string::npos);
+  CHECK(find_unsafe_in_line("ab\n") == 2);
+  CHECK(find_unsafe_in_line("x\x1b[2J") == 1);
+  CHECK(find_unsafe_in_line("c1 \xc2\x9b") == 3);
+  CHECK(find_unsafe_in_line("bad \xff utf8") == 4);
+}

@@ -166,8 +166,8 @@ TEST_CASE("dropcheck stopped by SIGTERM kills the forked process of a built-in e
           "[process]") {
   if (!dropcheck::engine_unavailable_reason("bullet").empty()) return;
   ScratchDir d("engine-processes-isolated");
-  // 100 free cubes for 100000 steps: about 5 s of Bullet (measured 1.0 s for 20000 steps in the ci
-  // build), in the run's own forked process: far longer than the second the check waits.
+  // 100 free cubes for 100000 steps, in the run's own forked process: five times the 1.0 s measured
+  // for 20000 steps of Bullet in the ci build, far longer than the second the check waits.
   std::string text =
       "duration = 1000.0\ntimestep = \"1/100\"\n[world]\ngravity = [0.0, -9.8, 0.0]\n";
   for (int i = 0; i < 100; ++i)
