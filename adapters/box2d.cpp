@@ -15,6 +15,15 @@
 //                          GetLinearVelocity() after the step (no interpolation in Box2D)
 //   force this step     -> ApplyForceToCenter(F) before Step; b2World::Step clears forces at its
 //                          end (m_clearForces, SetAutoClearForces(true) set explicitly)
+//   rotation (about z)  -> b2BodyDef::angle = 2*atan2(qz, qw), angularVelocity = w_z,
+//                          angularDamping c_a = (exp(k_a*h) - 1)/h, ApplyTorque(tau_z) before the
+//                          step, inertia the scene's I_z (SetMassData, also over a fixture's own).
+//                          Read back as q = (cos(a/2), 0, 0, sin(a/2)) from GetAngle() and w_z
+//                          from GetAngularVelocity(). Law (b2_island.cpp, b2Island::Solve):
+//                          w += h*invI*T; w *= 1/(1 + h*c_a); a += h*w: the exact turn by h*w, so
+//                          the exponential map, and no gyroscopic term (about a principal axis it
+//                          is zero for every member). Limit: a turn above b2_maxRotation (pi/2) per
+//                          step is clamped, |w|*h > 1.57. Rotations about x or y are not run.
 //   sleeping            -> off: b2World::SetAllowSleeping(false) and b2BodyDef::allowSleep = false
 //   one step            -> one b2World::Step(h, 8, 3)
 // Speed clamp: b2Island::Solve scales v so that |h*v| <= b2_maxTranslation (2 m per step, 120 m/s
@@ -63,8 +72,10 @@ class Box2dEngine final : public Engine {
   EngineInfo info() const override;
   void load(const Scene& scene, double h) override;
   void set_forces(std::span<const Vec3> forces) override;
+  void set_torques(std::span<const Vec3> torques) override;
   void step() override;
   void read(std::span<BodyState> out) const override;
+  void read_rotation(std::span<RotationState> out) const override;
   bool speed_clamped() const override { return clamped_; }
 
   // Seconds of `steps` calls of b2World::Step alone (bare_step_loop in adapters.hpp).
@@ -74,7 +85,7 @@ class Box2dEngine final : public Engine {
   float mass_of(std::size_t i) const { return bodies_.at(i)->GetMass(); }
 
  private:
-  b2Body* create_body(const Body& body, float damping);
+  b2Body* create_body(const Body& body, float damping, float angular_damping);
   void set_box_mass(b2Body* b, const Body& body, bool fixture);
   bool clamp_ahead() const;
   bool clamped_after() const;
@@ -82,6 +93,8 @@ class Box2dEngine final : public Engine {
   std::unique_ptr<b2World> world_;
   std::vector<b2Body*> bodies_;  // owned by world_, indexed like Scene::bodies
   std::vector<b2Vec2> forces_;
+  std::vector<float> torques_;
+  bool rotating_ = false;  // the scene needs rotation: the scene's inertia is set over a fixture's
   float h_ = 1.0f / 60.0f;
   bool contacts_ = false;
   bool clamped_ = false;
@@ -97,8 +110,9 @@ EngineInfo Box2dEngine::info() const {
               std::to_string(b2_version.revision);
 #endif
   i.scalar = Scalar::f32;
-  i.capabilities = {.contacts = true, .planar_only = true};
+  i.capabilities = {.contacts = true, .planar_only = true, .rotation = Rotation::spin_z};
   i.law = DampingOrder::AfterForces;
+  i.rotation_law = {Gyroscopic::none, OrientationUpdate::exponential_map};
   i.arithmetic = DampingForm::pade;  // b2Island::Solve's float order, copied by own_arithmetic.cpp
   i.damping_mapping = "SetLinearDamping(c), c = (exp(k*h) - 1)/h; v = (v + a*h)/(1 + h*c)";
   i.contact_settings =
@@ -127,19 +141,27 @@ void Box2dEngine::load(const Scene& scene, double h) {
   // c = (exp(k*h) - 1)/h. Computed in double, rounded once to float. Box2D's float 1/(1 + h*c)
   // can only take values 1.2e-7 apart (the ulp of 1 + h*c): it lands 1.9e-8 from exp(-k*h) at
   // 1/60 and 4.0e-8 at 1/240, the closest reachable (no other float c does better).
-  const double k = scene.world.damping_rate;
+  const double k = scene.world.damping_rate, k_a = scene.world.angular_damping_rate;
   const float c = static_cast<float>(std::expm1(k * h) / h);
-  for (const Body& b : scene.bodies) bodies_.push_back(create_body(b, c));
+  const float c_a = static_cast<float>(std::expm1(k_a * h) / h);
+  rotating_ = needs_rotation(scene);
+  for (const Body& b : scene.bodies) bodies_.push_back(create_body(b, c, c_a));
   forces_.assign(bodies_.size(), b2Vec2(0.0f, 0.0f));
+  torques_.assign(bodies_.size(), 0.0f);
 }
 
-b2Body* Box2dEngine::create_body(const Body& body, float damping) {
+b2Body* Box2dEngine::create_body(const Body& body, float damping, float angular_damping) {
   b2BodyDef def;
   def.type = body.is_static ? b2_staticBody : b2_dynamicBody;
   def.position = to_b2(body.position);
   def.linearVelocity = body.is_static ? b2Vec2(0.0f, 0.0f) : to_b2(body.velocity);
   def.linearDamping = damping;
-  def.angularDamping = 0.0f;
+  def.angularDamping = angular_damping;
+  if (!body.is_static) {
+    const Quat& q = body.orientation;  // about z only (cannot_run)
+    def.angle = static_cast<float>(2.0 * std::atan2(q.z(), q.w()));
+    def.angularVelocity = static_cast<float>(body.angular_velocity.z());
+  }
   def.allowSleep = false;
   def.awake = true;
   b2Body* b = world_->CreateBody(&def);
@@ -164,13 +186,14 @@ b2Body* Box2dEngine::create_body(const Body& body, float damping) {
 // dynamic body without fixtures mass 1).
 void Box2dEngine::set_box_mass(b2Body* b, const Body& body, bool fixture) {
   const double m = body.mass;
-  if (!fixture) {
+  if (!fixture || rotating_) {
     const double hx = body.half_extents.x(), hy = body.half_extents.y();
     b2MassData data;
-    data.mass = static_cast<float>(m);
+    data.mass = fixture ? b->GetMass() : static_cast<float>(m);
     data.center.SetZero();
-    // Rectangle of sides 2hx, 2hy about its centre: I = m*((2hx)^2 + (2hy)^2)/12.
-    data.I = static_cast<float>(m * (hx * hx + hy * hy) / 3.0);
+    // A turning body: the scene's moment about z. Otherwise the rectangle of sides 2hx, 2hy about
+    // its centre, I = m*((2hx)^2 + (2hy)^2)/12 (never used: nothing turns it).
+    data.I = static_cast<float>(rotating_ ? inertia_of(body).z() : m * (hx * hx + hy * hy) / 3.0);
     b->SetMassData(&data);
   }
   // float area and density: measured relative error 0 for the scenes in scenarios/.
@@ -183,11 +206,20 @@ void Box2dEngine::set_forces(std::span<const Vec3> forces) {
   for (std::size_t i = 0; i < forces_.size(); ++i) forces_[i] = to_b2(forces[i]);
 }
 
+void Box2dEngine::set_torques(std::span<const Vec3> torques) {
+  for (std::size_t i = 0; i < torques_.size(); ++i)
+    torques_[i] = static_cast<float>(torques[i].z());
+}
+
 void Box2dEngine::step() {
   const bool ahead = clamp_ahead();
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    if (bodies_[i]->GetType() == b2_dynamicBody) bodies_[i]->ApplyForceToCenter(forces_[i], true);
+    if (bodies_[i]->GetType() == b2_dynamicBody) {
+      bodies_[i]->ApplyForceToCenter(forces_[i], true);
+      if (torques_[i] != 0.0f) bodies_[i]->ApplyTorque(torques_[i], true);
+    }
     forces_[i].SetZero();  // this step only (Engine::set_forces)
+    torques_[i] = 0.0f;
   }
   world_->Step(h_, kVelocityIterations, kPositionIterations);
   clamped_ = ahead || clamped_after();
@@ -237,6 +269,15 @@ void Box2dEngine::read(std::span<BodyState> out) const {
     const b2Vec2 v = bodies_[i]->GetLinearVelocity();
     out[i].position = Vec3(p.x, p.y, 0.0);
     out[i].velocity = Vec3(v.x, v.y, 0.0);
+  }
+}
+
+// The angle a about z as the quaternion (cos(a/2), 0, 0, sin(a/2)); w = (0, 0, w_z).
+void Box2dEngine::read_rotation(std::span<RotationState> out) const {
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    const double a = bodies_[i]->GetAngle();
+    out[i].orientation = Quat(std::cos(a / 2), 0.0, 0.0, std::sin(a / 2));
+    out[i].angular_velocity = Vec3(0.0, 0.0, bodies_[i]->GetAngularVelocity());
   }
 }
 

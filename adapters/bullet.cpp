@@ -4,7 +4,8 @@
 //   gravity g           -> btDiscreteDynamicsWorld::setGravity (Bullet's default is (0, -10, 0)).
 //   damping rate k      -> btRigidBody::setDamping(d = 1 - exp(-k), 0). btRigidBody::applyDamping
 //                          does v *= (1 - d)^h, so d is "lost per second" and the per-step decay is
-//                          (exp(-k))^h = exp(-k*h) at any h. Angular damping 0 (the engine's own).
+//                          (exp(-k))^h = exp(-k*h) at any h. Angular damping k_a the same way
+//                          (d_a = 1 - exp(-k_a), applied to w in the same call, same limit).
 //                          Limit: Bullet computes 1 - d in btScalar, and below 1 a btScalar has
 //                          a spacing of 1.1e-16 (double) / 6e-8 (float). When exp(-k) is below
 //                          half of it (k > 36.7 1/s in double, about 17 in float) d rounds to 1
@@ -12,8 +13,21 @@
 //                          by exp(-k*h): such scenes are refused (cannot_run, and load throws).
 //   law                 -> DampingOrder::BeforeForces: predictUnconstraintMotion damps v, then the
 //                          solver adds (m*g + F)*(1/m)*h, then integrateTransforms does x += h*v.
-//   mass m              -> btRigidBody mass m, local inertia of a box of that mass and the scene's
-//                          half extents (btBoxShape::calculateLocalInertia). Rotations stay free.
+//   mass m, inertia     -> btRigidBody mass m, local inertia the scene's principal moments (by
+//                          default those of a uniform box: Bullet's own box formula, up to
+//                          rounding). Rotations stay free.
+//   rotation            -> start transform's rotation btQuaternion(x, y, z, w); setAngularVelocity
+//                          (world frame); applyTorque (world frame) before the step, cleared by
+//                          clearForces. Read back: getWorldTransform().getRotation() (rebuilt from
+//                          the basis matrix, which is Bullet's state) and getAngularVelocity().
+//                          Law (btDiscreteDynamicsWorld.cpp, btRigidBody.cpp,
+//                          btSequentialImpulseConstraintSolver.cpp, btTransformUtil.h): damping
+//                          first (predictUnconstraintMotion), then the torque impulse h*I_w^-1*T
+//                          and the default gyroscopic flag BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY
+//                          (one Newton step in body coordinates, from the damped w) in the solver's
+//                          setup, then integrateTransform: the exponential map, dq*q. So:
+//                          implicit-body/exp-map, BeforeForces. Limit: integrateTransform clamps
+//                          the turn of one step to pi/4 (ANGULAR_MOTION_THRESHOLD), |w|*h > 0.785.
 //   static body         -> mass 0 (Bullet marks it CF_STATIC_OBJECT); read back as its fixed
 //                          position and zero velocity.
 //   position, velocity  -> start world transform, setLinearVelocity. No motion state at all: the
@@ -88,13 +102,9 @@ struct BulletWorld {
   }
 };
 
-// Inertia of a solid box of mass m and half extents e, by Bullet's own formula:
-// I = m/12 * (ly^2 + lz^2, lx^2 + lz^2, lx^2 + ly^2) with l = 2e (btBoxShape, margin included).
-btVector3 box_inertia(const Body& b) {
-  btVector3 inertia(0, 0, 0);
-  if (!b.is_static)
-    btBoxShape(to_bt(b.half_extents)).calculateLocalInertia(btScalar(b.mass), inertia);
-  return inertia;
+// The scene's principal moments (zero for a static body: Bullet ignores them at mass 0).
+btVector3 local_inertia(const Body& b) {
+  return b.is_static ? btVector3(0, 0, 0) : to_bt(inertia_of(b));
 }
 
 // Bullet's per-second damping for rate k: d = 1 - exp(-k), so that (1 - d)^h = exp(-k*h).
@@ -126,6 +136,14 @@ std::string damping_problem(double k) {
       k, std::max(digits, 0.0), kPrecision, tolerance::kMinParameterDigits, k_max);
 }
 
+// The same for both of the scene's damping rates, linear and angular.
+std::string dampings_problem(const Scene& scene) {
+  const std::string linear = damping_problem(scene.world.damping_rate);
+  if (!linear.empty()) return linear;
+  const std::string angular = damping_problem(scene.world.angular_damping_rate);
+  return angular.empty() ? angular : "angular " + angular;
+}
+
 class BulletEngine final : public Engine {
  public:
   EngineInfo info() const override {
@@ -133,11 +151,12 @@ class BulletEngine final : public Engine {
     i.name = "bullet";
     i.version = std::string(DROPCHECK_BULLET_VERSION) + " " + kPrecision;
     i.scalar = kScalar;
-    i.capabilities = {.contacts = true, .planar_only = false};
+    i.capabilities = {.contacts = true, .planar_only = false, .rotation = Rotation::full};
     i.law = DampingOrder::BeforeForces;
+    i.rotation_law = {Gyroscopic::implicit_body, OrientationUpdate::exponential_map};
     i.arithmetic =
         DampingForm::per_second_power;  // its d = 1 - exp(-k), copied by own_arithmetic.cpp
-    i.damping_mapping = "setDamping(d = 1 - exp(-k), 0); v *= (1-d)^h";
+    i.damping_mapping = "setDamping(d = 1 - exp(-k), d_a = 1 - exp(-k_a)); v *= (1-d)^h";
     i.contact_settings =
         "btBoxShape per body (margin 0.04 inside), restitution 0, friction sqrt(0.5) each "
         "(product: mu = 0.5), sequential impulse 10 iterations, split impulse for every "
@@ -155,12 +174,11 @@ class BulletEngine final : public Engine {
 
   std::string cannot_run(const Scene& scene) const override {
     const std::string why = Engine::cannot_run(scene);
-    return why.empty() ? damping_problem(scene.world.damping_rate) : why;
+    return why.empty() ? dampings_problem(scene) : why;
   }
 
   void load(const Scene& scene, double h) override {
-    if (std::string why = damping_problem(scene.world.damping_rate); !why.empty())
-      throw EngineError(why);
+    if (std::string why = dampings_problem(scene); !why.empty()) throw EngineError(why);
     w_.reset();
     w_ = std::make_unique<BulletWorld>();
     h_ = btScalar(h);
@@ -174,6 +192,13 @@ class BulletEngine final : public Engine {
     for (std::size_t i = 0; i < w_->bodies.size(); ++i) {
       btRigidBody& b = *w_->bodies[i];
       if (!b.isStaticObject()) b.applyCentralForce(to_bt(forces[i]));
+    }
+  }
+
+  void set_torques(std::span<const Vec3> torques) override {
+    for (std::size_t i = 0; i < w_->bodies.size(); ++i) {
+      btRigidBody& b = *w_->bodies[i];
+      if (!b.isStaticObject()) b.applyTorque(to_bt(torques[i]));
     }
   }
 
@@ -197,6 +222,15 @@ class BulletEngine final : public Engine {
     }
   }
 
+  void read_rotation(std::span<RotationState> out) const override {
+    for (std::size_t i = 0; i < w_->bodies.size(); ++i) {
+      const btRigidBody& b = *w_->bodies[i];
+      const btQuaternion q = b.getWorldTransform().getRotation();
+      out[i].orientation = Quat(double(q.w()), double(q.x()), double(q.y()), double(q.z()));
+      out[i].angular_velocity = from_bt(b.getAngularVelocity());
+    }
+  }
+
  private:
   btCollisionShape* shape_for(const Scene& scene, const Body& b) {
     if (!scene.world.contacts) return &w_->empty_shape;
@@ -209,16 +243,22 @@ class BulletEngine final : public Engine {
     btTransform start;
     start.setIdentity();
     start.setOrigin(to_bt(b.position));
-    btRigidBody::btRigidBodyConstructionInfo ci(mass, nullptr, shape_for(scene, b), box_inertia(b));
+    const Quat& o = b.orientation;
+    start.setRotation(
+        btQuaternion(btScalar(o.x()), btScalar(o.y()), btScalar(o.z()), btScalar(o.w())));
+    btRigidBody::btRigidBodyConstructionInfo ci(mass, nullptr, shape_for(scene, b),
+                                                local_inertia(b));
     ci.m_startWorldTransform = start;
     ci.m_restitution = 0;
     ci.m_friction = btScalar(std::sqrt(kFriction));
     auto body = std::make_unique<btRigidBody>(ci);
     // dv/dt = -k*v over 1 s: v *= exp(-k), so d = 1 - exp(-k) is the fraction lost per second;
     // Bullet applies v *= (1 - d)^h per step = exp(-k*h).
-    body->setDamping(damping_fraction(scene.world.damping_rate), 0);
+    body->setDamping(damping_fraction(scene.world.damping_rate),
+                     damping_fraction(scene.world.angular_damping_rate));
     body->setActivationState(DISABLE_DEACTIVATION);
     if (!b.is_static) body->setLinearVelocity(to_bt(b.velocity));
+    if (!b.is_static) body->setAngularVelocity(to_bt(b.angular_velocity));
     if (scene.world.contacts)
       w_->world.addRigidBody(body.get());
     else

@@ -6,11 +6,23 @@
 //                          explicitly (defaults: 0.002 s and (0, 0, -9.81)); the scene's axes are
 //                          kept as they are (y up), gravity simply points along -y
 //   damping rate k      -> <joint type="free" damping="b"/>, b = m*(exp(k*h) - 1)/h, then
-//                          dof_damping of the 3 rotational dofs set to 0 (linear drag only).
+//                          dof_damping of the 3 rotational dofs set to I_i*(exp(k_a*h) - 1)/h.
 //                          mj_Euler integrates damping implicitly: v = (v + a*h)/(1 + h*b/m), and
-//                          1/(1 + h*b/m) = exp(-k*h): the order of ours (DampingOrder::AfterForces)
-//   mass, box           -> <inertial mass="m" diaginertia=...> (exactly m; a geom-derived mass
-//                          goes through density*volume) and a box geom of the half extents
+//                          1/(1 + h*b/m) = exp(-k*h): the order of ours
+//                          (DampingOrder::AfterForces); the same per rotational dof, whose mass is
+//                          the moment I_i (the mass matrix of a free body is diagonal: m, m, m,
+//                          Ixx, Iyy, Izz)
+//   mass, inertia, box  -> <inertial mass="m" diaginertia="Ixx Iyy Izz"> (exactly m and the
+//                          scene's moments; a geom-derived mass goes through density*volume) and a
+//                          box geom of the half extents
+//   rotation            -> qpos[3..6] = (qw, qx, qy, qz); qvel[3..5] is the angular velocity in the
+//                          BODY frame (engine_core_smooth.c: the free joint's rotational axes are
+//                          the body's), written as R^T*w and read back as R*w_b. Torque: the
+//                          world-frame torque of xfrc_applied (MuJoCo turns it into body axes with
+//                          the step-start R; zeroed after each step, MuJoCo never clears it).
+//                          Law: the Coriolis term of mj_rne at the step start (explicit), the
+//                          quaternion by mju_quatIntegrate, q*exp(h*w_b/2) (the exponential map,
+//                          engine_util_spatial.c): explicit/exp-map
 //   static body         -> a box geom in the worldbody
 //   contacts = false    -> contype="0" conaffinity="0" on every geom: no collision at all
 //   position, velocity  -> qpos[0..2], qvel[0..2] of the free joint, written after mj_makeData and
@@ -92,12 +104,6 @@ std::string vec(const Vec3& v) {
   return num(v.x()) + " " + num(v.y()) + " " + num(v.z());
 }
 
-// Solid box of half extents (hx, hy, hz): Ixx = m*((2hy)^2 + (2hz)^2)/12 = m*(hy^2 + hz^2)/3, ...
-Vec3 box_inertia(const Body& b) {
-  const Vec3 s = b.half_extents.cwiseProduct(b.half_extents);
-  return b.mass / 3.0 * Vec3(s.y() + s.z(), s.x() + s.z(), s.x() + s.y());
-}
-
 std::string geom_defaults(const Scene& scene, double h) {
   if (!scene.world.contacts) return R"(<default><geom contype="0" conaffinity="0"/></default>)";
   // solref (timeconst, dampratio) = (2h, 1); solimp (dmin, dmax, width) near 1: stiff, inelastic.
@@ -140,7 +146,7 @@ std::string body_xml(const Body& b, double damping) {
   return "<body" + name + R"( pos=")" + vec(b.position) + R"(">)" +
          R"(<joint type="free" damping=")" + num(b.mass * damping) + R"("/>)" +
          R"(<inertial pos="0 0 0" mass=")" + num(b.mass) + R"(" diaginertia=")" +
-         vec(box_inertia(b)) + R"("/>)" + R"(<geom type="box" size=")" + vec(b.half_extents) +
+         vec(inertia_of(b)) + R"("/>)" + R"(<geom type="box" size=")" + vec(b.half_extents) +
          R"("/></body>)";
 }
 
@@ -188,8 +194,10 @@ class MujocoEngine final : public Engine {
   EngineInfo info() const override;
   void load(const Scene& scene, double h) override;
   void set_forces(std::span<const Vec3> forces) override;
+  void set_torques(std::span<const Vec3> torques) override;
   void step() override;
   void read(std::span<BodyState> out) const override;
+  void read_rotation(std::span<RotationState> out) const override;
 
   // Seconds of `steps` calls of mj_step alone (bare_step_loop in adapters.hpp).
   double bare_seconds(std::int64_t steps) {
@@ -202,7 +210,7 @@ class MujocoEngine final : public Engine {
   double mass_of(std::size_t i) const { return m_->body_mass[m_->jnt_bodyid[joint_.at(i)]]; }
 
  private:
-  static std::vector<int> free_joints(mjModel& m, const Scene& scene);
+  static std::vector<int> free_joints(mjModel& m, const Scene& scene, double h);
   void check_warnings();
 
   ModelPtr m_{nullptr, mj_deleteModel};
@@ -217,9 +225,11 @@ EngineInfo MujocoEngine::info() const {
   i.name = "mujoco";
   i.version = mj_versionString();
   i.scalar = Scalar::f64;
-  i.capabilities = {.contacts = true, .planar_only = false};
+  i.capabilities = {.contacts = true, .planar_only = false, .rotation = Rotation::full};
   i.law = DampingOrder::AfterForces;
-  i.damping_mapping = "free joint damping b = m*(exp(k*h) - 1)/h, rotational dofs 0; Euler";
+  i.rotation_law = {Gyroscopic::explicit_term, OrientationUpdate::exponential_map};
+  i.damping_mapping =
+      "free joint damping b = m*(exp(k*h) - 1)/h, rotational dofs I_i*(exp(k_a*h) - 1)/h; Euler";
   i.contact_settings =
       "box geoms, solimp 0.9999 0.9999 0.001, solref 2h 1 (soft, critically damped), "
       "friction 0.5 (max mix)";
@@ -235,7 +245,7 @@ void MujocoEngine::load(const Scene& scene, double h) {
   m_.reset();
   t_last_warning.clear();
   ModelPtr m = load_xml(model_xml(scene, h));
-  joint_ = free_joints(*m, scene);
+  joint_ = free_joints(*m, scene, h);
   DataPtr d(mj_makeData(m.get()), mj_deleteData);
   if (!d) throw EngineError("MuJoCo: mj_makeData failed");
   static_pos_.clear();
@@ -246,6 +256,12 @@ void MujocoEngine::load(const Scene& scene, double h) {
     // Free joint: qpos = (x, y, z, qw, qx, qy, qz), qvel = (vx, vy, vz, wx, wy, wz).
     std::memcpy(d->qpos + m->jnt_qposadr[joint_[i]], b.position.data(), 3 * sizeof(mjtNum));
     std::memcpy(d->qvel + m->jnt_dofadr[joint_[i]], b.velocity.data(), 3 * sizeof(mjtNum));
+    if (!needs_rotation(scene)) continue;  // MuJoCo's own start: identity, at rest
+    mjtNum* q = d->qpos + m->jnt_qposadr[joint_[i]] + 3;
+    const Quat& o = b.orientation;
+    q[0] = o.w(), q[1] = o.x(), q[2] = o.y(), q[3] = o.z();
+    const Vec3 w_body = o.conjugate() * b.angular_velocity;
+    std::memcpy(d->qvel + m->jnt_dofadr[joint_[i]] + 3, w_body.data(), 3 * sizeof(mjtNum));
   }
   m_ = std::move(m);
   d_ = std::move(d);
@@ -253,8 +269,9 @@ void MujocoEngine::load(const Scene& scene, double h) {
 }
 
 // The free joint of each dynamic body (-1 for static ones), found through the body's name; its
-// rotational damping zeroed so that only the linear drag acts.
-std::vector<int> MujocoEngine::free_joints(mjModel& m, const Scene& scene) {
+// rotational dofs damped by I_i*c_a, c_a = (exp(k_a*h) - 1)/h (0 without angular damping).
+std::vector<int> MujocoEngine::free_joints(mjModel& m, const Scene& scene, double h) {
+  const double c_a = std::expm1(scene.world.angular_damping_rate * h) / h;
   std::vector<int> joints(scene.bodies.size(), -1);
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     if (scene.bodies[i].is_static) continue;
@@ -263,7 +280,7 @@ std::vector<int> MujocoEngine::free_joints(mjModel& m, const Scene& scene) {
       throw EngineError("MuJoCo: no free joint for body '" + scene.bodies[i].name + "'");
     joints[i] = m.body_jntadr[body];
     const int dof = m.jnt_dofadr[joints[i]];
-    for (int r = 3; r < 6; ++r) m.dof_damping[dof + r] = 0.0;
+    for (int r = 3; r < 6; ++r) m.dof_damping[dof + r] = inertia_of(scene.bodies[i])[r - 3] * c_a;
   }
   return joints;
 }
@@ -273,6 +290,15 @@ void MujocoEngine::set_forces(std::span<const Vec3> forces) {
   for (std::size_t i = 0; i < joint_.size(); ++i)
     if (joint_[i] >= 0)
       std::memcpy(d_->qfrc_applied + m_->jnt_dofadr[joint_[i]], forces[i].data(),
+                  3 * sizeof(mjtNum));
+}
+
+// World-frame torques as xfrc_applied's torque part (MuJoCo turns them into body axes).
+void MujocoEngine::set_torques(std::span<const Vec3> torques) {
+  if (!d_) return;  // step() reports it
+  for (std::size_t i = 0; i < joint_.size(); ++i)
+    if (joint_[i] >= 0)
+      std::memcpy(d_->xfrc_applied + 6 * m_->jnt_bodyid[joint_[i]] + 3, torques[i].data(),
                   3 * sizeof(mjtNum));
 }
 
@@ -287,6 +313,7 @@ void MujocoEngine::step() {
   }
   // The applied forces persist in mjData: this step's force must not act on the next one.
   mju_zero(d_->qfrc_applied, m_->nv);
+  mju_zero(d_->xfrc_applied, 6 * m_->nbody);
   check_warnings();
 }
 
@@ -316,6 +343,19 @@ void MujocoEngine::read(std::span<BodyState> out) const {
     const mjtNum* v = d_->qvel + m_->jnt_dofadr[joint_[i]];
     out[i].position = Vec3(q[0], q[1], q[2]);
     out[i].velocity = Vec3(v[0], v[1], v[2]);
+  }
+}
+
+// Orientation qpos[3..6]; world angular velocity R*w_b from the body-frame qvel[3..5].
+void MujocoEngine::read_rotation(std::span<RotationState> out) const {
+  if (!d_) throw EngineError("MuJoCo: no model loaded (or the last one failed)");
+  for (std::size_t i = 0; i < joint_.size(); ++i) {
+    out[i] = RotationState{};
+    if (joint_[i] < 0) continue;
+    const mjtNum* q = d_->qpos + m_->jnt_qposadr[joint_[i]] + 3;
+    const mjtNum* w = d_->qvel + m_->jnt_dofadr[joint_[i]] + 3;
+    out[i].orientation = Quat(q[0], q[1], q[2], q[3]);
+    out[i].angular_velocity = out[i].orientation * Vec3(w[0], w[1], w[2]);
   }
 }
 

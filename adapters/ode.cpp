@@ -7,11 +7,22 @@
 //                          1 - s is phi to 1.1e-16 absolute: fine at any k*h (beyond k*h = 37
 //                          it zeroes v where the law keeps less than 1e-16 of it).
 //                          dBodySetLinearDampingThreshold(b, 0): the default skips damping while
-//                          |v| <= 0.01 m/s. Angular damping 0. Set per body: world defaults are
-//                          copied only into bodies created after them.
+//                          |v| <= 0.01 m/s. Angular damping k_a the same way (1 - exp(-k_a*h),
+//                          threshold 0). Set per body: world defaults are copied only into bodies
+//                          created after them.
 //   law                 -> DampingOrder::AfterPosition: dxStepBody does v += h*(m*g + F)/m,
 //                          x += h*v, then damps v.
-//   mass m              -> dMassSetBoxTotal(m, full side lengths 2*half_extents), dBodySetMass.
+//   mass m, inertia     -> dMassSetParameters(m, centre 0, the scene's principal moments),
+//                          dBodySetMass (by default the moments of a uniform box:
+//                          dMassSetBoxTotal's own formula up to rounding).
+//   rotation            -> dBodySetQuaternion, dBodySetAngularVel (world frame), dBodyAddTorque
+//                          (world frame) before dWorldStep; read with dBodyGetQuaternion and
+//                          dBodyGetAngularVel. Law (ode/src/step.cpp, util.cpp, 0.16.2): the
+//                          gyroscopic flag is on by default (dBodyCreate) and step.cpp codes it
+//                          linearly implicit, w = (I_w - h*S(L))^-1*L (Lacoursiere; the explicit
+//                          -w x I*w is compiled out); then dxStepBody's first-order quaternion
+//                          update q += h/2*(0, w)*q, dNormalize4, and the angular damping last:
+//                          linearly-implicit/first-order, AfterPosition like the linear damping.
 //   static body         -> no ODE body: with contacts a box geom attached to body 0 (the static
 //                          environment), without contacts nothing at all. Read back as its fixed
 //                          position and zero velocity.
@@ -184,9 +195,12 @@ class OdeEngine final : public Engine {
 #else
     i.scalar = Scalar::f32;
 #endif
-    i.capabilities = {.contacts = true, .planar_only = false};
+    i.capabilities = {.contacts = true, .planar_only = false, .rotation = Rotation::full};
     i.law = DampingOrder::AfterPosition;
-    i.damping_mapping = "dBodySetLinearDamping(s = 1 - exp(-k*h)), threshold 0";
+    i.rotation_law = {Gyroscopic::linearly_implicit, OrientationUpdate::first_order};
+    i.damping_mapping =
+        "dBodySetLinearDamping(s = 1 - exp(-k*h)), dBodySetAngularDamping(1 - exp(-k_a*h)), "
+        "thresholds 0";
     i.contact_settings =
         "dWorldStep; box geoms, <= 8 contacts per pair, dContactApprox1, mu 0.5, bounce 0, "
         "ERP 0.2, CFM 1e-10, surface layer 0, max correcting vel 0.3 m/s";
@@ -207,12 +221,20 @@ class OdeEngine final : public Engine {
     h_ = dReal(h);
     make_world(scene);
     const dReal phi = dReal(decay_per_step(scene, h));
-    for (const Body& b : scene.bodies) add_body(scene, b, phi);
+    const dReal phi_a = dReal(angular_decay_per_step(scene, h));
+    for (const Body& b : scene.bodies) add_body(scene, b, phi, phi_a);
   }
 
   void set_forces(std::span<const Vec3> forces) override {
     for (std::size_t i = 0; i < w_->bodies.size(); ++i) {
       if (w_->bodies[i]) dBodyAddForce(w_->bodies[i], forces[i].x(), forces[i].y(), forces[i].z());
+    }
+  }
+
+  void set_torques(std::span<const Vec3> torques) override {
+    for (std::size_t i = 0; i < w_->bodies.size(); ++i) {
+      if (w_->bodies[i])
+        dBodyAddTorque(w_->bodies[i], torques[i].x(), torques[i].y(), torques[i].z());
     }
   }
 
@@ -250,6 +272,17 @@ class OdeEngine final : public Engine {
     }
   }
 
+  void read_rotation(std::span<RotationState> out) const override {
+    for (std::size_t i = 0; i < w_->bodies.size(); ++i) {
+      out[i] = RotationState{};
+      const dBodyID b = w_->bodies[i];
+      if (!b) continue;
+      const dReal* q = dBodyGetQuaternion(b);  // (w, x, y, z)
+      const dReal* w = dBodyGetAngularVel(b);
+      out[i] = {Quat(q[0], q[1], q[2], q[3]), Vec3(w[0], w[1], w[2])};
+    }
+  }
+
  private:
   void make_world(const Scene& scene) {
     w_->world = dWorldCreate();
@@ -273,25 +306,31 @@ class OdeEngine final : public Engine {
       dGeomSetPosition(g, b.position.x(), b.position.y(), b.position.z());
   }
 
-  void add_body(const Scene& scene, const Body& b, dReal phi) {
+  void add_body(const Scene& scene, const Body& b, dReal phi, dReal phi_a) {
     w_->static_positions.push_back(b.position);
-    w_->bodies.push_back(b.is_static ? nullptr : make_body(b, phi));
+    w_->bodies.push_back(b.is_static ? nullptr : make_body(b, phi, phi_a));
     if (scene.world.contacts) add_geom(b, w_->bodies.back());
   }
 
-  dBodyID make_body(const Body& b, dReal phi) {
+  dBodyID make_body(const Body& b, dReal phi, dReal phi_a) {
     // Owned by the world from here on (dWorldDestroy frees it), even if a call below throws.
     const dBodyID body = dBodyCreate(w_->world);
     dBodySetPosition(body, b.position.x(), b.position.y(), b.position.z());
     dBodySetLinearVel(body, b.velocity.x(), b.velocity.y(), b.velocity.z());
+    const Quat& o = b.orientation;
+    const dQuaternion q = {o.w(), o.x(), o.y(), o.z()};
+    dBodySetQuaternion(body, q);
+    dBodySetAngularVel(body, b.angular_velocity.x(), b.angular_velocity.y(),
+                       b.angular_velocity.z());
     dMass m;
-    const Vec3 side = 2.0 * b.half_extents;
-    dMassSetBoxTotal(&m, b.mass, side.x(), side.y(), side.z());
+    const Vec3 I = inertia_of(b);
+    dMassSetParameters(&m, b.mass, 0, 0, 0, I.x(), I.y(), I.z(), 0, 0, 0);
     dBodySetMass(body, &m);
     // ODE: v *= (1 - s) once per step; (1 - s) = phi = exp(-k*h)  =>  s = 1 - exp(-k*h).
     dBodySetLinearDamping(body, 1 - phi);
     dBodySetLinearDampingThreshold(body, 0);
-    dBodySetAngularDamping(body, 0);
+    dBodySetAngularDamping(body, 1 - phi_a);
+    dBodySetAngularDampingThreshold(body, 0);
     dBodySetAutoDisableFlag(body, 0);
     return body;
   }

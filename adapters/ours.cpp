@@ -25,8 +25,9 @@ class OursEngine final : public Engine {
     i.name = sizeof(T) == 4 ? "ours" : "ours-f64";
     i.version = "seed part III";
     i.scalar = sizeof(T) == 4 ? Scalar::f32 : Scalar::f64;
-    i.capabilities = {.contacts = false, .planar_only = false};
+    i.capabilities = {.contacts = false, .planar_only = false, .rotation = Rotation::full};
     i.law = DampingOrder::AfterForces;
+    i.rotation_law = {Gyroscopic::explicit_term, OrientationUpdate::first_order};
     i.arithmetic = DampingForm::phi_multiply;  // ours/physics.hpp, copied by own_arithmetic.cpp
     i.damping_mapping = "linearDrag f = exp(-k*h) per step";
     i.continuous_collision = false;  // no contacts at all
@@ -37,6 +38,7 @@ class OursEngine final : public Engine {
     h_ = static_cast<T>(h);
     world_.gravity = scene.world.gravity.cast<T>();
     world_.linearDrag = static_cast<T>(decay_per_step(scene, h));
+    world_.angularDrag = static_cast<T>(angular_decay_per_step(scene, h));
     models_.assign(scene.bodies.size(), {});
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
       const Body& b = scene.bodies[i];
@@ -44,6 +46,9 @@ class OursEngine final : public Engine {
       models_[i].rigidBody.velocity = b.velocity.cast<T>();
       models_[i].rigidBody.mass = static_cast<T>(b.mass);
       models_[i].rigidBody.isStatic = b.is_static;
+      models_[i].rotation = b.orientation.cast<T>();
+      models_[i].rigidBody.angularVelocity = b.angular_velocity.cast<T>();
+      models_[i].rigidBody.inertia = inertia_of(b).cast<T>();
     }
   }
 
@@ -52,7 +57,19 @@ class OursEngine final : public Engine {
       models_[i].rigidBody.force = forces[i].cast<T>();
   }
 
+  void set_torques(std::span<const Vec3> torques) override {
+    for (std::size_t i = 0; i < models_.size(); ++i)
+      models_[i].rigidBody.torque = torques[i].cast<T>();
+  }
+
   void step() override { ours::ApplyPhysics<T>(models_, world_, h_); }
+
+  void read_rotation(std::span<RotationState> out) const override {
+    for (std::size_t i = 0; i < models_.size(); ++i) {
+      out[i].orientation = models_[i].rotation.template cast<double>();
+      out[i].angular_velocity = models_[i].rigidBody.angularVelocity.template cast<double>();
+    }
+  }
 
   // Seconds of `steps` calls of ours::ApplyPhysics alone (bare_step_loop in adapters.hpp).
   double bare_seconds(std::int64_t steps) {

@@ -2,11 +2,16 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace ours {
 
 template <typename T>
 using Vector3 = Eigen::Matrix<T, 3, 1>;
+template <typename T>
+using Matrix3 = Eigen::Matrix<T, 3, 3>;
+template <typename T>
+using Quaternion = Eigen::Quaternion<T>;
 
 // Fixed physics step: 60 updates per second (1.0 / 60.0 = 0.0166 s).
 template <typename T>
@@ -19,5 +24,10 @@ inline const Vector3<T> GRAVITY{T(0.0), T(-9.8), T(0.0)};
 // Per-step velocity factor: each update keeps 98% of the velocity (cuts 2% off).
 template <typename T>
 inline constexpr T LINEAR_DRAG = T(0.98);
+
+// The same per-step factor for the angular velocity: the seed announces ANGULAR_DRAG "once we get
+// to angular movement" without its value; ours keeps 98% as for the linear drag.
+template <typename T>
+inline constexpr T ANGULAR_DRAG = T(0.98);
 
 }  // namespace ours

@@ -1,4 +1,6 @@
-// The seed's physics.odin (Part III): RigidBody, ApplyPhysics, ApplyGravity, IntegrateLinearForce.
+// The seed's physics.odin (Part III): RigidBody, ApplyPhysics, ApplyGravity, IntegrateLinearForce,
+// and the angular motion the seed announces next (torque, angularVelocity, ANGULAR_DRAG):
+// IntegrateAngularForce.
 //
 // Per fixed step h, for every body that is not static (semi-implicit / symplectic Euler):
 //   v += g*h            ApplyGravity
@@ -8,8 +10,20 @@
 //   x += v*h
 // Drag sits after gravity and force and before the position update: v_{n+1} = f*(v_n + a*h).
 //
-// Departures from the seed, all with the seed's values as defaults: `mass` on RigidBody, and the
-// gravity and per-step drag as World settings so the harness can run at any h with f = exp(-k*h).
+// Then, per body, the angular motion (IntegrateAngularForce, after the linear update, which it
+// never reads or changes), with R the rotation of q and I the principal moments in the body frame:
+//   I_w = R*diag(I)*R^T                      inertia in the world frame
+//   w += I_w^-1*(tau - w x (I_w*w))*h         Euler's equations, gyroscopic term at the step start
+//   tau = 0
+//   w *= f_a                                  ANGULAR_DRAG, a per-step factor
+//   q = normalize(q + (h/2)*(0, w)*q)          first-order quaternion update with the new w
+// Like the linear part: explicit forces (here the gyroscopic torque), drag after them, and the
+// pose moved with the new velocity.
+//
+// Departures from the seed, all with the seed's values as defaults: `mass` and `inertia` on
+// RigidBody, the gravity and per-step drags as World settings so the harness can run at any h with
+// f = exp(-k*h), and the orientation as a quaternion `rotation` (the seed's Model keeps a
+// rotationMatrix for drawing, which is R of this quaternion).
 #pragma once
 
 #include <span>
@@ -23,13 +37,18 @@ struct RigidBody {
   Vector3<T> force = Vector3<T>::Zero();     // accumulator, cleared every step (N)
   Vector3<T> velocity = Vector3<T>::Zero();  // m/s
   bool isStatic = false;
-  T mass = T(1);  // kg; the seed assumes 1
+  T mass = T(1);                                    // kg; the seed assumes 1
+  Vector3<T> torque = Vector3<T>::Zero();           // accumulator, cleared every step (N m, world)
+  Vector3<T> angularVelocity = Vector3<T>::Zero();  // rad/s, world frame
+  Vector3<T> inertia = Vector3<T>::Constant(T(1) / T(6));  // principal moments (kg m^2), body
+                                                           // frame; default: the unit cube of 1 kg
 };
 
-// The seed's Model keeps mesh, texture and rotation too; physics reads only these two members.
+// The seed's Model keeps mesh, texture and scale too; physics reads only these members.
 template <typename T>
 struct Model {
-  Vector3<T> translation = Vector3<T>::Zero();  // m
+  Vector3<T> translation = Vector3<T>::Zero();         // m
+  Quaternion<T> rotation = Quaternion<T>::Identity();  // body frame to world frame
   RigidBody<T> rigidBody;
 };
 
@@ -37,7 +56,8 @@ struct Model {
 template <typename T>
 struct World {
   Vector3<T> gravity = GRAVITY<T>;
-  T linearDrag = LINEAR_DRAG<T>;  // per-step factor in (0, 1]
+  T linearDrag = LINEAR_DRAG<T>;    // per-step factor in (0, 1]
+  T angularDrag = ANGULAR_DRAG<T>;  // per-step factor in (0, 1]
 };
 
 // v += g*h
@@ -56,6 +76,25 @@ void IntegrateLinearForce(Model<T>* model, const World<T>& world, T deltaTime) {
   model->translation += body.velocity * deltaTime;
 }
 
+// w += I_w^-1*(tau - w x (I_w*w))*h; tau = 0; w *= f_a; q = normalize(q + (h/2)*(0, w)*q).
+// A body that neither turns nor is twisted keeps its rotation exactly (no renormalisation).
+template <typename T>
+void IntegrateAngularForce(Model<T>* model, const World<T>& world, T deltaTime) {
+  RigidBody<T>& body = model->rigidBody;
+  Vector3<T>& w = body.angularVelocity;
+  if (w.isZero(T(0)) && body.torque.isZero(T(0))) return;
+  const Matrix3<T> R = model->rotation.toRotationMatrix();
+  // In the body frame I is diagonal: I_w*w = R*(I .* (R^T*w)), I_w^-1*t = R*((R^T*t) ./ I).
+  const Vector3<T> momentum = R * body.inertia.cwiseProduct(R.transpose() * w);
+  const Vector3<T> netTorque = body.torque - w.cross(momentum);
+  w += R * (R.transpose() * netTorque).cwiseQuotient(body.inertia) * deltaTime;
+  body.torque = Vector3<T>::Zero();
+  w *= world.angularDrag;
+  const Quaternion<T> spin(T(0), w.x(), w.y(), w.z());
+  model->rotation.coeffs() += (spin * model->rotation).coeffs() * (deltaTime / T(2));
+  model->rotation.normalize();
+}
+
 // One fixed step for every model that is not static.
 template <typename T>
 void ApplyPhysics(std::span<Model<T>> models, const World<T>& world, T deltaTime) {
@@ -63,6 +102,7 @@ void ApplyPhysics(std::span<Model<T>> models, const World<T>& world, T deltaTime
     if (model.rigidBody.isStatic) continue;
     ApplyGravity(&model, world, deltaTime);
     IntegrateLinearForce(&model, world, deltaTime);
+    IntegrateAngularForce(&model, world, deltaTime);
   }
 }
 

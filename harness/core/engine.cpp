@@ -13,8 +13,20 @@ std::string Engine::cannot_run(const Scene& scene) const {
   const Capabilities caps = info().capabilities;
   if (scene.world.contacts && !caps.contacts) return "no contacts";
   if (caps.planar_only && !is_planar(scene)) return "not planar";
-  if (needs_rotation(scene)) return "rotation: this engine's adapter does not rotate bodies yet";
+  if (!needs_rotation(scene)) return {};
+  if (caps.rotation == Rotation::none)
+    return "rotation: this engine's adapter does not rotate bodies";
+  if (caps.rotation == Rotation::spin_z && !spins_about_z(scene))
+    return "rotation: a 2-D engine turns bodies about z only";
   return {};
+}
+
+void Engine::set_torques(std::span<const Vec3>) {
+  throw EngineError("this engine takes no torques");
+}
+
+void Engine::read_rotation(std::span<RotationState>) const {
+  throw EngineError("this engine does not report rotation");
 }
 
 namespace {
@@ -81,6 +93,18 @@ bool Engine::read_append(std::size_t bodies, StateBuffer& out, StateUse) const {
 
 const char* to_string(Scalar scalar) {
   return scalar == Scalar::f32 ? "f32" : "f64";
+}
+
+const char* to_string(Rotation rotation) {
+  switch (rotation) {
+    case Rotation::spin_z:
+      return "about z";
+    case Rotation::full:
+      return "3-D";
+    case Rotation::none:
+      break;
+  }
+  return "none";
 }
 
 const char* to_string(DampingForm form) {

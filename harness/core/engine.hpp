@@ -13,15 +13,24 @@
 #include <vector>
 
 #include "harness/core/law.hpp"
+#include "harness/core/rotation_law.hpp"
 #include "harness/scene/scene.hpp"
 
 namespace dropcheck {
 
 enum class Scalar { f32, f64 };
 
+// Which rotations an engine's adapter carries out (and reads back with Engine::read_rotation).
+enum class Rotation {
+  none,    // bodies never turn: a scene that needs rotation is not run
+  spin_z,  // 2-D engine: turning about z only (orientation about z, angular velocity along z)
+  full,    // 3-D rotation
+};
+
 struct Capabilities {
   bool contacts = false;     // can collide boxes with a static floor
   bool planar_only = false;  // 2-D engine: runs x-y plane scenes only
+  Rotation rotation = Rotation::none;
 };
 
 // How an engine rounds one step of its law, so that the harness can repeat that step in the same
@@ -40,6 +49,9 @@ struct EngineInfo {
   Scalar scalar = Scalar::f64;
   Capabilities capabilities;
   Law law;  // its member of the discrete-law family (harness/core/law.hpp)
+  // Its rotational member (harness/core/rotation_law.hpp), when capabilities.rotation is not none;
+  // the angular damping sits where law.damping puts the linear one.
+  RotationLaw rotation_law;
   DampingForm arithmetic = DampingForm::other;  // its operation order, when the harness copies it
   std::string damping_mapping;   // how k becomes the engine's parameter, e.g. "d = 1 - exp(-k)"
   std::string contact_settings;  // contact model and parameters used when contacts = true
@@ -61,6 +73,13 @@ struct EngineInfo {
 struct BodyState {
   Vec3 position = Vec3::Zero();
   Vec3 velocity = Vec3::Zero();
+};
+
+// The rotational state of one body, recorded beside its BodyState for a scene that needs rotation
+// (Trajectory::rotations): kept apart so that a run without rotation moves no extra byte.
+struct RotationState {
+  Quat orientation = Quat::Identity();   // unit quaternion, body frame to world frame
+  Vec3 angular_velocity = Vec3::Zero();  // rad/s, world frame
 };
 
 // Storage for states (UnwrittenAllocator): 64-byte aligned (whole cache lines); for a block of 4
@@ -133,6 +152,10 @@ class Engine {
   // next step() only. Entries of static bodies are zero and ignored.
   virtual void set_forces(std::span<const Vec3> forces) = 0;
 
+  // This step's external torque on each body (N m, world frame), like set_forces. Called only for
+  // a scene with torques, on an engine with rotation; the default throws EngineError.
+  virtual void set_torques(std::span<const Vec3> torques);
+
   // Advances exactly one step of h. Throws EngineError when the engine reports an error.
   virtual void step() = 0;
 
@@ -145,6 +168,11 @@ class Engine {
   // (all_finite); an adapter may instead write them from its own arrays and check them in the same
   // pass, streamed past the cache when `use` is kept (StateWriter, harness/core/engine_writer.hpp).
   virtual bool read_append(std::size_t bodies, StateBuffer& out, StateUse use) const;
+
+  // The true orientation and world-frame angular velocity of every body after the last step, for
+  // an engine whose capabilities include rotation (the runner calls it only for a scene that needs
+  // rotation). The default throws EngineError: an engine without rotation is never asked.
+  virtual void read_rotation(std::span<RotationState> out) const;
 
   // True when the last step clamped a body's speed (Box2D moves at most 2 m per step).
   virtual bool speed_clamped() const { return false; }
@@ -160,11 +188,13 @@ class ForwardingEngine : public Engine {
   std::string cannot_run(const Scene& scene) const override { return inner_.cannot_run(scene); }
   void load(const Scene& scene, double h) override { inner_.load(scene, h); }
   void set_forces(std::span<const Vec3> forces) override { inner_.set_forces(forces); }
+  void set_torques(std::span<const Vec3> torques) override { inner_.set_torques(torques); }
   void step() override { inner_.step(); }
   void read(std::span<BodyState> out) const override { inner_.read(out); }
   bool read_append(std::size_t bodies, StateBuffer& out, StateUse use) const override {
     return inner_.read_append(bodies, out, use);
   }
+  void read_rotation(std::span<RotationState> out) const override { inner_.read_rotation(out); }
   bool speed_clamped() const override { return inner_.speed_clamped(); }
 
  protected:
@@ -194,5 +224,7 @@ using EngineFactory = std::function<std::unique_ptr<Engine>()>;
 const char* to_string(Scalar scalar);
 // "phi multiply", "Pade 1/(1 + h*c)", "not copied".
 const char* to_string(DampingForm form);
+// "none", "about z", "3-D".
+const char* to_string(Rotation rotation);
 
 }  // namespace dropcheck

@@ -30,4 +30,11 @@ void compute_forces(const Scene& scene, std::span<const BodyState> states, std::
   }
 }
 
+void compute_torques(const Scene& scene, std::span<Vec3> out) {
+  for (Vec3& t : out) t.setZero();
+  for (const Torque& torque : scene.torques)
+    for (std::size_t i : torque.bodies)
+      if (!scene.bodies[i].is_static) out[i] += torque.torque;
+}
+
 }  // namespace dropcheck

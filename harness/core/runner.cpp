@@ -32,16 +32,12 @@ std::size_t sample_count(std::int64_t steps, std::int64_t every) {
 
 Trajectory empty_trajectory(const Engine& engine, const Scene& scene, double h,
                             std::int64_t every) {
-  Trajectory t;
-  t.engine = engine.info().name;
-  t.scene = scene.name;
-  t.h = h;
-  t.steps = step_count(scene, h);
-  for (const Body& b : scene.bodies) t.body_names.push_back(b.name);
+  Trajectory t = unstarted_trajectory(engine.info().name, scene, h);
   // Sized once: the sample count is known before the first step.
   const std::size_t samples = sample_count(t.steps < 0 ? 0 : t.steps, every);
   t.recorded.reserve(samples);
   t.states.reserve(samples * scene.bodies.size());
+  if (t.rotates) t.rotations.reserve(samples * scene.bodies.size());
   return t;
 }
 
@@ -59,10 +55,31 @@ std::span<BodyState> read_states(const Engine& engine, StateBuffer& buffer, std:
   return std::span(buffer).subspan(at, bodies);
 }
 
-// Names the first body with a NaN/Inf state and ends the run there.
-void fail_non_finite(Trajectory& t, std::span<const BodyState> states, std::int64_t n) {
+bool finite(const RotationState& r) {
+  return r.orientation.coeffs().allFinite() && r.angular_velocity.allFinite();
+}
+
+// Appends the engine's rotational state for `bodies` bodies to `buffer` (Engine::read_rotation)
+// and returns them; `all_finite` says whether every number is.
+std::span<const RotationState> read_rotations(const Engine& engine,
+                                              std::vector<RotationState>& buffer,
+                                              std::size_t bodies, bool& all_finite) {
+  const std::size_t at = buffer.size();
+  buffer.resize(at + bodies);
+  const std::span<RotationState> added = std::span(buffer).subspan(at, bodies);
+  engine.read_rotation(added);
+  all_finite = true;
+  for (const RotationState& r : added) all_finite = all_finite && finite(r);
+  return added;
+}
+
+// Names the first body with a NaN/Inf state (position, velocity or, when the run rotates,
+// orientation and angular velocity) and ends the run there.
+void fail_non_finite(Trajectory& t, std::span<const BodyState> states,
+                     std::span<const RotationState> rotations, std::int64_t n) {
   std::size_t i = 0;
-  while (i + 1 < states.size() && finite(states[i])) ++i;
+  while (i + 1 < states.size() && finite(states[i]) && (rotations.empty() || finite(rotations[i])))
+    ++i;
   t.status = RunStatus::non_finite;
   t.failed_step = n;
   t.failure = "body '" + t.body_names[i] + "' has a NaN/Inf state at step " + std::to_string(n);
@@ -98,6 +115,7 @@ void step_loop(Engine& engine, const Scene& scene, Trajectory& t, std::int64_t e
   const std::size_t bodies = current.size();
   StateBuffer scratch;
   scratch.reserve(bodies);
+  std::vector<RotationState> rotation_scratch;
   std::vector<Vec3> forces(bodies);
   // Constant forces do not depend on the state: summed once, in the same order as every step would.
   const bool state_dependent = has_springs(scene);
@@ -108,9 +126,17 @@ void step_loop(Engine& engine, const Scene& scene, Trajectory& t, std::int64_t e
   // force after each step, and handing it the same zeros again would change nothing but cost a
   // pass over every body per step (an engine that keeps the last forces keeps these zeros).
   const bool no_forces = !state_dependent && all_zero(forces);
+  // Torques are constant (Scene::torques): summed once, handed over every step they are not zero.
+  std::vector<Vec3> torques;
+  if (t.rotates) {
+    torques.resize(bodies);
+    compute_torques(scene, torques);
+  }
+  const bool twisted = !all_zero(torques);
   for (n = 1; n <= t.steps; ++n) {
     if (state_dependent) compute_forces(scene, current, forces);
     if (n == 1 || !no_forces) engine.set_forces(forces);
+    if (twisted) engine.set_torques(torques);
     engine.step();
     const bool keep = n % every == 0 || n == t.steps;
     bool finite = false;
@@ -120,10 +146,17 @@ void step_loop(Engine& engine, const Scene& scene, Trajectory& t, std::int64_t e
       scratch.clear();
       current = read_states(engine, scratch, bodies, StateUse::next_step, finite);
     }
+    std::span<const RotationState> turned;
+    if (t.rotates) {
+      rotation_scratch.clear();
+      bool turned_finite = false;
+      turned = read_rotations(engine, keep ? t.rotations : rotation_scratch, bodies, turned_finite);
+      finite = finite && turned_finite;
+    }
     if (engine.speed_clamped()) {
       if (t.clamped_steps++ == 0) t.first_clamped_step = n;
     }
-    if (!finite) return fail_non_finite(t, current, n);
+    if (!finite) return fail_non_finite(t, current, turned, n);
     if (keep) t.recorded.push_back(n);
   }
 }
@@ -149,6 +182,7 @@ Trajectory run_scene_in_process(Engine& engine, const Scene& scene, double h,
     bool finite = false;  // the scene's own numbers, finite by validation (scene_loader.hpp)
     const std::span<BodyState> initial =
         read_states(engine, t.states, scene.bodies.size(), StateUse::next_step, finite);
+    if (t.rotates) read_rotations(engine, t.rotations, scene.bodies.size(), finite);
     t.recorded.push_back(0);
     start = std::chrono::steady_clock::now();  // time the stepping loop, not the setup
     step_loop(engine, scene, t, every, initial, n);
@@ -172,6 +206,7 @@ Trajectory run_scene_in_process(Engine& engine, const Scene& scene, double h,
   end_streamed_writes();  // kept states streamed by the engine: ordered before what follows
   t.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   t.states.resize(t.samples() * t.bodies());  // drops the slot of a step that failed
+  if (t.rotates) t.rotations.resize(t.samples() * t.bodies());
   return t;
 }
 

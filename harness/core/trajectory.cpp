@@ -32,6 +32,7 @@ Trajectory unstarted_trajectory(const std::string& engine, const Scene& scene, d
   // A count beyond int64 (a refused run of 1e300 s) is clamped rather than rounded.
   t.steps = scene.duration / h < 9e18 ? step_count(scene, h) : INT64_MAX;
   for (const Body& b : scene.bodies) t.body_names.push_back(b.name);
+  t.rotates = needs_rotation(scene);
   return t;
 }
 

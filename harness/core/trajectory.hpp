@@ -31,6 +31,14 @@ struct Trajectory {
   // recorded.size() x body_names.size(), sample-major. Growing it with resize(n) or emplace_back()
   // leaves the new states unwritten (UnwrittenAllocator, engine.hpp): write them before any read.
   StateBuffer states;
+  // For a scene that needs rotation (needs_rotation): the rotational state of every sample, laid
+  // out like `states`. Empty, and `rotates` false, for every other scene.
+  bool rotates = false;
+  std::vector<RotationState> rotations;
+  // For a law's prediction that rotates: how much the law amplifies a small change of its start
+  // (rotation_amplification, harness/oracles/own_rotation.hpp), the factor by which rounding may
+  // grow; 1 otherwise.
+  double amplification = 1.0;
   RunStatus status = RunStatus::ok;
   std::string failure;             // what went wrong, for non-ok status
   std::int64_t failed_step = -1;   // first step that failed
@@ -42,6 +50,9 @@ struct Trajectory {
   std::size_t bodies() const { return body_names.size(); }
   const BodyState& at(std::size_t sample, std::size_t body) const {
     return states[sample * bodies() + body];
+  }
+  const RotationState& rotation_at(std::size_t sample, std::size_t body) const {
+    return rotations[sample * bodies() + body];
   }
   double time(std::size_t sample) const { return static_cast<double>(recorded[sample]) * h; }
   const BodyState& final_state(std::size_t body) const { return at(samples() - 1, body); }

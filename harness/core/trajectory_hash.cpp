@@ -16,8 +16,9 @@ struct Fnv1a {
   void add(std::uint64_t word) {
     for (int i = 0; i < 8; ++i) add_byte(static_cast<unsigned char>(word >> (8 * i)));
   }
+  void add(double d) { add(std::bit_cast<std::uint64_t>(d == 0.0 ? 0.0 : d)); }  // -0 as +0
   void add(const Vec3& v) {
-    for (int i = 0; i < 3; ++i) add(std::bit_cast<std::uint64_t>(v[i] == 0.0 ? 0.0 : v[i]));
+    for (int i = 0; i < 3; ++i) add(v[i]);
   }
 };
 
@@ -36,6 +37,13 @@ std::uint64_t trajectory_hash(const Trajectory& t) {
     for (std::size_t b = 0; b < t.bodies(); ++b) {
       f.add(t.at(s, b).position);
       f.add(t.at(s, b).velocity);
+      if (t.rotates) {
+        const RotationState& r = t.rotation_at(s, b);
+        for (double d :
+             {r.orientation.w(), r.orientation.x(), r.orientation.y(), r.orientation.z()})
+          f.add(d);
+        f.add(r.angular_velocity);
+      }
     }
   }
   return f.h;

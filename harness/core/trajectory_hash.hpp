@@ -11,7 +11,9 @@
 namespace dropcheck {
 
 // FNV-1a (64-bit) over every recorded step index and the bit patterns of every position and
-// velocity component, in sample-major order. Equal hashes mean bit-identical samples.
+// velocity component (and, for a rotating run, of the orientation and angular velocity), in
+// sample-major order. Equal hashes mean bit-identical samples; a run that does not rotate hashes
+// exactly as before rotation existed.
 std::uint64_t trajectory_hash(const Trajectory& t);
 
 // The hash as 16 lower-case hex digits.

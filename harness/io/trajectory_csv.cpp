@@ -11,14 +11,18 @@
 #include <sstream>
 
 #include "harness/core/input_error.hpp"
+#include "harness/core/number_format.hpp"
 
 namespace dropcheck {
 namespace {
 
 constexpr const char* kHeader = "engine,dt,step,t,body,x,y,z,vx,vy,vz";
+// The header of a run with rotation: the orientation quaternion and world-frame angular velocity.
+constexpr const char* kRotationHeader = "engine,dt,step,t,body,x,y,z,vx,vy,vz,qw,qx,qy,qz,wx,wy,wz";
 constexpr const char* kByteOrderMark = "\xef\xbb\xbf";  // accepted before the header, as in scenes
-constexpr const char* kColumns[] = {"engine", "dt", "step", "t",  "body", "x",
-                                    "y",      "z",  "vx",   "vy", "vz"};
+constexpr const char* kColumns[] = {"engine", "dt", "step", "t",  "body", "x",  "y",  "z",  "vx",
+                                    "vy",     "vz", "qw",   "qx", "qy",   "qz", "wx", "wy", "wz"};
+constexpr std::size_t kLinearColumns = 11, kRotationColumns = 18;
 
 // Splits one CSV record (RFC 4180 quoting, as trajectory_io.cpp writes it).
 std::vector<std::string> csv_fields(const std::string& line) {
@@ -100,7 +104,7 @@ Trajectory& run_for(std::vector<Trajectory>& runs,
 
 // Appends one row to its run: a new sample when the step changes.
 void add_row(Trajectory& t, std::int64_t step, const std::string& body, const BodyState& s,
-             const std::string& file, int line) {
+             const RotationState* r, const std::string& file, int line) {
   const bool new_sample = t.recorded.empty() || t.recorded.back() != step;
   if (new_sample) {
     if (!t.recorded.empty() && step <= t.recorded.back())
@@ -122,6 +126,23 @@ void add_row(Trajectory& t, std::int64_t step, const std::string& body, const Bo
             (index < t.body_names.size() ? excerpt(t.body_names[index]) : "no more bodies"));
   }
   t.states.push_back(s);
+  t.rotates = r != nullptr;
+  if (r) t.rotations.push_back(*r);
+}
+
+// The rotation columns of a row: a unit quaternion (within 1e-6: the file's digits may be short)
+// and an angular velocity.
+RotationState rotation_columns(const std::vector<std::string>& f, const std::string& file, int n) {
+  double q[4];
+  for (int i = 0; i < 4; ++i) q[i] = number(f[11 + i], file, n, 11 + i);
+  RotationState r;
+  r.orientation = Quat(q[0], q[1], q[2], q[3]);
+  if (std::abs(r.orientation.norm() - 1.0) > 1e-6)
+    throw InputError(file, n, column_key(11),
+                     "qw, qx, qy, qz must be a unit quaternion (norm " +
+                         printf_string("%.9g", r.orientation.norm()) + ")");
+  for (int i = 0; i < 3; ++i) r.angular_velocity[i] = number(f[15 + i], file, n, 15 + i);
+  return r;
 }
 
 }  // namespace
@@ -150,8 +171,11 @@ std::vector<Trajectory> parse_trajectories_csv(std::istream& in, const std::stri
   std::string line;
   const bool got_header = next_line(in, line, file, 1);
   if (line.rfind(kByteOrderMark, 0) == 0) line.erase(0, std::strlen(kByteOrderMark));
-  if (!got_header || line != kHeader)
-    throw InputError(file, 1, "", std::string("the header must be ") + kHeader);
+  if (!got_header || (line != kHeader && line != kRotationHeader))
+    throw InputError(
+        file, 1, "",
+        std::string("the header must be ") + kHeader + " (with rotation: " + kRotationHeader + ")");
+  const std::size_t columns = line == kHeader ? kLinearColumns : kRotationColumns;
   std::vector<Trajectory> runs;
   std::map<std::pair<std::string, double>, std::size_t> index;  // runs by (engine, dt)
   int n = 1;
@@ -159,10 +183,11 @@ std::vector<Trajectory> parse_trajectories_csv(std::istream& in, const std::stri
     ++n;
     if (line.empty()) continue;
     const std::vector<std::string> f = csv_fields(line);
-    if (f.size() != 11)
-      throw InputError(
-          file, n, "",
-          "expected 11 columns (" + std::string(kHeader) + "), got " + std::to_string(f.size()));
+    if (f.size() != columns)
+      throw InputError(file, n, "",
+                       "expected " + std::to_string(columns) + " columns (" +
+                           (columns == kLinearColumns ? kHeader : kRotationHeader) + "), got " +
+                           std::to_string(f.size()));
     const double dt = number(f[1], file, n, 1);
     const double step = number(f[2], file, n, 2);
     number(f[3], file, n, 3);  // t: checked, not used (the step and dt give the time exactly)
@@ -183,7 +208,10 @@ std::vector<Trajectory> parse_trajectories_csv(std::istream& in, const std::stri
       if (f[column].empty() || find_unsafe_in_line(f[column]) != std::string::npos)
         throw InputError(file, n, column_key(column),
                          excerpt(f[column]) + " is not a name (empty, or control characters)");
-    add_row(run_for(runs, index, f[0], dt), static_cast<std::int64_t>(step), f[4], s, file, n);
+    const RotationState r =
+        columns == kRotationColumns ? rotation_columns(f, file, n) : RotationState{};
+    add_row(run_for(runs, index, f[0], dt), static_cast<std::int64_t>(step), f[4], s,
+            columns == kRotationColumns ? &r : nullptr, file, n);
   }
   for (Trajectory& t : runs) {
     if (t.states.size() != t.recorded.size() * t.body_names.size())

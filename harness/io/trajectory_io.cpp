@@ -34,6 +34,26 @@ Json json_vec(const Vec3& v) {
   return Json::array({v[0], v[1], v[2]});
 }
 
+// True when some run of `runs` rotates: then every row carries the rotation columns.
+bool any_rotates(std::span<const Trajectory> runs) {
+  for (const Trajectory& t : runs)
+    if (t.rotates) return true;
+  return false;
+}
+
+// The rotational state of a sample: the run's own, or a body that never turned.
+const RotationState& rotation_of(const Trajectory& t, std::size_t sample, std::size_t body) {
+  static const RotationState kStill;
+  return t.rotates ? t.rotation_at(sample, body) : kStill;
+}
+
+// ",qw,qx,qy,qz,wx,wy,wz".
+void append_csv(std::string& out, const RotationState& r) {
+  const Quat& q = r.orientation;
+  for (double d : {q.w(), q.x(), q.y(), q.z()}) out += "," + exact(d);
+  append_csv(out, r.angular_velocity);
+}
+
 // The run's fields before its bodies, as nlohmann writes them, without the closing brace.
 std::string run_head(const Trajectory& t) {
   const Json run = {{"engine", t.engine},
@@ -49,7 +69,8 @@ std::string run_head(const Trajectory& t) {
   return head;
 }
 
-// One run as {...,"bodies":[{"name":...,"samples":[[t,[x,y,z],[vx,vy,vz]],...]},...]}, written
+// One run as {...,"bodies":[{"name":...,"samples":[[t,[x,y,z],[vx,vy,vz]],...]},...]} (a rotating
+// run adds [qw,qx,qy,qz],[wx,wy,wz] to each sample), written
 // piece by piece in the bytes nlohmann's compact dump of the whole object would give: memory holds
 // one sample's text, not the run's document.
 void write_run_json(std::ostream& out, const Trajectory& t) {
@@ -58,8 +79,14 @@ void write_run_json(std::ostream& out, const Trajectory& t) {
     out << (b ? ",{\"name\":" : "{\"name\":") << dump(Json(t.body_names[b])) << ",\"samples\":[";
     for (std::size_t s = 0; s < t.samples(); ++s) {
       const BodyState& st = t.at(s, b);
-      out << (s ? "," : "")
-          << dump(Json::array({t.recorded[s], json_vec(st.position), json_vec(st.velocity)}));
+      Json sample = Json::array({t.recorded[s], json_vec(st.position), json_vec(st.velocity)});
+      if (t.rotates) {
+        const RotationState& r = t.rotation_at(s, b);
+        const Quat& q = r.orientation;
+        sample.push_back(Json::array({q.w(), q.x(), q.y(), q.z()}));
+        sample.push_back(json_vec(r.angular_velocity));
+      }
+      out << (s ? "," : "") << dump(sample);
     }
     out << "]}";
   }
@@ -75,7 +102,9 @@ std::string trajectories_to_csv(std::span<const Trajectory> runs) {
 }
 
 void write_trajectories_csv(std::ostream& out, std::span<const Trajectory> runs) {
-  out << "engine,dt,step,t,body,x,y,z,vx,vy,vz\n";
+  const bool rotation = any_rotates(runs);
+  out << (rotation ? "engine,dt,step,t,body,x,y,z,vx,vy,vz,qw,qx,qy,qz,wx,wy,wz\n"
+                   : "engine,dt,step,t,body,x,y,z,vx,vy,vz\n");
   std::string row;  // reused: one row's text at a time
   for (const Trajectory& t : runs) {
     const std::string engine = csv_field(t.engine) + "," + exact(t.h) + ",";
@@ -87,6 +116,7 @@ void write_trajectories_csv(std::ostream& out, std::span<const Trajectory> runs)
                csv_field(t.body_names[b]);
         append_csv(row, st.position);
         append_csv(row, st.velocity);
+        if (rotation) append_csv(row, rotation_of(t, s, b));
         row += '\n';
         out.write(row.data(), static_cast<std::streamsize>(row.size()));
       }

@@ -63,6 +63,30 @@ bool get_states(const WireRead& read, Trajectory& t, std::size_t rows) {
   return true;
 }
 
+// Rotations as 7 doubles each (qw, qx, qy, qz, wx, wy, wz); they are few (rotating scenes only),
+// so sent in one piece.
+bool put_rotations(const WireWrite& write, const Trajectory& t) {
+  std::vector<double> buf;
+  buf.reserve(7 * t.rotations.size());
+  for (const RotationState& r : t.rotations) {
+    const Quat& q = r.orientation;
+    for (double d : {q.w(), q.x(), q.y(), q.z()}) buf.push_back(d);
+    for (int i = 0; i < 3; ++i) buf.push_back(r.angular_velocity[i]);
+  }
+  return write(buf.data(), buf.size() * sizeof(double));
+}
+
+bool get_rotations(const WireRead& read, Trajectory& t, std::size_t rows) {
+  std::vector<double> buf(7 * rows);
+  if (!read(buf.data(), buf.size() * sizeof(double))) return false;
+  t.rotations.resize(rows);
+  for (std::size_t r = 0; r < rows; ++r) {
+    const double* d = &buf[7 * r];
+    t.rotations[r] = {Quat(d[0], d[1], d[2], d[3]), Vec3(d[4], d[5], d[6])};
+  }
+  return true;
+}
+
 }  // namespace
 
 bool write_trajectory(const Trajectory& t, const WireWrite& write) {
@@ -74,7 +98,8 @@ bool write_trajectory(const Trajectory& t, const WireWrite& write) {
             put(write, std::uint64_t{t.bodies()});
   for (std::size_t b = 0; ok && b < t.bodies(); ++b) ok = put_string(write, t.body_names[b]);
   ok = ok && put(write, std::uint64_t{t.samples()}) &&
-       write(t.recorded.data(), t.samples() * sizeof(std::int64_t)) && put_states(write, t);
+       write(t.recorded.data(), t.samples() * sizeof(std::int64_t)) && put_states(write, t) &&
+       put(write, static_cast<std::uint8_t>(t.rotates)) && (!t.rotates || put_rotations(write, t));
   return ok && put(write, kMagic);
 }
 
@@ -98,6 +123,10 @@ bool read_trajectory(Trajectory& t, std::size_t bodies, std::int64_t max_samples
   t.recorded.resize(n);
   if (!read(t.recorded.data(), n * sizeof(std::int64_t)) || !get_states(read, t, n * bodies))
     return false;
+  std::uint8_t rotates = 0;
+  if (!get(read, rotates) || rotates > 1) return false;
+  t.rotates = rotates == 1;
+  if (t.rotates && !get_rotations(read, t, n * bodies)) return false;
   return get(read, magic) && magic == kMagic;
 }
 

@@ -5,6 +5,7 @@
 
 #include "harness/core/number_format.hpp"
 #include "harness/measure/attribution.hpp"
+#include "harness/measure/rotation_metrics.hpp"
 #include "harness/measure/tolerances.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
@@ -64,6 +65,37 @@ double not_nan(double d) {
   return std::isnan(d) ? INFINITY : d;
 }
 
+// The rotational part of the verdict: `run` against `own`'s rotation over the samples compared.
+// Tolerance: ulps of the scalar per step (kCopiedUlps in all when ours's order is copied), times
+// the law's amplification (rounding injected early grows as the law amplifies any change), of 1
+// rad for the angle and of the largest |w| for the angular velocity.
+void judge_rotation(const EngineInfo& info, const Trajectory& run, const Trajectory& own,
+                    std::size_t samples, OwnLawVerdict& r) {
+  r.rotation = true;
+  r.rotation_law = to_string(info.rotation_law);
+  const bool copied = info.arithmetic == DampingForm::phi_multiply;
+  const double steps = static_cast<double>(std::max<std::int64_t>(own.steps, 1));
+  const double ulps = copied ? tolerance::kCopiedUlps : tolerance::kStepUlps * steps;
+  double w_scale = 0.0;
+  for (const RotationState& p : own.rotations)
+    w_scale = std::max(w_scale, not_nan(p.angular_velocity.norm()));
+  r.tolerance_angle = ulps * epsilon(info.scalar) * own.amplification;
+  r.tolerance_w = r.tolerance_angle * w_scale;
+  r.rotation_rule =
+      g3(ulps) + " ulps x amplification " + g3(own.amplification) + " (" + to_string(info.scalar) +
+      (copied ? ", operation order copied)"
+              : ", order not copied: " + g3(tolerance::kStepUlps) + " ulps per step)");
+  for (std::size_t s = 0; s < samples; ++s)
+    for (std::size_t b = 0; b < run.bodies(); ++b) {
+      const RotationState& got = run.rotation_at(s, b);
+      const RotationState& law = own.rotation_at(s, b);
+      r.residual_angle =
+          std::max(r.residual_angle, not_nan(geodesic_angle(got.orientation, law.orientation)));
+      r.residual_w =
+          std::max(r.residual_w, not_nan((got.angular_velocity - law.angular_velocity).norm()));
+    }
+}
+
 }  // namespace
 
 OwnLawTolerance own_law_tolerance(const EngineInfo& info, const Trajectory& own_law) {
@@ -77,6 +109,7 @@ Trajectory before_step(const Trajectory& t, std::int64_t n) {
   while (keep < t.samples() && t.recorded[keep] < n) ++keep;
   out.recorded.resize(keep);
   out.states.resize(keep * t.bodies());
+  if (t.rotates) out.rotations.resize(keep * t.bodies());
   return out;
 }
 
@@ -86,7 +119,8 @@ bool OwnLawTolerance::finite() const {
 
 bool OwnLawVerdict::follows() const {
   return failure.empty() && tolerance.finite() && residual_x <= tolerance.x &&
-         residual_v <= tolerance.v;
+         residual_v <= tolerance.v &&
+         (!rotation || (residual_angle <= tolerance_angle && residual_w <= tolerance_w));
 }
 
 OwnLawVerdict judge_own_law(const EngineInfo& info, const Trajectory& run, const Trajectory& own,
@@ -115,6 +149,12 @@ OwnLawVerdict judge_own_law(const EngineInfo& info, const Trajectory& run, const
       if (rel > worst) worst = rel, r.worst_sample = s, r.worst_body = b;
     }
   }
+  if (run.rotates && own.rotates) {
+    std::size_t compared = 0;
+    while (compared < n && (r.clamped_from < 0 || run.recorded[compared] < r.clamped_from))
+      ++compared;
+    judge_rotation(info, run, own, compared, r);
+  }
   return r;
 }
 
@@ -133,6 +173,10 @@ std::string OwnLawVerdict::sentence() const {
     s += "; TOLERANCE NOT FINITE: the law reaches Inf or NaN within the steps compared (a stable "
          "law never does; an unstable one is judged only while finite)";
   s += "; precision part " + format_length(precision) + " (own arithmetic vs long-double law)";
+  if (rotation)
+    s += "; rotation: max angle to law " + g3(residual_angle) + " rad, |w - law| " +
+         g3(residual_w) + " rad/s (tolerance " + g3(tolerance_angle) + " rad, " + g3(tolerance_w) +
+         " rad/s: " + rotation_rule + "; law " + rotation_law + ")";
   if (clamped_from >= 0)
     s += "; the engine clamped a speed at step " + std::to_string(clamped_from) +
          " (clamp, reported by the engine): compared up to step " + std::to_string(compared_steps);

@@ -44,6 +44,16 @@ struct OwnLawVerdict {
   double precision = 0.0;           // max |own-arithmetic law - long-double law| (m): scalar cost
   std::int64_t clamped_from = -1;   // first step the engine clamped a speed; compared before it
   std::int64_t compared_steps = 0;  // last step compared
+  // For a run that rotates: its orientation and angular velocity against its rotational member
+  // (harness/core/rotation_law.hpp), as the geodesic angle and |w - w_law|, worst over the samples
+  // compared. Bounded like the linear residual, times the law's amplification (own_rotation.hpp).
+  bool rotation = false;
+  std::string rotation_law;      // to_string(info.rotation_law)
+  double residual_angle = 0.0;   // rad
+  double residual_w = 0.0;       // rad/s
+  double tolerance_angle = 0.0;  // rad
+  double tolerance_w = 0.0;      // rad/s
+  std::string rotation_rule;     // "16 ulps per step x 10000 steps x amplification 858 (f64)"
 
   // The run finished and stays within a finite tolerance of its own law.
   bool follows() const;

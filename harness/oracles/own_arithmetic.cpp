@@ -5,6 +5,7 @@
 
 #include "harness/core/forces.hpp"
 #include "harness/oracles/discrete_law.hpp"
+#include "harness/oracles/own_rotation.hpp"
 
 namespace dropcheck {
 namespace {
@@ -112,6 +113,62 @@ Trajectory iterate(const EngineInfo& info, const Scene& scene, double h,
   return t;
 }
 
+// ours's IntegrateAngularForce (ours/physics.hpp) in T, expression for expression:
+//   R = R(q); L = R*(I .* (R^T*w)); w += R*((R^T*(tau - w x L)) ./ I)*h; w *= phi_a;
+//   q += (h/2)*(0, w)*q; q = q/|q|
+// skipped, as ours skips it, for a body that neither turns nor is twisted.
+template <typename T>
+void turn_like_ours(T h, T phi_a, const V3<T>& inertia, const V3<T>& torque, Spin<T>& s) {
+  if (s.w.isZero(T(0)) && torque.isZero(T(0))) return;
+  const Eigen::Matrix<T, 3, 3> R = s.q.toRotationMatrix();
+  const V3<T> momentum = R * inertia.cwiseProduct(R.transpose() * s.w);
+  const V3<T> net = torque - s.w.cross(momentum);
+  s.w += R * (R.transpose() * net).cwiseQuotient(inertia) * h;
+  s.w *= phi_a;
+  const Eigen::Quaternion<T> spin(T(0), s.w.x(), s.w.y(), s.w.z());
+  s.q.coeffs() += (spin * s.q).coeffs() * (h / T(2));
+  s.q.normalize();
+}
+
+// The rotation of every body of `scene` at the steps `recorded`, in ours's arithmetic.
+template <typename T>
+std::vector<RotationState> rotate_like_ours(const Scene& scene, double h,
+                                            const std::vector<std::int64_t>& recorded) {
+  const std::size_t nb = scene.bodies.size();
+  std::vector<Vec3> torques(nb);
+  compute_torques(scene, torques);
+  std::vector<Spin<T>> spins(nb);
+  for (std::size_t i = 0; i < nb; ++i)
+    spins[i] = {scene.bodies[i].orientation.cast<T>(), scene.bodies[i].angular_velocity.cast<T>()};
+  const T th = static_cast<T>(h), phi_a = static_cast<T>(angular_decay_per_step(scene, h));
+  std::vector<RotationState> out;
+  std::int64_t step = 0;
+  for (const std::int64_t until : recorded) {
+    for (; step < until; ++step)
+      for (std::size_t i = 0; i < nb; ++i)
+        if (!scene.bodies[i].is_static)
+          turn_like_ours<T>(th, phi_a, inertia_of(scene.bodies[i]).cast<T>(), torques[i].cast<T>(),
+                            spins[i]);
+    for (const Spin<T>& s : spins)
+      out.push_back({s.q.template cast<double>(), s.w.template cast<double>()});
+  }
+  return out;
+}
+
+// Adds the rotation of a scene that needs it to `t`, the prediction for `info`: ours's own order
+// when copied (phi_multiply), the long-double member otherwise; with the law's amplification.
+void add_rotation(const EngineInfo& info, const Scene& scene, double h, Trajectory& t) {
+  if (!needs_rotation(scene) || info.capabilities.rotation == Rotation::none) return;
+  t.rotates = true;
+  if (info.arithmetic == DampingForm::phi_multiply)
+    t.rotations = info.scalar == Scalar::f32 ? rotate_like_ours<float>(scene, h, t.recorded)
+                                             : rotate_like_ours<double>(scene, h, t.recorded);
+  else
+    t.rotations = predict_rotation(info.rotation_law, info.law.damping, scene, h, t.recorded);
+  t.amplification =
+      rotation_amplification(info.rotation_law, info.law.damping, scene, h, t.recorded);
+}
+
 }  // namespace
 
 bool arithmetic_copied(const EngineInfo& info) {
@@ -124,9 +181,11 @@ bool order_copied(const EngineInfo& info) {
 
 Trajectory predict_own_arithmetic(const EngineInfo& info, const Scene& scene, double h,
                                   const RunOptions& options) {
-  if (!arithmetic_copied(info)) return predict_discrete(info.law, scene, h, options);
-  return info.scalar == Scalar::f32 ? iterate<float>(info, scene, h, options)
-                                    : iterate<double>(info, scene, h, options);
+  Trajectory t = !arithmetic_copied(info)     ? predict_discrete(info.law, scene, h, options)
+                 : info.scalar == Scalar::f32 ? iterate<float>(info, scene, h, options)
+                                              : iterate<double>(info, scene, h, options);
+  add_rotation(info, scene, h, t);
+  return t;
 }
 
 }  // namespace dropcheck

@@ -13,9 +13,17 @@ double decay_per_step(const Scene& scene, double h) {
   return std::exp(-scene.world.damping_rate * h);
 }
 
+double angular_decay_per_step(const Scene& scene, double h) {
+  return std::exp(-scene.world.angular_damping_rate * h);
+}
+
 Vec3 box_inertia(double mass, const Vec3& h) {
   const Vec3 sq = h.cwiseProduct(h);
   return mass / 3.0 * Vec3(sq.y() + sq.z(), sq.z() + sq.x(), sq.x() + sq.y());
+}
+
+Vec3 inertia_of(const Body& b) {
+  return (b.inertia.array() > 0.0).all() ? b.inertia : box_inertia(b.mass, b.half_extents);
 }
 
 bool needs_rotation(const Scene& scene) {
@@ -25,6 +33,18 @@ bool needs_rotation(const Scene& scene) {
   for (const Torque& t : scene.torques)
     if (t.torque != Vec3::Zero()) return true;
   return false;
+}
+
+bool spins_about_z(const Scene& scene) {
+  for (const Body& b : scene.bodies) {
+    const Quat& q = b.orientation;
+    if (q.x() != 0.0 || q.y() != 0.0 || b.angular_velocity.x() != 0.0 ||
+        b.angular_velocity.y() != 0.0)
+      return false;
+  }
+  for (const Torque& t : scene.torques)
+    if (t.torque.x() != 0.0 || t.torque.y() != 0.0) return false;
+  return true;
 }
 
 bool is_planar(const Scene& scene) {

@@ -32,12 +32,16 @@ struct Body {
   Quat orientation = Quat::Identity();   // unit quaternion, body frame to world frame
   Vec3 angular_velocity = Vec3::Zero();  // rad/s, world frame
   Vec3 inertia = Vec3::Zero();  // principal moments in the body frame, kg m^2 (the loader sets
-                                // them: given, or a uniform box: I_x = m/3*(hy^2 + hz^2), ...)
+                                // them: given, or a uniform box); zero: a uniform box (inertia_of)
 };
 
 // The principal moments of a uniform box of mass m and half extents h: m/3*(hy^2 + hz^2) about x
 // and cyclic (m/12*(b^2 + c^2) with full sides b = 2*hy, c = 2*hz).
 Vec3 box_inertia(double mass, const Vec3& half_extents);
+
+// The body's principal moments: `inertia` when set (every moment > 0), else a uniform box's (a body
+// built in code without them). What every adapter and oracle uses.
+Vec3 inertia_of(const Body& b);
 
 // F = constant (N), every step.
 struct ConstantForce {
@@ -92,11 +96,18 @@ std::int64_t step_count(const Scene& scene, double h);
 // Per-step velocity factor phi = exp(-k*h) for the scene's damping rate k.
 double decay_per_step(const Scene& scene, double h);
 
+// The same for the angular velocity: exp(-k_a*h) for the scene's angular damping rate k_a.
+double angular_decay_per_step(const Scene& scene, double h);
+
 // True when every body, velocity, force and gravity lies in the x-y plane (z components zero).
 bool is_planar(const Scene& scene);
 
 // True when some body starts turned or turning, or a torque acts: then the scene's outcome depends
 // on rotation, and an engine that does not rotate bodies cannot run it.
 bool needs_rotation(const Scene& scene);
+
+// True when every rotation of the scene is about z: orientations about z, angular velocities and
+// torques along z (what a 2-D engine can turn).
+bool spins_about_z(const Scene& scene);
 
 }  // namespace dropcheck

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -161,17 +162,40 @@ TEST_CASE("running the same scene twice gives byte-identical CSV and JSON", "[cl
   CHECK(slurp(dir.file("1.json")) == slurp(dir.file("2.json")));
 }
 
-TEST_CASE("a rotating scene is skipped with the reason by every engine that does not rotate yet",
-          "[cli][rotation]") {
+TEST_CASE(
+    "run --csv on a rotating scene adds qw..wz: a cube spun about z turns by 2*atan(h*w/2) "
+    "per step under ours's first-order update",
+    "[cli][rotation]") {
   ScratchDir d("run-rotation");
   const std::string scene =
       d.write("spin.toml",
               "duration = 0.5\n[world]\ngravity = [0.0, -9.8, 0.0]\n[[body]]\nname = "
               "\"c\"\nposition = [0.0, 10.0, 0.0]\nangular_velocity = [0.0, 0.0, 1.0]\n");
-  const dropcheck::testing::Result r =
-      dropcheck::testing::cli({"run", scene, "--engine", "ours", "--engine", "ours-f64"});
+  const Result r = cli({"run", scene, "--engine", "ours-f64", "--csv", d.file("spin.csv")});
+  REQUIRE(r.code == 0);
+  const std::vector<std::string> lines = split(slurp(d.file("spin.csv")), '\n');
+  REQUIRE(lines.size() == 1 + 31);
+  CHECK(lines[0] == "engine,dt,step,t,body,x,y,z,vx,vy,vz,qw,qx,qy,qz,wx,wy,wz");
+  CHECK(lines[1] == "ours-f64,0.016666666666666666,0,0,c,0,10,0,0,0,0,1,0,0,0,0,0,1");
+  // q + (h/2)*(0, w)*q, normalised, turns by 2*atan(h*w/2) about w; w stays 1 exactly (a
+  // principal axis: w x I*w = 0).
+  const std::vector<std::string> last = split(lines.back(), ',');
+  REQUIRE(last.size() == 18);
+  const double turned = 30 * 2.0 * std::atan(0.5 / 60.0);
+  CHECK(std::stod(last[11]) == Approx(std::cos(turned / 2)).margin(1e-14));
+  CHECK(std::stod(last[14]) == Approx(std::sin(turned / 2)).margin(1e-14));
+  CHECK(last[17] == "1");
+}
+
+TEST_CASE("a rotating scene is skipped, with the reason, by an engine that cannot turn it",
+          "[cli][rotation]") {
+  ScratchDir d("run-rotation-skip");
+  const std::string scene =
+      d.write("tilt.toml",
+              "duration = 0.5\n[world]\ngravity = [0.0, -9.8, 0.0]\n[[body]]\nname = "
+              "\"c\"\nposition = [0.0, 10.0, 0.0]\nangular_velocity = [1.0, 0.0, 0.0]\n");
+  const Result r = cli({"run", scene, "--engine", "box2d"});
   CHECK(r.code == 1);  // no engine ran it
-  CHECK_THAT(r.out, Contains("ours  skipped: rotation: this engine's adapter does not rotate "
-                             "bodies yet"));
+  CHECK_THAT(r.out, Contains("box2d  skipped: rotation: a 2-D engine turns bodies about z only"));
   CHECK_THAT(r.err, Contains("no engine ran the scene to its end"));
 }

@@ -1,0 +1,44 @@
+// Oracle 2 for rotation: an engine's own rotational member (harness/core/rotation_law.hpp),
+// iterated in long double from the scene's initial state, and how far a run departs from it.
+//
+// The departure is measured with metrics that do not lie (harness/measure/rotation_metrics.hpp):
+// the geodesic angle between the run's orientation and the law's, and |w - w_law|, worst over
+// samples and bodies. Free bodies only: contacts are not modelled.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "harness/core/rotation_law.hpp"
+#include "harness/core/trajectory.hpp"
+
+namespace dropcheck {
+
+// The rotational state of every body of `scene` at each step in `recorded`, under `law` with the
+// angular damping placed by `damping`, at step h: recorded.size() x bodies, sample-major (static
+// bodies keep their start).
+std::vector<RotationState> predict_rotation(RotationLaw law, DampingOrder damping,
+                                            const Scene& scene, double h,
+                                            const std::vector<std::int64_t>& recorded);
+
+// How much the law's rotation amplifies a small change of the initial angular velocity: the largest
+// ratio, over the run, of the departure it causes (in angle and in |w|/|w0|) to the relative size
+// of the change (tried along x, y and z, 1e-9 of |w0|). 1 for a steady spin; a body tumbling near
+// its intermediate axis amplifies (Dzhanibekov). Rounding injected at each step grows at most this
+// much, which is what the own-law tolerance of a rotation is built from (own_law.hpp).
+double rotation_amplification(RotationLaw law, DampingOrder damping, const Scene& scene, double h,
+                              const std::vector<std::int64_t>& recorded);
+
+// How far a run's rotation is from a prediction laid out like it.
+struct RotationResidual {
+  double angle = 0.0;    // max geodesic angle (rad)
+  double w = 0.0;        // max |w - w_law| (rad/s)
+  double w_scale = 0.0;  // max |w_law|: what the residual in w is relative to
+  std::size_t worst_sample = 0, worst_body = 0;  // where the larger of the two (angle, w/scale) is
+};
+
+// `run` (which rotates) against `predicted` (predict_rotation for the run's recorded steps).
+RotationResidual rotation_residual(const Trajectory& run,
+                                   const std::vector<RotationState>& predicted);
+
+}  // namespace dropcheck
