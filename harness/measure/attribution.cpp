@@ -4,12 +4,27 @@
 #include <cmath>
 
 #include "harness/core/number_format.hpp"
+#include "harness/measure/rotation_metrics.hpp"
 
 namespace dropcheck {
 namespace {
 
+bool departs_in_rotation(const OwnLawVerdict& v) {
+  return v.rotation && (v.residual_angle > v.tolerance_angle || v.residual_w > v.tolerance_w);
+}
+
 bool departs(const OwnLawVerdict& v) {
-  return v.residual_x > v.tolerance.x || v.residual_v > v.tolerance.v;
+  return v.residual_x > v.tolerance.x || v.residual_v > v.tolerance.v || departs_in_rotation(v);
+}
+
+// The largest geodesic angle between two rotating trajectories over their first `samples` samples.
+double largest_angle(const Trajectory& a, const Trajectory& b, std::size_t samples) {
+  double worst = 0.0;
+  for (std::size_t s = 0; s < samples; ++s)
+    for (std::size_t i = 0; i < a.bodies(); ++i)
+      worst = std::max(
+          worst, geodesic_angle(a.rotation_at(s, i).orientation, b.rotation_at(s, i).orientation));
+  return worst;
 }
 
 std::int64_t first_clamp(std::int64_t a, std::int64_t b) {
@@ -18,8 +33,13 @@ std::int64_t first_clamp(std::int64_t a, std::int64_t b) {
   return std::min(a, b);
 }
 
-// "ours departs from its own law (v = ...) by 32.7 cm (tolerance 1.2e-6 m)".
+// "ours departs from its own law (v = ...) by 32.7 cm (tolerance 1.2e-6 m)", or from its
+// rotational law by an angle.
 std::string departure(const OwnLawVerdict& v) {
+  if (departs_in_rotation(v) && v.residual_x <= v.tolerance.x && v.residual_v <= v.tolerance.v)
+    return v.engine + " departs from its own rotational law (" + v.rotation_law + ") by " +
+           g3(v.residual_angle) + " rad, |w - law| " + g3(v.residual_w) + " rad/s (tolerance " +
+           g3(v.tolerance_angle) + " rad, " + g3(v.tolerance_w) + " rad/s)";
   return v.engine + " departs from its own law (" + v.law + ") by " + format_length(v.residual_x) +
          " (tolerance " + format_length(v.tolerance.x) + ")";
 }
@@ -69,7 +89,26 @@ Attribution attribute(const RunWithLaws& e, const RunWithLaws& r) {
     a.final_total = final_dx;
     a.final_t = e.run.time(s);
   }
+  if (e.run.rotates && r.run.rotates && e.own.rotates && r.own.rotates) {
+    std::size_t compared = 0;
+    while (compared < samples && (a.clamped_from < 0 || e.run.recorded[compared] < a.clamped_from))
+      ++compared;
+    a.rotation = true;
+    a.rotation_total = largest_angle(e.run, r.run, compared);
+    a.rotation_law_part = largest_angle(e.own, r.own, compared);
+    a.rotation_laws =
+        rotation_law_key(e.info.rotation_law) + " vs " + rotation_law_key(r.info.rotation_law);
+    // One member with the damping in one place: the laws are one law, and what separates the two
+    // predictions is each scalar's rounding (a float run amplified through a tumble).
+    a.same_rotation_law =
+        e.info.rotation_law == r.info.rotation_law && e.info.law.damping == r.info.law.damping;
+  }
   return a;
+}
+
+bool Attribution::rotation_laws_differ() const {
+  return rotation && !same_rotation_law &&
+         rotation_law_part > engine_law.tolerance_angle + reference_law.tolerance_angle;
 }
 
 std::string Attribution::sentence() const {
@@ -98,6 +137,22 @@ std::string Attribution::sentence() const {
   }
   std::string out = printf_string("%s vs %s: %s at t = %g s (max %s), %s", engine, reference,
                                   format_length(final_total), final_t, format_length(total), why);
+  if (rotation && explained()) {
+    if (rotation_laws_differ())
+      out += printf_string(
+          "; rotation: up to %s rad apart, the two rotational laws (%s) %s rad apart, each "
+          "engine within its tolerance of its own",
+          g3(rotation_total), rotation_laws, g3(rotation_law_part));
+    else if (same_rotation_law)
+      out += printf_string(
+          "; rotation: up to %s rad apart under one rotational law (%s): the scalars' rounding, "
+          "amplified by the motion",
+          g3(rotation_total), rotation_laws);
+    else
+      out += printf_string(
+          "; rotation: up to %s rad apart, the two rotational laws (%s) agree to rounding",
+          g3(rotation_total), rotation_laws);
+  }
   if (clamped_from >= 0)
     out += "; a speed clamp reported by the engine at step " + std::to_string(clamped_from) +
            " ends the comparison there (clamp, not a departure)";

@@ -38,9 +38,20 @@ struct Attribution {
   double budget = 0.0;                      // the two own-law tolerances (positions), added
   OwnLawVerdict engine_law, reference_law;  // each engine against its own law
   std::int64_t clamped_from = -1;  // first step either engine clamped a speed; compared before it
+  // Rotation, when both runs rotate: the largest geodesic angle between the two engines'
+  // orientations, and between their two rotational laws' (each predicted as its own-law verdict
+  // predicts it). Angles do not add like positions, but the triangle inequality bounds the runs'
+  // angle by the laws' angle plus each engine's own-law residual, which the verdicts bound.
+  bool rotation = false;
+  double rotation_total = 0.0;     // rad
+  double rotation_law_part = 0.0;  // rad
+  std::string rotation_laws;       // "implicit-body/exp-map vs explicit/first-order"
+  bool same_rotation_law = false;  // one member, damping in one place: the law part is zero
 
-  // Neither engine departs from its own law beyond its tolerance.
+  // Neither engine departs from its own law (rotation included) beyond its tolerance.
   bool explained() const;
+  // The two rotational laws' orientations differ by more than the two own-law angle tolerances.
+  bool rotation_laws_differ() const;
   // The engines that left their own law, "ours" or "ours, bullet"; "" when none did.
   std::string blamed() const;
   // One sentence, e.g. "bullet vs ours-f64: 6.96 cm at t = 1 s (max 6.96 cm), all of it from the

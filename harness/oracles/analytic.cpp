@@ -102,7 +102,9 @@ BodyState spring_flight(const Body& b, const Linear& l, double k, double t) {
 
 std::string analytic_unavailable(const Scene& scene) {
   if (scene.world.contacts) return "contacts (see the landing oracle)";
-  if (needs_rotation(scene)) return "rotation (free_rotation.hpp covers torque-free spin)";
+  if (needs_rotation(scene))
+    return "the body turns: its translation has a closed form, its rotation is judged against "
+           "each engine's rotational law";
   for (const Force& f : scene.forces)
     if (const auto* s = std::get_if<Spring>(&f.law); s && s->rest_length != 0.0)
       return "spring with a rest length (nonlinear)";

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "harness/oracles/analytic.hpp"
+#include "harness/oracles/free_rotation.hpp"
 #include "harness/oracles/landing.hpp"
 #include "harness/scene/scene_loader.hpp"
 #include "harness/stability/stability.hpp"
@@ -95,6 +96,29 @@ Vec3 acceleration(const Scene& s, std::size_t i) {
 }
 
 // Collects f(scene, body index) over dynamic bodies (with or without springs, as asked).
+// A vector as descriptions write it: "(-2, 8, -2)"; each component a capture group.
+const std::string V =
+    R"(\((-?[0-9]+(?:\.[0-9]+)?), (-?[0-9]+(?:\.[0-9]+)?), (-?[0-9]+(?:\.[0-9]+)?)\))";
+
+// The vector `f` gives for each dynamic body.
+std::vector<Vec3> over_vectors(const Scene& s, const std::function<Vec3(const Body&)>& f) {
+  std::vector<Vec3> out;
+  for (const Body& b : s.bodies)
+    if (!b.is_static) out.push_back(f(b));
+  return out;
+}
+
+// "" when the three components m[1..3] round one of `vectors`, component by component.
+std::string agrees_vector(const std::smatch& m, const std::vector<Vec3>& vectors) {
+  std::string problem = "no body has that vector";
+  for (const Vec3& v : vectors) {
+    problem.clear();
+    for (int k = 0; k < 3 && problem.empty(); ++k) problem = agrees(m[k + 1], {v[k]});
+    if (problem.empty()) return problem;
+  }
+  return problem;
+}
+
 enum class Which { free, sprung, any };
 std::vector<double> over_bodies(const Scene& s, Which which,
                                 const std::function<double(std::size_t)>& f) {
@@ -299,6 +323,64 @@ const std::vector<Phrase>& phrases() {
       {N + " steps",
        [](const Scene& s, const std::smatch& m) {
          return agrees(m[1], {static_cast<double>(dropcheck::step_count(s, s.timestep.seconds))});
+       }},
+      // Rotation (harness/oracles/free_rotation.hpp for the torque-free tumble).
+      {N + " kg box",
+       [](const Scene& s, const std::smatch& m) {
+         return agrees(m[1], over_bodies(s, Which::any,
+                                         [&](std::size_t i) { return s.bodies[i].mass; }));
+       }},
+      {"sides " + N + " x " + N + " x " + N + " m",
+       [](const Scene& s, const std::smatch& m) {
+         for (int k = 0; k < 3; ++k) {
+           const std::string problem = agrees(m[k + 1], over_bodies(s, Which::any, [&](std::size_t i) {
+                                                return 2.0 * s.bodies[i].half_extents[k];
+                                              }));
+           if (!problem.empty()) return problem;
+         }
+         return std::string();
+       }},
+      {"(?:thrown|moving) at " + V + " m/s",
+       [](const Scene& s, const std::smatch& m) {
+         return agrees_vector(m, over_vectors(s, [](const Body& b) { return b.velocity; }));
+       }},
+      {"(?:spun|spinning|tumbling) at " + V + " rad/s",
+       [](const Scene& s, const std::smatch& m) {
+         return agrees_vector(m, over_vectors(s, [](const Body& b) { return b.angular_velocity; }));
+       }},
+      {"spinning at " + N + " rad/s about [xyz]",
+       [](const Scene& s, const std::smatch& m) {
+         return agrees(m[1], over_bodies(s, Which::any, [&](std::size_t i) {
+                         return s.bodies[i].angular_velocity.norm();
+                       }));
+       }},
+      {"flips every " + N + " s",
+       [](const Scene& s, const std::smatch& m) {
+         return agrees(m[1], over_bodies(s, Which::any, [&](std::size_t i) {
+                         const Body& b = s.bodies[i];
+                         const dropcheck::Vec3 w_body = b.orientation.conjugate() * b.angular_velocity;
+                         return dropcheck::FreeRotation(dropcheck::inertia_of(b), w_body).period() / 2;
+                       }));
+       }},
+      {"angular damping k_a = " + N + " 1/s",
+       [](const Scene& s, const std::smatch& m) {
+         return agrees(m[1], {s.world.angular_damping_rate});
+       }},
+      {"decays to " + N + " rad/s at " + N + " s",
+       [](const Scene& s, const std::smatch& m) {
+         const double t = std::stod(m[2]);
+         return agrees(m[1], over_bodies(s, Which::any, [&](std::size_t i) {
+                         return s.bodies[i].angular_velocity.norm() *
+                                std::exp(-s.world.angular_damping_rate * t);
+                       }));
+       }},
+      {"turns through " + N + " rad",
+       [](const Scene& s, const std::smatch& m) {
+         const double k = s.world.angular_damping_rate, t = s.duration;
+         return agrees(m[1], over_bodies(s, Which::any, [&](std::size_t i) {
+                         const double w = s.bodies[i].angular_velocity.norm();
+                         return k == 0.0 ? w * t : w * -std::expm1(-k * t) / k;
+                       }));
        }},
       {"runs for " + N + " s",
        [](const Scene& s, const std::smatch& m) { return agrees(m[1], {s.duration}); }},

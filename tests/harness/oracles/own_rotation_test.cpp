@@ -7,7 +7,10 @@
 
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
+#include "harness/measure/attribution.hpp"
 #include "harness/measure/own_law.hpp"
+#include "harness/oracles/discrete_law.hpp"
+#include "harness/oracles/own_arithmetic.hpp"
 #include "harness/scene/scene_loader.hpp"
 
 using namespace dropcheck;
@@ -63,4 +66,42 @@ TEST_CASE("each engine follows its own rotational member over Gazebo's tumbling 
       CHECK(r.angle > 1000 * own.tolerance_angle);
     }
   }
+}
+
+namespace {
+
+// ours-f64 whose reported angular velocity is off by 1e-9 rad/s along x: a rotation bug far below
+// what the eye sees, and far above rounding.
+class NudgedSpin final : public ForwardingEngine {
+ public:
+  explicit NudgedSpin(Engine& inner) : ForwardingEngine(inner) {}
+  void read_rotation(std::span<RotationState> out) const override {
+    inner_.read_rotation(out);
+    for (RotationState& r : out) r.angular_velocity.x() += 1e-9;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("an engine that leaves its rotational law by 1e-9 rad/s is blamed, the other is not",
+          "[rotation][own-law]") {
+  const Scene scene = tumbling_box();
+  auto inner = make_engine("ours-f64");
+  NudgedSpin nudged(*inner);
+  auto reference = make_engine("mujoco");
+  const EngineInfo ei = nudged.info(), ri = reference->info();
+  const double h = scene.timestep.seconds;
+  const Trajectory run = run_scene(nudged, scene, h);
+  const Trajectory other = run_scene(*reference, scene, h);
+  const OwnLawVerdict own = judge_own_law(ei, scene, run);
+  CHECK_FALSE(own.follows());
+  CHECK(own.residual_w == Approx(1e-9).epsilon(1e-3));
+  const Trajectory ae = predict_own_arithmetic(ei, scene, h),
+                   le = predict_discrete(ei.law, scene, h);
+  const Trajectory ar = predict_own_arithmetic(ri, scene, h),
+                   lr = predict_discrete(ri.law, scene, h);
+  const Attribution a = attribute({ei, run, ae, le}, {ri, other, ar, lr});
+  CHECK(a.blamed() == "ours-f64");
+  CHECK_THAT(a.sentence(), Catch::Contains("ours-f64 departs from its own rotational law") &&
+                               Catch::Contains("mujoco follows its own law"));
 }
