@@ -18,6 +18,7 @@
 #include "harness/core/runner.hpp"
 #include "harness/io/trajectory_csv.hpp"
 #include "harness/oracles/identify.hpp"
+#include "harness/oracles/identify_rotation.hpp"
 #include "harness/scene/scene_loader.hpp"
 #include "selection.hpp"
 
@@ -124,15 +125,76 @@ bool print_verdict(const Identification& id, std::ostream& out) {
   return true;
 }
 
+const char* damping_key(DampingOrder d) {
+  return d == DampingOrder::AfterForces    ? "after-forces"
+         : d == DampingOrder::BeforeForces ? "before-forces"
+                                           : "after-position";
+}
+
+// A rotational member and, when the scene's angular damping shows it, where the damping sits.
+std::string rotation_member(const RotationFit& f, bool damping_seen) {
+  return rotation_law_key(f.law) + (damping_seen ? std::string(", ") + damping_key(f.damping) : "");
+}
+
+// The rotational fits and verdict; true when one member is named. `declared` (with --engine)
+// is checked against the member found.
+bool print_rotation(const RotationIdentification& id, const std::optional<EngineInfo>& declared,
+                    std::ostream& out) {
+  out << "rotation: every member replayed from the first sample"
+      << (id.damping_seen ? ", with each placement of the angular damping"
+                          : " (no angular damping: where it sits leaves no trace)")
+      << "\n"
+      << printf_string("  %-44s %16s %18s\n", "member", "max angle rad", "max|w-fit| rad/s");
+  for (const RotationFit& f : id.fits)
+    out << printf_string("  %-44s %16.3g %18.3g\n", rotation_member(f, id.damping_seen).c_str(),
+                         f.max_angle, f.max_dw);
+  const RotationFit& best = id.fits[id.best];
+  const RotationFit& next = id.fits[id.runner_up];
+  bool ok = false;
+  if (!id.fits_any) {
+    out << "no rotational member fits within " << g3(kIdentifyRotationTolerance)
+        << " rad (closest: " << rotation_member(best, id.damping_seen) << " at "
+        << g3(best.max_angle) << " rad)\n";
+  } else if (id.ambiguous) {
+    out << "ambiguous: " << rotation_member(best, id.damping_seen) << " (" << g3(best.max_angle)
+        << " rad) and " << rotation_member(next, id.damping_seen) << " (" << g3(next.max_angle)
+        << " rad) fit equally well: this scene cannot tell them apart (a spin about a principal "
+           "axis has no gyroscopic term: use a tumbling body)\n";
+  } else {
+    out << "best fit: " << rotation_member(best, id.damping_seen) << " (" << to_string(best.law)
+        << "): " << g3(best.max_angle) << " rad, |w - fit| " << g3(best.max_dw)
+        << " rad/s; runner-up " << rotation_member(next, id.damping_seen) << " at "
+        << g3(next.max_angle) << " rad\n";
+    ok = true;
+  }
+  if (!declared) return ok;
+  const RotationFit want{declared->rotation_law, declared->law.damping};
+  const auto same = [&](const RotationFit& f) {
+    return f.law == want.law && (!id.damping_seen || f.damping == want.damping);
+  };
+  const bool match = ok && same(best);
+  bool tied = false;  // the declared member fits as well as the best (within the 2x of ambiguity)
+  for (const RotationFit& f : id.fits)
+    tied = tied || (same(f) && f.max_angle <= 2.0 * best.max_angle + 1e-12);
+  out << "declared rotation " << rotation_member(want, id.damping_seen) << ": "
+      << (match                  ? "matches"
+          : id.ambiguous && tied ? "one of the equal fits (not confirmed)"
+                                 : "MISMATCH")
+      << "\n";
+  return match;
+}
+
 int run_identify(const IdentifyRequest& r, std::ostream& out) {
   const Scene scene = load_scene(r.scene_file);
   Trajectory run;
   std::optional<Law> declared;
+  std::optional<EngineInfo> declared_info;
   if (!r.engine.empty()) {
     std::vector<SelectedEngine> engines = select_engines({r.engine}, scene);
     if (!engines[0].engine)
       throw InputError("", 0, "--engine " + r.engine, engines[0].skipped_because);
-    declared = engines[0].engine->info().law;
+    declared_info = engines[0].engine->info();
+    declared = declared_info->law;
     run = run_scene(*engines[0].engine, scene, step_from_flag(r.dt, scene).seconds);
     if (run.status != RunStatus::ok) {
       out << "identify " << scene.name << ": the run of " << run.engine << " failed at step "
@@ -159,6 +221,11 @@ int run_identify(const IdentifyRequest& r, std::ostream& out) {
         << "\n";
     ok = ok && match;
   }
+  if (run.rotates)
+    ok = print_rotation(identify_rotation(scene, run), declared_info, out) && ok;
+  else if (needs_rotation(scene))
+    out << "rotation: the trajectory carries no rotation columns (qw..wz): its rotational law is "
+           "not identified\n";
   return ok ? kExitOk : kExitCheckFailed;
 }
 

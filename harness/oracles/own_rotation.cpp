@@ -15,16 +15,16 @@ RotationState to_state(const Spin<LD>& s) {
   return {s.q.cast<double>(), s.w.cast<double>()};
 }
 
-// predict_rotation's loop, from the start angular velocities `w0` (one per body).
+// predict_rotation's loop, from the start orientations `q0` and angular velocities `w0`.
 std::vector<RotationState> iterate(RotationLaw law, DampingOrder damping, const Scene& scene,
                                    double h, const std::vector<std::int64_t>& recorded,
-                                   const std::vector<VL>& w0) {
+                                   const std::vector<Quat>& q0, const std::vector<VL>& w0) {
   const std::size_t bodies = scene.bodies.size();
   std::vector<Vec3> torques(bodies);
   compute_torques(scene, torques);
   std::vector<Spin<LD>> spins(bodies);
   for (std::size_t b = 0; b < bodies; ++b) {
-    spins[b].q = scene.bodies[b].orientation.cast<LD>();
+    spins[b].q = q0[b].cast<LD>();
     spins[b].w = w0[b];
   }
   const LD phi = std::exp(-static_cast<LD>(scene.world.angular_damping_rate) * LD(h));
@@ -48,24 +48,44 @@ std::vector<VL> start_spins(const Scene& scene) {
   return w0;
 }
 
+std::vector<Quat> start_orientations(const Scene& scene) {
+  std::vector<Quat> q0;
+  for (const Body& b : scene.bodies) q0.push_back(b.orientation);
+  return q0;
+}
+
 }  // namespace
 
 std::vector<RotationState> predict_rotation(RotationLaw law, DampingOrder damping,
                                             const Scene& scene, double h,
                                             const std::vector<std::int64_t>& recorded) {
-  return iterate(law, damping, scene, h, recorded, start_spins(scene));
+  return iterate(law, damping, scene, h, recorded, start_orientations(scene), start_spins(scene));
+}
+
+std::vector<RotationState> predict_rotation_from(RotationLaw law, DampingOrder damping,
+                                                 const Scene& scene, double h,
+                                                 const std::vector<std::int64_t>& recorded,
+                                                 const std::vector<RotationState>& start) {
+  std::vector<Quat> q0;
+  std::vector<VL> w0;
+  for (const RotationState& r : start) {
+    q0.push_back(r.orientation);
+    w0.push_back(r.angular_velocity.cast<LD>());
+  }
+  return iterate(law, damping, scene, h, recorded, q0, w0);
 }
 
 double rotation_amplification(RotationLaw law, DampingOrder damping, const Scene& scene, double h,
                               const std::vector<std::int64_t>& recorded) {
   constexpr LD kNudge = 1e-9L;
   const std::vector<VL> w0 = start_spins(scene);
-  const std::vector<RotationState> base = iterate(law, damping, scene, h, recorded, w0);
+  const std::vector<Quat> q0 = start_orientations(scene);
+  const std::vector<RotationState> base = iterate(law, damping, scene, h, recorded, q0, w0);
   double worst = 1.0;
   for (int axis = 0; axis < 3; ++axis) {
     std::vector<VL> nudged = w0;
     for (VL& w : nudged) w[axis] += kNudge * std::max(w.norm(), LD(1));
-    const std::vector<RotationState> other = iterate(law, damping, scene, h, recorded, nudged);
+    const std::vector<RotationState> other = iterate(law, damping, scene, h, recorded, q0, nudged);
     for (std::size_t i = 0; i < base.size(); ++i) {
       const double scale = std::max(double(w0[i % w0.size()].norm()), 1.0);
       const double angle = geodesic_angle(base[i].orientation, other[i].orientation);

@@ -21,6 +21,13 @@ std::vector<RotationState> predict_rotation(RotationLaw law, DampingOrder dampin
                                             const Scene& scene, double h,
                                             const std::vector<std::int64_t>& recorded);
 
+// The same from `start` (one state per body) instead of the scene's initial rotation: a law
+// replayed from a recorded trajectory's first sample.
+std::vector<RotationState> predict_rotation_from(RotationLaw law, DampingOrder damping,
+                                                 const Scene& scene, double h,
+                                                 const std::vector<std::int64_t>& recorded,
+                                                 const std::vector<RotationState>& start);
+
 // How much the law's rotation amplifies a small change of the initial angular velocity: the largest
 // ratio, over the run, of the departure it causes (in angle and in |w|/|w0|) to the relative size
 // of the change (tried along x, y and z, 1e-9 of |w0|). 1 for a steady spin; a body tumbling near

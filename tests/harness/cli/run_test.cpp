@@ -199,3 +199,16 @@ TEST_CASE("a rotating scene is skipped, with the reason, by an engine that canno
   CHECK_THAT(r.out, Contains("box2d  skipped: rotation: a 2-D engine turns bodies about z only"));
   CHECK_THAT(r.err, Contains("no engine ran the scene to its end"));
 }
+
+TEST_CASE("identify --trajectory names the rotational member of a run read back from its CSV",
+          "[cli][identify][rotation]") {
+  ScratchDir d("identify-rotation");
+  const std::string scene = DROPCHECK_SOURCE_DIR "/scenarios/gazebo_boxes_complex.toml";
+  REQUIRE(cli({"run", scene, "--engine", "bullet", "--csv", d.file("bullet.csv")}).code == 0);
+  const Result r = cli({"identify", scene, "--trajectory", d.file("bullet.csv")});
+  // Exit 1: without damping the linear members tie (phi = 1), which identify reports as before.
+  CHECK(r.code == 1);
+  CHECK_THAT(r.out, Contains("ambiguous: ") && Contains("best fit: implicit-body/exp-map"));
+  const Result e = cli({"identify", scene, "--engine", "mujoco"});
+  CHECK_THAT(e.out, Contains("declared rotation explicit/exp-map: matches"));
+}
