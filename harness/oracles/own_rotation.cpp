@@ -96,6 +96,20 @@ double rotation_amplification(RotationLaw law, DampingOrder damping, const Scene
   return worst;
 }
 
+double predicted_momentum_drift(const Scene& scene, RotationLaw law, double h, std::size_t body) {
+  const std::int64_t steps = step_count(scene, h);
+  std::vector<std::int64_t> recorded(static_cast<std::size_t>(steps) + 1);
+  for (std::int64_t n = 0; n <= steps; ++n) recorded[static_cast<std::size_t>(n)] = n;
+  const std::vector<RotationState> states =
+      predict_rotation(law, DampingOrder::AfterForces, scene, h, recorded);
+  const Vec3 I = inertia_of(scene.bodies[body]);
+  std::vector<Vec3> L;
+  for (std::size_t s = body; s < states.size(); s += scene.bodies.size())
+    L.push_back(states[s].orientation *
+                I.cwiseProduct(states[s].orientation.conjugate() * states[s].angular_velocity));
+  return momentum_drift(L);
+}
+
 RotationResidual rotation_residual(const Trajectory& run,
                                    const std::vector<RotationState>& predicted) {
   RotationResidual r;

@@ -36,6 +36,11 @@ std::vector<RotationState> predict_rotation_from(RotationLaw law, DampingOrder d
 double rotation_amplification(RotationLaw law, DampingOrder damping, const Scene& scene, double h,
                               const std::vector<std::int64_t>& recorded);
 
+// The largest relative drift of body `body`'s world angular momentum, max |L(t) - L(0)|/|L(0)|,
+// when member `law` (damping after the forces) runs the scene at step h, every step sampled: what
+// a benchmark that publishes this figure for an engine on that member should have measured.
+double predicted_momentum_drift(const Scene& scene, RotationLaw law, double h, std::size_t body);
+
 // How far a run's rotation is from a prediction laid out like it.
 struct RotationResidual {
   double angle = 0.0;    // max geodesic angle (rad)

@@ -8,6 +8,7 @@
 
 #include "harness/report/report_format.hpp"
 #include "harness/report/report_landing.hpp"
+#include "harness/report/report_rotation.hpp"
 #include "harness/report/report_summary.hpp"
 
 namespace dropcheck {
@@ -314,8 +315,8 @@ std::string scene_section(const SceneEvaluation& se, const std::vector<ReportPlo
   std::string md = "### " + se.scene.name + "\n\n" + intro(se);
   for (const ReportPlot& p : plots)
     if (p.file.find("-trajectory.svg") != std::string::npos) md += plot_md(p, outcomes);
-  md += failures(se) + landing_section(se) + divergence(se, plots, outcomes) + oracles(se) +
-        run_time(se, plots, outcomes, timing);
+  md += failures(se) + landing_section(se) + rotation_section(se) +
+        divergence(se, plots, outcomes) + oracles(se) + run_time(se, plots, outcomes, timing);
   return md + orders_table(se);
 }
 

@@ -69,6 +69,19 @@ struct Torque {
   Vec3 torque = Vec3::Zero();
 };
 
+// A figure someone published for this scene, with the rotational member that predicts it: the
+// report runs that member and puts the published figure, the prediction and today's engines side
+// by side ([[published]] in a scene file).
+struct PublishedFigure {
+  std::string source;               // where it was published ("Gazebo physics benchmark, ...")
+  std::string engine;               // whose figure it is ("ODE (Gazebo, 2015)")
+  double dt = 0.0;                  // the step it was published at (s)
+  double max_momentum_drift = 0.0;  // max |L(t) - L(0)| / |L(0)|, as published
+  std::string law;                  // rotation_law_key of the member that predicts it
+  double law_dt = 0.0;  // the step that member runs at (dt; Simbody's two half steps: dt/2)
+  std::string note;     // why that member, in a sentence
+};
+
 struct World {
   Vec3 gravity = Vec3::Zero();        // m/s^2, y up
   double damping_rate = 0.0;          // k in 1/s: dv/dt = ... - k*v; per-step decay phi = exp(-k*h)
@@ -87,6 +100,7 @@ struct Scene {
   std::vector<Body> bodies;
   std::vector<Force> forces;
   std::vector<Torque> torques;
+  std::vector<PublishedFigure> published;
   double tolerance = 1e-3;  // m: |dx| above this counts as diverged (time to divergence)
 };
 

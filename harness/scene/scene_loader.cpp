@@ -11,6 +11,7 @@
 
 #include "harness/core/input_error.hpp"
 #include "harness/core/number_format.hpp"
+#include "harness/core/rotation_law.hpp"
 #include "harness/io/bounded_read.hpp"
 #include "harness/scene/timestep.hpp"
 #include "harness/scene/toml_ascii.hpp"
@@ -352,10 +353,35 @@ void load_force(const Reader& r, Scene& s) {
   s.forces.push_back(f);
 }
 
+// [[published]]: a figure published for this scene and the rotational member that predicts it.
+void load_published(const Reader& r, Scene& s) {
+  r.only({"source", "engine", "dt", "max_momentum_drift", "law", "law_dt", "note"});
+  PublishedFigure p;
+  p.source = r.name("source", "");
+  p.engine = r.name("engine", "");
+  if (p.source.empty() || p.engine.empty()) r.fail("source", "source and engine are required");
+  p.dt = r.required_number("dt");
+  check_range(r, "dt", p.dt > 0.0, "must be > 0 (s)");
+  p.max_momentum_drift = r.required_number("max_momentum_drift");
+  check_range(r, "max_momentum_drift", p.max_momentum_drift >= 0.0, "must be >= 0");
+  p.law = r.string("law", "");
+  if (!parse_rotation_law_key(p.law)) {
+    std::string keys;
+    for (RotationLaw law : kRotationFamily)
+      keys += (keys.empty() ? "" : ", ") + rotation_law_key(law);
+    r.fail("law", "expected a rotational member: one of " + keys);
+  }
+  p.law_dt = r.number("law_dt", p.dt);
+  check_range(r, "law_dt", p.law_dt > 0.0, "must be > 0 (s)");
+  p.note = r.name("note", "");
+  if (!needs_rotation(s)) r.fail("law", "published rotation figures need a scene that rotates");
+  s.published.push_back(p);
+}
+
 Scene build(const toml::table& root, const std::string& path) {
   Reader r(path, root, "");
   r.only({"name", "description", "duration", "timestep", "timesteps", "tolerance", "world", "body",
-          "force", "torque"});
+          "force", "torque", "published"});
   Scene s;
   s.source = path;
   s.name = r.name("name", std::filesystem::path(path).stem().string());
@@ -373,6 +399,10 @@ Scene build(const toml::table& root, const std::string& path) {
     for (std::size_t i = 0; i < torques->size(); ++i)
       load_torque(Reader(path, *torques->get(i)->as_table(), "torque[" + std::to_string(i) + "]"),
                   s);
+  if (const toml::array* published = array_of_tables(r, "published"))
+    for (std::size_t i = 0; i < published->size(); ++i)
+      load_published(
+          Reader(path, *published->get(i)->as_table(), "published[" + std::to_string(i) + "]"), s);
   return s;
 }
 

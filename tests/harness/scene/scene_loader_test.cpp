@@ -354,3 +354,22 @@ TEST_CASE("a quaternion that is not unit, or moments no body has, are refused na
   // A flat plate's moments meet the triangle inequality with equality: accepted.
   CHECK(error_of(scene(kHead, kWorld, kBody + "inertia = [1.0, 2.0, 3.0]\n")) == "(loaded)");
 }
+
+TEST_CASE("a published figure names a rotational member and a step, on a scene that rotates",
+          "[loader][rotation]") {
+  const std::string spin = kBody + "angular_velocity = [0.0, 0.0, 1.0]\n";
+  const std::string good =
+      "[[published]]\nsource = \"a paper\"\nengine = \"X\"\ndt = 0.001\n"
+      "max_momentum_drift = 0.01\nlaw = \"explicit/first-order\"\n";
+  CHECK(error_of(scene(kHead, kWorld, spin, good)) == "(loaded)");
+  check_error(scene(kHead, kWorld, spin,
+                    "[[published]]\nsource = \"a paper\"\nengine = \"X\"\ndt = 0.001\n"
+                    "max_momentum_drift = 0.01\nlaw = \"explicit\"\n"),
+              "published[0].law", "expected a rotational member: one of no-gyro/first-order");
+  check_error(scene(kHead, kWorld, spin,
+                    "[[published]]\nsource = \"a paper\"\nengine = \"X\"\ndt = 0.0\n"
+                    "max_momentum_drift = 0.01\nlaw = \"explicit/first-order\"\n"),
+              "published[0].dt", "must be > 0");
+  check_error(scene(kHead, kWorld, kBody, good), "published[0].law",
+              "published rotation figures need a scene that rotates");
+}
