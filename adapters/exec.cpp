@@ -2,10 +2,12 @@
 //
 // Mapping (scene -> protocol): the scene is sent once per load() ("scene" ... "end": h, gravity,
 // damping rate k with phi = exp(-k*h), contacts flag, one "body" line per body); each step sends
-// the harness's forces and reads back every body's position and velocity. Numbers go out with %.17g
-// and come back through std::from_chars, so nothing is lost at the boundary. Every failure of the
-// engine (cannot start, crash, hang, garbage, wrong body count, early exit, "error TEXT") is an
-// EngineError naming the step; the child is then killed and reaped.
+// the harness's forces and reads back every body's position and velocity. A rotating scene (only
+// for an engine that announced rotation) adds the angular damping, each body's orientation,
+// angular velocity and moments, each step's torques, and the rotation in every state. Numbers go
+// out with %.17g and come back through std::from_chars, so nothing is lost at the boundary. Every
+// failure of the engine (cannot start, crash, hang, garbage, wrong body count, early exit, "error
+// TEXT") is an EngineError naming the step; the child is then killed and reaped.
 #include "exec.hpp"
 
 #include <sys/stat.h>
@@ -68,6 +70,11 @@ class ExecEngine final : public Engine {
     const std::size_t n = scene.bodies.size();
     states_.assign(n, {});
     forces_.assign(n, Vec3::Zero());
+    // A rotating scene reaches only an engine that announced rotation (Engine::cannot_run): its
+    // bodies, steps and states then carry the rotation (docs/protocol.md 3.6).
+    rotating_ = needs_rotation(scene);
+    turns_.assign(rotating_ ? n : 0, {});
+    torques_.assign(rotating_ ? n : 0, Vec3::Zero());
     step_ = 0;
     where_ = "at load";
     send("scene " + std::to_string(n));
@@ -76,7 +83,10 @@ class ExecEngine final : public Engine {
     send("gravity " + exact(g.x()) + " " + exact(g.y()) + " " + exact(g.z()));
     send("damping " + exact(scene.world.damping_rate) + " " + exact(decay_per_step(scene, h)));
     send(std::string("contacts ") + (scene.world.contacts ? "1" : "0"));
-    for (const Body& b : scene.bodies) send(body_line(b));
+    if (rotating_)
+      send("angular-damping " + exact(scene.world.angular_damping_rate) + " " +
+           exact(angular_decay_per_step(scene, h)));
+    for (const Body& b : scene.bodies) send(body_line(b, rotating_));
     send("end");
     read_state(0);
   }
@@ -92,8 +102,21 @@ class ExecEngine final : public Engine {
     std::string line = "step " + std::to_string(step_);
     for (const Vec3& f : forces_)
       line += " " + exact(f.x()) + " " + exact(f.y()) + " " + exact(f.z());
+    for (Vec3& t : torques_) {
+      line += " " + exact(t.x()) + " " + exact(t.y()) + " " + exact(t.z());
+      t.setZero();  // this step only (Engine::set_torques)
+    }
     send(line);
     read_state(step_);
+  }
+
+  void set_torques(std::span<const Vec3> torques) override {
+    for (std::size_t i = 0; i < torques_.size() && i < torques.size(); ++i)
+      torques_[i] = torques[i];
+  }
+
+  void read_rotation(std::span<RotationState> out) const override {
+    for (std::size_t i = 0; i < turns_.size() && i < out.size(); ++i) out[i] = turns_[i];
   }
 
   void read(std::span<BodyState> out) const override {
@@ -101,10 +124,18 @@ class ExecEngine final : public Engine {
   }
 
  private:
-  static std::string body_line(const Body& b) {
+  // "body dynamic M HX HY HZ X Y Z VX VY VZ", and in a rotating scene "QW QX QY QZ WX WY WZ IXX
+  // IYY IZZ" after them.
+  static std::string body_line(const Body& b, bool rotating) {
     std::string s =
         std::string("body ") + (b.is_static ? "static" : "dynamic") + " " + exact(b.mass);
+    const Vec3 inertia = inertia_of(b);
     for (const Vec3* v : {&b.half_extents, &b.position, &b.velocity})
+      s += " " + exact(v->x()) + " " + exact(v->y()) + " " + exact(v->z());
+    if (!rotating) return s;
+    const Quat& q = b.orientation;
+    for (double d : {q.w(), q.x(), q.y(), q.z()}) s += " " + exact(d);
+    for (const Vec3* v : {&b.angular_velocity, &inertia})
       s += " " + exact(v->x()) + " " + exact(v->y()) + " " + exact(v->z());
     return s;
   }
@@ -166,7 +197,10 @@ class ExecEngine final : public Engine {
   void read_state(std::int64_t n) {
     const std::string line = receive();
     try {
-      parse_state_line(line, n, states_);
+      if (rotating_)
+        parse_state_line(line, n, states_, turns_);
+      else
+        parse_state_line(line, n, states_);
     } catch (const ProtocolError& e) {
       fail(e.what());
     }
@@ -191,6 +225,9 @@ class ExecEngine final : public Engine {
   std::string where_;    // "at start", "at load", "at step N": prefix of failure messages
   std::vector<BodyState> states_;
   std::vector<Vec3> forces_;
+  bool rotating_ = false;             // the scene loaded needs rotation
+  std::vector<RotationState> turns_;  // its bodies' rotation after the last answer
+  std::vector<Vec3> torques_;         // this step's torques (rotating scenes)
   std::int64_t step_ = 0;
 };
 

@@ -92,6 +92,10 @@ bool HandshakeReader::take(const std::string& line) {
                                                                : !version_ ? "version"
                                                                : !scalar_  ? "scalar"
                                                                            : "law"));
+    if (info_.capabilities.rotation != Rotation::none && !rotation_law_)
+      throw ProtocolError(
+          "the handshake announces rotation but lacks 'rotation-law KEY' (the engine's "
+          "rotational member)");
     return true;
   }
   if (t.empty()) garbage("a handshake line", line);
@@ -131,39 +135,83 @@ void HandshakeReader::key(const std::vector<std::string>& k, const std::string& 
         info_.capabilities.planar_only = true;
       else if (k[i] == "continuous-collision")
         info_.continuous_collision = true;
+      else if (k[i] == "rotation")
+        info_.capabilities.rotation = Rotation::full;
+      else if (k[i] == "rotation-z")
+        info_.capabilities.rotation = Rotation::spin_z;
       else
-        garbage("capabilities 'contacts', 'planar-only' or 'continuous-collision'", line);
+        garbage(
+            "capabilities 'contacts', 'planar-only', 'continuous-collision', 'rotation' or "
+            "'rotation-z'",
+            line);
     }
+  } else if (k[0] == "rotation-law" && k.size() == 2 && parse_rotation_law_key(k[1])) {
+    info_.rotation_law = *parse_rotation_law_key(k[1]);
+    rotation_law_ = true;
   } else if (k[0] == "damping-mapping" && k.size() >= 2) {
     info_.damping_mapping = free_text(value);
   } else {
     garbage(
-        "name, version, scalar f32|f64, law KEY, capabilities, damping-mapping or ready "
-        "(law keys: after-forces, before-forces, after-position, after-forces/explicit, "
-        "before-forces/explicit)",
+        "name, version, scalar f32|f64, law KEY, capabilities, rotation-law KEY, "
+        "damping-mapping or ready (law keys: after-forces, before-forces, after-position, "
+        "after-forces/explicit, before-forces/explicit; rotation-law keys: "
+        "GYRO/UPDATE with GYRO no-gyro, explicit, implicit-body, linearly-implicit and UPDATE "
+        "first-order, exp-map)",
         line);
   }
 }
 
-void parse_state_line(const std::string& line, std::int64_t n, std::span<BodyState> out) {
+namespace {
+
+// "state N" and `per_body` numbers per body, checked and parsed; `put(i, v)` stores number i.
+template <typename Put>
+void parse_numbers(const std::string& line, std::int64_t n, std::size_t bodies,
+                   std::size_t per_body, Put&& put) {
   const std::vector<std::string> t = split(line);
   const std::string head = "'state " + std::to_string(n) + "'";
-  const std::size_t want = 6 * out.size();
+  const std::size_t want = per_body * bodies;
   if (t.size() < 2 || t[0] != "state" || t[1] != std::to_string(n))
     garbage(head + " and " + std::to_string(want) + " numbers", line);
   const std::size_t got = t.size() - 2;
   if (got != want) {
-    const std::string per_body = got % 6 == 0 ? " (" + std::to_string(got / 6) + " bodies)" : "";
-    throw ProtocolError("the engine answered " + std::to_string(got) + " numbers" + per_body +
-                        ", the scene has " + std::to_string(out.size()) + " bodies (" +
-                        std::to_string(want) + " numbers)");
+    const std::string per =
+        got % per_body == 0 ? " (" + std::to_string(got / per_body) + " bodies)" : "";
+    throw ProtocolError("the engine answered " + std::to_string(got) + " numbers" + per +
+                        ", the scene has " + std::to_string(bodies) + " bodies (" +
+                        std::to_string(want) + " numbers" +
+                        (per_body == 13 ? ": 13 per body in a rotating scene" : "") + ")");
   }
   for (std::size_t i = 0; i < got; ++i) {
     double v = 0.0;
     if (!parse_number(t[2 + i], v)) garbage("a number", t[2 + i]);
+    put(i, v);
+  }
+}
+
+}  // namespace
+
+void parse_state_line(const std::string& line, std::int64_t n, std::span<BodyState> out) {
+  parse_numbers(line, n, out.size(), 6, [&](std::size_t i, double v) {
     BodyState& s = out[i / 6];
     (i % 6 < 3 ? s.position : s.velocity)[static_cast<Eigen::Index>(i % 3)] = v;
-  }
+  });
+}
+
+void parse_state_line(const std::string& line, std::int64_t n, std::span<BodyState> out,
+                      std::span<RotationState> turns) {
+  parse_numbers(line, n, out.size(), 13, [&](std::size_t i, double v) {
+    const std::size_t b = i / 13, k = i % 13;
+    if (k < 3)
+      out[b].position[static_cast<Eigen::Index>(k)] = v;
+    else if (k < 6)
+      out[b].velocity[static_cast<Eigen::Index>(k - 3)] = v;
+    else if (k == 6)
+      turns[b].orientation.w() = v;
+    else if (k < 10)
+      turns[b].orientation.vec()[static_cast<Eigen::Index>(k - 7)] = v;
+    else
+      turns[b].angular_velocity[static_cast<Eigen::Index>(k - 10)] = v;
+  });
 }
 
 bool is_error_line(const std::string& line) {

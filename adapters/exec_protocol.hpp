@@ -30,7 +30,8 @@ struct ProtocolError : std::runtime_error {
 std::string engine_name_problem(const std::string& name, const std::vector<std::string>& reserved);
 
 // The handshake, read line by line: "dropcheck-engine 1", then name, version, scalar, law,
-// optional capabilities and damping-mapping lines, then "ready".
+// optional capabilities, rotation-law and damping-mapping lines, then "ready". An engine whose
+// capabilities include rotation or rotation-z must declare its rotation-law.
 class HandshakeReader {
  public:
   // Lines a handshake may take before "ready" (it needs 6; each line restarts the answer timeout,
@@ -53,12 +54,17 @@ class HandshakeReader {
   std::vector<std::string> reserved_;
   bool started_ = false;
   int lines_ = 0;
-  bool name_ = false, version_ = false, scalar_ = false, law_ = false;
+  bool name_ = false, version_ = false, scalar_ = false, law_ = false, rotation_law_ = false;
 };
 
 // Reads "state N" followed by 6 numbers (x y z vx vy vz) per body of `out`, into `out`. Throws
 // ProtocolError for another step, another count or a token that is not a number.
 void parse_state_line(const std::string& line, std::int64_t n, std::span<BodyState> out);
+
+// The same for a rotating scene: 13 numbers per body (x y z vx vy vz qw qx qy qz wx wy wz), the
+// orientation and world angular velocity into `turns` (as many as `out`).
+void parse_state_line(const std::string& line, std::int64_t n, std::span<BodyState> out,
+                      std::span<RotationState> turns);
 
 // True for an "error TEXT" line (the engine gives up, docs/protocol.md).
 bool is_error_line(const std::string& line);

@@ -1,7 +1,8 @@
 // Fuzz target: the engine protocol's reading side (adapters/exec_protocol.cpp), what dropcheck
 // reads from an external engine, on arbitrary bytes. The first byte picks the scene's body count
 // (0-3); the rest, split at line feeds, is the engine's answers: handshake lines until "ready",
-// then one "state N" line per step. Every line must be taken or refused with ProtocolError, and
+// then one "state N" line per step (read as a rotating scene's, 13 numbers per body, when the
+// engine announced rotation). Every line must be taken or refused with ProtocolError, and
 // whatever reaches a person must be inert and short: a refusal's message and every announced text
 // (name, version, damping mapping) free of control characters and invalid UTF-8, a message under 1
 // KiB. Anything else aborts: a finding.
@@ -30,6 +31,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   dropcheck::EngineInfo info;
   dropcheck::HandshakeReader handshake(info, false, {"ours", "bullet"});
   std::vector<dropcheck::BodyState> states(bodies);
+  std::vector<dropcheck::RotationState> turns(bodies);
   bool ready = false;
   std::int64_t step = 0;
   try {
@@ -49,7 +51,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       } else if (dropcheck::is_error_line(line)) {
         require_inert(dropcheck::error_text(line), 203);
       } else {
-        dropcheck::parse_state_line(line, step++, states);
+        if (info.capabilities.rotation != dropcheck::Rotation::none)
+          dropcheck::parse_state_line(line, step++, states, turns);
+        else
+          dropcheck::parse_state_line(line, step++, states);
       }
     }
   } catch (const dropcheck::ProtocolError& e) {

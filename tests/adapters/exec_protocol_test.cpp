@@ -81,3 +81,44 @@ TEST_CASE("a refusal quotes at most a short, escaped excerpt of the engine's lin
   endless.resize(100, "version 1");
   CHECK_THAT(refusal(endless), Contains("a handshake of more than 64 lines without 'ready'"));
 }
+
+TEST_CASE("an engine that turns bodies announces it with its rotational member",
+          "[exec][rotation]") {
+  const auto handshake = [](const std::vector<std::string>& extra) {
+    std::vector<std::string> lines(kHandshake.begin(), kHandshake.end() - 1);
+    lines.insert(lines.end(), extra.begin(), extra.end());
+    lines.push_back("ready");
+    return lines;
+  };
+  EngineInfo info;
+  HandshakeReader reader(info, false, {"ours"});
+  for (const std::string& line :
+       handshake({"capabilities rotation", "rotation-law implicit-body/exp-map"}))
+    reader.take(line);
+  CHECK(info.capabilities.rotation == Rotation::full);
+  CHECK(info.rotation_law ==
+        RotationLaw{Gyroscopic::implicit_body, OrientationUpdate::exponential_map});
+  CHECK_THAT(refusal(handshake({"capabilities rotation"})),
+             Contains("announces rotation but lacks 'rotation-law KEY'"));
+  CHECK_THAT(refusal(handshake({"capabilities rotation-z", "rotation-law explicit"})),
+             Contains("garbage from the engine") && Contains("rotation-law keys"));
+  CHECK(refusal(handshake({"capabilities rotation-z", "rotation-law no-gyro/exp-map"})) ==
+        "(accepted)");
+}
+
+TEST_CASE("a rotating scene's state line carries 13 numbers per body", "[exec][rotation]") {
+  std::vector<BodyState> states(2);
+  std::vector<RotationState> turns(2);
+  parse_state_line("state 3 1 2 3 4 5 6 1 0 0 0 0 0 1  7 8 9 1 2 3 0.5 0.5 0.5 0.5 -1 -2 -3", 3,
+                   states, turns);
+  CHECK(states[1].position == Vec3(7, 8, 9));
+  CHECK(turns[0].angular_velocity == Vec3(0, 0, 1));
+  CHECK(turns[1].orientation.coeffs() == Eigen::Vector4d(0.5, 0.5, 0.5, 0.5));  // x y z w
+  CHECK(turns[1].angular_velocity == Vec3(-1, -2, -3));
+  try {
+    parse_state_line("state 3 1 2 3 4 5 6 7 8 9 1 2 3", 3, states, turns);
+    FAIL("accepted 12 numbers for 2 rotating bodies");
+  } catch (const ProtocolError& e) {
+    CHECK_THAT(e.what(), Contains("13 per body in a rotating scene"));
+  }
+}

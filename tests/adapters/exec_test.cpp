@@ -257,9 +257,9 @@ TEST_CASE("The handshake declares continuous collision with the capability conti
   const Seen plain = shake("plain", "capabilities contacts", false);
   CHECK_FALSE(plain.info.continuous_collision);  // not declared: overlap tested at step ends only
   const Seen bad = shake("bad", "capabilities contacts ccd", true);
-  CHECK_THAT(bad.failure,
-             Contains("at start") && Contains("capabilities 'contacts', 'planar-only' or "
-                                              "'continuous-collision'"));
+  CHECK_THAT(bad.failure, Contains("at start") &&
+                              Contains("capabilities 'contacts', 'planar-only', "
+                                       "'continuous-collision', 'rotation' or 'rotation-z'"));
   CHECK(no_children());
 }
 
