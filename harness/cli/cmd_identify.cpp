@@ -76,6 +76,21 @@ Trajectory trajectory_from_file(const std::string& file) {
   return runs[0];
 }
 
+// A Gazebo benchmark log names its models model_0, model_1, ...: read as the scene's dynamic
+// bodies, in order, when there are as many (said on `out`).
+void adopt_scene_names(Trajectory& run, const Scene& scene, std::ostream& out) {
+  std::vector<std::string> dynamic;
+  for (const Body& b : scene.bodies)
+    if (!b.is_static) dynamic.push_back(b.name);
+  if (dynamic.size() != run.bodies() || dynamic.size() != scene.bodies.size()) return;
+  for (std::size_t i = 0; i < run.bodies(); ++i)
+    if (run.body_names[i] != "model_" + std::to_string(i)) return;
+  for (std::size_t i = 0; i < run.bodies(); ++i) {
+    out << "reading " << run.body_names[i] << " as body '" << dynamic[i] << "'\n";
+    run.body_names[i] = dynamic[i];
+  }
+}
+
 void print_fits(const Identification& id, std::ostream& out) {
   out << printf_string("  %-24s %-38s %12s  %-32s %14s %14s\n", "member", "update", "phi",
                        "gravity (m/s^2)", "max|x-fit| m", "max|v-fit| m/s");
@@ -203,6 +218,7 @@ int run_identify(const IdentifyRequest& r, std::ostream& out) {
     }
   } else {
     run = trajectory_from_file(r.trajectory);
+    adopt_scene_names(run, scene, out);
   }
   const Identification id = identify_law(scene, run);
   out << "identify " << scene.name << ": trajectory of " << run.engine << ", " << run.bodies()

@@ -145,6 +145,98 @@ RotationState rotation_columns(const std::vector<std::string>& f, const std::str
   return r;
 }
 
+// --- Gazebo's physics benchmark logs ----------------------------------------------------------
+// scpeters/benchmark's tools/mcap_to_csv.py writes one run per file: a line of run fields, their
+// values, then one row per model per step in Gazebo's z-up world frame.
+constexpr const char* kGazeboRunHeader = "physics_engine,time_step,";
+constexpr const char* kGazeboColumns[] = {
+    "sim_time",          "model_no",           "linear_velocity_x",  "linear_velocity_y",
+    "linear_velocity_z", "angular_velocity_x", "angular_velocity_y", "angular_velocity_z",
+    "position_x",        "position_y",         "position_z",         "quaternion_w",
+    "quaternion_x",      "quaternion_y",       "quaternion_z"};
+
+std::string gazebo_header() {
+  std::string h;
+  for (const char* c : kGazeboColumns) h += (h.empty() ? "" : ",") + std::string(c);
+  return h;
+}
+
+double gazebo_number(const std::vector<std::string>& f, int i, const std::string& file, int line) {
+  double v = 0.0;
+  const std::string& s = f[static_cast<std::size_t>(i)];
+  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  const std::string key =
+      std::string(kGazeboColumns[i]) + " (column " + std::to_string(i + 1) + ")";
+  if (ec != std::errc() || ptr != s.data() + s.size() || s.empty())
+    throw InputError(file, line, key, excerpt(s) + " is not a number");
+  if (!std::isfinite(v)) throw InputError(file, line, key, excerpt(s) + " is not a finite number");
+  return v;
+}
+
+// Gazebo's z-up world in dropcheck's y-up one: the proper rotation M: (x, y, z) -> (x, z, -y), a
+// turn of -90 degrees about x (never a reflection: it would turn the angular velocity, a
+// pseudovector, the wrong way). Orientations: R' = M*R*M^T, the body frame turned with the world
+// (a box of sides a x b x c along Gazebo's body axes has sides a x c x b along dropcheck's).
+Vec3 from_gazebo(const Vec3& v) {
+  return {v.x(), v.z(), -v.y()};
+}
+Quat from_gazebo(const Quat& q) {
+  const Quat m(std::sqrt(0.5), -std::sqrt(0.5), 0.0, 0.0);
+  return m * q * m.conjugate();
+}
+
+// One Gazebo log as one run, steps counted from its first row.
+std::vector<Trajectory> parse_gazebo_log(std::istream& in, const std::string& file) {
+  std::string line;
+  if (!next_line(in, line, file, 2))
+    throw InputError(file, 2, "", "a Gazebo benchmark log needs its run values on line 2");
+  const std::vector<std::string> run = csv_fields(line);
+  if (run.size() < 2) throw InputError(file, 2, "", "expected physics_engine,time_step,...");
+  Trajectory t;
+  t.engine = run[0];
+  if (t.engine.empty() || find_unsafe_in_line(t.engine) != std::string::npos)
+    throw InputError(file, 2, "physics_engine", excerpt(t.engine) + " is not a name");
+  const auto [ptr, ec] = std::from_chars(run[1].data(), run[1].data() + run[1].size(), t.h);
+  if (ec != std::errc() || ptr != run[1].data() + run[1].size() || !(t.h > 0.0) ||
+      !std::isfinite(t.h))
+    throw InputError(file, 2, "time_step", excerpt(run[1]) + " is not a step > 0 (s)");
+  if (!next_line(in, line, file, 3) || line != gazebo_header())
+    throw InputError(file, 3, "", "the columns must be " + gazebo_header());
+  t.rotates = true;
+  int n = 3;
+  double first_time = NAN;
+  while (next_line(in, line, file, n + 1)) {
+    ++n;
+    if (line.empty()) continue;
+    const std::vector<std::string> f = csv_fields(line);
+    if (f.size() != 15)
+      throw InputError(file, n, "", "expected 15 columns, got " + std::to_string(f.size()));
+    double v[15];
+    for (int i = 0; i < 15; ++i) v[i] = gazebo_number(f, i, file, n);
+    if (std::isnan(first_time)) first_time = v[0];
+    const double steps = std::round((v[0] - first_time) / t.h);
+    if (steps < 0 || steps > 9007199254740992.0)
+      throw InputError(file, n, "sim_time", "before the first row's, or beyond 2^53 steps");
+    if (v[1] < 0 || v[1] > 1e6 || v[1] != std::floor(v[1]))
+      throw InputError(file, n, "model_no", "must be a whole number >= 0");
+    BodyState s{from_gazebo(Vec3(v[8], v[9], v[10])), from_gazebo(Vec3(v[2], v[3], v[4]))};
+    RotationState r;
+    r.orientation = Quat(v[11], v[12], v[13], v[14]);
+    if (std::abs(r.orientation.norm() - 1.0) > 1e-6)
+      throw InputError(file, n, "quaternion_w (column 12)",
+                       "quaternion_w..z must be a unit quaternion (norm " +
+                           printf_string("%.9g", r.orientation.norm()) + ")");
+    r.orientation = from_gazebo(r.orientation);
+    r.angular_velocity = from_gazebo(Vec3(v[5], v[6], v[7]));
+    add_row(t, static_cast<std::int64_t>(steps), "model_" + f[1], s, &r, file, n);
+  }
+  if (t.recorded.empty()) throw InputError(file, 4, "", "no rows after the columns");
+  if (t.states.size() != t.recorded.size() * t.body_names.size())
+    throw InputError(file, n, "model_no", "the last step lacks models");
+  t.steps = t.recorded.back();
+  return {t};
+}
+
 }  // namespace
 
 std::vector<Trajectory> read_trajectories_csv(const std::string& file) {
@@ -171,6 +263,7 @@ std::vector<Trajectory> parse_trajectories_csv(std::istream& in, const std::stri
   std::string line;
   const bool got_header = next_line(in, line, file, 1);
   if (line.rfind(kByteOrderMark, 0) == 0) line.erase(0, std::strlen(kByteOrderMark));
+  if (got_header && line.rfind(kGazeboRunHeader, 0) == 0) return parse_gazebo_log(in, file);
   if (!got_header || (line != kHeader && line != kRotationHeader))
     throw InputError(
         file, 1, "",

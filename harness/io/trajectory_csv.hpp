@@ -1,5 +1,10 @@
 // Trajectories in: the CSV that `dropcheck run --csv` writes (harness/io/trajectory_io.hpp), read
-// back exactly (numbers through std::from_chars), for commands that analyse a recorded run.
+// back exactly (numbers through std::from_chars), for commands that analyse a recorded run; and
+// the per-run CSV log of Gazebo's physics benchmark (scpeters/benchmark tools/mcap_to_csv.py: a
+// line "physics_engine,time_step,...", its values, then sim_time, model_no, world linear and
+// angular velocity, position and quaternion w x y z per model per step), turned from Gazebo's
+// z-up frame into dropcheck's y-up one by the proper rotation (x, y, z) -> (x, z, -y), its models
+// named model_0, model_1, ... and its steps counted from its first row.
 #pragma once
 
 #include <istream>

@@ -212,3 +212,37 @@ TEST_CASE("identify --trajectory names the rotational member of a run read back 
   const Result e = cli({"identify", scene, "--engine", "mujoco"});
   CHECK_THAT(e.out, Contains("declared rotation explicit/exp-map: matches"));
 }
+
+TEST_CASE("identify --trajectory reads a Gazebo benchmark log and names its rotational member",
+          "[cli][identify][rotation]") {
+  // Bullet's run of Gazebo's complex case, written back into Gazebo's frame and log format.
+  ScratchDir d("identify-gazebo");
+  const std::string scene = DROPCHECK_SOURCE_DIR "/scenarios/gazebo_boxes_complex.toml";
+  REQUIRE(cli({"run", scene, "--engine", "bullet", "--csv", d.file("bullet.csv")}).code == 0);
+  std::ofstream log(d.file("gazebo.csv"));
+  log << "physics_engine,time_step,complex,collisiion,model_count,wall_time,log_multiple,"
+         "classname\nbullet,0.001,1,0,1,0.6,1,Boxes\n"
+         "sim_time,model_no,linear_velocity_x,linear_velocity_y,linear_velocity_z,"
+         "angular_velocity_x,angular_velocity_y,angular_velocity_z,position_x,position_y,"
+         "position_z,quaternion_w,quaternion_x,quaternion_y,quaternion_z\n";
+  log.precision(17);
+  const double r = std::sqrt(0.5);
+  const std::vector<std::string> rows = split(slurp(d.file("bullet.csv")), '\n');
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const std::vector<std::string> f = split(rows[i], ',');
+    const auto n = [&](int k) { return std::stod(f[static_cast<std::size_t>(k)]); };
+    // (x, y, z) -> (x, -z, y) back to z-up; q -> m*q*m^-1 with m = (r, r, 0, 0).
+    const double qw = n(11), qx = n(12), qy = n(13), qz = n(14);
+    const double aw = r * qw - r * qx, ax = r * qx + r * qw, ay = r * qy - r * qz,
+                 az = r * qz + r * qy;  // m*q
+    const double gw = aw * r + ax * r, gx = ax * r - aw * r, gy = ay * r - az * r,
+                 gz = az * r + ay * r;  // (m*q)*conj(m)
+    log << n(3) + 0.001 << ",0," << n(8) << "," << -n(10) << "," << n(9) << "," << n(15) << ","
+        << -n(17) << "," << n(16) << "," << n(5) << "," << -n(7) << "," << n(6) << "," << gw << ","
+        << gx << "," << gy << "," << gz << "\n";
+  }
+  log.close();
+  const Result id = cli({"identify", scene, "--trajectory", d.file("gazebo.csv")});
+  CHECK_THAT(id.out, Contains("reading model_0 as body 'box'") &&
+                         Contains("best fit: implicit-body/exp-map"));
+}

@@ -82,3 +82,69 @@ TEST_CASE("an engine or body name with a control character is refused", "[csv]")
   CHECK_THAT(error_of(kHeader + "e,0.5,0,0,\"a\tb\",0,10,0,0,0,0\n"),
              Contains("run.csv:2: body (column 5): 'a\\x09b' is not a name"));
 }
+
+namespace {
+
+// A run written as Gazebo's benchmark tools write it (tools/mcap_to_csv.py): the state turned back
+// into Gazebo's z-up frame by the inverse of (x, y, z) -> (x, z, -y).
+std::string as_gazebo_log(const Trajectory& t) {
+  const auto back = [](const Vec3& v) { return Vec3(v.x(), -v.z(), v.y()); };
+  const Quat m(std::sqrt(0.5), -std::sqrt(0.5), 0.0, 0.0);
+  std::ostringstream out;
+  out.precision(17);
+  out << "physics_engine,time_step,complex,collisiion,model_count,wall_time,log_multiple,"
+         "classname\n"
+      << t.engine << "," << t.h << ",1,0,1,0.5,1,Boxes\n"
+      << "sim_time,model_no,linear_velocity_x,linear_velocity_y,linear_velocity_z,"
+         "angular_velocity_x,angular_velocity_y,angular_velocity_z,position_x,position_y,"
+         "position_z,quaternion_w,quaternion_x,quaternion_y,quaternion_z\n";
+  for (std::size_t s = 0; s < t.samples(); ++s) {
+    const Vec3 v = back(t.at(s, 0).velocity), x = back(t.at(s, 0).position);
+    const Vec3 w = back(t.rotation_at(s, 0).angular_velocity);
+    const Quat q = m.conjugate() * t.rotation_at(s, 0).orientation * m;
+    out << t.time(s) + t.h << ",0," << v.x() << "," << v.y() << "," << v.z() << "," << w.x() << ","
+        << w.y() << "," << w.z() << "," << x.x() << "," << x.y() << "," << x.z() << "," << q.w()
+        << "," << q.x() << "," << q.y() << "," << q.z() << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace
+
+TEST_CASE("a Gazebo benchmark log is read in dropcheck's frame, its steps from its first row",
+          "[csv][rotation]") {
+  Trajectory t;
+  t.engine = "bullet";
+  t.h = 0.001;
+  t.body_names = {"box"};
+  t.rotates = true;
+  for (std::int64_t n = 0; n < 3; ++n) {
+    const double a = 0.1 * static_cast<double>(n);
+    t.recorded.push_back(n);
+    t.states.push_back({Vec3(1.0 + a, 2.0, -3.0), Vec3(-2.0, 8.0 - a, -2.0)});
+    t.rotations.push_back({Quat(Eigen::AngleAxisd(a, Vec3(0.6, 0.0, 0.8))), Vec3(0.1, 0.1, -5.0)});
+  }
+  std::istringstream in(as_gazebo_log(t));
+  const std::vector<Trajectory> runs = parse_trajectories_csv(in, "boxes.csv");
+  REQUIRE(runs.size() == 1);
+  const Trajectory& r = runs[0];
+  CHECK(r.engine == "bullet");
+  CHECK(r.h == 0.001);
+  CHECK(r.recorded == std::vector<std::int64_t>{0, 1, 2});  // sim_time 0.001.. counted from row 1
+  CHECK(r.body_names == std::vector<std::string>{"model_0"});
+  REQUIRE(r.rotates);
+  for (std::size_t s = 0; s < 3; ++s) {
+    CHECK((r.at(s, 0).position - t.at(s, 0).position).norm() < 1e-14);
+    CHECK((r.at(s, 0).velocity - t.at(s, 0).velocity).norm() < 1e-14);
+    CHECK((r.rotation_at(s, 0).angular_velocity - t.rotation_at(s, 0).angular_velocity).norm() <
+          1e-14);
+    CHECK(r.rotation_at(s, 0).orientation.angularDistance(t.rotation_at(s, 0).orientation) < 1e-14);
+  }
+  // Not a unit quaternion: refused with the line and the column.
+  std::string bad = as_gazebo_log(t);
+  bad.replace(bad.rfind(",0.") + 1, 0, "9");
+  std::istringstream in_bad(bad);
+  CHECK_THROWS_WITH(
+      parse_trajectories_csv(in_bad, "boxes.csv"),
+      Contains("boxes.csv:6: quaternion_w (column 12)") || Contains("boxes.csv:6: quaternion"));
+}
