@@ -41,9 +41,12 @@ class References {
       it = laws_.emplace(key, predict_discrete(law, scene_, sweep_[i].seconds)).first;
     return it->second;
   }
-  // Oracle 2 in the engine's own arithmetic at sweep step i, predicted on first use.
+  // Oracle 2 in the engine's own arithmetic at sweep step i, predicted on first use. An engine
+  // whose arithmetic is not copied shares the long-double law, unless the scene turns its bodies:
+  // its rotational member is its own (predict_own_arithmetic adds it).
   const Trajectory& own(const EngineInfo& info, std::size_t i) {
-    if (!arithmetic_copied(info)) return law(info.law, i);
+    const bool turns = needs_rotation(scene_) && info.capabilities.rotation != Rotation::none;
+    if (!arithmetic_copied(info) && !turns) return law(info.law, i);
     auto key = std::make_pair(info.name, i);
     auto it = own_.find(key);
     if (it == own_.end())
@@ -149,12 +152,16 @@ void choose_reference(SceneEvaluation& se, const std::string& wanted) {
 
 // The step before the first one on which any of the trajectories has a body at or below its
 // floor (harness/oracles/landing.hpp): until then every body is in free flight. -1 when none lands.
+// A turning box may touch with a corner as soon as its centre is within its half-diagonal of the
+// floor: that is the height counted for it.
 std::int64_t free_flight_end(const Scene& scene, std::initializer_list<const Trajectory*> runs) {
   std::int64_t first = -1;
-  for (const LandingSetup& setup : landing_setups(scene))
+  for (LandingSetup setup : landing_setups(scene)) {
+    if (needs_rotation(scene)) setup.half_height = scene.bodies[setup.body].half_extents.norm();
     for (const Trajectory* t : runs)
       if (const std::int64_t n = first_contact_step(*t, setup); n >= 0 && (first < 0 || n < first))
         first = n;
+  }
   // One step earlier: an engine with a contact skin (Box2D, 0.01 m) meets the floor up to one
   // step before its bottom does.
   return first < 0 ? -1 : std::max<std::int64_t>(first - 1, 0);
@@ -258,7 +265,8 @@ SceneEvaluation evaluate_scene(const Scene& scene, const std::vector<EngineSlot>
     if (!ev.ran()) continue;
     run_sweep(ev, engines[e], se, refs, progress);
     if (se.uses_fine) run_fine(ev, engines[e], se, progress);
-    if (scene.world.contacts) measure_landings(ev, se);
+    // A turning body's landing has no closed form (check_landing says so): not measured.
+    if (scene.world.contacts && !needs_rotation(scene)) measure_landings(ev, se);
   }
   choose_reference(se, options.reference);
   const EngineEvaluation* ref = se.find(se.reference);

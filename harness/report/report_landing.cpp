@@ -77,6 +77,12 @@ TunnelVerdict landing_tunnel_verdict(const SceneEvaluation& se, const EngineEval
 }
 
 std::string landing_section(const SceneEvaluation& se) {
+  if (se.scene.world.contacts && needs_rotation(se.scene))
+    return "#### Landing\n\nA turning body meets the floor with a corner or an edge, and from "
+           "there each engine's contact model decides: the flat-landing closed form does not "
+           "apply, so the landing is compared (trajectories and divergence below), not judged. "
+           "The divergence is attributed over the fall while the body's centre stays farther "
+           "from the floor than its half-diagonal.\n\n";
   MarkdownTable t(
       {"engine", "body", "first contact t (s)", "closed form t (s)", "own law t (s)", "deepest (m)",
        "rebound above own rest (m)", "rest offset (m)", "expected (m)", "as expected", "still"},

@@ -8,6 +8,7 @@
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/measure/attribution.hpp"
+#include "harness/measure/evaluate.hpp"
 #include "harness/measure/own_law.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
@@ -121,5 +122,23 @@ TEST_CASE("the members reproduce Gazebo's published angular-momentum column",
     INFO(p.engine << ": published " << p.max_momentum_drift << ", " << p.law << " predicts "
                   << predicted);
     CHECK(std::abs(predicted - p.max_momentum_drift) <= 1e-5 * p.max_momentum_drift);
+  }
+}
+
+// The report's evaluation judges the rotation too, for an engine whose arithmetic it does not copy
+// (ODE, MuJoCo): its own-law verdict carries its rotational member, not the linear law alone.
+TEST_CASE("the report's own-law verdicts of ODE and MuJoCo judge their rotation",
+          "[rotation][own-law][report]") {
+  const Scene scene = load_scene(DROPCHECK_SOURCE_DIR "/scenarios/gazebo_boxes_simple.toml");
+  std::vector<EngineSlot> slots;
+  for (const char* name : {"ode", "mujoco"})
+    slots.push_back({name, [name] { return make_engine(name); }, ""});
+  const SceneEvaluation se = evaluate_scene(scene, slots);
+  for (const EngineEvaluation& ev : se.engines) {
+    REQUIRE(ev.ran());
+    const OwnLawVerdict& own = *ev.at_default().own_law;
+    INFO(ev.name << ": " << own.sentence());
+    CHECK(own.rotation);
+    CHECK(own.follows());
   }
 }
