@@ -13,6 +13,7 @@
 #include "harness/measure/timing.hpp"
 #include "harness/oracles/analytic.hpp"
 #include "harness/oracles/discrete_law.hpp"
+#include "harness/oracles/identify_rotation.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
 
 namespace dropcheck {
@@ -23,10 +24,14 @@ Trajectory downsample(const Trajectory& full, std::int64_t every) {
   Trajectory t = full;
   t.recorded.clear();
   t.states.clear();
+  t.rotations.clear();
   for (std::size_t s = 0; s < full.samples(); ++s) {
     if (full.recorded[s] % every != 0 && s + 1 != full.samples()) continue;
     t.recorded.push_back(full.recorded[s]);
-    for (std::size_t b = 0; b < full.bodies(); ++b) t.states.push_back(full.at(s, b));
+    for (std::size_t b = 0; b < full.bodies(); ++b) {
+      t.states.push_back(full.at(s, b));
+      if (full.rotates) t.rotations.push_back(full.rotation_at(s, b));
+    }
   }
   return t;
 }
@@ -73,6 +78,15 @@ SweepPoint measure(const Scene& scene, const EngineInfo& info, const Trajectory&
   if (scene.world.contacts) return p;  // the laws know no contacts: no verdict
   p.own_law = verdict;
   if (!verdict.follows()) p.fits = fitting_law(info, scene, run);
+  if (!verdict.follows() && run.rotates && run.status == RunStatus::ok) {
+    // The member that fits, or every member that ties with it (a steady spin hides the
+    // gyroscopic term, not the orientation update).
+    const RotationIdentification id = identify_rotation(scene, run);
+    const double best = id.fits[id.best].max_angle;
+    for (const RotationFit& f : id.fits)
+      if (id.fits_any && f.max_angle <= 2.0 * best + 1e-12)
+        p.rotation_fits += (p.rotation_fits.empty() ? "" : " or ") + rotation_law_key(f.law);
+  }
   return p;
 }
 

@@ -49,6 +49,9 @@ struct SweepPoint {
   // the law family the run follows instead when it leaves its declared law.
   std::optional<OwnLawVerdict> own_law;
   std::optional<Law> fits;
+  // When the run's rotation leaves its declared rotational member: the member it follows instead
+  // (identify_rotation; "A or B" when the scene cannot tell them apart), as "GYRO/UPDATE" keys.
+  std::string rotation_fits;
   double wall_min = kNoValue;  // wall seconds per simulated second (--timing only)
   double wall_median = kNoValue;
   int replicas = 0;  // copies of the scene in one timed run (--timing only)

@@ -132,8 +132,10 @@ TierResult check_bits(const Baseline& expected, const Baseline& now) {
     return result(Verdict::passed, p + "hash " + now.hash + " identical to the baseline's");
   const SampleDiff d = diff_samples(expected.samples, now.samples, 0.0);
   std::string where = !d.incomparable.empty() ? d.incomparable
-                      : d.first_step >= 0
-                          ? first_difference_text(d, 0.0, now.record_every)
+                      : d.first_step >= 0     ? first_difference_text(d, 0.0, now.record_every)
+                      : now.samples.rotates
+                          ? "positions and velocities are identical at every sampled step: the "
+                            "change is in the rotation (the hash covers it) or between samples"
                           : "every sampled step is identical; the change lies between samples";
   return result(Verdict::failed, p + "hash " + now.hash + " != baseline " + expected.hash +
                                      " on the same build key [" + now.build_key + "]: " + where);

@@ -76,6 +76,20 @@ std::string departure_cause(const Baseline& b, const SweepPoint& p, const Baseli
   return "; it matches no member of the law family (" + orders + ")";
 }
 
+// A run whose positions follow its law and whose rotation does not: the rotational update changed.
+std::string rotation_problem(const Baseline& b, const SweepPoint& p) {
+  const OwnLawVerdict& v = *p.own_law;
+  return "oracle 2 (own rotational law: " + v.rotation_law + ") fails: at h = " + p.dt.text +
+         " the rotation of " + b.engine + " departs from it by " + g3(v.residual_angle) +
+         " rad, |w - law| " + g3(v.residual_w) + " rad/s, beyond its tolerance " +
+         g3(v.tolerance_angle) + " rad (" + v.rotation_rule +
+         "); positions and velocities follow " + b.law +
+         (p.rotation_fits.empty() ? "; its rotation matches no rotational member"
+                                  : "; its rotation follows the member " + p.rotation_fits +
+                                        " instead. If intended, declare it in the engine's adapter "
+                                        "(EngineInfo::rotation_law)");
+}
+
 // Oracle 2 at every h; "" when all pass, else the failure.
 std::string law_problem(const Baseline& b, const Baseline* baseline, std::string& summary) {
   double worst = 0.0, worst_tol = 0.0;
@@ -83,6 +97,10 @@ std::string law_problem(const Baseline& b, const Baseline* baseline, std::string
   for (const SweepPoint& p : b.sweep) {
     if (p.status != "ok") return "the run at h = " + p.dt.text + " ended with status " + p.status;
     if (!p.own_law) continue;
+    const OwnLawVerdict& v = *p.own_law;
+    if (!v.follows() && v.rotation && v.residual_x <= v.tolerance.x &&
+        v.residual_v <= v.tolerance.v)
+      return rotation_problem(b, p);
     if (!p.own_law->follows() || std::isnan(p.law_max_dx))
       return "oracle 2 (own discrete law: " + b.law + ") fails: at h = " + p.dt.text + " body '" +
              p.law_worst_body + "' departs from it by " + g3(p.law_max_dx) + " m, beyond its " +

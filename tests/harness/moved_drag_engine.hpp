@@ -91,3 +91,82 @@ inline std::unique_ptr<Engine> make_moved_drag_f64() {
 }
 
 }  // namespace dropcheck::testing
+
+namespace dropcheck::testing {
+
+// ours-f64 with its quaternion update changed: the exact rotation by w*h (the exponential map)
+// instead of ours's first-order q + (h/2)*(0, w)*q, while still declaring ours's rotational member
+// (explicit/first-order), as an edited IntegrateAngularForce whose adapter was not updated would.
+// Everything else as ours: ApplyGravity, IntegrateLinearForce, the explicit gyroscopic term.
+class ExpMapOursEngine final : public Engine {
+ public:
+  EngineInfo info() const override {
+    EngineInfo i;
+    i.name = "ours-f64";
+    i.scalar = Scalar::f64;
+    i.law = DampingOrder::AfterForces;
+    i.arithmetic = DampingForm::phi_multiply;
+    i.capabilities.rotation = Rotation::full;
+    i.rotation_law = {Gyroscopic::explicit_term, OrientationUpdate::first_order};
+    return i;
+  }
+
+  void load(const Scene& scene, double h) override {
+    h_ = h;
+    world_.gravity = scene.world.gravity;
+    world_.linearDrag = decay_per_step(scene, h);
+    world_.angularDrag = angular_decay_per_step(scene, h);
+    models_.assign(scene.bodies.size(), {});
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      const Body& b = scene.bodies[i];
+      models_[i].translation = b.position;
+      models_[i].rotation = b.orientation;
+      models_[i].rigidBody.velocity = b.velocity;
+      models_[i].rigidBody.angularVelocity = b.angular_velocity;
+      models_[i].rigidBody.inertia = inertia_of(b);
+      models_[i].rigidBody.mass = b.mass;
+      models_[i].rigidBody.isStatic = b.is_static;
+    }
+  }
+
+  void set_forces(std::span<const Vec3> forces) override {
+    for (std::size_t i = 0; i < models_.size(); ++i) models_[i].rigidBody.force = forces[i];
+  }
+  void set_torques(std::span<const Vec3> torques) override {
+    for (std::size_t i = 0; i < models_.size(); ++i) models_[i].rigidBody.torque = torques[i];
+  }
+
+  void step() override {
+    for (ours::Model<double>& m : models_) {
+      if (m.rigidBody.isStatic) continue;
+      ours::ApplyGravity(&m, world_, h_);
+      ours::IntegrateLinearForce(&m, world_, h_);
+      ours::RigidBody<double>& body = m.rigidBody;
+      Vec3& w = body.angularVelocity;
+      const Eigen::Matrix3d R = m.rotation.toRotationMatrix();
+      const Vec3 momentum = R * body.inertia.cwiseProduct(R.transpose() * w);
+      w += R * (R.transpose() * (body.torque - w.cross(momentum))).cwiseQuotient(body.inertia) * h_;
+      body.torque.setZero();
+      w *= world_.angularDrag;
+      if (w.norm() > 0.0)  // the exponential map: the exact turn by |w|*h about w
+        m.rotation =
+            (Quat(Eigen::AngleAxisd(w.norm() * h_, w.normalized())) * m.rotation).normalized();
+    }
+  }
+
+  void read(std::span<BodyState> out) const override {
+    for (std::size_t i = 0; i < models_.size(); ++i)
+      out[i] = {models_[i].translation, models_[i].rigidBody.velocity};
+  }
+  void read_rotation(std::span<RotationState> out) const override {
+    for (std::size_t i = 0; i < models_.size(); ++i)
+      out[i] = {models_[i].rotation, models_[i].rigidBody.angularVelocity};
+  }
+
+ private:
+  double h_ = 1.0 / 60.0;
+  ours::World<double> world_;
+  std::vector<ours::Model<double>> models_;
+};
+
+}  // namespace dropcheck::testing

@@ -142,3 +142,24 @@ TEST_CASE("The guard catches damping moved after the position update", "[regress
   CHECK(check_tolerance(plain, make_baseline(shipped_scene("free_fall"), make_moved_drag_f64))
             .verdict == Verdict::passed);
 }
+
+TEST_CASE("The guard catches a changed quaternion update in ours and blames ours's rotation",
+          "[regression][demo][rotation]") {
+  // ours-f64 as blessed, against a fresh run whose IntegrateAngularForce turns by the exponential
+  // map while its adapter still declares the first-order update (moved_drag_engine.hpp). A spin
+  // about a principal axis shows it at once: the first-order update turns by 2*atan(h*w/2) per
+  // step, not h*w; positions do not change at all.
+  const Scene scene = shipped_scene("gazebo_boxes_simple");
+  const Baseline expected = make_baseline(scene, factory("ours-f64"));
+  const Baseline now = make_baseline(scene, [] { return std::make_unique<ExpMapOursEngine>(); });
+  const TierResult bits = check_bits(expected, now), physics = check_physics(now);
+  std::cout << "What `ctest -L regression` says about the changed quaternion update:\n  "
+            << bits.message << "\n  " << physics.message << "\n";
+  CHECK(bits.verdict == Verdict::failed);  // the hash covers the rotation
+  REQUIRE(physics.verdict == Verdict::failed);
+  CHECK_THAT(physics.message,
+             Catch::Contains("oracle 2 (own rotational law: ") &&
+                 Catch::Contains("the rotation of ours-f64 departs from it by 2.89e-05 rad") &&
+                 Catch::Contains("positions and velocities follow") &&
+                 Catch::Contains("no-gyro/exp-map or explicit/exp-map"));
+}
