@@ -5,6 +5,10 @@
 //                         (what `dropcheck run` does)
 //   sparse/<engine>/<N>   run_scene sampling only step 0 and the last step (record_every = steps):
 //                         the loop without the memory traffic of keeping every state
+//   bare-turning/..., harness-turning/...: the same with every cube a tumbling box (Gazebo's
+//                         boxes: sides 0.1 x 0.9 x 0.4 m, w0 = (0.1, 0.1, -5) rad/s), so the
+//                         harness also reads each body's rotation every step (engines that turn
+//                         bodies in 3-D only)
 // Loading is untimed in both (manual time = the stepping loop's own wall time). The counter
 // ns_per_body_step is total loop time / (N * steps); scripts/bench.sh pairs the two into a ratio.
 #include <benchmark/benchmark.h>
@@ -43,6 +47,18 @@ Scene free_cubes(int n) {
   return s;
 }
 
+// The same cubes as tumbling boxes (a scene that needs rotation).
+Scene turning_boxes(int n) {
+  Scene s = free_cubes(n);
+  s.name = "turning_boxes_" + std::to_string(n);
+  for (Body& b : s.bodies) {
+    b.mass = 10.0;
+    b.half_extents = {0.05, 0.45, 0.2};
+    b.angular_velocity = {0.1, 0.1, -5.0};
+  }
+  return s;
+}
+
 // Times `loop` (returns the seconds of one run) and reports ns per body-step.
 template <typename Loop>
 void measure(benchmark::State& state, int n, Loop&& loop) {
@@ -58,13 +74,14 @@ void measure(benchmark::State& state, int n, Loop&& loop) {
   state.counters["steps"] = static_cast<double>(steps_for(n));
 }
 
-void bare(benchmark::State& state, const std::string& engine, int n) {
-  const Scene scene = free_cubes(n);
+void bare(benchmark::State& state, const std::string& engine, int n, bool turning) {
+  const Scene scene = turning ? turning_boxes(n) : free_cubes(n);
   measure(state, n, [&] { return bare_step_loop(engine, scene, kH); });
 }
 
-void harness(benchmark::State& state, const std::string& engine, int n, std::int64_t every) {
-  const Scene scene = free_cubes(n);
+void harness(benchmark::State& state, const std::string& engine, int n, std::int64_t every,
+             bool turning) {
+  const Scene scene = turning ? turning_boxes(n) : free_cubes(n);
   measure(state, n, [&] {
     const std::unique_ptr<Engine> e = make_engine(engine);
     const Trajectory t = run_scene(*e, scene, kH, {.record_every = every});
@@ -78,13 +95,21 @@ const bool registered = [] {
   for (const int n : {1, 100, 1000, 10000}) {
     for (const std::string& engine : available_engine_names()) {
       const std::string tail = engine + "/" + std::to_string(n);
-      benchmark::RegisterBenchmark(("bare/" + tail).c_str(), bare, engine, n)
+      benchmark::RegisterBenchmark(("bare/" + tail).c_str(), bare, engine, n, false)
           ->UseManualTime()
           ->Unit(benchmark::kMillisecond);
-      benchmark::RegisterBenchmark(("harness/" + tail).c_str(), harness, engine, n, 1)
+      benchmark::RegisterBenchmark(("harness/" + tail).c_str(), harness, engine, n, 1, false)
           ->UseManualTime()
           ->Unit(benchmark::kMillisecond);
-      benchmark::RegisterBenchmark(("sparse/" + tail).c_str(), harness, engine, n, steps_for(n))
+      benchmark::RegisterBenchmark(("sparse/" + tail).c_str(), harness, engine, n, steps_for(n),
+                                   false)
+          ->UseManualTime()
+          ->Unit(benchmark::kMillisecond);
+      if (n != 1000 || !make_engine(engine)->cannot_run(turning_boxes(1)).empty()) continue;
+      benchmark::RegisterBenchmark(("bare-turning/" + tail).c_str(), bare, engine, n, true)
+          ->UseManualTime()
+          ->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark(("harness-turning/" + tail).c_str(), harness, engine, n, 1, true)
           ->UseManualTime()
           ->Unit(benchmark::kMillisecond);
     }

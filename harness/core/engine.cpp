@@ -83,6 +83,20 @@ bool all_finite(std::span<const BodyState> states) {
   return (all >> 63) == 0;
 }
 
+// The same exponent test as for BodyState, over the 7 numbers of each rotational state (a
+// RotationState is padded to 64 bytes, so its numbers are read by name, not as one array).
+bool all_finite(std::span<const RotationState> rotations) {
+  constexpr std::uint64_t kExponent = 0x7ff0000000000000u, kUnit = 0x0010000000000000u;
+  std::uint64_t any = 0;
+  for (const RotationState& r : rotations) {
+    const double d[7] = {r.orientation.w(),     r.orientation.x(),      r.orientation.y(),
+                         r.orientation.z(),     r.angular_velocity.x(), r.angular_velocity.y(),
+                         r.angular_velocity.z()};
+    for (const double x : d) any |= (std::bit_cast<std::uint64_t>(x) & kExponent) + kUnit;
+  }
+  return (any >> 63) == 0;
+}
+
 bool Engine::read_append(std::size_t bodies, StateBuffer& out, StateUse) const {
   const std::size_t at = out.size();
   out.resize(at + bodies);  // unwritten: read() writes every one

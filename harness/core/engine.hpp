@@ -127,6 +127,14 @@ struct UnwrittenAllocator {
 // the new states unwritten (UnwrittenAllocator); write them before anything reads them.
 using StateBuffer = std::vector<BodyState, UnwrittenAllocator<BodyState>>;
 
+// Rotational states, stored like StateBuffer (unwritten on resize, huge pages for long runs): a
+// rotating run keeps one per body per sample, and a value-initialising vector would write every
+// one twice.
+using RotationBuffer = std::vector<RotationState, UnwrittenAllocator<RotationState>>;
+
+// True when every number of every rotational state is finite (one branch-free pass).
+bool all_finite(std::span<const RotationState> rotations);
+
 // What the states an Engine::read_append adds are for.
 enum class StateUse {
   next_step,  // read again soon (the next step's forces or checks): keep them in the cache

@@ -56,20 +56,18 @@ std::span<BodyState> read_states(const Engine& engine, StateBuffer& buffer, std:
 }
 
 bool finite(const RotationState& r) {
-  return r.orientation.coeffs().allFinite() && r.angular_velocity.allFinite();
+  return all_finite(std::span(&r, 1));
 }
 
-// Appends the engine's rotational state for `bodies` bodies to `buffer` (Engine::read_rotation)
-// and returns them; `all_finite` says whether every number is.
-std::span<const RotationState> read_rotations(const Engine& engine,
-                                              std::vector<RotationState>& buffer,
-                                              std::size_t bodies, bool& all_finite) {
+// Appends the engine's rotational state for `bodies` bodies to `buffer` (Engine::read_rotation,
+// into unwritten slots: written once) and returns them; `finite` says whether every number is.
+std::span<const RotationState> read_rotations(const Engine& engine, RotationBuffer& buffer,
+                                              std::size_t bodies, bool& finite) {
   const std::size_t at = buffer.size();
   buffer.resize(at + bodies);
   const std::span<RotationState> added = std::span(buffer).subspan(at, bodies);
   engine.read_rotation(added);
-  all_finite = true;
-  for (const RotationState& r : added) all_finite = all_finite && finite(r);
+  finite = all_finite(std::span<const RotationState>(added));
   return added;
 }
 
@@ -115,7 +113,8 @@ void step_loop(Engine& engine, const Scene& scene, Trajectory& t, std::int64_t e
   const std::size_t bodies = current.size();
   StateBuffer scratch;
   scratch.reserve(bodies);
-  std::vector<RotationState> rotation_scratch;
+  RotationBuffer rotation_scratch;
+  rotation_scratch.reserve(t.rotates ? bodies : 0);
   std::vector<Vec3> forces(bodies);
   // Constant forces do not depend on the state: summed once, in the same order as every step would.
   const bool state_dependent = has_springs(scene);

@@ -34,7 +34,7 @@ struct Trajectory {
   // For a scene that needs rotation (needs_rotation): the rotational state of every sample, laid
   // out like `states`. Empty, and `rotates` false, for every other scene.
   bool rotates = false;
-  std::vector<RotationState> rotations;
+  RotationBuffer rotations;
   // For a law's prediction that rotates: how much the law amplifies a small change of its start
   // (rotation_amplification, harness/oracles/own_rotation.hpp), the factor by which rounding may
   // grow; 1 otherwise.

@@ -160,11 +160,12 @@ std::vector<RotationState> rotate_like_ours(const Scene& scene, double h,
 void add_rotation(const EngineInfo& info, const Scene& scene, double h, Trajectory& t) {
   if (!needs_rotation(scene) || info.capabilities.rotation == Rotation::none) return;
   t.rotates = true;
-  if (info.arithmetic == DampingForm::phi_multiply)
-    t.rotations = info.scalar == Scalar::f32 ? rotate_like_ours<float>(scene, h, t.recorded)
-                                             : rotate_like_ours<double>(scene, h, t.recorded);
-  else
-    t.rotations = predict_rotation(info.rotation_law, info.law.damping, scene, h, t.recorded);
+  const std::vector<RotationState> turns =
+      info.arithmetic != DampingForm::phi_multiply
+          ? predict_rotation(info.rotation_law, info.law.damping, scene, h, t.recorded)
+      : info.scalar == Scalar::f32 ? rotate_like_ours<float>(scene, h, t.recorded)
+                                   : rotate_like_ours<double>(scene, h, t.recorded);
+  t.rotations.assign(turns.begin(), turns.end());
   t.amplification =
       rotation_amplification(info.rotation_law, info.law.damping, scene, h, t.recorded);
 }

@@ -133,5 +133,5 @@ TEST_CASE("all_finite finds a NaN or an Inf anywhere, beyond the eight-number ro
       CHECK_FALSE(dropcheck::all_finite(bad));
     }
   }
-  CHECK(dropcheck::all_finite({}));
+  CHECK(dropcheck::all_finite(std::span<const dropcheck::BodyState>{}));
 }
