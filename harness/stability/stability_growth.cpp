@@ -5,6 +5,7 @@
 #include <cmath>
 #include <variant>
 
+#include "harness/core/forces.hpp"
 #include "harness/core/number_format.hpp"
 
 namespace dropcheck::stability_detail {
@@ -137,11 +138,45 @@ void contact_growth(const Scene& scene, const Trajectory& run, const ClassifyOpt
   }
 }
 
+// A turning body in free flight: its world angular momentum changes only by the torques, so
+// |L(t)| <= |L0| + |tau|*t, and a body of smallest principal moment I_min with momentum |L| has at
+// most |L|^2/(2*I_min) of rotational energy. A run whose rotational energy w.L/2 passes that bound
+// (with the speed slack) is growing without physics: an explicit gyroscopic term at a step too
+// large for the spin (its energy gain per step grows with |w|*h) does it.
+void rotational_growth(const Scene& scene, const Trajectory& run, std::size_t i,
+                       const ClassifyOptions& o, std::vector<Failure>& out) {
+  const Body& b = scene.bodies[i];
+  const Vec3 I = inertia_of(b);
+  std::vector<Vec3> torques(scene.bodies.size());
+  compute_torques(scene, torques);
+  const Vec3 L0 = b.orientation * I.cwiseProduct(b.orientation.conjugate() * b.angular_velocity);
+  for (std::size_t s = 0; s < run.samples(); ++s) {
+    const RotationState& r = run.rotation_at(s, i);
+    const Vec3 L = r.orientation * I.cwiseProduct(r.orientation.conjugate() * r.angular_velocity);
+    const double energy = 0.5 * r.angular_velocity.dot(L);
+    const double momentum = L0.norm() + torques[i].norm() * run.time(s);
+    const double bound = momentum * momentum / (2.0 * I.minCoeff());
+    if (energy <= bound * (1.0 + o.speed_slack) + 1e-12) continue;
+    out.push_back(
+        {FailureMode::unbounded_growth, run.body_names[i], run.recorded[s],
+         printf_string("body '%s': rotational energy %.4g J at step %lld exceeds %.4g J, the most "
+                       "a body of smallest moment %.4g kg m^2 holds with angular momentum %.4g "
+                       "kg m^2/s (|L0| + |tau|*t): the rotation grows without physics (|w|*h = "
+                       "%.3g)",
+                       run.body_names[i].c_str(), energy, static_cast<long long>(run.recorded[s]),
+                       bound, I.minCoeff(), momentum, r.angular_velocity.norm() * run.h)});
+    return;
+  }
+}
+
 }  // namespace
 
 void find_growth(const Scene& scene, const Trajectory& run, const ClassifyOptions& o,
                  std::vector<Failure>& out) {
   if (scene.world.contacts) return contact_growth(scene, run, o, out);
+  if (run.rotates)
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+      if (!scene.bodies[i].is_static) rotational_growth(scene, run, i, o, out);
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     if (scene.bodies[i].is_static) continue;
     const BodyLaw law = body_law(scene, i);

@@ -7,7 +7,8 @@
 
 namespace dropcheck::stability_detail {
 
-// Appends the growth failures of `run`: spring energy, free-flight speed, contact-scene energy.
+// Appends the growth failures of `run`: spring energy, free-flight speed, contact-scene energy,
+// and the rotational energy of a turning body in free flight.
 void find_growth(const Scene& scene, const Trajectory& run, const ClassifyOptions& o,
                  std::vector<Failure>& out);
 
