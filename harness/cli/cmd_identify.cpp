@@ -140,15 +140,10 @@ bool print_verdict(const Identification& id, std::ostream& out) {
   return true;
 }
 
-const char* damping_key(DampingOrder d) {
-  return d == DampingOrder::AfterForces    ? "after-forces"
-         : d == DampingOrder::BeforeForces ? "before-forces"
-                                           : "after-position";
-}
-
 // A rotational member and, when the scene's angular damping shows it, where the damping sits.
 std::string rotation_member(const RotationFit& f, bool damping_seen) {
-  return rotation_law_key(f.law) + (damping_seen ? std::string(", ") + damping_key(f.damping) : "");
+  // The semi-implicit member's key names the damping's place alone ("after-forces").
+  return rotation_law_key(f.law) + (damping_seen ? ", " + law_key(Law{f.damping}) : "");
 }
 
 // The rotational fits and verdict; true when one member is named. `declared` (with --engine)
