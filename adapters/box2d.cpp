@@ -240,6 +240,13 @@ bool Box2dEngine::clamp_ahead() const {
     v *= 1.0f / (1.0f + h_ * b->GetLinearDamping());
     const b2Vec2 travel = h_ * v;
     if (b2Dot(travel, travel) > b2_maxTranslationSquared) return true;
+    // The same for the turn: w += h*invI*T; w *= 1/(1 + h*c_a); clamped when (h*w)^2 exceeds
+    // b2_maxRotationSquared (b2Island::Solve).
+    const float inv_i = b->GetInertia() > 0.0f ? 1.0f / b->GetInertia() : 0.0f;  // as m_invI
+    float w = b->GetAngularVelocity() + h_ * inv_i * torques_[i];
+    w *= 1.0f / (1.0f + h_ * b->GetAngularDamping());
+    const float turn = h_ * w;
+    if (turn * turn > b2_maxRotationSquared) return true;
   }
   return false;
 }
@@ -252,6 +259,7 @@ bool Box2dEngine::clamped_after() const {
     if (b->GetType() != b2_dynamicBody) continue;
     const float travel = (h_ * b->GetLinearVelocity()).Length();
     if (travel >= b2_maxTranslation * (1.0f - kClampBand)) return true;
+    if (std::abs(h_ * b->GetAngularVelocity()) >= b2_maxRotation * (1.0f - kClampBand)) return true;
   }
   return false;
 }

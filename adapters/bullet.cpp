@@ -27,7 +27,8 @@
 //                          (one Newton step in body coordinates, from the damped w) in the solver's
 //                          setup, then integrateTransform: the exponential map, dq*q. So:
 //                          implicit-body/exp-map, BeforeForces. Limit: integrateTransform clamps
-//                          the turn of one step to pi/4 (ANGULAR_MOTION_THRESHOLD), |w|*h > 0.785.
+//                          the turn of one step to pi/4 (ANGULAR_MOTION_THRESHOLD), |w|*h > 0.785:
+//                          reported as a clamp (speed_clamped), where the own-law comparison ends.
 //   static body         -> mass 0 (Bullet marks it CF_STATIC_OBJECT); read back as its fixed
 //                          position and zero velocity.
 //   position, velocity  -> start world transform, setLinearVelocity. No motion state at all: the
@@ -220,6 +221,18 @@ class BulletEngine final : public Engine {
       out[i].position = from_bt(b.getWorldTransform().getOrigin());
       out[i].velocity = from_bt(b.getLinearVelocity());
     }
+  }
+
+  // True when integrateTransform clamped the last step's turn: it turns a body by at most
+  // ANGULAR_MOTION_THRESHOLD (pi/4) per step, using the angular velocity the step ended with, and
+  // tests fAngle*h > pi/4 with fAngle = sqrt(|w|^2) (btTransformUtil.h). The turn is then shorter
+  // than the rotational law's (w itself is kept).
+  bool speed_clamped() const override {
+    for (const auto& b : w_->bodies) {
+      if (b->isStaticObject()) continue;
+      if (btSqrt(b->getAngularVelocity().length2()) * h_ > ANGULAR_MOTION_THRESHOLD) return true;
+    }
+    return false;
   }
 
   void read_rotation(std::span<RotationState> out) const override {

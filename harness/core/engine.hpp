@@ -182,7 +182,8 @@ class Engine {
   // rotation). The default throws EngineError: an engine without rotation is never asked.
   virtual void read_rotation(std::span<RotationState> out) const;
 
-  // True when the last step clamped a body's speed (Box2D moves at most 2 m per step).
+  // True when the last step clamped a body's speed or turn (Box2D moves at most 2 m and turns at
+  // most pi/2 per step; Bullet turns at most pi/4 per step).
   virtual bool speed_clamped() const { return false; }
 };
 

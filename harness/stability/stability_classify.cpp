@@ -69,7 +69,8 @@ std::size_t sample_at(const Trajectory& run, std::int64_t step) {
 }
 
 // Speed clamps are counted by the runner (Engine::speed_clamped); name the fastest body at the
-// first clamped step and its travel per step, the quantity engines limit (Box2D: 2 m per step).
+// first clamped step and its travel per step, the quantity engines limit (Box2D: 2 m per step),
+// and in a turning run the fastest turn per step too (turns are clamped as well).
 void add_clamp(const Scene& scene, const Trajectory& run, std::vector<Failure>& out) {
   if (run.clamped_steps == 0) return;
   const std::size_t s = sample_at(run, run.first_clamped_step);
@@ -80,14 +81,25 @@ void add_clamp(const Scene& scene, const Trajectory& run, std::vector<Failure>& 
     const double v = run.at(s, b).velocity.norm();
     if (v > speed) speed = v, fastest = b;
   }
-  out.push_back(
-      {FailureMode::clamped, run.body_names[fastest], run.first_clamped_step,
-       printf_string("speed clamped by the engine on %lld of %lld steps, first at step %lld "
-                     "(t = %.4g s), where body '%s' moves %.3g m per step (|v| = %.4g m/s)",
-                     static_cast<long long>(run.clamped_steps), static_cast<long long>(run.steps),
-                     static_cast<long long>(run.first_clamped_step),
-                     static_cast<double>(run.first_clamped_step) * run.h,
-                     run.body_names[fastest].c_str(), speed * run.h, speed)});
+  std::string what = printf_string(
+      "speed clamped by the engine on %lld of %lld steps, first at step %lld "
+      "(t = %.4g s), where body '%s' moves %.3g m per step (|v| = %.4g m/s)",
+      static_cast<long long>(run.clamped_steps), static_cast<long long>(run.steps),
+      static_cast<long long>(run.first_clamped_step),
+      static_cast<double>(run.first_clamped_step) * run.h, run.body_names[fastest].c_str(),
+      speed * run.h, speed);
+  // A turning run: the clamp may be on the turn (Bullet: pi/4 per step, Box2D: pi/2); name the
+  // fastest turn as well.
+  if (run.rotates && s < run.samples()) {
+    std::size_t spinning = 0;
+    double w = -1.0;
+    for (std::size_t b = 0; b < run.bodies(); ++b)
+      if (!scene.bodies[b].is_static && run.rotation_at(s, b).angular_velocity.norm() > w)
+        w = run.rotation_at(s, b).angular_velocity.norm(), spinning = b;
+    what += printf_string(", and body '%s' turns by |w|*h = %.3g rad per step (|w| = %.4g rad/s)",
+                          run.body_names[spinning].c_str(), w * run.h, w);
+  }
+  out.push_back({FailureMode::clamped, run.body_names[fastest], run.first_clamped_step, what});
 }
 
 }  // namespace
