@@ -19,8 +19,8 @@ inline constexpr std::int64_t kTrajectoryBudgetBytes = std::int64_t{1} << 30;
 // the last step).
 std::int64_t recorded_samples(std::int64_t steps, std::int64_t record_every);
 
-// Bytes those samples take for `bodies` bodies.
-double trajectory_bytes(double samples, std::size_t bodies);
+// Bytes those samples take for `bodies` bodies (and their rotational states when `rotates`).
+double trajectory_bytes(double samples, std::size_t bodies, bool rotates = false);
 
 // Why the run cannot start ("" when it can): more than kMaxSteps steps
 // (harness/scene/timestep.hpp), recorded samples over kTrajectoryBudgetBytes, or, for an f32

@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <chrono>
+#include <cmath>
 #include <new>
 #include <optional>
 #include <string>
@@ -69,6 +70,28 @@ std::span<const RotationState> read_rotations(const Engine& engine, RotationBuff
   engine.read_rotation(added);
   finite = all_finite(std::span<const RotationState>(added));
   return added;
+}
+
+// The first body whose orientation is not a unit quaternion (beyond a float's rounding), or -1:
+// an engine that answers (0, 0, 0, 0) or an unnormalised q reports something that is no rotation.
+constexpr double kUnitSlack = 1e-4;
+std::ptrdiff_t non_unit(std::span<const RotationState> rotations) {
+  for (std::size_t i = 0; i < rotations.size(); ++i)
+    if (!(std::abs(rotations[i].orientation.norm() - 1.0) <= kUnitSlack))
+      return static_cast<std::ptrdiff_t>(i);
+  return -1;
+}
+
+// Ends the run at step n: body `i`'s orientation is not a unit quaternion. Counted with the
+// non-finite states: a law that overflows normalises its quaternion to zero (|q|^2 = inf), and an
+// engine that answers no rotation has left the states a run can judge.
+void fail_non_unit(Trajectory& t, std::span<const RotationState> rotations, std::size_t i,
+                   std::int64_t n) {
+  t.status = RunStatus::non_finite;
+  t.failed_step = n;
+  t.failure = "body '" + t.body_names[i] +
+              "' has an orientation that is not a unit quaternion (norm " +
+              std::to_string(rotations[i].orientation.norm()) + ") at step " + std::to_string(n);
 }
 
 // Names the first body with a NaN/Inf state (position, velocity or, when the run rotates,
@@ -156,6 +179,8 @@ void step_loop(Engine& engine, const Scene& scene, Trajectory& t, std::int64_t e
       if (t.clamped_steps++ == 0) t.first_clamped_step = n;
     }
     if (!finite) return fail_non_finite(t, current, turned, n);
+    if (const std::ptrdiff_t i = non_unit(turned); i >= 0)
+      return fail_non_unit(t, turned, static_cast<std::size_t>(i), n);
     if (keep) t.recorded.push_back(n);
   }
 }
@@ -181,7 +206,13 @@ Trajectory run_scene_in_process(Engine& engine, const Scene& scene, double h,
     bool finite = false;  // the scene's own numbers, finite by validation (scene_loader.hpp)
     const std::span<BodyState> initial =
         read_states(engine, t.states, scene.bodies.size(), StateUse::next_step, finite);
-    if (t.rotates) read_rotations(engine, t.rotations, scene.bodies.size(), finite);
+    if (t.rotates) {
+      const std::span<const RotationState> start =
+          read_rotations(engine, t.rotations, scene.bodies.size(), finite);
+      if (const std::ptrdiff_t i = non_unit(start); i >= 0)
+        throw EngineError("body '" + t.body_names[static_cast<std::size_t>(i)] +
+                          "' starts with an orientation that is not a unit quaternion");
+    }
     t.recorded.push_back(0);
     start = std::chrono::steady_clock::now();  // time the stepping loop, not the setup
     step_loop(engine, scene, t, every, initial, n);

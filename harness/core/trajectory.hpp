@@ -11,7 +11,8 @@ namespace dropcheck {
 
 enum class RunStatus {
   ok,             // ran every step
-  non_finite,     // a position or velocity became NaN or Inf (recorded up to the step before)
+  non_finite,     // a position or velocity became NaN or Inf, or an orientation stopped being a
+                  // unit quaternion (recorded up to the step before)
   engine_error,   // the engine threw or reported an error
   out_of_memory,  // an allocation failed (std::bad_alloc); samples up to then are kept
   crashed,    // the engine's process died (signal or exit): an isolated run's (no samples) or an

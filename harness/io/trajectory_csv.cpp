@@ -203,6 +203,15 @@ std::vector<Trajectory> parse_gazebo_log(std::istream& in, const std::string& fi
   if (!next_line(in, line, file, 3) || line != gazebo_header())
     throw InputError(file, 3, "", "the columns must be " + gazebo_header());
   t.rotates = true;
+  // Rows may come model by model (tools/mcap_to_csv.py writes every step of model 0, then model
+  // 1, ...): gathered first, then taken step by step, models in order within a step.
+  struct Row {
+    double step, model;
+    BodyState s;
+    RotationState r;
+    int line;
+  };
+  std::vector<Row> rows;
   int n = 3;
   double first_time = NAN;
   while (next_line(in, line, file, n + 1)) {
@@ -213,23 +222,35 @@ std::vector<Trajectory> parse_gazebo_log(std::istream& in, const std::string& fi
       throw InputError(file, n, "", "expected 15 columns, got " + std::to_string(f.size()));
     double v[15];
     for (int i = 0; i < 15; ++i) v[i] = gazebo_number(f, i, file, n);
-    if (std::isnan(first_time)) first_time = v[0];
-    const double steps = std::round((v[0] - first_time) / t.h);
-    if (steps < 0 || steps > 9007199254740992.0)
-      throw InputError(file, n, "sim_time", "before the first row's, or beyond 2^53 steps");
+    if (std::isnan(first_time) || v[0] < first_time) first_time = v[0];
     if (v[1] < 0 || v[1] > 1e6 || v[1] != std::floor(v[1]))
       throw InputError(file, n, "model_no", "must be a whole number >= 0");
-    BodyState s{from_gazebo(Vec3(v[8], v[9], v[10])), from_gazebo(Vec3(v[2], v[3], v[4]))};
-    RotationState r;
-    r.orientation = Quat(v[11], v[12], v[13], v[14]);
-    if (std::abs(r.orientation.norm() - 1.0) > 1e-6)
+    Row row{v[0],
+            v[1],
+            {from_gazebo(Vec3(v[8], v[9], v[10])), from_gazebo(Vec3(v[2], v[3], v[4]))},
+            {},
+            n};
+    row.r.orientation = Quat(v[11], v[12], v[13], v[14]);
+    if (std::abs(row.r.orientation.norm() - 1.0) > 1e-6)
       throw InputError(file, n, "quaternion_w (column 12)",
                        "quaternion_w..z must be a unit quaternion (norm " +
-                           printf_string("%.9g", r.orientation.norm()) + ")");
-    r.orientation = from_gazebo(r.orientation);
-    r.angular_velocity = from_gazebo(Vec3(v[5], v[6], v[7]));
-    add_row(t, static_cast<std::int64_t>(steps), "model_" + f[1], s, &r, file, n);
+                           printf_string("%.9g", row.r.orientation.norm()) + ")");
+    row.r.orientation = from_gazebo(row.r.orientation);
+    row.r.angular_velocity = from_gazebo(Vec3(v[5], v[6], v[7]));
+    rows.push_back(row);
   }
+  for (Row& row : rows) {
+    row.step = std::round((row.step - first_time) / t.h);
+    if (row.step > 9007199254740992.0)
+      throw InputError(file, row.line, "sim_time", "beyond 2^53 steps from the first row");
+  }
+  std::stable_sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) {
+    return a.step != b.step ? a.step < b.step : a.model < b.model;
+  });
+  for (const Row& row : rows)
+    add_row(t, static_cast<std::int64_t>(row.step),
+            "model_" + std::to_string(static_cast<long long>(row.model)), row.s, &row.r, file,
+            row.line);
   if (t.recorded.empty()) throw InputError(file, 4, "", "no rows after the columns");
   if (t.states.size() != t.recorded.size() * t.body_names.size())
     throw InputError(file, n, "model_no", "the last step lacks models");

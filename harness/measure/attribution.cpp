@@ -10,7 +10,10 @@ namespace dropcheck {
 namespace {
 
 bool departs_in_rotation(const OwnLawVerdict& v) {
-  return v.rotation && (v.residual_angle > v.tolerance_angle || v.residual_w > v.tolerance_w);
+  // Judged only with a meaningful tolerance, like the linear residual (a law that blows up has none
+  // and blames nobody here; its own-law verdict says so).
+  return v.rotation && v.rotation_judged() &&
+         (v.residual_angle > v.tolerance_angle || v.residual_w > v.tolerance_w);
 }
 
 bool departs(const OwnLawVerdict& v) {
@@ -114,7 +117,7 @@ bool Attribution::rotation_laws_differ() const {
 std::string Attribution::sentence() const {
   std::string why;
   const std::string precision = "precision part " + format_length(precision_part);
-  if (total == 0.0) {
+  if (total == 0.0 && explained()) {
     why = "identical";
   } else if (!explained()) {
     // Blame only the engine(s) beyond their own tolerance; say that the other follows its law.

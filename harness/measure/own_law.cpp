@@ -117,10 +117,18 @@ bool OwnLawTolerance::finite() const {
   return std::isfinite(x) && std::isfinite(v);
 }
 
+bool OwnLawVerdict::rotation_judged() const {
+  return std::isfinite(tolerance_angle) && std::isfinite(tolerance_w) &&
+         tolerance_angle <= tolerance::kMaxRotationTolerance;
+}
+
 bool OwnLawVerdict::follows() const {
-  return failure.empty() && tolerance.finite() && residual_x <= tolerance.x &&
-         residual_v <= tolerance.v &&
-         (!rotation || (residual_angle <= tolerance_angle && residual_w <= tolerance_w));
+  if (!failure.empty() || !tolerance.finite() || residual_x > tolerance.x ||
+      residual_v > tolerance.v)
+    return false;
+  if (!rotation) return true;
+  if (!std::isfinite(tolerance_angle) || !std::isfinite(tolerance_w)) return false;
+  return !rotation_judged() || (residual_angle <= tolerance_angle && residual_w <= tolerance_w);
 }
 
 OwnLawVerdict judge_own_law(const EngineInfo& info, const Trajectory& run, const Trajectory& own,
@@ -173,7 +181,14 @@ std::string OwnLawVerdict::sentence() const {
     s += "; TOLERANCE NOT FINITE: the law reaches Inf or NaN within the steps compared (a stable "
          "law never does; an unstable one is judged only while finite)";
   s += "; precision part " + format_length(precision) + " (own arithmetic vs long-double law)";
-  if (rotation)
+  if (rotation && !std::isfinite(tolerance_angle + tolerance_w))
+    s += "; rotation: NO TOLERANCE, its law reaches Inf or NaN (law " + rotation_law + ")";
+  else if (rotation && !rotation_judged())
+    s += "; rotation: not judged at this step: the law amplifies rounding to " +
+         g3(tolerance_angle) + " rad (" + rotation_rule + "), more than " +
+         g3(tolerance::kMaxRotationTolerance) + " rad; max angle to law " + g3(residual_angle) +
+         " rad";
+  else if (rotation)
     s += "; rotation: max angle to law " + g3(residual_angle) + " rad, |w - law| " +
          g3(residual_w) + " rad/s (tolerance " + g3(tolerance_angle) + " rad, " + g3(tolerance_w) +
          " rad/s: " + rotation_rule + "; law " + rotation_law + ")";

@@ -57,6 +57,10 @@ struct OwnLawVerdict {
 
   // The run finished and stays within a finite tolerance of its own law.
   bool follows() const;
+  // The rotation's tolerance is finite and at most tolerance::kMaxRotationTolerance: the rotation
+  // is judged. A non-finite one (the law blew up) fails the verdict; a larger finite one (rounding
+  // amplified past what an angle can say) leaves the rotation unjudged, and the sentence says so.
+  bool rotation_judged() const;
   // "max |x - law| 0 m, |v - law| 0 m/s (tolerance 4 ulps ...); precision part 1.2e-6 m; ..."
   std::string sentence() const;
 };

@@ -277,6 +277,13 @@ void load_body(const Reader& r, Scene& s) {
   b.velocity = r.vec3("velocity", Vec3::Zero());
   b.is_static = r.boolean("static", false);
   load_rotation(r, b);
+  // A static body neither turns nor stands turned: engines place static geometry axis-aligned
+  // (ODE, MuJoCo and Box2D would ignore a turn that Bullet applies, and collide differently).
+  for (const char* key : {"orientation", "angular_velocity"})
+    if (b.is_static && r.has(key))
+      r.fail(key,
+             "a static body does not turn: give orientation and angular_velocity to "
+             "dynamic bodies only");
   s.bodies.push_back(b);
 }
 
@@ -353,6 +360,9 @@ void load_force(const Reader& r, Scene& s) {
   s.forces.push_back(f);
 }
 
+// Steps the report replays a published figure's member for (4.3e8 bytes of states at most).
+constexpr double kMaxPublishedSteps = 1e7;
+
 // [[published]]: a figure published for this scene and the rotational member that predicts it.
 void load_published(const Reader& r, Scene& s) {
   r.only({"source", "engine", "dt", "max_momentum_drift", "law", "law_dt", "note"});
@@ -372,7 +382,11 @@ void load_published(const Reader& r, Scene& s) {
     r.fail("law", "expected a rotational member: one of " + keys);
   }
   p.law_dt = r.number("law_dt", p.dt);
-  check_range(r, "law_dt", p.law_dt > 0.0, "must be > 0 (s)");
+  // The member is replayed step by step at law_dt over the scene: at least one step, at most
+  // kMaxPublishedSteps (the report holds every step of it).
+  const double steps = s.duration / p.law_dt;
+  check_range(r, "law_dt", p.law_dt > 0.0 && steps >= 1.0 && steps <= kMaxPublishedSteps,
+              "must be > 0 s, at most the scene's duration, and leave at most 1e7 steps");
   p.note = r.name("note", "");
   if (!needs_rotation(s)) r.fail("law", "published rotation figures need a scene that rotates");
   s.published.push_back(p);

@@ -94,4 +94,5 @@ TEST_CASE(
   CHECK(run_refusal(e.info(), s, 1e-4, {.record_every = 2}).empty());  // half the samples fit
   CHECK(recorded_samples(10, 4) == 4);
   CHECK(trajectory_bytes(10, 2) == 10 * (2 * 48 + 8));
+  CHECK(trajectory_bytes(10, 2, true) == 10 * (2 * (48 + sizeof(RotationState)) + 8));
 }

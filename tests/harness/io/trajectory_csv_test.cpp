@@ -148,3 +148,24 @@ TEST_CASE("a Gazebo benchmark log is read in dropcheck's frame, its steps from i
       parse_trajectories_csv(in_bad, "boxes.csv"),
       Contains("boxes.csv:6: quaternion_w (column 12)") || Contains("boxes.csv:6: quaternion"));
 }
+
+TEST_CASE("a Gazebo log written model by model is read step by step", "[csv][rotation]") {
+  // tools/mcap_to_csv.py writes every step of model 0, then every step of model 1.
+  std::istringstream in(
+      "physics_engine,time_step,complex,collisiion,model_count,wall_time,log_multiple,classname\n"
+      "ode,0.5,1,0,2,0.1,1,Boxes\n"
+      "sim_time,model_no,linear_velocity_x,linear_velocity_y,linear_velocity_z,"
+      "angular_velocity_x,angular_velocity_y,angular_velocity_z,position_x,position_y,"
+      "position_z,quaternion_w,quaternion_x,quaternion_y,quaternion_z\n"
+      "0.5,0,0,0,0,0,0,0,1,0,0,1,0,0,0\n"
+      "1,0,0,0,0,0,0,0,2,0,0,1,0,0,0\n"
+      "0.5,1,0,0,0,0,0,0,10,0,0,1,0,0,0\n"
+      "1,1,0,0,0,0,0,0,20,0,0,1,0,0,0\n");
+  const std::vector<Trajectory> runs = parse_trajectories_csv(in, "two.csv");
+  REQUIRE(runs.size() == 1);
+  const Trajectory& t = runs[0];
+  CHECK(t.body_names == std::vector<std::string>{"model_0", "model_1"});
+  CHECK(t.recorded == std::vector<std::int64_t>{0, 1});
+  CHECK(t.at(1, 0).position.x() == 2.0);
+  CHECK(t.at(1, 1).position.x() == 20.0);
+}

@@ -51,3 +51,15 @@ TEST_CASE("Gazebo's tumbling box: momentum drift halves with h and the flips mat
   // Bullet's implicit member loses rotational energy instead.
   CHECK(budget_of("gazebo_boxes_complex", "bullet", 1e-3).rotational_energy_change < 0.0);
 }
+
+TEST_CASE("moments on the triangle inequality's edge within rounding give no closed form, no abort",
+          "[rotation][budget]") {
+  // The loader accepts Ixx = Iyy + Izz within 1e-12 relative; the closed form refuses any excess.
+  Scene scene = load_scene(DROPCHECK_SOURCE_DIR "/scenarios/gazebo_boxes_simple.toml");
+  scene.bodies[0].inertia = Vec3(1.0000000000005, 0.5, 0.5);
+  scene.bodies[0].angular_velocity = Vec3(0.1, 2.0, 0.3);
+  const Trajectory run = run_scene(*make_engine("ours-f64"), scene, 0.01);
+  const RotationBudget b = rotation_budget(scene, run, 0);
+  CHECK_FALSE(b.closed_form);
+  CHECK(std::isnan(b.closed_form_error));
+}

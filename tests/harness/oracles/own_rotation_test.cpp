@@ -142,3 +142,65 @@ TEST_CASE("the report's own-law verdicts of ODE and MuJoCo judge their rotation"
     CHECK(own.follows());
   }
 }
+
+namespace {
+
+// ours-f64 answering an orientation scaled by 2: no rotation at all.
+class UnnormalisedSpin final : public ForwardingEngine {
+ public:
+  explicit UnnormalisedSpin(Engine& inner) : ForwardingEngine(inner) {}
+  void read_rotation(std::span<RotationState> out) const override {
+    inner_.read_rotation(out);
+    for (RotationState& r : out) r.orientation.coeffs() *= 2.0;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("a run answering an orientation that is not a unit quaternion ends there, named",
+          "[rotation]") {
+  const Scene scene = tumbling_box();
+  auto inner = make_engine("ours-f64");
+  UnnormalisedSpin engine(*inner);
+  const Trajectory run = run_scene(engine, scene, scene.timestep.seconds);
+  CHECK(run.status == RunStatus::engine_error);  // from the start: the scene's q is unit
+  CHECK_THAT(run.failure, Catch::Contains("starts with an orientation that is not a unit"));
+}
+
+TEST_CASE(
+    "a rotational tolerance that says nothing leaves the rotation unjudged, an infinite one "
+    "fails",
+    "[rotation][own-law]") {
+  OwnLawVerdict v;
+  v.rotation = true;
+  v.residual_angle = 3.0;
+  v.tolerance_angle = 16.5;  // the C example on gazebo_boxes_complex at h = 1e-3 (f32, not copied)
+  v.tolerance_w = 100.0;
+  CHECK_FALSE(v.rotation_judged());
+  CHECK(v.follows());
+  CHECK_THAT(v.sentence(), Catch::Contains("rotation: not judged at this step"));
+  v.tolerance_angle = INFINITY;  // the law blew up
+  CHECK_FALSE(v.follows());
+  CHECK_THAT(v.sentence(), Catch::Contains("NO TOLERANCE"));
+  v.tolerance_angle = 1e-9;
+  CHECK(v.rotation_judged());
+  CHECK_FALSE(v.follows());
+}
+
+TEST_CASE("a departure in rotation alone is never 'identical': positions equal, the blame named",
+          "[rotation][own-law]") {
+  // spin_drag: the cube's position stays exactly at the origin on every engine.
+  const Scene scene = load_scene(DROPCHECK_SOURCE_DIR "/scenarios/spin_drag.toml");
+  auto inner = make_engine("ours-f64");
+  NudgedSpin nudged(*inner);
+  auto reference = make_engine("ode");
+  const EngineInfo ei = nudged.info(), ri = reference->info();
+  const double h = scene.timestep.seconds;
+  const Trajectory run = run_scene(nudged, scene, h), other = run_scene(*reference, scene, h);
+  const Attribution a = attribute(
+      {ei, run, predict_own_arithmetic(ei, scene, h), predict_discrete(ei.law, scene, h)},
+      {ri, other, predict_own_arithmetic(ri, scene, h), predict_discrete(ri.law, scene, h)});
+  CHECK(a.total == 0.0);
+  CHECK(a.blamed() == "ours-f64");
+  CHECK_THAT(a.sentence(), Catch::Contains("UNEXPLAINED") && !Catch::Contains("identical"));
+}

@@ -373,3 +373,18 @@ TEST_CASE("a published figure names a rotational member and a step, on a scene t
   check_error(scene(kHead, kWorld, kBody, good), "published[0].law",
               "published rotation figures need a scene that rotates");
 }
+
+TEST_CASE("a static body may not turn, and a published member must fit the scene's duration",
+          "[loader][rotation]") {
+  const std::string floor =
+      "[[body]]\nname = \"floor\"\nstatic = true\nposition = [0.0, -1.0, 0.0]\n";
+  check_error(scene(kHead, kWorld, kBody + floor + "angular_velocity = [0.0, 1.0, 0.0]\n"),
+              "body[1].angular_velocity", "a static body does not turn");
+  check_error(scene(kHead, kWorld, kBody + floor + "orientation = [0.0, 1.0, 0.0, 0.0]\n"),
+              "body[1].orientation", "a static body does not turn");
+  const std::string spin = kBody + "angular_velocity = [0.0, 0.0, 1.0]\n";
+  check_error(scene(kHead, kWorld, spin,
+                    "[[published]]\nsource = \"s\"\nengine = \"X\"\ndt = 0.001\n"
+                    "max_momentum_drift = 0.01\nlaw = \"explicit/first-order\"\nlaw_dt = 1e-12\n"),
+              "published[0].law_dt", "leave at most 1e7 steps");
+}
