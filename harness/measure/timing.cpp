@@ -120,6 +120,10 @@ Scene replicate(const Scene& scene, int copies) {
       if (auto* s = std::get_if<Spring>(&f.law)) s->anchor += offset;
       out.forces.push_back(f);
     }
+    for (Torque t : scene.torques) {  // a torque has no anchor: the same on every copy
+      for (std::size_t& i : t.bodies) i += first;
+      out.torques.push_back(t);
+    }
   }
   return out;
 }

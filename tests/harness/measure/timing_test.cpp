@@ -54,6 +54,12 @@ TEST_CASE("timing replicates every body and force, shifted along x", "[timing]")
   }
   CHECK(is_planar(r));  // Box2D can time a replicated planar scene
   CHECK(replicate(s, 1).bodies.size() == 3);
+  // A torque acts on each copy of its bodies too.
+  Scene twisted = s;
+  twisted.torques.push_back({{1}, Vec3(0.0, 0.0, 2.0)});
+  const Scene t = replicate(twisted, 3);
+  REQUIRE(t.torques.size() == 3);
+  for (int c = 0; c < 3; ++c) CHECK(t.torques[c].bodies == std::vector<std::size_t>{1u + 3u * c});
 }
 
 TEST_CASE("every copy of a scene replicated for timing moves like the original", "[timing]") {
