@@ -126,11 +126,13 @@ std::string divergence_cause(const SceneEvaluation& se, const EngineEvaluation& 
   if (!a.explained()) return "UNEXPLAINED (" + a.blamed() + " left its law)";
   // With contacts the attribution covers the fall only: when the gap over the whole run is more
   // than the fall's by over 10%, it opened at the landing.
+  // A turning body: whether the two rotational members differ is a cause of its own.
+  const std::string turn = a.rotation_laws_differ() ? " + rotational law" : "";
   if (st.attributed_until >= 0.0 && st.vs_reference->max_dx > 1.1 * a.total + a.budget)
-    return "landing";
-  if (a.total == 0.0) return "identical";
+    return "landing" + turn;
+  if (a.total == 0.0) return turn.empty() ? "identical" : "rotational law";
   // Explained: the laws' difference beyond rounding is the damping order; the rest is precision.
-  return a.law_part > a.budget ? "damping-order" : "precision";
+  return (a.law_part > a.budget ? "damping-order" : "precision") + turn;
 }
 
 SceneSummary summarize(const SceneEvaluation& se) {

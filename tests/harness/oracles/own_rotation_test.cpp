@@ -12,6 +12,7 @@
 #include "harness/measure/own_law.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
+#include "harness/report/report_summary.hpp"
 #include "harness/scene/scene_loader.hpp"
 
 using namespace dropcheck;
@@ -203,4 +204,15 @@ TEST_CASE("a departure in rotation alone is never 'identical': positions equal, 
   CHECK(a.total == 0.0);
   CHECK(a.blamed() == "ours-f64");
   CHECK_THAT(a.sentence(), Catch::Contains("UNEXPLAINED") && !Catch::Contains("identical"));
+}
+
+TEST_CASE("the report's cause column names a rotational law that differs", "[rotation][report]") {
+  const Scene scene = load_scene(DROPCHECK_SOURCE_DIR "/scenarios/gazebo_boxes_simple.toml");
+  std::vector<EngineSlot> slots;
+  for (const char* name : {"ours-f64", "bullet"})
+    slots.push_back({name, [name] { return make_engine(name); }, ""});
+  const SceneEvaluation se = evaluate_scene(scene, slots);
+  // Positions are identical (no gravity, no damping: x += h*v on both); the first-order and the
+  // exponential-map updates turn differently.
+  CHECK(divergence_cause(se, *se.find("bullet")) == "rotational law");
 }
