@@ -187,13 +187,12 @@ b2Body* Box2dEngine::create_body(const Body& body, float damping, float angular_
 void Box2dEngine::set_box_mass(b2Body* b, const Body& body, bool fixture) {
   const double m = body.mass;
   if (!fixture || rotating_) {
-    const double hx = body.half_extents.x(), hy = body.half_extents.y();
+    // The scene's moment about z (a fixture's own moment is kept when nothing turns the body:
+    // contacts then see exactly Box2D's box).
     b2MassData data;
     data.mass = fixture ? b->GetMass() : static_cast<float>(m);
     data.center.SetZero();
-    // A turning body: the scene's moment about z. Otherwise the rectangle of sides 2hx, 2hy about
-    // its centre, I = m*((2hx)^2 + (2hy)^2)/12 (never used: nothing turns it).
-    data.I = static_cast<float>(rotating_ ? inertia_of(body).z() : m * (hx * hx + hy * hy) / 3.0);
+    data.I = static_cast<float>(inertia_of(body).z());
     b->SetMassData(&data);
   }
   // float area and density: measured relative error 0 for the scenes in scenarios/.

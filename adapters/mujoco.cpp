@@ -256,7 +256,6 @@ void MujocoEngine::load(const Scene& scene, double h) {
     // Free joint: qpos = (x, y, z, qw, qx, qy, qz), qvel = (vx, vy, vz, wx, wy, wz).
     std::memcpy(d->qpos + m->jnt_qposadr[joint_[i]], b.position.data(), 3 * sizeof(mjtNum));
     std::memcpy(d->qvel + m->jnt_dofadr[joint_[i]], b.velocity.data(), 3 * sizeof(mjtNum));
-    if (!needs_rotation(scene)) continue;  // MuJoCo's own start: identity, at rest
     mjtNum* q = d->qpos + m->jnt_qposadr[joint_[i]] + 3;
     const Quat& o = b.orientation;
     q[0] = o.w(), q[1] = o.x(), q[2] = o.y(), q[3] = o.z();

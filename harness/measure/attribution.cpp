@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "harness/core/number_format.hpp"
-#include "harness/measure/rotation_metrics.hpp"
+#include "harness/oracles/own_rotation.hpp"
 
 namespace dropcheck {
 namespace {
@@ -18,16 +18,6 @@ bool departs_in_rotation(const OwnLawVerdict& v) {
 
 bool departs(const OwnLawVerdict& v) {
   return v.residual_x > v.tolerance.x || v.residual_v > v.tolerance.v || departs_in_rotation(v);
-}
-
-// The largest geodesic angle between two rotating trajectories over their first `samples` samples.
-double largest_angle(const Trajectory& a, const Trajectory& b, std::size_t samples) {
-  double worst = 0.0;
-  for (std::size_t s = 0; s < samples; ++s)
-    for (std::size_t i = 0; i < a.bodies(); ++i)
-      worst = std::max(
-          worst, geodesic_angle(a.rotation_at(s, i).orientation, b.rotation_at(s, i).orientation));
-  return worst;
 }
 
 std::int64_t first_clamp(std::int64_t a, std::int64_t b) {
@@ -97,8 +87,8 @@ Attribution attribute(const RunWithLaws& e, const RunWithLaws& r) {
     while (compared < samples && (a.clamped_from < 0 || e.run.recorded[compared] < a.clamped_from))
       ++compared;
     a.rotation = true;
-    a.rotation_total = largest_angle(e.run, r.run, compared);
-    a.rotation_law_part = largest_angle(e.own, r.own, compared);
+    a.rotation_total = rotation_residual(e.run, r.run.rotations, compared).angle;
+    a.rotation_law_part = rotation_residual(e.own, r.own.rotations, compared).angle;
     a.rotation_laws =
         rotation_law_key(e.info.rotation_law) + " vs " + rotation_law_key(r.info.rotation_law);
     // One member with the damping in one place: the laws are one law, and what separates the two

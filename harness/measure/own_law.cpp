@@ -5,10 +5,10 @@
 
 #include "harness/core/number_format.hpp"
 #include "harness/measure/attribution.hpp"
-#include "harness/measure/rotation_metrics.hpp"
 #include "harness/measure/tolerances.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
+#include "harness/oracles/own_rotation.hpp"
 
 namespace dropcheck {
 namespace {
@@ -76,24 +76,15 @@ void judge_rotation(const EngineInfo& info, const Trajectory& run, const Traject
   const bool copied = info.arithmetic == DampingForm::phi_multiply;
   const double steps = static_cast<double>(std::max<std::int64_t>(own.steps, 1));
   const double ulps = copied ? tolerance::kCopiedUlps : tolerance::kStepUlps * steps;
-  double w_scale = 0.0;
-  for (const RotationState& p : own.rotations)
-    w_scale = std::max(w_scale, not_nan(p.angular_velocity.norm()));
+  const RotationResidual d = rotation_residual(run, own.rotations, samples);
+  r.residual_angle = d.angle;
+  r.residual_w = d.w;
   r.tolerance_angle = ulps * epsilon(info.scalar) * own.amplification;
-  r.tolerance_w = r.tolerance_angle * w_scale;
+  r.tolerance_w = r.tolerance_angle * d.w_scale;
   r.rotation_rule =
       g3(ulps) + " ulps x amplification " + g3(own.amplification) + " (" + to_string(info.scalar) +
       (copied ? ", operation order copied)"
               : ", order not copied: " + g3(tolerance::kStepUlps) + " ulps per step)");
-  for (std::size_t s = 0; s < samples; ++s)
-    for (std::size_t b = 0; b < run.bodies(); ++b) {
-      const RotationState& got = run.rotation_at(s, b);
-      const RotationState& law = own.rotation_at(s, b);
-      r.residual_angle =
-          std::max(r.residual_angle, not_nan(geodesic_angle(got.orientation, law.orientation)));
-      r.residual_w =
-          std::max(r.residual_w, not_nan((got.angular_velocity - law.angular_velocity).norm()));
-    }
 }
 
 }  // namespace

@@ -49,17 +49,15 @@ double real_time(double k, double tau) {
 
 }  // namespace
 
-Vec3 world_momentum(const RotationState& r, const Vec3& inertia) {
-  return r.orientation * inertia.cwiseProduct(body_omega(r));
-}
-
 RotationBudget rotation_budget(const Scene& scene, const Trajectory& run, std::size_t body) {
   RotationBudget out;
   const Body& b = scene.bodies[body];
   const Vec3 I = inertia_of(b);
   std::vector<Vec3> L;
-  for (std::size_t s = 0; s < run.samples(); ++s)
-    L.push_back(world_momentum(run.rotation_at(s, body), I));
+  for (std::size_t s = 0; s < run.samples(); ++s) {
+    const RotationState& r = run.rotation_at(s, body);
+    L.push_back(world_momentum(r.orientation, r.angular_velocity, I));
+  }
   out.momentum_drift = momentum_drift(L);
   const auto rotational = [&](std::size_t s) {
     return 0.5 * run.rotation_at(s, body).angular_velocity.dot(L[s]);

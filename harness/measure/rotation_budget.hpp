@@ -34,7 +34,4 @@ struct RotationBudget {
 // The budget of body `body` (dynamic) of `run`, a rotating run of `scene` that finished.
 RotationBudget rotation_budget(const Scene& scene, const Trajectory& run, std::size_t body);
 
-// The world angular momentum I_w*w of a body of principal moments `inertia` in state `r`.
-Vec3 world_momentum(const RotationState& r, const Vec3& inertia);
-
 }  // namespace dropcheck

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <vector>
 
 #include "harness/scene/scene.hpp"
 
@@ -19,6 +20,12 @@ using Quat = Eigen::Quaterniond;
 inline double geodesic_angle(const Quat& a, const Quat& b) {
   const Quat d = a.conjugate() * b;
   return 2.0 * std::atan2(d.vec().norm(), std::abs(d.w()));
+}
+
+// The world angular momentum I_w*w = R*(I .* (R^T*w)) of a body of principal moments `inertia`
+// (body frame) turned by `q` and spinning at the world angular velocity `w`.
+inline Vec3 world_momentum(const Quat& q, const Vec3& w, const Vec3& inertia) {
+  return q * inertia.cwiseProduct(q.conjugate() * w);
 }
 
 // max over samples of |L(t) - L(0)| / |L(0)|, L the world angular momentum; 0 for L(0) = 0.

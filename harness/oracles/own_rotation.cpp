@@ -105,23 +105,23 @@ double predicted_momentum_drift(const Scene& scene, RotationLaw law, double h, s
   const Vec3 I = inertia_of(scene.bodies[body]);
   std::vector<Vec3> L;
   for (std::size_t s = body; s < states.size(); s += scene.bodies.size())
-    L.push_back(states[s].orientation *
-                I.cwiseProduct(states[s].orientation.conjugate() * states[s].angular_velocity));
+    L.push_back(world_momentum(states[s].orientation, states[s].angular_velocity, I));
   return momentum_drift(L);
 }
 
-RotationResidual rotation_residual(const Trajectory& run,
-                                   const std::vector<RotationState>& predicted) {
+RotationResidual rotation_residual(const Trajectory& run, std::span<const RotationState> predicted,
+                                   std::size_t samples) {
+  const auto not_nan = [](double d) { return std::isnan(d) ? INFINITY : d; };
   RotationResidual r;
   for (const RotationState& p : predicted)
-    r.w_scale = std::max(r.w_scale, p.angular_velocity.norm());
+    r.w_scale = std::max(r.w_scale, not_nan(p.angular_velocity.norm()));
   double worst = -1.0;
-  for (std::size_t s = 0; s < run.samples(); ++s) {
+  for (std::size_t s = 0; s < std::min(samples, run.samples()); ++s) {
     for (std::size_t b = 0; b < run.bodies(); ++b) {
       const RotationState& got = run.rotation_at(s, b);
       const RotationState& law = predicted[s * run.bodies() + b];
-      const double angle = geodesic_angle(got.orientation, law.orientation);
-      const double w = (got.angular_velocity - law.angular_velocity).norm();
+      const double angle = not_nan(geodesic_angle(got.orientation, law.orientation));
+      const double w = not_nan((got.angular_velocity - law.angular_velocity).norm());
       r.angle = std::max(r.angle, angle);
       r.w = std::max(r.w, w);
       const double score = std::max(angle, r.w_scale > 0.0 ? w / r.w_scale : w);

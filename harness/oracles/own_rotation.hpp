@@ -7,6 +7,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <span>
 #include <vector>
 
 #include "harness/core/rotation_law.hpp"
@@ -49,8 +51,10 @@ struct RotationResidual {
   std::size_t worst_sample = 0, worst_body = 0;  // where the larger of the two (angle, w/scale) is
 };
 
-// `run` (which rotates) against `predicted` (predict_rotation for the run's recorded steps).
-RotationResidual rotation_residual(const Trajectory& run,
-                                   const std::vector<RotationState>& predicted);
+// `run` (which rotates) against `predicted`, laid out like run.rotations (predict_rotation for the
+// run's recorded steps, or another run's rotations), over the first `samples` samples (all by
+// default). A NaN distance counts as infinite.
+RotationResidual rotation_residual(const Trajectory& run, std::span<const RotationState> predicted,
+                                   std::size_t samples = SIZE_MAX);
 
 }  // namespace dropcheck

@@ -7,6 +7,7 @@
 
 #include "harness/core/forces.hpp"
 #include "harness/core/number_format.hpp"
+#include "harness/measure/rotation_metrics.hpp"
 
 namespace dropcheck::stability_detail {
 namespace {
@@ -149,10 +150,10 @@ void rotational_growth(const Scene& scene, const Trajectory& run, std::size_t i,
   const Vec3 I = inertia_of(b);
   std::vector<Vec3> torques(scene.bodies.size());
   compute_torques(scene, torques);
-  const Vec3 L0 = b.orientation * I.cwiseProduct(b.orientation.conjugate() * b.angular_velocity);
+  const Vec3 L0 = world_momentum(b.orientation, b.angular_velocity, I);
   for (std::size_t s = 0; s < run.samples(); ++s) {
     const RotationState& r = run.rotation_at(s, i);
-    const Vec3 L = r.orientation * I.cwiseProduct(r.orientation.conjugate() * r.angular_velocity);
+    const Vec3 L = world_momentum(r.orientation, r.angular_velocity, I);
     const double energy = 0.5 * r.angular_velocity.dot(L);
     const double momentum = L0.norm() + torques[i].norm() * run.time(s);
     const double bound = momentum * momentum / (2.0 * I.minCoeff());
