@@ -69,6 +69,7 @@
 #include <vector>
 
 #include "adapters.hpp"
+#include "harness/core/engine_writer.hpp"
 
 namespace dropcheck {
 namespace {
@@ -260,30 +261,65 @@ class OdeEngine final : public Engine {
   }
 
   void read(std::span<BodyState> out) const override {
+    (void)write(StateWriter<false>(out.data()));  // the finite check is read_append's business
+  }
+
+  // Each state written once from ODE's own numbers and checked in the same pass (StateWriter).
+  bool read_append(std::size_t, StateBuffer& out, StateUse use) const override {
+    const std::size_t at = out.size();
+    out.resize(at + w_->bodies.size());  // unwritten
+    BodyState* added = out.data() + at;
+    return use == StateUse::kept ? write(StateWriter<true>(added))
+                                 : write(StateWriter<false>(added));
+  }
+
+  void read_rotation(std::span<RotationState> out) const override {
+    (void)turn(RotationWriter<false>(out.data()));  // the check is read_rotation_append's
+  }
+
+  bool read_rotation_append(std::size_t, RotationBuffer& out, StateUse use) const override {
+    const std::size_t at = out.size();
+    out.resize(at + w_->bodies.size());  // unwritten
+    RotationState* added = out.data() + at;
+    return use == StateUse::kept ? turn(RotationWriter<true>(added))
+                                 : turn(RotationWriter<false>(added));
+  }
+
+ private:
+  // Puts every body's state in order into `w` (a static body: its fixed position, at rest); true
+  // when all are finite.
+  template <typename Writer>
+  bool write(Writer&& w) const {
     for (std::size_t i = 0; i < w_->bodies.size(); ++i) {
       const dBodyID b = w_->bodies[i];
       if (!b) {
-        out[i] = {w_->static_positions[i], Vec3::Zero()};
+        const Vec3& x = w_->static_positions[i];
+        w.put(x.x(), x.y(), x.z(), 0.0, 0.0, 0.0);
         continue;
       }
       const dReal* x = dBodyGetPosition(b);
       const dReal* v = dBodyGetLinearVel(b);
-      out[i] = {Vec3(x[0], x[1], x[2]), Vec3(v[0], v[1], v[2])};
+      w.put(x[0], x[1], x[2], v[0], v[1], v[2]);
     }
+    return w.finish();
   }
 
-  void read_rotation(std::span<RotationState> out) const override {
-    for (std::size_t i = 0; i < w_->bodies.size(); ++i) {
-      out[i] = RotationState{};
-      const dBodyID b = w_->bodies[i];
-      if (!b) continue;
-      const dReal* q = dBodyGetQuaternion(b);  // (w, x, y, z)
-      const dReal* w = dBodyGetAngularVel(b);
-      out[i] = {Quat(q[0], q[1], q[2], q[3]), Vec3(w[0], w[1], w[2])};
+  // Puts every body's rotational state in order into `w` (a static body: unturned, at rest);
+  // true when all are sound. ODE's quaternion is (w, x, y, z).
+  template <typename Writer>
+  bool turn(Writer&& w) const {
+    for (const dBodyID b : w_->bodies) {
+      if (!b) {
+        w.put(1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+        continue;
+      }
+      const dReal* q = dBodyGetQuaternion(b);
+      const dReal* a = dBodyGetAngularVel(b);
+      w.put(q[0], q[1], q[2], q[3], a[0], a[1], a[2]);
     }
+    return w.finish();
   }
 
- private:
   void make_world(const Scene& scene) {
     w_->world = dWorldCreate();
     const Vec3& g = scene.world.gravity;

@@ -65,10 +65,16 @@ class OursEngine final : public Engine {
   void step() override { ours::ApplyPhysics<T>(models_, world_, h_); }
 
   void read_rotation(std::span<RotationState> out) const override {
-    for (std::size_t i = 0; i < models_.size(); ++i) {
-      out[i].orientation = models_[i].rotation.template cast<double>();
-      out[i].angular_velocity = models_[i].rigidBody.angularVelocity.template cast<double>();
-    }
+    (void)turn(RotationWriter<false>(out.data()));  // the check is read_rotation_append's business
+  }
+
+  // Like read_append: written once from the bodies' own numbers, checked in the same pass.
+  bool read_rotation_append(std::size_t, RotationBuffer& out, StateUse use) const override {
+    const std::size_t at = out.size();
+    out.resize(at + models_.size());  // unwritten
+    RotationState* added = out.data() + at;
+    return use == StateUse::kept ? turn(RotationWriter<true>(added))
+                                 : turn(RotationWriter<false>(added));
   }
 
   // Seconds of `steps` calls of ours::ApplyPhysics alone (bare_step_loop in adapters.hpp).
@@ -100,6 +106,17 @@ class OursEngine final : public Engine {
       const ours::Vector3<T>& x = m.translation;
       const ours::Vector3<T>& v = m.rigidBody.velocity;
       w.put(x.x(), x.y(), x.z(), v.x(), v.y(), v.z());
+    }
+    return w.finish();
+  }
+
+  // Puts every body's rotational state in order into `w`; true when all are sound.
+  template <typename Writer>
+  bool turn(Writer&& w) const {
+    for (const ours::Model<T>& m : models_) {
+      const ours::Quaternion<T>& q = m.rotation;
+      const ours::Vector3<T>& a = m.rigidBody.angularVelocity;
+      w.put(q.w(), q.x(), q.y(), q.z(), a.x(), a.y(), a.z());
     }
     return w.finish();
   }

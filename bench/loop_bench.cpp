@@ -5,7 +5,8 @@
 //                         (what `dropcheck run` does)
 //   sparse/<engine>/<N>   run_scene sampling only step 0 and the last step (record_every = steps):
 //                         the loop without the memory traffic of keeping every state
-//   bare-turning/..., harness-turning/...: the same with every cube a tumbling box (Gazebo's
+//   bare-turning/..., harness-turning/..., sparse-turning/...: the same with every cube a tumbling
+//   box (Gazebo's
 //                         boxes: sides 0.1 x 0.9 x 0.4 m, w0 = (0.1, 0.1, -5) rad/s), so the
 //                         harness also reads each body's rotation every step (engines that turn
 //                         bodies in 3-D only)
@@ -110,6 +111,10 @@ const bool registered = [] {
           ->UseManualTime()
           ->Unit(benchmark::kMillisecond);
       benchmark::RegisterBenchmark(("harness-turning/" + tail).c_str(), harness, engine, n, 1, true)
+          ->UseManualTime()
+          ->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark(("sparse-turning/" + tail).c_str(), harness, engine, n,
+                                   steps_for(n), true)
           ->UseManualTime()
           ->Unit(benchmark::kMillisecond);
     }

@@ -97,6 +97,23 @@ bool all_finite(std::span<const RotationState> rotations) {
   return (any >> 63) == 0;
 }
 
+bool rotations_sound(std::span<const RotationState> rotations) {
+  bool off_unit = false;
+  for (const RotationState& r : rotations) {
+    const double n2 = r.orientation.squaredNorm();
+    off_unit |= !(n2 >= kUnitNorm2Min) | !(n2 <= kUnitNorm2Max);  // NaN compares false: off
+  }
+  return all_finite(rotations) && !off_unit;
+}
+
+bool Engine::read_rotation_append(std::size_t bodies, RotationBuffer& out, StateUse) const {
+  const std::size_t at = out.size();
+  out.resize(at + bodies);  // unwritten: read_rotation() writes every one
+  const std::span<RotationState> added = std::span(out).subspan(at, bodies);
+  read_rotation(added);
+  return rotations_sound(added);
+}
+
 bool Engine::read_append(std::size_t bodies, StateBuffer& out, StateUse) const {
   const std::size_t at = out.size();
   out.resize(at + bodies);  // unwritten: read() writes every one

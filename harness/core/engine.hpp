@@ -135,6 +135,17 @@ using RotationBuffer = std::vector<RotationState, UnwrittenAllocator<RotationSta
 // True when every number of every rotational state is finite (one branch-free pass).
 bool all_finite(std::span<const RotationState> rotations);
 
+// How far an orientation's norm may be from 1 and still be a unit quaternion: a float engine
+// renormalises to within ~1e-7, with room; an engine that answers (0, 0, 0, 0) or an unnormalised
+// q reports something that is no rotation. Compared as |q|^2 (no square root): (1 -+ 1e-4)^2.
+inline constexpr double kUnitSlack = 1e-4;
+inline constexpr double kUnitNorm2Min = (1 - kUnitSlack) * (1 - kUnitSlack);
+inline constexpr double kUnitNorm2Max = (1 + kUnitSlack) * (1 + kUnitSlack);
+
+// True when every number of every rotational state is finite and every orientation is a unit
+// quaternion (one pass): what a run needs of each step's rotations.
+bool rotations_sound(std::span<const RotationState> rotations);
+
 // What the states an Engine::read_append adds are for.
 enum class StateUse {
   next_step,  // read again soon (the next step's forces or checks): keep them in the cache
@@ -182,6 +193,13 @@ class Engine {
   // rotation). The default throws EngineError: an engine without rotation is never asked.
   virtual void read_rotation(std::span<RotationState> out) const;
 
+  // Appends what read_rotation() gives for the scene's `bodies` bodies to the end of `out` and
+  // returns rotations_sound() of them: how the runner reads each step of a rotating run. The
+  // default read_rotation()s into unwritten states and checks them in a second pass; an adapter
+  // may write them from its own arrays and check them in the same pass, streamed past the cache
+  // when `use` is kept (RotationWriter, harness/core/engine_writer.hpp).
+  virtual bool read_rotation_append(std::size_t bodies, RotationBuffer& out, StateUse use) const;
+
   // True when the last step clamped a body's speed or turn (Box2D moves at most 2 m and turns at
   // most pi/2 per step; Bullet turns at most pi/4 per step).
   virtual bool speed_clamped() const { return false; }
@@ -189,7 +207,9 @@ class Engine {
 
 // An Engine that passes every call on to another: the base of wrappers that add one thing to a run
 // (counting steps, a deadline, a test double's extra work) and override only the calls they add
-// it to. read_append is passed on too, so the wrapped engine keeps its own fast read.
+// it to. read_append and read_rotation_append are passed on too, so the wrapped engine keeps its
+// own fast reads: a wrapper that changes what read() or read_rotation() report overrides the
+// matching *_append as well, with Engine's default (which reads through the wrapper's own read).
 class ForwardingEngine : public Engine {
  public:
   explicit ForwardingEngine(Engine& inner) : inner_(inner) {}
@@ -204,6 +224,9 @@ class ForwardingEngine : public Engine {
     return inner_.read_append(bodies, out, use);
   }
   void read_rotation(std::span<RotationState> out) const override { inner_.read_rotation(out); }
+  bool read_rotation_append(std::size_t bodies, RotationBuffer& out, StateUse use) const override {
+    return inner_.read_rotation_append(bodies, out, use);
+  }
   bool speed_clamped() const override { return inner_.speed_clamped(); }
 
  protected:

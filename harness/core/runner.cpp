@@ -60,25 +60,23 @@ bool finite(const RotationState& r) {
   return all_finite(std::span(&r, 1));
 }
 
-// Appends the engine's rotational state for `bodies` bodies to `buffer` (Engine::read_rotation,
-// into unwritten slots: written once) and returns them; `finite` says whether every number is.
+// Appends the engine's rotational state for `bodies` bodies to `buffer` (Engine::
+// read_rotation_append: written once, checked in the same pass) and returns them; `sound` says
+// whether every number is finite and every orientation a unit quaternion (rotations_sound).
 std::span<const RotationState> read_rotations(const Engine& engine, RotationBuffer& buffer,
-                                              std::size_t bodies, bool& finite) {
+                                              std::size_t bodies, StateUse use, bool& sound) {
   const std::size_t at = buffer.size();
-  buffer.resize(at + bodies);
-  const std::span<RotationState> added = std::span(buffer).subspan(at, bodies);
-  engine.read_rotation(added);
-  finite = all_finite(std::span<const RotationState>(added));
-  return added;
+  sound = engine.read_rotation_append(bodies, buffer, use);
+  if (buffer.size() != at + bodies)
+    throw EngineError("read_rotation_append gave " + std::to_string(buffer.size() - at) +
+                      " rotations for " + std::to_string(bodies) + " bodies");
+  return std::span<const RotationState>(buffer).subspan(at, bodies);
 }
 
-// The first body whose orientation is not a unit quaternion (beyond a float's rounding), or -1:
-// an engine that answers (0, 0, 0, 0) or an unnormalised q reports something that is no rotation.
-constexpr double kUnitSlack = 1e-4;
+// The first body whose orientation is not a unit quaternion (beyond kUnitSlack), or -1.
 std::ptrdiff_t non_unit(std::span<const RotationState> rotations) {
   for (std::size_t i = 0; i < rotations.size(); ++i)
-    if (!(std::abs(rotations[i].orientation.norm() - 1.0) <= kUnitSlack))
-      return static_cast<std::ptrdiff_t>(i);
+    if (!rotations_sound(rotations.subspan(i, 1))) return static_cast<std::ptrdiff_t>(i);
   return -1;
 }
 
@@ -114,17 +112,29 @@ bool all_zero(std::span<const Vec3> forces) {
   return any == 0;
 }
 
-// How kept states are written. Streamed past the cache (StateUse::kept) only when nothing reads
-// them during the run (no springs: the next step's forces read the state) and both the run and a
-// step are large: there normal stores would spill out of the caches anyway, reading each line in
-// before writing it. Measured (bench/loop_bench.cpp, every step kept, min of 6, load ~2), ns per
-// body-step: N = 1000 (29 MB per run) ours 8.93 normal vs 5.93 streamed, ours-f64 10.11 vs 6.87;
-// N = 100 (2.9 MB) and N = 1, streaming everything cost 0-0.5 ns more than normal stores.
-StateUse kept_states_use(const Trajectory& t, std::size_t bodies, bool state_dependent) {
+// How kept records (states, or rotational states) are written. Streamed past the cache
+// (StateUse::kept) only when nothing reads them during the run (no springs: the next step's forces
+// read the state; rotations are never read) and both the run and a step are large: there normal
+// stores would spill out of the caches anyway, reading each line in before writing it. Measured
+// (bench/loop_bench.cpp, every step kept, min of 6, load ~2), ns per body-step: N = 1000 (29 MB
+// per run) ours 8.93 normal vs 5.93 streamed, ours-f64 10.11 vs 6.87; N = 100 (2.9 MB) and N = 1,
+// streaming everything cost 0-0.5 ns more than normal stores.
+template <typename Buffer>
+StateUse kept_use(const Buffer& kept, std::size_t bodies, bool read_during_run) {
   constexpr std::size_t kMinStep = 4 << 10, kMinRun = 16 << 20;  // bytes
-  const std::size_t step_bytes = bodies * sizeof(BodyState);
-  const bool large = step_bytes >= kMinStep && t.states.capacity() * sizeof(BodyState) >= kMinRun;
-  return large && !state_dependent ? StateUse::kept : StateUse::next_step;
+  using Record = typename Buffer::value_type;
+  const std::size_t step_bytes = bodies * sizeof(Record);
+  const bool large = step_bytes >= kMinStep && kept.capacity() * sizeof(Record) >= kMinRun;
+  return large && !read_during_run ? StateUse::kept : StateUse::next_step;
+}
+
+// Ends the run at step n, where a state is not finite or an orientation not a unit quaternion.
+void fail_at(Trajectory& t, std::span<const BodyState> states,
+             std::span<const RotationState> rotations, std::int64_t n) {
+  if (!all_finite(states) || !all_finite(rotations))
+    return fail_non_finite(t, states, rotations, n);
+  if (const std::ptrdiff_t i = non_unit(rotations); i >= 0)
+    fail_non_unit(t, rotations, static_cast<std::size_t>(i), n);
 }
 
 // Steps until the end or the first failure; returns normally in both cases. `current` holds the
@@ -141,7 +151,8 @@ void step_loop(Engine& engine, const Scene& scene, Trajectory& t, std::int64_t e
   std::vector<Vec3> forces(bodies);
   // Constant forces do not depend on the state: summed once, in the same order as every step would.
   const bool state_dependent = has_springs(scene);
-  const StateUse kept_use = kept_states_use(t, bodies, state_dependent);
+  const StateUse kept_states = kept_use(t.states, bodies, state_dependent);
+  const StateUse kept_turns = kept_use(t.rotations, bodies, false);
   compute_forces(scene, current, forces);
   // Constant forces that are all +0.0 (free flight, contacts): handed over on step 1 only. An
   // engine applies a force to the next step only (Engine::set_forces), so it holds zero applied
@@ -163,24 +174,25 @@ void step_loop(Engine& engine, const Scene& scene, Trajectory& t, std::int64_t e
     const bool keep = n % every == 0 || n == t.steps;
     bool finite = false;
     if (keep) {
-      current = read_states(engine, t.states, bodies, kept_use, finite);
+      current = read_states(engine, t.states, bodies, kept_states, finite);
     } else {
       scratch.clear();
       current = read_states(engine, scratch, bodies, StateUse::next_step, finite);
     }
     std::span<const RotationState> turned;
+    bool sound = true;
     if (t.rotates) {
-      rotation_scratch.clear();
-      bool turned_finite = false;
-      turned = read_rotations(engine, keep ? t.rotations : rotation_scratch, bodies, turned_finite);
-      finite = finite && turned_finite;
+      if (keep) {
+        turned = read_rotations(engine, t.rotations, bodies, kept_turns, sound);
+      } else {
+        rotation_scratch.clear();
+        turned = read_rotations(engine, rotation_scratch, bodies, StateUse::next_step, sound);
+      }
     }
     if (engine.speed_clamped()) {
       if (t.clamped_steps++ == 0) t.first_clamped_step = n;
     }
-    if (!finite) return fail_non_finite(t, current, turned, n);
-    if (const std::ptrdiff_t i = non_unit(turned); i >= 0)
-      return fail_non_unit(t, turned, static_cast<std::size_t>(i), n);
+    if (!finite || !sound) return fail_at(t, current, turned, n);
     if (keep) t.recorded.push_back(n);
   }
 }
@@ -207,8 +219,9 @@ Trajectory run_scene_in_process(Engine& engine, const Scene& scene, double h,
     const std::span<BodyState> initial =
         read_states(engine, t.states, scene.bodies.size(), StateUse::next_step, finite);
     if (t.rotates) {
+      bool sound = false;
       const std::span<const RotationState> start =
-          read_rotations(engine, t.rotations, scene.bodies.size(), finite);
+          read_rotations(engine, t.rotations, scene.bodies.size(), StateUse::next_step, sound);
       if (const std::ptrdiff_t i = non_unit(start); i >= 0)
         throw EngineError("body '" + t.body_names[static_cast<std::size_t>(i)] +
                           "' starts with an orientation that is not a unit quaternion");

@@ -1,5 +1,6 @@
 // Tests harness/core/engine_writer.hpp (StateWriter) and the state storage of engine.hpp
-// (StateBuffer, all_finite): what Engine::read_append overrides write through.
+// (StateBuffer, all_finite) and RotationWriter with rotations_sound: what Engine::read_append and
+// Engine::read_rotation_append overrides write through.
 #include "harness/core/engine_writer.hpp"
 
 #include <array>
@@ -134,4 +135,110 @@ TEST_CASE("all_finite finds a NaN or an Inf anywhere, beyond the eight-number ro
     }
   }
   CHECK(dropcheck::all_finite(std::span<const dropcheck::BodyState>{}));
+}
+
+namespace {
+
+using dropcheck::Quat;
+using dropcheck::RotationBuffer;
+using dropcheck::RotationState;
+using dropcheck::RotationWriter;
+
+// (qw, qx, qy, qz, wx, wy, wz) per state.
+using Turn = std::array<double, 7>;
+
+// Puts `turns` through a RotationWriter<Streamed> into fresh slots of `out`; returns finish().
+template <bool Streamed>
+bool write_turns(RotationBuffer& out, const std::vector<Turn>& turns) {
+  const std::size_t at = out.size();
+  out.resize(at + turns.size());
+  RotationWriter<Streamed> w(out.data() + at);
+  for (const Turn& r : turns) w.put(r[0], r[1], r[2], r[3], r[4], r[5], r[6]);
+  return w.finish();
+}
+
+// Unit quaternions at the edges of what a run accepts, and finite extremes of angular velocity.
+const std::vector<Turn> kSound = {
+    {1.0, 0.0, 0.0, 0.0, 0.0, -0.0, 1e-300},
+    {0.5, -0.5, 0.5, -0.5, std::numeric_limits<double>::max(), -3.0, 4.0},
+    {0.0, 0.6, 0.0, 0.8 * (1 + 0.9e-4), 0.1, 0.2, 0.3},  // |q| - 1 = 0.64 * 0.9e-4: inside
+};
+
+template <bool Streamed>
+void check_turns_written_exactly() {
+  RotationBuffer out;
+  out.push_back({Quat(0, 1, 0, 0), Vec3(9, 9, 9)});  // written before: left as it was
+  CHECK(write_turns<Streamed>(out, kSound));
+  REQUIRE(out.size() == 4);
+  CHECK(out[0].orientation.x() == 1.0);
+  CHECK(out[0].angular_velocity == Vec3(9, 9, 9));
+  for (std::size_t i = 0; i < kSound.size(); ++i) {
+    const RotationState& r = out[i + 1];
+    const double got[7] = {r.orientation.w(),     r.orientation.x(),      r.orientation.y(),
+                           r.orientation.z(),     r.angular_velocity.x(), r.angular_velocity.y(),
+                           r.angular_velocity.z()};
+    for (int k = 0; k < 7; ++k)
+      CHECK(std::bit_cast<std::uint64_t>(got[k]) == std::bit_cast<std::uint64_t>(kSound[i][k]));
+  }
+  CHECK(dropcheck::rotations_sound(std::span(out).subspan(1)));
+}
+
+template <bool Streamed>
+void check_turns_unsound_found() {
+  for (const double bad : {kNaN, -kNaN, kInf, -kInf}) {
+    for (std::size_t body = 0; body < kSound.size(); ++body) {
+      for (int k = 0; k < 7; ++k) {
+        std::vector<Turn> turns = kSound;
+        turns[body][k] = bad;
+        RotationBuffer out;
+        INFO("body " << body << ", number " << k << ", value " << bad);
+        CHECK_FALSE(write_turns<Streamed>(out, turns));
+        CHECK_FALSE(dropcheck::rotations_sound(out));
+      }
+    }
+  }
+  // Off the unit sphere: zero, doubled, and just beyond the slack on either side.
+  for (const double scale : {0.0, 2.0, 1 + 1.1e-4, 1 - 1.1e-4}) {
+    std::vector<Turn> turns = kSound;
+    for (int k = 0; k < 4; ++k) turns[1][k] *= scale;
+    RotationBuffer out;
+    INFO("orientation scaled by " << scale);
+    CHECK_FALSE(write_turns<Streamed>(out, turns));
+    CHECK_FALSE(dropcheck::rotations_sound(out));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("a rotation writer writes every number bit for bit, streamed or not", "[engine]") {
+  check_turns_written_exactly<false>();
+  check_turns_written_exactly<true>();
+}
+
+TEST_CASE("a rotation writer reports a NaN, an Inf or an orientation off the unit sphere",
+          "[engine]") {
+  check_turns_unsound_found<false>();
+  check_turns_unsound_found<true>();
+}
+
+TEST_CASE("an engine's default rotation read appends, reads through read_rotation and checks",
+          "[engine]") {
+  struct Turning final : dropcheck::Engine {
+    Quat q = Quat::Identity();
+    dropcheck::EngineInfo info() const override { return {}; }
+    void load(const dropcheck::Scene&, double) override {}
+    void set_forces(std::span<const Vec3>) override {}
+    void step() override {}
+    void read(std::span<BodyState>) const override {}
+    void read_rotation(std::span<RotationState> out) const override {
+      for (RotationState& r : out) r = {q, Vec3(1, 2, 3)};
+    }
+  } engine;
+  RotationBuffer out;
+  CHECK(engine.read_rotation_append(2, out, dropcheck::StateUse::kept));
+  REQUIRE(out.size() == 2);
+  CHECK(out[1].angular_velocity == Vec3(1, 2, 3));
+  engine.q.coeffs() *= 1.5;
+  CHECK_FALSE(engine.read_rotation_append(1, out, dropcheck::StateUse::next_step));
+  CHECK(out.size() == 3);
 }

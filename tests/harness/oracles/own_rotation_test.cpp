@@ -81,6 +81,9 @@ class NudgedSpin final : public ForwardingEngine {
     inner_.read_rotation(out);
     for (RotationState& r : out) r.angular_velocity.x() += 1e-9;
   }
+  bool read_rotation_append(std::size_t bodies, RotationBuffer& out, StateUse use) const override {
+    return Engine::read_rotation_append(bodies, out, use);  // through read_rotation above
+  }
 };
 
 }  // namespace
@@ -153,6 +156,9 @@ class UnnormalisedSpin final : public ForwardingEngine {
   void read_rotation(std::span<RotationState> out) const override {
     inner_.read_rotation(out);
     for (RotationState& r : out) r.orientation.coeffs() *= 2.0;
+  }
+  bool read_rotation_append(std::size_t bodies, RotationBuffer& out, StateUse use) const override {
+    return Engine::read_rotation_append(bodies, out, use);  // through read_rotation above
   }
 };
 
