@@ -11,7 +11,7 @@ using BareLoop = double (*)(const Scene&, double);
 
 // One row per engine compiled into this build.
 const std::pair<const char*, BareLoop> kBareLoops[] = {
-    {"ours", bare_seconds_ours_f32}, {"ours-f64", bare_seconds_ours_f64},
+    {"ours", bare_seconds_ours_f32},     {"ours-f64", bare_seconds_ours_f64},
 #ifdef DROPCHECK_HAVE_BULLET
     {"bullet", bare_seconds_bullet},
 #endif
@@ -23,6 +23,9 @@ const std::pair<const char*, BareLoop> kBareLoops[] = {
 #endif
 #ifdef DROPCHECK_HAVE_MUJOCO
     {"mujoco", bare_seconds_mujoco},
+#endif
+#ifdef DROPCHECK_HAVE_CHIPMUNK
+    {"chipmunk", bare_seconds_chipmunk},
 #endif
 };
 

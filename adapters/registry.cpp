@@ -38,6 +38,11 @@ std::unique_ptr<Engine> (*const make_mujoco_ptr)() = nullptr;
 #else
 std::unique_ptr<Engine> (*const make_mujoco_ptr)() = make_mujoco;
 #endif
+#ifndef DROPCHECK_HAVE_CHIPMUNK
+std::unique_ptr<Engine> (*const make_chipmunk_ptr)() = nullptr;
+#else
+std::unique_ptr<Engine> (*const make_chipmunk_ptr)() = make_chipmunk;
+#endif
 
 const Entry kEngines[] = {
     {"ours", make_ours_f32, ""},
@@ -46,6 +51,7 @@ const Entry kEngines[] = {
     {"ode", make_ode_ptr, "DROPCHECK_WITH_ODE"},
     {"box2d", make_box2d_ptr, "DROPCHECK_WITH_BOX2D"},
     {"mujoco", make_mujoco_ptr, "DROPCHECK_WITH_MUJOCO"},
+    {"chipmunk", make_chipmunk_ptr, "DROPCHECK_WITH_CHIPMUNK"},
 };
 
 const Entry* find(const std::string& name) {

@@ -104,6 +104,7 @@ double spring_max_stable_dt(Law law, const SpringModel& spring) {
   // then bisect that bracket to double precision.
   const double rate = std::max({spring.omega, spring.gamma, spring.k, 1e-12});
   double lo = 1e-4 / rate, hi = lo;
+  if (!spring_step_stable(law, spring, lo)) return 0.0;  // forward Euler on an undamped spring
   while (spring_step_stable(law, spring, hi)) {
     lo = hi;
     hi *= 1.01;

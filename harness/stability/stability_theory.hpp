@@ -34,7 +34,9 @@ struct StepRotation {
 // are real (no oscillation: overdamped, or beyond the edge).
 std::optional<StepRotation> spring_step_rotation(Law law, const SpringModel& spring, double h);
 
-// The largest h at which `law` is stable for `spring` (the first edge above h = 0).
+// The largest h at which `law` is stable for `spring` (the first edge above h = 0); 0 when it is
+// unstable from the smallest step tried, 1e-4/max(omega, gamma, k), on: an explicit position update
+// on an undamped spring (forward Euler) is unstable at every h.
 double spring_max_stable_dt(Law law, const SpringModel& spring);
 
 // The theoretical edge of `scene` under `law`: the smallest over bodies on linear springs
