@@ -29,10 +29,10 @@
 // scene with contacts is not run.
 // Debian builds Chipmunk with its debug checks on: the first cpSpaceNew of a process prints two
 // lines to stdout ("Initializing cpSpace ... (Debug Enabled)", cpSpace.c), which would land inside
-// dropcheck's own output (a CSV on stdout). The adapter makes that first call once per process with
-// stdout pointed at /dev/null (quiet_first_space); forked runs inherit the flag Chipmunk keeps.
-// Errors: Chipmunk's hard assertions (a non-positive mass or moment, a non-finite state in a debug
-// build) print and abort(); the isolated run reports that as a crash.
+// dropcheck's own output (its tables on stdout). The adapter makes that first call once per process
+// with stdout pointed at /dev/null (quiet_first_space); forked runs inherit the flag Chipmunk
+// keeps. Errors: Chipmunk's hard assertions (a non-positive mass or moment, a non-finite state in a
+// debug build) print and abort(); the isolated run reports that as a crash.
 #include <chipmunk/chipmunk.h>
 #include <fcntl.h>
 #include <unistd.h>

@@ -15,6 +15,18 @@ std::string to_string(Law law) {
   return "?";
 }
 
+std::string law_difference(Law a, Law b) {
+  auto order = [](Law l) {
+    return l.position == PositionUpdate::Explicit && l.damping == DampingOrder::AfterPosition
+               ? DampingOrder::AfterForces
+               : l.damping;
+  };
+  std::string out;
+  if (order(a) != order(b)) out = "damping-order";
+  if (a.position != b.position) out += (out.empty() ? "" : " + ") + std::string("position-update");
+  return out;
+}
+
 std::string law_key(Law law) {
   std::string key = law.damping == DampingOrder::AfterForces    ? "after-forces"
                     : law.damping == DampingOrder::BeforeForces ? "before-forces"

@@ -93,4 +93,9 @@ std::string to_string(Law law);
 std::string law_key(Law law);
 std::optional<Law> parse_law_key(std::string_view key);
 
+// What two members differ in, as a cause: "damping-order", "position-update", both joined by " + ",
+// or "" for one member. With the explicit position update, AfterPosition and AfterForces are one
+// member (see above).
+std::string law_difference(Law a, Law b);
+
 }  // namespace dropcheck

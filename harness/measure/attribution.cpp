@@ -9,6 +9,15 @@
 namespace dropcheck {
 namespace {
 
+// "damping order", "position update", "damping order + position update" from law_difference's key;
+// "laws" when the members are one (a difference below rounding never reaches the sentence).
+std::string law_difference_words(std::string key) {
+  if (key.empty()) return "laws";
+  for (char& c : key)
+    if (c == '-') c = ' ';
+  return key;
+}
+
 bool departs_in_rotation(const OwnLawVerdict& v) {
   // Judged only with a meaningful tolerance, like the linear residual (a law that blows up has none
   // and blames nobody here; its own-law verdict says so).
@@ -58,6 +67,7 @@ Attribution attribute(const RunWithLaws& e, const RunWithLaws& r) {
   Attribution a;
   a.engine = e.run.engine;
   a.reference = r.run.engine;
+  a.law_difference = dropcheck::law_difference(e.info.law, r.info.law);
   a.clamped_from = first_clamp(e.run.first_clamped_step, r.run.first_clamped_step);
   Trajectory er = e.run, rr = r.run;
   er.first_clamped_step = rr.first_clamped_step = a.clamped_from;  // both stop at either clamp
@@ -123,10 +133,10 @@ std::string Attribution::sentence() const {
         precision, format_length(residual), format_length(budget));
   } else {
     const double share = law_part >= total ? 100.0 : 100.0 * law_part / total;
-    why = printf_string(
-        "%s from the two discrete laws (damping order); %s; residual %s, within rounding",
-        share >= 99.95 ? "all of it" : std::to_string(static_cast<int>(share)) + "%", precision,
-        format_length(residual));
+    why =
+        printf_string("%s from the two discrete laws (%s); %s; residual %s, within rounding",
+                      share >= 99.95 ? "all of it" : std::to_string(static_cast<int>(share)) + "%",
+                      law_difference_words(law_difference), precision, format_length(residual));
   }
   std::string out = printf_string("%s vs %s: %s at t = %g s (max %s), %s", engine, reference,
                                   format_length(final_total), final_t, format_length(total), why);

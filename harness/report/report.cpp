@@ -53,8 +53,10 @@ std::string summary(const ReportInput& in) {
     t.add(std::move(row));
   }
   return "## Summary\n\nAt each scene's default step. Divergence: max |dx| over the run from "
-         "ours-f64 at the same step (worst body). Cause: damping-order (all from the "
-         "engines' discrete laws), precision (float vs double rounding), identical, landing (the "
+         "ours-f64 at the same step (worst body). Cause: damping-order or "
+         "position-update (all from the engines' discrete laws, which differ in where the damping "
+         "sits or in which velocity moves the position), precision (float vs double rounding), "
+         "identical, landing (the "
          "largest gap opens at first contact; the fall before it is attributed in the scene's "
          "section), UNEXPLAINED (a residual beyond rounding: look at it). Error: max "
          "|dx| against the closed form, or (*) against the same engine at a fine step where "

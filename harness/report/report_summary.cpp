@@ -131,8 +131,10 @@ std::string divergence_cause(const SceneEvaluation& se, const EngineEvaluation& 
   if (st.attributed_until >= 0.0 && st.vs_reference->max_dx > 1.1 * a.total + a.budget)
     return "landing" + turn;
   if (a.total == 0.0) return turn.empty() ? "identical" : "rotational law";
-  // Explained: the laws' difference beyond rounding is the damping order; the rest is precision.
-  return (a.law_part > a.budget ? "damping-order" : "precision") + turn;
+  // Explained: the laws' difference beyond rounding is what their members differ in (the damping
+  // order, the position update); the rest is precision.
+  if (a.law_part <= a.budget || a.law_difference.empty()) return "precision" + turn;
+  return a.law_difference + turn;
 }
 
 SceneSummary summarize(const SceneEvaluation& se) {

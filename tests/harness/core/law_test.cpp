@@ -58,3 +58,23 @@ TEST_CASE("law family: five distinct members, each named by a key that parses ba
 
 }  // namespace
 }  // namespace dropcheck
+
+TEST_CASE("law family: two members' difference is named by what they differ in", "[law]") {
+  const dropcheck::Law ours = dropcheck::DampingOrder::AfterForces,
+                       bullet = dropcheck::DampingOrder::BeforeForces;
+  const dropcheck::Law ode = dropcheck::DampingOrder::AfterPosition;
+  const dropcheck::Law chipmunk{dropcheck::DampingOrder::BeforeForces,
+                                dropcheck::PositionUpdate::Explicit};
+  CHECK(dropcheck::law_difference(ours, ours).empty());
+  CHECK(dropcheck::law_difference(ours, bullet) == "damping-order");
+  CHECK(dropcheck::law_difference(bullet, ode) == "damping-order");
+  CHECK(dropcheck::law_difference(bullet, chipmunk) == "position-update");
+  CHECK(dropcheck::law_difference(ours, chipmunk) == "damping-order + position-update");
+  // With the explicit position update, damping after the position is damping after the forces.
+  const dropcheck::Law explicit_after{dropcheck::DampingOrder::AfterForces,
+                                      dropcheck::PositionUpdate::Explicit};
+  CHECK(dropcheck::law_difference(explicit_after,
+                                  dropcheck::Law{dropcheck::DampingOrder::AfterPosition,
+                                                 dropcheck::PositionUpdate::Explicit})
+            .empty());
+}
