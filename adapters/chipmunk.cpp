@@ -8,14 +8,23 @@
 //                          cpfpow(space->damping, dt), so phi = exp(-k)^h = exp(-k*h) up to
 //                          the rounding of exp(-k) (relative 1e-16 times h: below the rule's ulps).
 //                          One value for every body and for both v and w (Chipmunk has no
-//                          per-body or angular damping).
+//                          per-body or separate angular damping): exp(-k), or exp(-k_a) when
+//                          nothing moves along a line (no start velocity, gravity or force); a
+//                          scene that needs both with k != k_a is not run (cannot_run).
 //   law                 -> DampingOrder::BeforeForces, PositionUpdate::Explicit: cpSpaceStep first
 //                          moves every body (cpBodyUpdatePosition: p += h*v), then collides, then
 //                          updates velocities (cpBodyUpdateVelocity: v = v*phi + (g + f/m)*h,
 //                          f = 0): x_{n+1} = x_n + h*v_n; v_{n+1} = phi*v_n + h*a. The only shipped
 //                          engine whose position moves with the step-start velocity.
-//   mass m              -> cpBodyNew(m, I_z) with the scene's moment about z (inertia_of); the
-//                          moment only matters for turning, but Chipmunk asserts it is positive.
+//   mass m              -> cpBodyNew(m, I_z) with the scene's moment about z (inertia_of).
+//   rotation (about z)  -> cpBodySetAngle(2*atan2(qz, qw)), cpBodySetAngularVelocity(w_z),
+//                          cpBodySetTorque(tau_z) before the step; read back as
+//                          q = (cos(a/2), 0, 0, sin(a/2)) from cpBodyGetAngle and w_z from
+//                          cpBodyGetAngularVelocity. Law, as for the position:
+//                          cpBodyUpdatePosition turns first, a += h*w (the exact turn by the
+//                          step-start w: the exponential map), then cpBodyUpdateVelocity does
+//                          w = w*D^h + t/I*h; no gyroscopic term (about a principal axis it is
+//                          zero for every member): no-gyro/exp-map with the explicit update.
 //   static body         -> cpBodyNewStatic at its position, added to the space (never moved).
 //   position, velocity  -> cpBodySetPosition, cpBodySetVelocity; read with cpBodyGetPosition and
 //                          cpBodyGetVelocity after the step (the centre of gravity is the body's
@@ -99,10 +108,21 @@ class ChipmunkEngine final : public Engine {
     i.version = std::to_string(CP_VERSION_MAJOR) + "." + std::to_string(CP_VERSION_MINOR) + "." +
                 std::to_string(CP_VERSION_RELEASE);
     i.scalar = sizeof(cpFloat) == sizeof(double) ? Scalar::f64 : Scalar::f32;
-    i.capabilities = {.contacts = false, .planar_only = true, .rotation = Rotation::none};
+    i.capabilities = {.contacts = false, .planar_only = true, .rotation = Rotation::spin_z};
     i.law = Law{DampingOrder::BeforeForces, PositionUpdate::Explicit};
-    i.damping_mapping = "cpSpaceSetDamping(exp(-k)) per second; v = v*exp(-k)^h + a*h";
+    i.rotation_law = {Gyroscopic::none, OrientationUpdate::exponential_map};
+    i.damping_mapping =
+        "cpSpaceSetDamping(exp(-k)) per second, one for v and w; v = v*exp(-k)^h + a*h";
     return i;
+  }
+
+  std::string cannot_run(const Scene& scene) const override {
+    if (std::string why = Engine::cannot_run(scene); !why.empty()) return why;
+    if (needs_rotation(scene) && moves_along_a_line(scene) &&
+        scene.world.damping_rate != scene.world.angular_damping_rate)
+      return "damping: Chipmunk damps v and w by one space damping, and this scene's k and k_a "
+             "differ";
+    return {};
   }
 
   void load(const Scene& scene, double h) override {
@@ -110,7 +130,9 @@ class ChipmunkEngine final : public Engine {
     h_ = h;
     w_ = std::make_unique<Space>();
     cpSpaceSetGravity(w_->space, to_cp(scene.world.gravity));
-    cpSpaceSetDamping(w_->space, std::exp(-scene.world.damping_rate));
+    const bool linear = !needs_rotation(scene) || moves_along_a_line(scene);
+    cpSpaceSetDamping(w_->space, std::exp(-(linear ? scene.world.damping_rate
+                                                   : scene.world.angular_damping_rate)));
     cpSpaceSetSleepTimeThreshold(w_->space, INFINITY);
     for (const Body& b : scene.bodies) w_->bodies.push_back(add_body(b));
   }
@@ -119,6 +141,12 @@ class ChipmunkEngine final : public Engine {
     for (std::size_t i = 0; i < w_->bodies.size(); ++i)
       if (cpBodyGetType(w_->bodies[i]) == CP_BODY_TYPE_DYNAMIC)
         cpBodySetForce(w_->bodies[i], to_cp(forces[i]));
+  }
+
+  void set_torques(std::span<const Vec3> torques) override {
+    for (std::size_t i = 0; i < w_->bodies.size(); ++i)
+      if (cpBodyGetType(w_->bodies[i]) == CP_BODY_TYPE_DYNAMIC)
+        cpBodySetTorque(w_->bodies[i], torques[i].z());
   }
 
   void step() override { cpSpaceStep(w_->space, h_); }
@@ -143,11 +171,33 @@ class ChipmunkEngine final : public Engine {
                                  : write(StateWriter<false>(added));
   }
 
+  // The angle a about z as the quaternion (cos(a/2), 0, 0, sin(a/2)); w = (0, 0, w_z).
+  void read_rotation(std::span<RotationState> out) const override {
+    for (std::size_t i = 0; i < w_->bodies.size(); ++i) {
+      const double a = cpBodyGetAngle(w_->bodies[i]);
+      out[i].orientation = Quat(std::cos(a / 2), 0.0, 0.0, std::sin(a / 2));
+      out[i].angular_velocity = Vec3(0.0, 0.0, cpBodyGetAngularVelocity(w_->bodies[i]));
+    }
+  }
+
  private:
+  // True when some body moves along a line: a start velocity, gravity, or a force.
+  static bool moves_along_a_line(const Scene& scene) {
+    if (!scene.world.gravity.isZero(0.0) || !scene.forces.empty()) return true;
+    for (const Body& b : scene.bodies)
+      if (!b.is_static && !b.velocity.isZero(0.0)) return true;
+    return false;
+  }
+
   cpBody* add_body(const Body& b) {
     cpBody* body = b.is_static ? cpBodyNewStatic() : cpBodyNew(b.mass, inertia_of(b).z());
     cpBodySetPosition(body, to_cp(b.position));
-    if (!b.is_static) cpBodySetVelocity(body, to_cp(b.velocity));
+    if (!b.is_static) {
+      cpBodySetVelocity(body, to_cp(b.velocity));
+      const Quat& q = b.orientation;  // about z only (cannot_run)
+      cpBodySetAngle(body, 2.0 * std::atan2(q.z(), q.w()));
+      cpBodySetAngularVelocity(body, b.angular_velocity.z());
+    }
     return cpSpaceAddBody(w_->space, body);
   }
 

@@ -140,10 +140,13 @@ bool print_verdict(const Identification& id, std::ostream& out) {
   return true;
 }
 
-// A rotational member and, when the scene's angular damping shows it, where the damping sits.
+// A rotational member and, when the scene's angular damping shows it, where the damping sits, or
+// that it turns with the step-start angular velocity.
 std::string rotation_member(const RotationFit& f, bool damping_seen) {
   // The semi-implicit member's key names the damping's place alone ("after-forces").
-  return rotation_law_key(f.law) + (damping_seen ? ", " + law_key(Law{f.damping}) : "");
+  if (damping_seen) return rotation_law_key(f.law) + ", " + law_key(f.linear);
+  const bool explicit_turn = f.linear.position == PositionUpdate::Explicit;
+  return rotation_law_key(f.law) + (explicit_turn ? ", step-start w" : "");
 }
 
 // The rotational fits and verdict; true when one member is named. `declared` (with --engine)
@@ -154,9 +157,9 @@ bool print_rotation(const RotationIdentification& id, const std::optional<Engine
       << (id.damping_seen ? ", with each placement of the angular damping"
                           : " (no angular damping: where it sits leaves no trace)")
       << "\n"
-      << printf_string("  %-44s %16s %18s\n", "member", "max angle rad", "max|w-fit| rad/s");
+      << printf_string("  %-52s %16s %18s\n", "member", "max angle rad", "max|w-fit| rad/s");
   for (const RotationFit& f : id.fits)
-    out << printf_string("  %-44s %16.3g %18.3g\n", rotation_member(f, id.damping_seen).c_str(),
+    out << printf_string("  %-52s %16.3g %18.3g\n", rotation_member(f, id.damping_seen).c_str(),
                          f.max_angle, f.max_dw);
   const RotationFit& best = id.fits[id.best];
   const RotationFit& next = id.fits[id.runner_up];
@@ -178,9 +181,10 @@ bool print_rotation(const RotationIdentification& id, const std::optional<Engine
     ok = true;
   }
   if (!declared) return ok;
-  const RotationFit want{declared->rotation_law, declared->law.damping};
+  const RotationFit want{declared->rotation_law, declared->law};
   const auto same = [&](const RotationFit& f) {
-    return f.law == want.law && (!id.damping_seen || f.damping == want.damping);
+    return f.law == want.law && f.linear.position == want.linear.position &&
+           (!id.damping_seen || law_difference(f.linear, want.linear).empty());
   };
   const bool match = ok && same(best);
   bool tied = false;  // the declared member fits as well as the best (within the 2x of ambiguity)

@@ -9,6 +9,8 @@
 //   BeforeForces:   w = phi_a*w;  w = G(w) + h*I_w^-1*tau;  q = Q(q, w)
 //   AfterForces:    w = G(w) + h*I_w^-1*tau;  w = phi_a*w;  q = Q(q, w)
 //   AfterPosition:  w = G(w) + h*I_w^-1*tau;  q = Q(q, w);  w = phi_a*w
+// and with the explicit position update (law.hpp: Chipmunk) q = Q(q, w) comes first, with the
+// step-start w.
 // where the gyroscopic update G (Euler's equations' w x (I_w*w) term) is one of
 //   none               G(w) = w                                       (the term left out)
 //   explicit           G(w) = w - h*I_w^-1*(w x I_w*w)                 (at the step start)
@@ -138,18 +140,24 @@ Eigen::Quaternion<Real> orientation_update(OrientationUpdate u, const Eigen::Qua
 
 }  // namespace rotation_detail
 
-// One step of member `law` with the angular damping factor phi_a placed by `damping` (the engine's
-// linear DampingOrder), on a body of principal moments `inertia` under world torque `torque`.
+// One step of member `law` with the angular damping factor phi_a placed as the engine's linear
+// member `linear` places the linear one, on a body of principal moments `inertia` under world
+// torque `torque`. With the explicit position update (law.hpp) the orientation turns with the
+// step-start w, before w changes, as the position moves with the step-start v.
 template <class Real>
-void advance_rotation(RotationLaw law, DampingOrder damping, Real phi_a, Real h,
+void advance_rotation(RotationLaw law, Law linear, Real phi_a, Real h,
                       const Eigen::Matrix<Real, 3, 1>& inertia,
                       const Eigen::Matrix<Real, 3, 1>& torque, Spin<Real>& s) {
   const Eigen::Matrix<Real, 3, 3> R = s.q.toRotationMatrix();
+  const DampingOrder damping = linear.damping;
+  if (linear.position == PositionUpdate::Explicit)
+    s.q = rotation_detail::orientation_update(law.orientation, s.q, s.w, h);
   if (damping == DampingOrder::BeforeForces) s.w *= phi_a;
   s.w = rotation_detail::gyroscopic_update(law.gyroscopic, R, inertia, h, s.w) +
         R * (h * (R.transpose() * torque)).cwiseQuotient(inertia);
   if (damping == DampingOrder::AfterForces) s.w *= phi_a;
-  s.q = rotation_detail::orientation_update(law.orientation, s.q, s.w, h);
+  if (linear.position == PositionUpdate::SemiImplicit)
+    s.q = rotation_detail::orientation_update(law.orientation, s.q, s.w, h);
   if (damping == DampingOrder::AfterPosition) s.w *= phi_a;
 }
 

@@ -103,8 +103,8 @@ Attribution attribute(const RunWithLaws& e, const RunWithLaws& r) {
         rotation_law_key(e.info.rotation_law) + " vs " + rotation_law_key(r.info.rotation_law);
     // One member with the damping in one place: the laws are one law, and what separates the two
     // predictions is each scalar's rounding (a float run amplified through a tumble).
-    a.same_rotation_law =
-        e.info.rotation_law == r.info.rotation_law && e.info.law.damping == r.info.law.damping;
+    a.same_rotation_law = e.info.rotation_law == r.info.rotation_law &&
+                          law_difference(e.info.law, r.info.law).empty();
   }
   return a;
 }

@@ -14,13 +14,13 @@ RotationIdentification identify_rotation(const Scene& scene, const Trajectory& r
                      "law from");
   RotationIdentification id;
   id.damping_seen = scene.world.angular_damping_rate != 0.0;
-  std::vector<DampingOrder> orders = {DampingOrder::AfterForces};
-  if (id.damping_seen)
-    orders = {DampingOrder::AfterForces, DampingOrder::BeforeForces, DampingOrder::AfterPosition};
+  std::vector<Law> orders = {DampingOrder::AfterForces,
+                             {DampingOrder::AfterForces, PositionUpdate::Explicit}};
+  if (id.damping_seen) orders.assign(std::begin(kLawFamily), std::end(kLawFamily));
   const std::vector<RotationState> start(run.rotations.begin(),
                                          run.rotations.begin() + run.bodies());
   for (RotationLaw law : kRotationFamily)
-    for (DampingOrder order : orders) {
+    for (const Law order : orders) {
       const RotationResidual r = rotation_residual(
           run, predict_rotation_from(law, order, scene, run.h, run.recorded, start));
       id.fits.push_back({law, order, r.angle, r.w});

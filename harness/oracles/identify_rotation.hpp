@@ -1,8 +1,10 @@
 // Identify the rotational member (harness/core/rotation_law.hpp) behind a rotating free-flight
 // trajectory alone: replay every member from the trajectory's first sample (its orientation and
 // angular velocity; the moments, torques and angular damping rate from the scene) and name the one
-// that reproduces every orientation. With angular damping every placement of the damping factor
-// (DampingOrder) is tried too; without it the placement leaves no trace and only one is tried.
+// that reproduces every orientation. Each is tried with the orientation turned by the new and by
+// the step-start angular velocity (the linear member's position update), and with angular damping
+// at every placement of the damping factor too (each member of the linear family, law.hpp); without
+// angular damping its placement leaves no trace and only the after-forces placement is tried.
 #pragma once
 
 #include <vector>
@@ -19,9 +21,9 @@ inline constexpr double kIdentifyRotationTolerance = 1e-6;
 
 struct RotationFit {
   RotationLaw law;
-  DampingOrder damping = DampingOrder::AfterForces;
-  double max_angle = 0.0;  // largest geodesic angle to the replay (rad)
-  double max_dw = 0.0;     // largest |w - w_replay| (rad/s)
+  Law linear = DampingOrder::AfterForces;  // the placement: damping order and position update
+  double max_angle = 0.0;                  // largest geodesic angle to the replay (rad)
+  double max_dw = 0.0;                     // largest |w - w_replay| (rad/s)
 };
 
 struct RotationIdentification {

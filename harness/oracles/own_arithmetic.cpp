@@ -162,12 +162,11 @@ void add_rotation(const EngineInfo& info, const Scene& scene, double h, Trajecto
   t.rotates = true;
   const std::vector<RotationState> turns =
       info.arithmetic != DampingForm::phi_multiply
-          ? predict_rotation(info.rotation_law, info.law.damping, scene, h, t.recorded)
+          ? predict_rotation(info.rotation_law, info.law, scene, h, t.recorded)
       : info.scalar == Scalar::f32 ? rotate_like_ours<float>(scene, h, t.recorded)
                                    : rotate_like_ours<double>(scene, h, t.recorded);
   t.rotations.assign(turns.begin(), turns.end());
-  t.amplification =
-      rotation_amplification(info.rotation_law, info.law.damping, scene, h, t.recorded);
+  t.amplification = rotation_amplification(info.rotation_law, info.law, scene, h, t.recorded);
 }
 
 }  // namespace

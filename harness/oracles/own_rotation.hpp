@@ -17,16 +17,16 @@
 namespace dropcheck {
 
 // The rotational state of every body of `scene` at each step in `recorded`, under `law` with the
-// angular damping placed by `damping`, at step h: recorded.size() x bodies, sample-major (static
-// bodies keep their start).
-std::vector<RotationState> predict_rotation(RotationLaw law, DampingOrder damping,
-                                            const Scene& scene, double h,
-                                            const std::vector<std::int64_t>& recorded);
+// angular damping and the orientation update placed as the engine's linear member `linear` places
+// the linear damping and the position update (advance_rotation), at step h: recorded.size() x
+// bodies, sample-major (static bodies keep their start).
+std::vector<RotationState> predict_rotation(RotationLaw law, Law linear, const Scene& scene,
+                                            double h, const std::vector<std::int64_t>& recorded);
 
 // The same from `start` (one state per body) instead of the scene's initial rotation: a law
 // replayed from a recorded trajectory's first sample.
-std::vector<RotationState> predict_rotation_from(RotationLaw law, DampingOrder damping,
-                                                 const Scene& scene, double h,
+std::vector<RotationState> predict_rotation_from(RotationLaw law, Law linear, const Scene& scene,
+                                                 double h,
                                                  const std::vector<std::int64_t>& recorded,
                                                  const std::vector<RotationState>& start);
 
@@ -35,7 +35,7 @@ std::vector<RotationState> predict_rotation_from(RotationLaw law, DampingOrder d
 // of the change (tried along x, y and z, 1e-9 of |w0|). 1 for a steady spin; a body tumbling near
 // its intermediate axis amplifies (Dzhanibekov). Rounding injected at each step grows at most this
 // much, which is what the own-law tolerance of a rotation is built from (own_law.hpp).
-double rotation_amplification(RotationLaw law, DampingOrder damping, const Scene& scene, double h,
+double rotation_amplification(RotationLaw law, Law linear, const Scene& scene, double h,
                               const std::vector<std::int64_t>& recorded);
 
 // The largest relative drift of body `body`'s world angular momentum, max |L(t) - L(0)|/|L(0)|,

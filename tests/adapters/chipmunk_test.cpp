@@ -13,6 +13,7 @@
 #include "harness/measure/attribution.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
+#include "harness/oracles/own_rotation.hpp"
 
 using namespace dropcheck;
 using dropcheck::testing::drag_figure_run;
@@ -44,7 +45,8 @@ Attribution attribute_pair(const std::string& a, const std::string& b, const Sce
   const double h = scene.timestep.seconds;
   const EngineInfo ia = ea->info(), ib = eb->info();
   const Trajectory ra = run_scene(*ea, scene, h), rb = run_scene(*eb, scene, h);
-  const Trajectory oa = predict_own_arithmetic(ia, scene, h), ob = predict_own_arithmetic(ib, scene, h);
+  const Trajectory oa = predict_own_arithmetic(ia, scene, h),
+                   ob = predict_own_arithmetic(ib, scene, h);
   const Trajectory xa = predict_discrete(ia.law, scene, h), xb = predict_discrete(ib.law, scene, h);
   return attribute({ia, ra, oa, xa}, {ib, rb, ob, xb});
 }
@@ -63,4 +65,35 @@ TEST_CASE("Between Chipmunk and another engine the cause named is what their law
     CHECK(vs_bullet.explained());
     CHECK(vs_bullet.law_difference == "position-update");
   }
+}
+
+TEST_CASE("Chipmunk turns by the step-start w and follows its rotational member on the spin",
+          "[chipmunk][rotation]") {
+  ENGINE_OR_RETURN(engine, "chipmunk");
+  const Scene scene = scenario("spin_drag");
+  const EngineInfo info = engine->info();
+  const Trajectory run = run_scene(*engine, scene, scene.timestep.seconds);
+  REQUIRE(run.status == RunStatus::ok);
+  REQUIRE(run.rotates);
+  // Its own member: measured 4.7e-15 rad over 4 s at h = 1/60 (one space damping, exp(-k_a)).
+  const RotationResidual own = rotation_residual(
+      run, predict_rotation(info.rotation_law, info.law, scene, run.h, run.recorded));
+  CHECK(own.angle < 1e-12);
+  CHECK(own.w < 1e-12);
+  // The same member turned by the new w instead: the spin decays, so the turn falls short.
+  const RotationResidual semi = rotation_residual(
+      run,
+      predict_rotation(info.rotation_law, DampingOrder::BeforeForces, scene, run.h, run.recorded));
+  CHECK(semi.angle > 1e-3);
+}
+
+TEST_CASE("Chipmunk refuses a scene that needs two damping rates, naming its one space damping",
+          "[chipmunk][rotation]") {
+  ENGINE_OR_RETURN(engine, "chipmunk");
+  Scene scene = scenario("spin_drag");  // k = 0, k_a = 0.5: runs, nothing moves along a line
+  CHECK(engine->cannot_run(scene).empty());
+  scene.bodies[0].velocity = Vec3(1.0, 0.0, 0.0);
+  CHECK_THAT(engine->cannot_run(scene), Catch::Contains("one space damping"));
+  scene.world.damping_rate = scene.world.angular_damping_rate;
+  CHECK(engine->cannot_run(scene).empty());
 }

@@ -62,8 +62,8 @@ TEST_CASE("each engine follows its own rotational member over Gazebo's tumbling 
     CHECK(own.tolerance_angle < 1e-7);
     for (RotationLaw law : kRotationFamily) {
       if (law == info.rotation_law) continue;
-      const RotationResidual r = rotation_residual(
-          run, predict_rotation(law, info.law.damping, scene, run.h, run.recorded));
+      const RotationResidual r =
+          rotation_residual(run, predict_rotation(law, info.law, scene, run.h, run.recorded));
       INFO(rotation_law_key(law) << ": " << r.angle << " rad");
       CHECK(r.angle > 1000 * own.tolerance_angle);
     }
