@@ -22,8 +22,8 @@ using V = Eigen::Vector3d;
 Spin<double> one_step(Law linear) {
   Spin<double> s;
   s.w = V(0, 0, 2);
-  dropcheck::advance_rotation<double>({Gyroscopic::none, OrientationUpdate::exponential_map}, linear,
-                                      0.5, 0.1, V(1, 1, 1), V(0, 0, 1), s);
+  dropcheck::advance_rotation<double>({Gyroscopic::none, OrientationUpdate::exponential_map},
+                                      linear, 0.5, 0.1, V(1, 1, 1), V(0, 0, 1), s);
   return s;
 }
 
