@@ -15,14 +15,14 @@ std::string to_string(Law law) {
   return "?";
 }
 
-std::string law_difference(Law a, Law b) {
+std::string law_difference(Law a, Law b, bool damped) {
   auto order = [](Law l) {
     return l.position == PositionUpdate::Explicit && l.damping == DampingOrder::AfterPosition
                ? DampingOrder::AfterForces
                : l.damping;
   };
   std::string out;
-  if (order(a) != order(b)) out = "damping-order";
+  if (damped && order(a) != order(b)) out = "damping-order";
   if (a.position != b.position) out += (out.empty() ? "" : " + ") + std::string("position-update");
   return out;
 }

@@ -95,7 +95,7 @@ std::optional<Law> parse_law_key(std::string_view key);
 
 // What two members differ in, as a cause: "damping-order", "position-update", both joined by " + ",
 // or "" for one member. With the explicit position update, AfterPosition and AfterForces are one
-// member (see above).
-std::string law_difference(Law a, Law b);
+// member (see above); without damping (`damped` false: phi = 1) where it sits leaves no trace.
+std::string law_difference(Law a, Law b, bool damped = true);
 
 }  // namespace dropcheck

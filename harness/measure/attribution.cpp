@@ -63,11 +63,11 @@ std::string Attribution::blamed() const {
   return out;
 }
 
-Attribution attribute(const RunWithLaws& e, const RunWithLaws& r) {
+Attribution attribute(const RunWithLaws& e, const RunWithLaws& r, bool damped) {
   Attribution a;
   a.engine = e.run.engine;
   a.reference = r.run.engine;
-  a.law_difference = dropcheck::law_difference(e.info.law, r.info.law);
+  a.law_difference = dropcheck::law_difference(e.info.law, r.info.law, damped);
   a.clamped_from = first_clamp(e.run.first_clamped_step, r.run.first_clamped_step);
   Trajectory er = e.run, rr = r.run;
   er.first_clamped_step = rr.first_clamped_step = a.clamped_from;  // both stop at either clamp

@@ -60,7 +60,8 @@ struct Attribution {
   std::string sentence() const;
 };
 
-// Both runs at the same h and recorded steps.
-Attribution attribute(const RunWithLaws& engine, const RunWithLaws& reference);
+// Both runs at the same h and recorded steps, of a scene with linear damping (`damped`: k != 0) or
+// without (then where each law puts the damping is no cause).
+Attribution attribute(const RunWithLaws& engine, const RunWithLaws& reference, bool damped);
 
 }  // namespace dropcheck

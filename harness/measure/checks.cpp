@@ -188,7 +188,8 @@ CheckResult check_divergence(const Scene& scene, const EngineFactory& make,
     const Trajectory other = run_scene(*ref, scene, h.seconds);
     const Trajectory ar = predict_own_arithmetic(ri, scene, h.seconds);
     const Trajectory lr = predict_discrete(ri.law, scene, h.seconds);
-    const Attribution a = attribute({ei, run, ae, le}, {ri, other, ar, lr});
+    const Attribution a =
+        attribute({ei, run, ae, le}, {ri, other, ar, lr}, scene.world.damping_rate != 0.0);
     if (!a.explained()) {
       r.message = "at h = " + h.text + ": " + a.sentence();
       return r;

@@ -171,6 +171,7 @@ std::int64_t free_flight_end(const Scene& scene, std::initializer_list<const Tra
 // over the free flight: the whole run without contacts, the fall before landing with contacts.
 void measure_divergence(EngineEvaluation& ev, const EngineEvaluation& ref,
                         const SceneEvaluation& se, References& refs) {
+  const bool damped = se.scene.world.damping_rate != 0.0;
   for (std::size_t i = 0; i < ev.sweep.size(); ++i) {
     StepEvaluation& s = ev.sweep[i];
     const Trajectory& r = ref.sweep[i].run;
@@ -182,7 +183,7 @@ void measure_divergence(EngineEvaluation& ev, const EngineEvaluation& ref,
     const Trajectory& ae = refs.own(ev.info, i);
     const Trajectory& ar = refs.own(ref.info, i);
     if (se.uses_law) {
-      s.attribution = attribute({ev.info, s.run, ae, le}, {ref.info, r, ar, lr});
+      s.attribution = attribute({ev.info, s.run, ae, le}, {ref.info, r, ar, lr}, damped);
       continue;
     }
     const std::int64_t n = free_flight_end(se.scene, {&s.run, &r, &le, &lr});
@@ -190,7 +191,7 @@ void measure_divergence(EngineEvaluation& ev, const EngineEvaluation& ref,
     const Trajectory es = before_step(s.run, n), rs = before_step(r, n);
     const Trajectory aes = before_step(ae, n), ars = before_step(ar, n);
     const Trajectory les = before_step(le, n), lrs = before_step(lr, n);
-    s.attribution = attribute({ev.info, es, aes, les}, {ref.info, rs, ars, lrs});
+    s.attribution = attribute({ev.info, es, aes, les}, {ref.info, rs, ars, lrs}, damped);
     s.attributed_until = s.attribution->final_t;
   }
 }

@@ -48,7 +48,7 @@ Attribution attribute_pair(const std::string& a, const std::string& b, const Sce
   const Trajectory oa = predict_own_arithmetic(ia, scene, h),
                    ob = predict_own_arithmetic(ib, scene, h);
   const Trajectory xa = predict_discrete(ia.law, scene, h), xb = predict_discrete(ib.law, scene, h);
-  return attribute({ia, ra, oa, xa}, {ib, rb, ob, xb});
+  return attribute({ia, ra, oa, xa}, {ib, rb, ob, xb}, scene.world.damping_rate != 0.0);
 }
 
 }  // namespace
@@ -60,6 +60,9 @@ TEST_CASE("Between Chipmunk and another engine the cause named is what their law
   CHECK(vs_ours.explained());
   CHECK(vs_ours.law_difference == "damping-order + position-update");
   CHECK_THAT(vs_ours.sentence(), Catch::Contains("(damping order + position update)"));
+  // Without damping only the position update separates them.
+  const Attribution undamped = attribute_pair("chipmunk", "ours-f64", scenario("free_fall"));
+  CHECK(undamped.law_difference == "position-update");
   if (make_engine("bullet")) {
     const Attribution vs_bullet = attribute_pair("chipmunk", "bullet", scenario("free_fall_drag"));
     CHECK(vs_bullet.explained());

@@ -78,3 +78,11 @@ TEST_CASE("law family: two members' difference is named by what they differ in",
                                                  dropcheck::PositionUpdate::Explicit})
             .empty());
 }
+
+TEST_CASE("law family: without damping the damping order is no difference", "[law]") {
+  const dropcheck::Law ours = dropcheck::DampingOrder::AfterForces;
+  const dropcheck::Law chipmunk{dropcheck::DampingOrder::BeforeForces,
+                                dropcheck::PositionUpdate::Explicit};
+  CHECK(dropcheck::law_difference(ours, dropcheck::DampingOrder::BeforeForces, false).empty());
+  CHECK(dropcheck::law_difference(ours, chipmunk, false) == "position-update");
+}

@@ -41,7 +41,7 @@ TEST_CASE("the attribution of Bullet's law against ours' law is all of it from t
   const Trajectory ours = predict_discrete(DampingOrder::AfterForces, s, h);
   const EngineInfo bi = info("bullet", DampingOrder::BeforeForces),
                    oi = info("ours-f64", DampingOrder::AfterForces);
-  const Attribution a = attribute({bi, bullet, bullet, bullet}, {oi, ours, ours, ours});
+  const Attribution a = attribute({bi, bullet, bullet, bullet}, {oi, ours, ours, ours}, true);
   // docs/engines.md 2: 6.5878983508563724 - 6.5182636233228308 m after 60 steps.
   CHECK(a.final_total == Approx(6.5878983508563724 - 6.5182636233228308).epsilon(1e-12));
   CHECK(a.total == a.final_total);  // the gap grows monotonically
@@ -67,7 +67,7 @@ TEST_CASE(
     engine.states[i].position.y() -= 0.1 * engine.time(i) * engine.time(i);
   const EngineInfo bi = info("bullet", DampingOrder::BeforeForces),
                    oi = info("ours-f64", DampingOrder::AfterForces);
-  const Attribution a = attribute({bi, engine, law, law}, {oi, ours, ours, ours});
+  const Attribution a = attribute({bi, engine, law, law}, {oi, ours, ours, ours}, true);
   CHECK_FALSE(a.explained());
   CHECK(a.blamed() == "bullet");
   CHECK(a.residual == Approx(0.1).epsilon(1e-9));
@@ -75,7 +75,7 @@ TEST_CASE(
                                Contains("bullet departs from its own law") &&
                                Contains("ours-f64 follows its own law to 0 m"));
   // The same departure in the reference is blamed on the reference, not on bullet.
-  const Attribution r = attribute({bi, law, law, law}, {oi, engine, ours, ours});
+  const Attribution r = attribute({bi, law, law, law}, {oi, engine, ours, ours}, true);
   CHECK(r.blamed() == "ours-f64");
   CHECK_THAT(r.sentence(), Contains("bullet follows its own law to 0 m") &&
                                Contains("ours-f64 departs from its own law"));
@@ -90,11 +90,12 @@ TEST_CASE("the attribution of two engines on the same law is rounding only", "[a
   EngineInfo fi = info("ours", DampingOrder::AfterForces);
   fi.scalar = Scalar::f32;
   const EngineInfo oi = info("ours-f64", DampingOrder::AfterForces);
-  const Attribution a = attribute({fi, f32, f32, law}, {oi, law, law, law});
+  const Attribution a = attribute({fi, f32, f32, law}, {oi, law, law, law}, true);
   CHECK(a.law_part == 0.0);
   CHECK(a.residual == 0.0);
   CHECK(a.precision_part > 0.0);  // what float costs, measured rather than budgeted
   CHECK(a.explained());
   CHECK_THAT(a.sentence(), Contains("the two discrete laws agree, so all of it is rounding"));
-  CHECK_THAT(attribute({oi, law, law, law}, {oi, law, law, law}).sentence(), Contains("identical"));
+  CHECK_THAT(attribute({oi, law, law, law}, {oi, law, law, law}, true).sentence(),
+             Contains("identical"));
 }

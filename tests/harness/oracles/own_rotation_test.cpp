@@ -105,7 +105,8 @@ TEST_CASE("an engine that leaves its rotational law by 1e-9 rad/s is blamed, the
                    le = predict_discrete(ei.law, scene, h);
   const Trajectory ar = predict_own_arithmetic(ri, scene, h),
                    lr = predict_discrete(ri.law, scene, h);
-  const Attribution a = attribute({ei, run, ae, le}, {ri, other, ar, lr});
+  const Attribution a =
+      attribute({ei, run, ae, le}, {ri, other, ar, lr}, scene.world.damping_rate != 0.0);
   CHECK(a.blamed() == "ours-f64");
   CHECK_THAT(a.sentence(), Catch::Contains("ours-f64 departs from its own rotational law") &&
                                Catch::Contains("mujoco follows its own law"));
@@ -206,7 +207,8 @@ TEST_CASE("a departure in rotation alone is never 'identical': positions equal, 
   const Trajectory run = run_scene(nudged, scene, h), other = run_scene(*reference, scene, h);
   const Attribution a = attribute(
       {ei, run, predict_own_arithmetic(ei, scene, h), predict_discrete(ei.law, scene, h)},
-      {ri, other, predict_own_arithmetic(ri, scene, h), predict_discrete(ri.law, scene, h)});
+      {ri, other, predict_own_arithmetic(ri, scene, h), predict_discrete(ri.law, scene, h)},
+      scene.world.damping_rate != 0.0);
   CHECK(a.total == 0.0);
   CHECK(a.blamed() == "ours-f64");
   CHECK_THAT(a.sentence(), Catch::Contains("UNEXPLAINED") && !Catch::Contains("identical"));
