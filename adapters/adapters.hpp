@@ -16,6 +16,7 @@ std::unique_ptr<Engine> make_ode();       // DROPCHECK_HAVE_ODE
 std::unique_ptr<Engine> make_box2d();     // DROPCHECK_HAVE_BOX2D
 std::unique_ptr<Engine> make_mujoco();    // DROPCHECK_HAVE_MUJOCO
 std::unique_ptr<Engine> make_chipmunk();  // DROPCHECK_HAVE_CHIPMUNK
+std::unique_ptr<Engine> make_simbody();   // DROPCHECK_HAVE_SIMBODY
 
 // Bare stepping loops: `scene` loaded by the adapter at step h (untimed), then step_count(scene, h)
 // calls of the engine's own step function through its own API, with no forces, reads, checks or
@@ -27,6 +28,7 @@ double bare_seconds_ode(const Scene& scene, double h);       // DROPCHECK_HAVE_O
 double bare_seconds_box2d(const Scene& scene, double h);     // DROPCHECK_HAVE_BOX2D
 double bare_seconds_mujoco(const Scene& scene, double h);    // DROPCHECK_HAVE_MUJOCO
 double bare_seconds_chipmunk(const Scene& scene, double h);  // DROPCHECK_HAVE_CHIPMUNK
+double bare_seconds_simbody(const Scene& scene, double h);   // DROPCHECK_HAVE_SIMBODY
 
 // The bare loop of the engine registered as `engine`; throws std::invalid_argument when it is not
 // compiled into this build.

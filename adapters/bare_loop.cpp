@@ -27,6 +27,9 @@ const std::pair<const char*, BareLoop> kBareLoops[] = {
 #ifdef DROPCHECK_HAVE_CHIPMUNK
     {"chipmunk", bare_seconds_chipmunk},
 #endif
+#ifdef DROPCHECK_HAVE_SIMBODY
+    {"simbody", bare_seconds_simbody},
+#endif
 };
 
 }  // namespace

@@ -43,6 +43,11 @@ std::unique_ptr<Engine> (*const make_chipmunk_ptr)() = nullptr;
 #else
 std::unique_ptr<Engine> (*const make_chipmunk_ptr)() = make_chipmunk;
 #endif
+#ifndef DROPCHECK_HAVE_SIMBODY
+std::unique_ptr<Engine> (*const make_simbody_ptr)() = nullptr;
+#else
+std::unique_ptr<Engine> (*const make_simbody_ptr)() = make_simbody;
+#endif
 
 const Entry kEngines[] = {
     {"ours", make_ours_f32, ""},
@@ -52,6 +57,7 @@ const Entry kEngines[] = {
     {"box2d", make_box2d_ptr, "DROPCHECK_WITH_BOX2D"},
     {"mujoco", make_mujoco_ptr, "DROPCHECK_WITH_MUJOCO"},
     {"chipmunk", make_chipmunk_ptr, "DROPCHECK_WITH_CHIPMUNK"},
+    {"simbody", make_simbody_ptr, "DROPCHECK_WITH_SIMBODY"},
 };
 
 const Entry* find(const std::string& name) {

@@ -15,6 +15,7 @@ DROPCHECK_PACKAGES=(
   libboost-math-dev                    # Jacobi elliptic functions (harness/oracles/free_rotation)
   libbullet-dev libode-dev libbox2d-dev libmujoco-dev libqhull-dev  # the engines compared
   libchipmunk-dev                      # Chipmunk2D (2-D, double)
+  libsimbody-dev                       # Simbody (multibody, semi-explicit Euler)
   libgl-dev                            # MuJoCo's CMake package requires OpenGL to be findable
   gnuplot-nox                          # report plots (SVG)
   clang-format-14 git                  # scripts/format.sh and the ctest entry `format`

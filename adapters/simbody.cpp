@@ -1,0 +1,163 @@
+// Adapter for Simbody 3.7 (Debian's build, double), with its fixed-step semi-explicit Euler
+// integrator: Simbody has no world step; a MultibodySystem is advanced by an Integrator.
+//
+// Mapping (scene -> Simbody), read in Simbody 3.7's SimTKmath/Integrators/src
+// (SemiExplicitEulerIntegrator.cpp, AbstractIntegratorRep.cpp) and Simbody/include:
+//   body                -> a MobilizedBody::Free on Ground carrying Body::Rigid(MassProperties(m,
+//                          0, Inertia(Ixx, Iyy, Izz))): the scene's mass and principal moments.
+//                          Its u are (w, v), both in the Ground frame.
+//   gravity g           -> Force::UniformGravity(g); Simbody has no gravity unless one is added.
+//   damping rate k      -> Force::MobilityLinearDamper(c) on each translational u, a force -c*v with
+//                          c = m*(1 - exp(-k*h))/h; angular k_a likewise on the rotational u with
+//                          c_a = I*(1 - exp(-k_a*h))/h (run only where that is a scalar decay:
+//                          k_a = 0, or a spin about z, a principal axis; cannot_run).
+//   law                 -> SemiExplicitEulerIntegrator(system, h) (fixed step, no error control):
+//                          attemptDAEStep does u1 = u0 + h*udot(q0, u0), then q1 = q0 + h*N(q0)*u1
+//                          and projects q (the quaternion back to unit length). With the damper
+//                          in udot: v1 = (1 - h*c/m)*v0 + h*a = phi*v0 + h*a, then x1 = x0 + h*v1:
+//                          DampingOrder::BeforeForces. Rotation: the gyroscopic term in udot at
+//                          the step start (explicit), the first-order quaternion update with the
+//                          new w, normalised: explicit/first-order.
+//   force, torque       -> a Force::Custom reading this step's values (world frame, at the body
+//                          origin). Simbody computes udot(q0, u0) when the previous step ends,
+//                          before the harness sets the next step's forces, so every step
+//                          re-initialises the integrator from its own state (Integrator::
+//                          initialize realises it again, with this step's forces); the state
+//                          itself is carried over unchanged.
+//   one step            -> initialize(state), then stepTo(n*h) (the first call reports the start
+//                          of the interval, the second takes the step). takeOneStep steps to tMax
+//                          when it lies within [0.95, 1.001]*h of t0 (AbstractIntegratorRep.cpp),
+//                          so each call is one step of n*h - (n - 1)*h: h up to the rounding of
+//                          n*h (relative 1e-16 x n), with no tiny extra steps.
+//   static body         -> no mobilized body: read back at its position, at rest.
+//   position, velocity  -> setQToFitTransform, setUToFitVelocity; read with getBodyOriginLocation,
+//                          getBodyOriginVelocity, getBodyRotation, getBodyAngularVelocity.
+// Contacts: not mapped (Simbody's contact needs a separate contact subsystem and a compliant
+// model): a scene with contacts is not run.
+// The Simbody calls themselves are in simbody_world.cpp (C++17; simbody_world.hpp says why).
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "adapters.hpp"
+#include "simbody_world.hpp"
+
+namespace dropcheck {
+namespace {
+
+simbody::Vec to_array(const Vec3& v) {
+  return {v.x(), v.y(), v.z()};
+}
+
+Vec3 from_array(const simbody::Vec& v) {
+  return {v[0], v[1], v[2]};
+}
+
+// Runs a Simbody call; its exceptions (SimTK::Exception) become EngineError.
+template <typename F>
+auto guarded(F&& call) {
+  try {
+    return call();
+  } catch (const EngineError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw EngineError(std::string("Simbody: ") + e.what());
+  }
+}
+
+class SimbodyEngine final : public Engine {
+ public:
+  EngineInfo info() const override {
+    EngineInfo i;
+    i.name = "simbody";
+    i.version = "3.7";  // Debian's libsimbody-dev; Simbody.h defines no version macro
+    i.scalar = Scalar::f64;
+    i.capabilities = {.contacts = false, .planar_only = false, .rotation = Rotation::full};
+    i.law = DampingOrder::BeforeForces;
+    i.rotation_law = {Gyroscopic::explicit_term, OrientationUpdate::first_order};
+    i.damping_mapping =
+        "MobilityLinearDamper c = m*(1 - exp(-k*h))/h per translational u, I_i*(1 - exp(-k_a*h))/h "
+        "per rotational u; SemiExplicitEulerIntegrator(h)";
+    return i;
+  }
+
+  std::string cannot_run(const Scene& scene) const override {
+    if (std::string why = Engine::cannot_run(scene); !why.empty()) return why;
+    if (scene.world.angular_damping_rate != 0.0 && needs_rotation(scene) && !spins_about_z(scene))
+      return "angular damping: Simbody's damper is a torque -c*w per axis, a decay by one factor "
+             "only for a spin about a principal axis";
+    return {};
+  }
+
+  void load(const Scene& scene, double h) override {
+    world_.reset();
+    simbody::WorldSpec spec{to_array(scene.world.gravity), scene.world.damping_rate,
+                            scene.world.angular_damping_rate, h};
+    std::vector<simbody::BodySpec> bodies;
+    for (const Body& b : scene.bodies) {
+      const Quat& q = b.orientation;
+      bodies.push_back({b.is_static, b.mass, to_array(inertia_of(b)), to_array(b.position),
+                        to_array(b.velocity), {q.w(), q.x(), q.y(), q.z()},
+                        to_array(b.angular_velocity)});
+    }
+    world_ = guarded([&] { return std::make_unique<simbody::World>(spec, bodies); });
+    bodies_ = scene.bodies.size();
+  }
+
+  void set_forces(std::span<const Vec3> forces) override {
+    for (std::size_t i = 0; i < bodies_; ++i) world_->set_force(i, to_array(forces[i]));
+  }
+
+  void set_torques(std::span<const Vec3> torques) override {
+    for (std::size_t i = 0; i < bodies_; ++i) world_->set_torque(i, to_array(torques[i]));
+  }
+
+  void step() override {
+    guarded([&] {
+      world_->step();
+      return 0;
+    });
+  }
+
+  // Seconds of `steps` integrator steps alone, without re-initialising (forces never change
+  // there): bare_step_loop in adapters.hpp.
+  double bare_seconds(std::int64_t steps) {
+    const auto start = std::chrono::steady_clock::now();
+    for (std::int64_t n = 0; n < steps; ++n) world_->bare_step();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
+  void read(std::span<BodyState> out) const override {
+    for (std::size_t i = 0; i < bodies_; ++i) {
+      const simbody::BodyRead r = world_->read(i);
+      out[i] = {from_array(r.position), from_array(r.velocity)};
+    }
+  }
+
+  void read_rotation(std::span<RotationState> out) const override {
+    for (std::size_t i = 0; i < bodies_; ++i) {
+      const simbody::BodyRead r = world_->read(i);
+      const auto& q = r.orientation;
+      out[i] = {Quat(q[0], q[1], q[2], q[3]), from_array(r.angular_velocity)};
+    }
+  }
+
+ private:
+  std::unique_ptr<simbody::World> world_;
+  std::size_t bodies_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Engine> make_simbody() {
+  return std::make_unique<SimbodyEngine>();
+}
+
+double bare_seconds_simbody(const Scene& scene, double h) {
+  SimbodyEngine e;
+  e.load(scene, h);
+  return e.bare_seconds(step_count(scene, h));
+}
+
+}  // namespace dropcheck

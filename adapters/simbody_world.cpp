@@ -1,0 +1,170 @@
+// Simbody 3.7 calls of adapters/simbody.cpp (compiled as C++17: simbody_world.hpp says why). The
+// mapping and the law are described at the top of adapters/simbody.cpp.
+#include "simbody_world.hpp"
+
+#include <Simbody.h>
+
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace dropcheck::simbody {
+namespace {
+
+SimTK::Vec3 to_sim(const Vec& v) {
+  return {v[0], v[1], v[2]};
+}
+
+Vec from_sim(const SimTK::Vec3& v) {
+  return {v[0], v[1], v[2]};
+}
+
+// This step's external forces and torques (world frame), one per scene body.
+struct Applied {
+  std::vector<SimTK::MobilizedBodyIndex> index;  // invalid for a static body
+  std::vector<SimTK::Vec3> force, torque;
+};
+
+// Applies `Applied` at each body's origin.
+class AppliedForce final : public SimTK::Force::Custom::Implementation {
+ public:
+  explicit AppliedForce(const Applied& applied) : applied_(applied) {}
+  void calcForce(const SimTK::State&, SimTK::Vector_<SimTK::SpatialVec>& body_forces,
+                 SimTK::Vector_<SimTK::Vec3>&, SimTK::Vector&) const override {
+    for (std::size_t i = 0; i < applied_.index.size(); ++i)
+      if (applied_.index[i].isValid())
+        body_forces[applied_.index[i]] += SimTK::SpatialVec(applied_.torque[i], applied_.force[i]);
+  }
+  SimTK::Real calcPotentialEnergy(const SimTK::State&) const override { return 0.0; }
+
+ private:
+  const Applied& applied_;
+};
+
+// The damper coefficient that decays a mobility of inertia `inertia` by phi = exp(-rate*h) per
+// step: udot = -c/inertia*u, so one explicit step multiplies u by 1 - h*c/inertia = phi.
+double damper(double inertia, double rate, double h) {
+  return inertia * -std::expm1(-rate * h) / h;
+}
+
+}  // namespace
+
+struct World::Impl {
+  SimTK::MultibodySystem system;
+  SimTK::SimbodyMatterSubsystem matter{system};
+  SimTK::GeneralForceSubsystem forces{system};
+  std::vector<SimTK::MobilizedBody> bodies;  // Ground for a static body
+  std::vector<Vec> static_positions;
+  Applied applied;
+  std::unique_ptr<SimTK::SemiExplicitEulerIntegrator> integrator;
+  double h = 0.0;
+  std::int64_t n = 0;  // steps taken
+
+  void add_body(const WorldSpec& world, const BodySpec& b) {
+    static_positions.push_back(b.position);
+    applied.force.emplace_back(0);
+    applied.torque.emplace_back(0);
+    if (b.is_static) {
+      bodies.push_back(matter.Ground());
+      applied.index.emplace_back();
+      return;
+    }
+    const SimTK::Body::Rigid rigid(SimTK::MassProperties(
+        b.mass, SimTK::Vec3(0), SimTK::Inertia(b.inertia[0], b.inertia[1], b.inertia[2])));
+    SimTK::MobilizedBody::Free free(matter.Ground(), SimTK::Transform(), rigid,
+                                    SimTK::Transform());
+    // u = (w, v), both in Ground: rotational mobilities 0..2, translational 3..5.
+    for (int axis = 0; axis < 3; ++axis) {
+      if (world.damping_rate != 0.0)
+        SimTK::Force::MobilityLinearDamper(forces, free, SimTK::MobilizerUIndex(3 + axis),
+                                           damper(b.mass, world.damping_rate, h));
+      if (world.angular_damping_rate != 0.0)
+        SimTK::Force::MobilityLinearDamper(forces, free, SimTK::MobilizerUIndex(axis),
+                                           damper(b.inertia[axis], world.angular_damping_rate, h));
+    }
+    applied.index.push_back(free.getMobilizedBodyIndex());
+    bodies.push_back(free);
+  }
+
+  // stepTo(n*h) takes one step of n*h - (n - 1)*h: takeOneStep steps to tMax when it lies within
+  // [0.95, 1.001]*h of t0 (AbstractIntegratorRep.cpp).
+  void advance() {
+    ++n;
+    const double t1 = static_cast<double>(n) * h;
+    integrator->stepTo(t1);
+    if (integrator->getTime() != t1)
+      throw std::runtime_error("Simbody stepped to t = " + std::to_string(integrator->getTime()) +
+                               " instead of " + std::to_string(t1));
+  }
+};
+
+World::World(const WorldSpec& world, const std::vector<BodySpec>& bodies)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  m.h = world.h;
+  SimTK::Force::UniformGravity(m.forces, m.matter, to_sim(world.gravity), 0.0);
+  for (const BodySpec& b : bodies) m.add_body(world, b);
+  SimTK::Force::Custom(m.forces, new AppliedForce(m.applied));
+  m.system.realizeTopology();
+  SimTK::State state = m.system.getDefaultState();
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const BodySpec& b = bodies[i];
+    if (b.is_static) continue;
+    const auto& q = b.orientation;
+    const SimTK::Rotation r(SimTK::Quaternion(q[0], q[1], q[2], q[3]));
+    m.bodies[i].setQToFitTransform(state, SimTK::Transform(r, to_sim(b.position)));
+    m.bodies[i].setUToFitVelocity(
+        state, SimTK::SpatialVec(to_sim(b.angular_velocity), to_sim(b.velocity)));
+  }
+  m.integrator = std::make_unique<SimTK::SemiExplicitEulerIntegrator>(m.system, m.h);
+  m.integrator->setAllowInterpolation(false);
+  m.integrator->initialize(state);
+  m.integrator->stepTo(0.0);  // reports the start of the continuous interval; no step
+}
+
+World::~World() = default;
+
+void World::set_force(std::size_t i, const Vec& force) {
+  impl_->applied.force[i] = to_sim(force);
+}
+
+void World::set_torque(std::size_t i, const Vec& torque) {
+  impl_->applied.torque[i] = to_sim(torque);
+}
+
+void World::step() {
+  Impl& m = *impl_;
+  // Simbody computed udot(q0, u0) when the last step ended, before this step's forces were set:
+  // initialize() realises the same state again with them (and reports the start of a continuous
+  // interval, which stepTo(t0) consumes).
+  const SimTK::State state = m.integrator->getState();
+  m.integrator->initialize(state);
+  m.integrator->stepTo(state.getTime());
+  m.advance();
+  for (SimTK::Vec3& f : m.applied.force) f = SimTK::Vec3(0);  // this step only
+  for (SimTK::Vec3& t : m.applied.torque) t = SimTK::Vec3(0);
+}
+
+void World::bare_step() {
+  impl_->advance();
+}
+
+BodyRead World::read(std::size_t i) const {
+  const Impl& m = *impl_;
+  BodyRead out;
+  if (!m.applied.index[i].isValid()) {
+    out.position = m.static_positions[i];
+    return out;
+  }
+  const SimTK::State& s = m.integrator->getState();
+  const SimTK::MobilizedBody& b = m.bodies[i];
+  out.position = from_sim(b.getBodyOriginLocation(s));
+  out.velocity = from_sim(b.getBodyOriginVelocity(s));
+  const SimTK::Quaternion q = b.getBodyRotation(s).convertRotationToQuaternion();
+  out.orientation = {q[0], q[1], q[2], q[3]};
+  out.angular_velocity = from_sim(b.getBodyAngularVelocity(s));
+  return out;
+}
+
+}  // namespace dropcheck::simbody

@@ -1,0 +1,61 @@
+// The Simbody side of adapters/simbody.cpp, behind a plain interface: Simbody 3.7's headers do not
+// compile as C++20 (its index types' operator== becomes ambiguous under C++20's rewritten
+// comparisons, simmath/internal/ContactGeometry.h), so every Simbody call lives in
+// simbody_world.cpp, compiled as C++17, and this header includes neither Simbody nor dropcheck.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+namespace dropcheck::simbody {
+
+using Vec = std::array<double, 3>;
+
+struct BodySpec {
+  bool is_static = false;
+  double mass = 1.0;
+  Vec inertia{};  // principal moments, body frame
+  Vec position{}, velocity{};
+  std::array<double, 4> orientation{1.0, 0.0, 0.0, 0.0};  // (w, x, y, z), body to world
+  Vec angular_velocity{};                                 // world frame
+};
+
+struct WorldSpec {
+  Vec gravity{};
+  double damping_rate = 0.0;          // k, 1/s, on every translational mobility
+  double angular_damping_rate = 0.0;  // k_a, 1/s, on every rotational mobility
+  double h = 1.0 / 60.0;
+};
+
+struct BodyRead {
+  Vec position{}, velocity{};
+  std::array<double, 4> orientation{1.0, 0.0, 0.0, 0.0};
+  Vec angular_velocity{};
+};
+
+// One scene as a Simbody MultibodySystem advanced by its fixed-step semi-explicit Euler
+// integrator. Every call may throw std::exception (SimTK::Exception) on Simbody's errors.
+class World {
+ public:
+  World(const WorldSpec& world, const std::vector<BodySpec>& bodies);
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  // This step's force and torque on body i (world frame, at its origin); cleared by step().
+  void set_force(std::size_t i, const Vec& force);
+  void set_torque(std::size_t i, const Vec& torque);
+  // One step of h with this step's forces (the integrator re-initialised from its own state).
+  void step();
+  // One step of h without re-initialising (forces that never change): the bare loop.
+  void bare_step();
+  BodyRead read(std::size_t i) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace dropcheck::simbody
