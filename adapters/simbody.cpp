@@ -7,7 +7,8 @@
 //                          0, Inertia(Ixx, Iyy, Izz))): the scene's mass and principal moments.
 //                          Its u are (w, v), both in the Ground frame.
 //   gravity g           -> Force::UniformGravity(g); Simbody has no gravity unless one is added.
-//   damping rate k      -> Force::MobilityLinearDamper(c) on each translational u, a force -c*v with
+//   damping rate k      -> Force::MobilityLinearDamper(c) on each translational u, a force -c*v
+//   with
 //                          c = m*(1 - exp(-k*h))/h; angular k_a likewise on the rotational u with
 //                          c_a = I*(1 - exp(-k_a*h))/h (run only where that is a scalar decay:
 //                          k_a = 0, or a spin about z, a principal axis; cannot_run).
@@ -97,8 +98,12 @@ class SimbodyEngine final : public Engine {
     std::vector<simbody::BodySpec> bodies;
     for (const Body& b : scene.bodies) {
       const Quat& q = b.orientation;
-      bodies.push_back({b.is_static, b.mass, to_array(inertia_of(b)), to_array(b.position),
-                        to_array(b.velocity), {q.w(), q.x(), q.y(), q.z()},
+      bodies.push_back({b.is_static,
+                        b.mass,
+                        to_array(inertia_of(b)),
+                        to_array(b.position),
+                        to_array(b.velocity),
+                        {q.w(), q.x(), q.y(), q.z()},
                         to_array(b.angular_velocity)});
     }
     world_ = guarded([&] { return std::make_unique<simbody::World>(spec, bodies); });

@@ -57,11 +57,12 @@ struct World::Impl {
   std::vector<SimTK::MobilizedBody> bodies;  // Ground for a static body
   std::vector<Vec> static_positions;
   Applied applied;
-  std::unique_ptr<SimTK::SemiExplicitEulerIntegrator> integrator;
+  std::unique_ptr<SimTK::Integrator> integrator;
   double h = 0.0;
   std::int64_t n = 0;  // steps taken
 
   void add_body(const WorldSpec& world, const BodySpec& b) {
+    const double step = world.two_half_steps ? h / 2 : h;  // what one velocity update spans
     static_positions.push_back(b.position);
     applied.force.emplace_back(0);
     applied.torque.emplace_back(0);
@@ -72,16 +73,16 @@ struct World::Impl {
     }
     const SimTK::Body::Rigid rigid(SimTK::MassProperties(
         b.mass, SimTK::Vec3(0), SimTK::Inertia(b.inertia[0], b.inertia[1], b.inertia[2])));
-    SimTK::MobilizedBody::Free free(matter.Ground(), SimTK::Transform(), rigid,
-                                    SimTK::Transform());
+    SimTK::MobilizedBody::Free free(matter.Ground(), SimTK::Transform(), rigid, SimTK::Transform());
     // u = (w, v), both in Ground: rotational mobilities 0..2, translational 3..5.
     for (int axis = 0; axis < 3; ++axis) {
       if (world.damping_rate != 0.0)
         SimTK::Force::MobilityLinearDamper(forces, free, SimTK::MobilizerUIndex(3 + axis),
-                                           damper(b.mass, world.damping_rate, h));
+                                           damper(b.mass, world.damping_rate, step));
       if (world.angular_damping_rate != 0.0)
-        SimTK::Force::MobilityLinearDamper(forces, free, SimTK::MobilizerUIndex(axis),
-                                           damper(b.inertia[axis], world.angular_damping_rate, h));
+        SimTK::Force::MobilityLinearDamper(
+            forces, free, SimTK::MobilizerUIndex(axis),
+            damper(b.inertia[axis], world.angular_damping_rate, step));
     }
     applied.index.push_back(free.getMobilizedBodyIndex());
     bodies.push_back(free);
@@ -117,7 +118,12 @@ World::World(const WorldSpec& world, const std::vector<BodySpec>& bodies)
     m.bodies[i].setUToFitVelocity(
         state, SimTK::SpatialVec(to_sim(b.angular_velocity), to_sim(b.velocity)));
   }
-  m.integrator = std::make_unique<SimTK::SemiExplicitEulerIntegrator>(m.system, m.h);
+  if (world.two_half_steps) {
+    m.integrator = std::make_unique<SimTK::SemiExplicitEuler2Integrator>(m.system);
+    m.integrator->setFixedStepSize(m.h);  // no error control: every step is h
+  } else {
+    m.integrator = std::make_unique<SimTK::SemiExplicitEulerIntegrator>(m.system, m.h);
+  }
   m.integrator->setAllowInterpolation(false);
   m.integrator->initialize(state);
   m.integrator->stepTo(0.0);  // reports the start of the continuous interval; no step

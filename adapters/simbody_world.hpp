@@ -27,6 +27,11 @@ struct WorldSpec {
   double damping_rate = 0.0;          // k, 1/s, on every translational mobility
   double angular_damping_rate = 0.0;  // k_a, 1/s, on every rotational mobility
   double h = 1.0 / 60.0;
+  // SemiExplicitEuler2Integrator at the fixed step h instead: each step takes one step of h and
+  // two of h/2 and keeps the two halves (the Simbody integrator Gazebo's benchmark ran). Not an
+  // engine of its own: tests/adapters/simbody_test.cpp reproduces Gazebo's published column with
+  // it. Damping is then matched per half step.
+  bool two_half_steps = false;
 };
 
 struct BodyRead {
