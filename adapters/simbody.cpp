@@ -21,12 +21,12 @@
 //                          new w, normalised: explicit/first-order.
 //   force, torque       -> a Force::Custom reading this step's values (world frame, at the body
 //                          origin). Simbody computes udot(q0, u0) when the previous step ends,
-//                          before the harness sets the next step's forces, so every step
-//                          re-initialises the integrator from its own state (Integrator::
-//                          initialize realises it again, with this step's forces); the state
-//                          itself is carried over unchanged.
-//   one step            -> initialize(state), then stepTo(n*h) (the first call reports the start
-//                          of the interval, the second takes the step). takeOneStep steps to tMax
+//                          before the harness sets the next step's forces, so a step whose forces
+//                          differ from the last step's first re-initialises the integrator from
+//                          its own state (Integrator::initialize realises it again, with this
+//                          step's forces); the state itself is carried over unchanged.
+//   one step            -> stepTo(n*h) (after initialize(state), a first call reports the start of
+//                          the interval and a second takes the step). takeOneStep steps to tMax
 //                          when it lies within [0.95, 1.001]*h of t0 (AbstractIntegratorRep.cpp),
 //                          so each call is one step of n*h - (n - 1)*h: h up to the rounding of
 //                          n*h (relative 1e-16 x n), with no tiny extra steps.

@@ -24,6 +24,10 @@ Vec from_sim(const SimTK::Vec3& v) {
 struct Applied {
   std::vector<SimTK::MobilizedBodyIndex> index;  // invalid for a static body
   std::vector<SimTK::Vec3> force, torque;
+  // The forces and torques Simbody last computed udot with (at the end of the last step).
+  std::vector<SimTK::Vec3> used_force, used_torque;
+
+  bool changed() const { return force != used_force || torque != used_torque; }
 };
 
 // Applies `Applied` at each body's origin.
@@ -66,6 +70,8 @@ struct World::Impl {
     static_positions.push_back(b.position);
     applied.force.emplace_back(0);
     applied.torque.emplace_back(0);
+    applied.used_force.emplace_back(0);
+    applied.used_torque.emplace_back(0);
     if (b.is_static) {
       bodies.push_back(matter.Ground());
       applied.index.emplace_back();
@@ -141,13 +147,18 @@ void World::set_torque(std::size_t i, const Vec& torque) {
 
 void World::step() {
   Impl& m = *impl_;
-  // Simbody computed udot(q0, u0) when the last step ended, before this step's forces were set:
-  // initialize() realises the same state again with them (and reports the start of a continuous
-  // interval, which stepTo(t0) consumes).
-  const SimTK::State state = m.integrator->getState();
-  m.integrator->initialize(state);
-  m.integrator->stepTo(state.getTime());
+  // Simbody computed udot(q0, u0) when the last step ended, with the forces of that step. When
+  // this step's differ, initialize() realises the same state again with them (and reports the
+  // start of a continuous interval, which stepTo(t0) consumes). Forces that stay the same (none,
+  // or constant ones) cost nothing: initialize() costs 80 us per step for one body.
+  if (m.applied.changed()) {
+    const SimTK::State state = m.integrator->getState();
+    m.integrator->initialize(state);
+    m.integrator->stepTo(state.getTime());
+  }
   m.advance();
+  m.applied.used_force = m.applied.force;
+  m.applied.used_torque = m.applied.torque;
   for (SimTK::Vec3& f : m.applied.force) f = SimTK::Vec3(0);  // this step only
   for (SimTK::Vec3& t : m.applied.torque) t = SimTK::Vec3(0);
 }

@@ -52,7 +52,8 @@ class World {
   // This step's force and torque on body i (world frame, at its origin); cleared by step().
   void set_force(std::size_t i, const Vec& force);
   void set_torque(std::size_t i, const Vec& torque);
-  // One step of h with this step's forces (the integrator re-initialised from its own state).
+  // One step of h with this step's forces (the integrator re-initialised from its own state when
+  // they differ from the last step's).
   void step();
   // One step of h without re-initialising (forces that never change): the bare loop.
   void bare_step();
