@@ -165,11 +165,7 @@ class ChipmunkEngine final : public Engine {
 
   // Each state written once from Chipmunk's own numbers and checked in the same pass.
   bool read_append(std::size_t, StateBuffer& out, StateUse use) const override {
-    const std::size_t at = out.size();
-    out.resize(at + w_->bodies.size());  // unwritten
-    BodyState* added = out.data() + at;
-    return use == StateUse::kept ? write(StateWriter<true>(added))
-                                 : write(StateWriter<false>(added));
+    return append_states(out, w_->bodies.size(), use, [this](auto w) { return write(w); });
   }
 
   // The angle a about z as the quaternion (cos(a/2), 0, 0, sin(a/2)); w = (0, 0, w_z).

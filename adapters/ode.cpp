@@ -266,11 +266,7 @@ class OdeEngine final : public Engine {
 
   // Each state written once from ODE's own numbers and checked in the same pass (StateWriter).
   bool read_append(std::size_t, StateBuffer& out, StateUse use) const override {
-    const std::size_t at = out.size();
-    out.resize(at + w_->bodies.size());  // unwritten
-    BodyState* added = out.data() + at;
-    return use == StateUse::kept ? write(StateWriter<true>(added))
-                                 : write(StateWriter<false>(added));
+    return append_states(out, w_->bodies.size(), use, [this](auto w) { return write(w); });
   }
 
   void read_rotation(std::span<RotationState> out) const override {
@@ -278,11 +274,7 @@ class OdeEngine final : public Engine {
   }
 
   bool read_rotation_append(std::size_t, RotationBuffer& out, StateUse use) const override {
-    const std::size_t at = out.size();
-    out.resize(at + w_->bodies.size());  // unwritten
-    RotationState* added = out.data() + at;
-    return use == StateUse::kept ? turn(RotationWriter<true>(added))
-                                 : turn(RotationWriter<false>(added));
+    return append_rotations(out, w_->bodies.size(), use, [this](auto w) { return turn(w); });
   }
 
  private:

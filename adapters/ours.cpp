@@ -70,11 +70,7 @@ class OursEngine final : public Engine {
 
   // Like read_append: written once from the bodies' own numbers, checked in the same pass.
   bool read_rotation_append(std::size_t, RotationBuffer& out, StateUse use) const override {
-    const std::size_t at = out.size();
-    out.resize(at + models_.size());  // unwritten
-    RotationState* added = out.data() + at;
-    return use == StateUse::kept ? turn(RotationWriter<true>(added))
-                                 : turn(RotationWriter<false>(added));
+    return append_rotations(out, models_.size(), use, [this](auto w) { return turn(w); });
   }
 
   // Seconds of `steps` calls of ours::ApplyPhysics alone (bare_step_loop in adapters.hpp).
@@ -91,11 +87,7 @@ class OursEngine final : public Engine {
   // Each state written once from the bodies' own numbers (exact: every float is a double) and
   // checked in the same pass; kept states streamed (StateWriter).
   bool read_append(std::size_t, StateBuffer& out, StateUse use) const override {
-    const std::size_t at = out.size();
-    out.resize(at + models_.size());  // unwritten
-    BodyState* added = out.data() + at;
-    return use == StateUse::kept ? write(StateWriter<true>(added))
-                                 : write(StateWriter<false>(added));
+    return append_states(out, models_.size(), use, [this](auto w) { return write(w); });
   }
 
  private:

@@ -147,6 +147,27 @@ class RotationWriter : public PairWriter<Streamed, 4> {
   bool off_unit_ = false;
 };
 
+// Appends `count` unwritten states to `out` and has `write` put them, through a StateWriter that
+// streams when `use` is kept: the body of an Engine::read_append override. `write` takes the
+// writer (StateWriter<true> or <false>) and returns its finish().
+template <typename Write>
+bool append_states(StateBuffer& out, std::size_t count, StateUse use, Write&& write) {
+  const std::size_t at = out.size();
+  out.resize(at + count);  // unwritten
+  BodyState* added = out.data() + at;
+  return use == StateUse::kept ? write(StateWriter<true>(added)) : write(StateWriter<false>(added));
+}
+
+// The same for rotational states (Engine::read_rotation_append, RotationWriter).
+template <typename Write>
+bool append_rotations(RotationBuffer& out, std::size_t count, StateUse use, Write&& write) {
+  const std::size_t at = out.size();
+  out.resize(at + count);  // unwritten
+  RotationState* added = out.data() + at;
+  return use == StateUse::kept ? write(RotationWriter<true>(added))
+                               : write(RotationWriter<false>(added));
+}
+
 // Orders every streamed store made so far by this thread before its later stores (sfence): call
 // once after the last StateWriter<true> of a run, before the states are handed to anyone else.
 inline void end_streamed_writes() {
