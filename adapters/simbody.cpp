@@ -32,7 +32,8 @@
 //                          n*h (relative 1e-16 x n), with no tiny extra steps.
 //   static body         -> no mobilized body: read back at its position, at rest.
 //   position, velocity  -> setQToFitTransform, setUToFitVelocity; read with getBodyOriginLocation,
-//                          getBodyOriginVelocity, getBodyRotation, getBodyAngularVelocity.
+//                          getBodyOriginVelocity, the Free mobilizer's quaternion q[0..3] and
+//                          getBodyAngularVelocity.
 // Contacts: not mapped (Simbody's contact needs a separate contact subsystem and a compliant
 // model): a scene with contacts is not run.
 // The Simbody calls themselves are in simbody_world.cpp (C++17; simbody_world.hpp says why).
@@ -135,14 +136,14 @@ class SimbodyEngine final : public Engine {
 
   void read(std::span<BodyState> out) const override {
     for (std::size_t i = 0; i < bodies_; ++i) {
-      const simbody::BodyRead r = world_->read(i);
+      const simbody::BodyMotion r = world_->motion(i);
       out[i] = {from_array(r.position), from_array(r.velocity)};
     }
   }
 
   void read_rotation(std::span<RotationState> out) const override {
     for (std::size_t i = 0; i < bodies_; ++i) {
-      const simbody::BodyRead r = world_->read(i);
+      const simbody::BodyTurn r = world_->turn(i);
       const auto& q = r.orientation;
       out[i] = {Quat(q[0], q[1], q[2], q[3]), from_array(r.angular_velocity)};
     }

@@ -167,21 +167,23 @@ void World::bare_step() {
   impl_->advance();
 }
 
-BodyRead World::read(std::size_t i) const {
+BodyMotion World::motion(std::size_t i) const {
   const Impl& m = *impl_;
-  BodyRead out;
-  if (!m.applied.index[i].isValid()) {
-    out.position = m.static_positions[i];
-    return out;
-  }
+  if (!m.applied.index[i].isValid()) return {m.static_positions[i], {}};
   const SimTK::State& s = m.integrator->getState();
   const SimTK::MobilizedBody& b = m.bodies[i];
-  out.position = from_sim(b.getBodyOriginLocation(s));
-  out.velocity = from_sim(b.getBodyOriginVelocity(s));
-  const SimTK::Quaternion q = b.getBodyRotation(s).convertRotationToQuaternion();
-  out.orientation = {q[0], q[1], q[2], q[3]};
-  out.angular_velocity = from_sim(b.getBodyAngularVelocity(s));
-  return out;
+  return {from_sim(b.getBodyOriginLocation(s)), from_sim(b.getBodyOriginVelocity(s))};
+}
+
+// The orientation is the Free mobilizer's own quaternion, q[0..3] = (w, x, y, z) of its state,
+// not a quaternion rebuilt from the rotation matrix (getBodyRotation would round it again).
+BodyTurn World::turn(std::size_t i) const {
+  const Impl& m = *impl_;
+  if (!m.applied.index[i].isValid()) return {};
+  const SimTK::State& s = m.integrator->getState();
+  const SimTK::MobilizedBody::Free& b = SimTK::MobilizedBody::Free::downcast(m.bodies[i]);
+  const SimTK::Vec7& q = b.getQ(s);
+  return {{q[0], q[1], q[2], q[3]}, from_sim(b.getBodyAngularVelocity(s))};
 }
 
 }  // namespace dropcheck::simbody

@@ -34,10 +34,13 @@ struct WorldSpec {
   bool two_half_steps = false;
 };
 
-struct BodyRead {
+struct BodyMotion {
   Vec position{}, velocity{};
-  std::array<double, 4> orientation{1.0, 0.0, 0.0, 0.0};
-  Vec angular_velocity{};
+};
+
+struct BodyTurn {
+  std::array<double, 4> orientation{1.0, 0.0, 0.0, 0.0};  // (w, x, y, z)
+  Vec angular_velocity{};                                 // world frame
 };
 
 // One scene as a Simbody MultibodySystem advanced by its fixed-step semi-explicit Euler
@@ -57,7 +60,9 @@ class World {
   void step();
   // One step of h without re-initialising (forces that never change): the bare loop.
   void bare_step();
-  BodyRead read(std::size_t i) const;
+  // Body i's state after the last step (a static body: its position, at rest, unturned).
+  BodyMotion motion(std::size_t i) const;
+  BodyTurn turn(std::size_t i) const;
 
  private:
   struct Impl;
