@@ -32,8 +32,8 @@
 //                          n*h (relative 1e-16 x n), with no tiny extra steps.
 //   static body         -> no mobilized body: read back at its position, at rest.
 //   position, velocity  -> setQToFitTransform, setUToFitVelocity; read with getBodyOriginLocation,
-//                          getBodyOriginVelocity, the Free mobilizer's quaternion q[0..3] and
-//                          getBodyAngularVelocity.
+//                          getBodyOriginVelocity, the Free mobilizer's quaternion q[0..3] over its
+//                          norm, and getBodyAngularVelocity.
 // Contacts: not mapped (Simbody's contact needs a separate contact subsystem and a compliant
 // model): a scene with contacts is not run.
 // The Simbody calls themselves are in simbody_world.cpp (C++17; simbody_world.hpp says why).

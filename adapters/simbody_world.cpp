@@ -176,14 +176,17 @@ BodyMotion World::motion(std::size_t i) const {
 }
 
 // The orientation is the Free mobilizer's own quaternion, q[0..3] = (w, x, y, z) of its state,
-// not a quaternion rebuilt from the rotation matrix (getBodyRotation would round it again).
+// divided by its norm: Simbody lets that q drift off unit length between projections and turns
+// the body by q/|q| (its rotation matrix). Cheaper than a quaternion rebuilt from the rotation
+// matrix (getBodyRotation then convertRotationToQuaternion), which rounds it again.
 BodyTurn World::turn(std::size_t i) const {
   const Impl& m = *impl_;
   if (!m.applied.index[i].isValid()) return {};
   const SimTK::State& s = m.integrator->getState();
   const SimTK::MobilizedBody::Free& b = SimTK::MobilizedBody::Free::downcast(m.bodies[i]);
   const SimTK::Vec7& q = b.getQ(s);
-  return {{q[0], q[1], q[2], q[3]}, from_sim(b.getBodyAngularVelocity(s))};
+  const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  return {{q[0] / n, q[1] / n, q[2] / n, q[3] / n}, from_sim(b.getBodyAngularVelocity(s))};
 }
 
 }  // namespace dropcheck::simbody
