@@ -21,7 +21,7 @@ const CommandSpec& engines_spec() {
 
 int cmd_engines(const std::vector<std::string>& argv, std::ostream& out, std::ostream&) {
   parse_args(engines_spec(), argv);
-  const char* row = "%-9s %-14s %-6s %-22s %-36s %s\n";
+  const char* row = "%-9s %-14s %-6s %-53s %-36s %s\n";
   out << printf_string(row, "engine", "version", "scalar", "capabilities", "discrete law",
                        "damping mapping");
   for (const std::string& name : known_engine_names()) {
@@ -31,10 +31,9 @@ int cmd_engines(const std::vector<std::string>& argv, std::ostream& out, std::os
       continue;
     }
     const EngineInfo i = e->info();
-    std::string caps = i.capabilities.contacts ? "free flight, contacts" : "free flight";
-    if (i.capabilities.planar_only) caps += ", 2-D";
-    out << printf_string(row, i.name.c_str(), i.version.c_str(), to_string(i.scalar), caps.c_str(),
-                         to_string(i.law).c_str(), i.damping_mapping.c_str());
+    out << printf_string(row, i.name.c_str(), i.version.c_str(), to_string(i.scalar),
+                         to_string(i.capabilities).c_str(), to_string(i.law).c_str(),
+                         i.damping_mapping.c_str());
   }
   return kExitOk;
 }

@@ -21,6 +21,14 @@ std::string Engine::cannot_run(const Scene& scene) const {
   return {};
 }
 
+std::string to_string(const Capabilities& c) {
+  std::string out = c.contacts ? "free flight, contacts" : "free flight";
+  if (c.planar_only) out += ", 2-D (x-y plane)";
+  if (c.rotation == Rotation::full) out += ", 3-D rotation";
+  if (c.rotation == Rotation::spin_z) out += ", turns about z";
+  return out;
+}
+
 void Engine::set_torques(std::span<const Vec3>) {
   throw EngineError("this engine takes no torques");
 }

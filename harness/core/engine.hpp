@@ -33,6 +33,10 @@ struct Capabilities {
   Rotation rotation = Rotation::none;
 };
 
+// "free flight, contacts, 3-D rotation", "free flight, 2-D (x-y plane), turns about z", ...: what
+// `dropcheck engines` and the report's engine table say an engine can run.
+std::string to_string(const Capabilities& c);
+
 // How an engine rounds one step of its law, so that the harness can repeat that step in the same
 // arithmetic and operation order (harness/oracles/own_arithmetic.hpp). Declared by each adapter.
 enum class DampingForm {

@@ -79,10 +79,9 @@ std::string engines(const ReportInput& in) {
                    "damping mapping (k in 1/s)", "contact settings"},
                   "l");
   for (const EngineInfo& e : in.engines) {
-    std::string caps = e.capabilities.contacts ? "free flight, contacts" : "free flight";
-    if (e.capabilities.planar_only) caps += ", 2-D (x-y plane)";
-    t.add({e.name, e.version, to_string(e.scalar), caps, std::string("`") + to_string(e.law) + "`",
-           e.damping_mapping, e.contact_settings.empty() ? kNone : e.contact_settings});
+    t.add({e.name, e.version, to_string(e.scalar), to_string(e.capabilities),
+           std::string("`") + to_string(e.law) + "`", e.damping_mapping,
+           e.contact_settings.empty() ? kNone : e.contact_settings});
   }
   std::string md = "## Engines\n\n" + t.str() + "\n";
   for (const auto& [name, why] : in.missing)
