@@ -279,13 +279,9 @@ void Box2dEngine::read(std::span<BodyState> out) const {
   }
 }
 
-// The angle a about z as the quaternion (cos(a/2), 0, 0, sin(a/2)); w = (0, 0, w_z).
 void Box2dEngine::read_rotation(std::span<RotationState> out) const {
-  for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    const double a = bodies_[i]->GetAngle();
-    out[i].orientation = Quat(std::cos(a / 2), 0.0, 0.0, std::sin(a / 2));
-    out[i].angular_velocity = Vec3(0.0, 0.0, bodies_[i]->GetAngularVelocity());
-  }
+  for (std::size_t i = 0; i < bodies_.size(); ++i)
+    out[i] = turn_about_z(bodies_[i]->GetAngle(), bodies_[i]->GetAngularVelocity());
 }
 
 }  // namespace

@@ -168,13 +168,9 @@ class ChipmunkEngine final : public Engine {
     return append_states(out, w_->bodies.size(), use, [this](auto w) { return write(w); });
   }
 
-  // The angle a about z as the quaternion (cos(a/2), 0, 0, sin(a/2)); w = (0, 0, w_z).
   void read_rotation(std::span<RotationState> out) const override {
-    for (std::size_t i = 0; i < w_->bodies.size(); ++i) {
-      const double a = cpBodyGetAngle(w_->bodies[i]);
-      out[i].orientation = Quat(std::cos(a / 2), 0.0, 0.0, std::sin(a / 2));
-      out[i].angular_velocity = Vec3(0.0, 0.0, cpBodyGetAngularVelocity(w_->bodies[i]));
-    }
+    for (std::size_t i = 0; i < w_->bodies.size(); ++i)
+      out[i] = turn_about_z(cpBodyGetAngle(w_->bodies[i]), cpBodyGetAngularVelocity(w_->bodies[i]));
   }
 
  private:

@@ -1,6 +1,7 @@
 #include "harness/core/engine.hpp"
 
 #include <bit>
+#include <cmath>
 #include <cstdint>
 
 #if defined(__linux__)
@@ -19,6 +20,10 @@ std::string Engine::cannot_run(const Scene& scene) const {
   if (caps.rotation == Rotation::spin_z && !spins_about_z(scene))
     return "rotation: a 2-D engine turns bodies about z only";
   return {};
+}
+
+RotationState turn_about_z(double angle, double w_z) {
+  return {Quat(std::cos(angle / 2), 0.0, 0.0, std::sin(angle / 2)), Vec3(0.0, 0.0, w_z)};
 }
 
 std::string to_string(const Capabilities& c) {

@@ -86,6 +86,9 @@ struct RotationState {
   Vec3 angular_velocity = Vec3::Zero();  // rad/s, world frame
 };
 
+// A 2-D engine's turn: the angle a about z as q = (cos(a/2), 0, 0, sin(a/2)), w = (0, 0, w_z).
+RotationState turn_about_z(double angle, double w_z);
+
 // Storage for states (UnwrittenAllocator): 64-byte aligned (whole cache lines); for a block of 4
 // MiB or more, the whole 2 MiB pages inside it are advised as transparent huge pages (madvise
 // MADV_HUGEPAGE, malloc's placement kept), so that a long trajectory takes one page fault per 2 MiB
