@@ -27,11 +27,11 @@ namespace dropcheck {
 const CommandSpec& identify_spec() {
   static const CommandSpec spec{
       "identify",
-      "Names the fixed-step Euler law behind a free-flight trajectory: fits every member of the "
-      "law "
-      "family (where damping sits, semi-implicit or explicit position update) with its own "
-      "per-step "
-      "damping factor and gravity, and prints each member's residual and the best fit.",
+      "Names the fixed-step law behind a free-flight trajectory: fits every member of the law "
+      "family (the Euler members: where damping sits, semi-implicit or explicit position update; "
+      "and RK4) with its own per-step damping factor and gravity, and prints each member's "
+      "residual and the best fit; with --engine, also the order of convergence measured at h, "
+      "h/2 and h/4 against the closed form.",
       "scene FILE",
       "the scene file (.toml) the trajectory comes from",
       1,
@@ -122,7 +122,7 @@ bool print_verdict(const Identification& id, std::ostream& out) {
   const MemberFit& best = id.fits[id.best];
   const MemberFit& next = id.fits[id.runner_up];
   if (!id.fits_any) {
-    out << "no member fits better than 2 cm: not a fixed-step Euler scheme (closest: "
+    out << "no member fits better than 2 cm: not a fixed-step scheme of the family (closest: "
         << law_key(best.law) << " at " << g3(best.max_dx) << " m)\n";
     return false;
   }

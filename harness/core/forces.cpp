@@ -3,7 +3,6 @@
 #include <variant>
 
 namespace dropcheck {
-namespace {
 
 // Spring with dashpot to a fixed anchor (scene.hpp): F = -s*(|d| - L)*d/|d| - c*v, d = x - anchor.
 Vec3 spring_force(const Spring& s, const BodyState& state) {
@@ -15,7 +14,21 @@ Vec3 spring_force(const Spring& s, const BodyState& state) {
   return f;
 }
 
-}  // namespace
+std::vector<std::vector<const Spring*>> springs_by_body(const Scene& scene) {
+  std::vector<std::vector<const Spring*>> out(scene.bodies.size());
+  for (const Force& force : scene.forces)
+    if (const auto* s = std::get_if<Spring>(&force.law))
+      for (std::size_t i : force.bodies)
+        if (!scene.bodies[i].is_static) out[i].push_back(s);
+  return out;
+}
+
+Vec3 stage_force(const Vec3& start_force, std::span<const Spring* const> springs,
+                 const BodyState& start, const BodyState& now) {
+  Vec3 f = start_force;
+  for (const Spring* s : springs) f += spring_force(*s, now) - spring_force(*s, start);
+  return f;
+}
 
 void compute_forces(const Scene& scene, std::span<const BodyState> states, std::span<Vec3> out) {
   for (Vec3& f : out) f.setZero();

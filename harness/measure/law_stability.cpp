@@ -42,9 +42,15 @@ std::int64_t first_non_finite(const Trajectory& t) {
 }  // namespace
 
 std::string law_instability(const Scene& scene, Law law, const Timestep& h) {
+  const double k = scene.world.damping_rate;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     if (scene.bodies[i].is_static) continue;
     const std::optional<SpringModel> s = body_spring(scene, i);
+    if (!s && !damping_step_stable(law, k, h.seconds))
+      return "its law (" + law_family_name(law) + ") is unstable at h = " + h.text +
+             ": k*h = " + g(k * h.seconds) + " > " + g(kRk4DampingEdge) +
+             ", where |1 - u + u^2/2 - u^3/6 + u^4/24| passes 1, for '" + scene.bodies[i].name +
+             "'";
     if (!s || spring_step_stable(law, *s, h.seconds)) continue;
     // The edge as omega*h: 2 for an undamped spring under every semi-implicit member; drag and a
     // dashpot move it (stability_theory.cpp). An explicit law has no edge without damping.

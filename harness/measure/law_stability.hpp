@@ -16,7 +16,8 @@ namespace dropcheck {
 // "" when every dynamic body's law is stable at h; otherwise one sentence naming the law, the step
 // and the first unstable spring, e.g. "its law (semi-implicit Euler, damping after the forces
 // (ours, Box2D, MuJoCo)) is unstable at h = 1/25: omega*h = 2.4 > 2 (its edge on this spring) for
-// the spring on 'bob'". Free flight is stable at every h under every member of the family.
+// the spring on 'bob'". Free flight is stable at every h under every Euler member; RK4 damps only
+// while k*h <= 2.785 (kRk4DampingEdge).
 std::string law_instability(const Scene& scene, Law law, const Timestep& h);
 
 // True when `run` stopped by blowing up (NaN/Inf state, engine error, crash), not by a refusal,

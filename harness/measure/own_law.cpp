@@ -191,6 +191,7 @@ std::string OwnLawVerdict::sentence() const {
 }
 
 std::string law_family_name(Law law) {
+  if (law.scheme == Scheme::RK4) return "fourth-order Runge-Kutta, damping as a force (Wild Magic)";
   const bool explicit_x = law.position == PositionUpdate::Explicit;
   std::string name = explicit_x ? "explicit Euler" : "semi-implicit Euler";
   switch (law.damping) {

@@ -28,7 +28,9 @@ Trajectory predict_discrete(Law law, const Scene& scene, double h, const RunOpti
   const std::int64_t every = options.record_every < 1 ? 1 : options.record_every;
 
   // phi = exp(-k*h) in long double; the engines round the same value to their own scalar.
-  const Real phi = std::exp(-static_cast<Real>(scene.world.damping_rate) * static_cast<Real>(h));
+  const Real rate = static_cast<Real>(scene.world.damping_rate), hl = static_cast<Real>(h);
+  const Real phi = std::exp(-rate * hl);
+  const auto springs = springs_by_body(scene);
   const VecL g = scene.world.gravity.cast<Real>();
   std::vector<StateL> s(nb);
   std::vector<BodyState> start(nb);
@@ -46,8 +48,18 @@ Trajectory predict_discrete(Law law, const Scene& scene, double h, const RunOpti
     compute_forces(scene, start, forces);
     for (std::size_t i = 0; i < nb; ++i) {
       if (scene.bodies[i].is_static) continue;
-      const VecL a = g + forces[i].cast<Real>() / static_cast<Real>(scene.bodies[i].mass);
-      advance(law, phi, static_cast<Real>(h), a, s[i].x, s[i].v);
+      const Real m = static_cast<Real>(scene.bodies[i].mass);
+      if (law.scheme == Scheme::RK4) {
+        // Forces at each stage: the step-start force with the springs' change (forces.hpp).
+        const auto a = [&](const VecL& x, const VecL& v) -> VecL {
+          const BodyState now{x.cast<double>(), v.cast<double>()};
+          return g + stage_force(forces[i], springs[i], start[i], now).cast<Real>() / m;
+        };
+        advance_rk4(rate, hl, a, s[i].x, s[i].v);
+        continue;
+      }
+      const VecL a = g + forces[i].cast<Real>() / m;
+      advance(law, phi, hl, a, s[i].x, s[i].v);
     }
     if (n % every == 0 || n == t.steps) snapshot(n);
   }

@@ -11,7 +11,22 @@ namespace dropcheck {
 namespace {
 
 bool after_forces_type(Law law) {
-  return law.damping != DampingOrder::BeforeForces;
+  return law.scheme == Scheme::Euler && law.damping != DampingOrder::BeforeForces;
+}
+
+// k*h from an RK4 member's fitted per-step factor: the root of R(u) = phi (harness/core/law.hpp)
+// by Newton from -ln(phi), R' = -(1 - u + u^2/2 - u^3/6). R falls monotonically on [0, 1.596]
+// (down to 0.27), which covers every damping a trajectory could have been fitted to.
+double rk4_step_rate(double phi) {
+  double u = phi > 0.0 ? -std::log(phi) : 1.596;
+  for (int i = 0; i < 50; ++i) {
+    const double slope = -(1.0 - u + u * u / 2.0 - u * u * u / 6.0);
+    if (slope == 0.0) break;
+    const double next = std::clamp(u - (rk4_decay(u) - phi) / slope, -1.0, 1.596);
+    if (next == u) break;
+    u = next;
+  }
+  return u;
 }
 
 void require_usable(const Scene& scene, const Trajectory& run) {
@@ -49,9 +64,12 @@ std::vector<Vec3> accelerations_from_forces(const Scene& scene, const Trajectory
   return out;
 }
 
-// Least squares for (phi, c) on the velocity sequence; fills phi and gravity.
+// Least squares for (phi, c) on the velocity sequence; fills phi and gravity. An RK4 member is
+// fitted as before-forces with its force share T(k*h) (law.hpp: v' = R*v + h*T*a): T = 1 at
+// first, then from the k*h of the fitted phi, three times (forces held at their step-start
+// values: springs make this an estimate, which the residual then judges exactly).
 void fit_velocity(const Scene& scene, const Trajectory& run, const std::vector<Vec3>& f,
-                  MemberFit& m) {
+                  MemberFit& m, double gain = 1.0) {
   const bool af = after_forces_type(m.law);
   std::size_t dynamic = 0;
   for (const Body& b : scene.bodies) dynamic += b.is_static ? 0 : 1;
@@ -64,7 +82,7 @@ void fit_velocity(const Scene& scene, const Trajectory& run, const std::vector<V
       if (scene.bodies[b].is_static) continue;
       const Vec3& v0 = run.at(s, b).velocity;
       const Vec3& v1 = run.at(s + 1, b).velocity;
-      const Vec3 hf = run.h * f[s * run.bodies() + b];
+      const Vec3 hf = gain * run.h * f[s * run.bodies() + b];
       for (int j = 0; j < 3; ++j, ++r) {
         A(r, 0) = af ? v0[j] + hf[j] : v0[j];
         A(r, 1 + j) = 1.0;
@@ -74,8 +92,10 @@ void fit_velocity(const Scene& scene, const Trajectory& run, const std::vector<V
   }
   const Eigen::Vector4d theta = A.colPivHouseholderQr().solve(y);
   m.phi = theta(0);
-  const double scale = af ? m.phi * run.h : run.h;
+  const double scale = af ? m.phi * run.h : gain * run.h;
   m.gravity = theta.tail<3>() / scale;
+  if (m.law.scheme == Scheme::RK4 && gain == 1.0)
+    for (int i = 0; i < 3; ++i) fit_velocity(scene, run, f, m, rk4_gain(rk4_step_rate(m.phi)));
 }
 
 // Iterates the member from the recorded initial state; fills max_dx and max_dv.
@@ -83,13 +103,24 @@ void residual(const Scene& scene, const Trajectory& run, MemberFit& m) {
   std::vector<BodyState> state(run.states.begin(),
                                run.states.begin() + static_cast<long>(run.bodies()));
   std::vector<Vec3> forces(run.bodies());
+  const auto springs = springs_by_body(scene);
+  const double rk4_rate = rk4_step_rate(m.phi) / run.h;
   m.max_dx = m.max_dv = 0.0;
   for (std::size_t s = 1; s < run.samples(); ++s) {
     compute_forces(scene, state, forces);
     for (std::size_t b = 0; b < run.bodies(); ++b) {
       if (scene.bodies[b].is_static) continue;
-      const Vec3 a = m.gravity + forces[b] / scene.bodies[b].mass;
-      advance(m.law, m.phi, run.h, a, state[b].position, state[b].velocity);
+      const double mass = scene.bodies[b].mass;
+      if (m.law.scheme == Scheme::RK4) {
+        const BodyState start = state[b];
+        const auto a = [&](const Vec3& x, const Vec3& v) -> Vec3 {
+          return m.gravity + stage_force(forces[b], springs[b], start, {x, v}) / mass;
+        };
+        advance_rk4(rk4_rate, run.h, a, state[b].position, state[b].velocity);
+      } else {
+        advance(m.law, m.phi, run.h, Vec3(m.gravity + forces[b] / mass), state[b].position,
+                state[b].velocity);
+      }
       const BodyState& got = run.at(s, b);
       m.max_dx = std::max(m.max_dx, (got.position - state[b].position).cwiseAbs().maxCoeff());
       m.max_dv = std::max(m.max_dv, (got.velocity - state[b].velocity).cwiseAbs().maxCoeff());

@@ -7,7 +7,9 @@
 //       v[n+1] = phi*(v[n] + h*F/m) + c,   c = phi*h*g
 //   before-forces type (before-forces, before-forces/explicit):
 //       v[n+1] - h*F/m = phi*v[n] + c,      c = h*g
-// Both are linear in (phi, c_x, c_y, c_z): least squares over every step, body and component.
+//   RK4: v[n+1] - h*T*F/m = phi*v[n] + c,  c = h*T*g, phi = R(k*h), T = T(k*h) (law.hpp), refitted
+//       three times with T from the last phi
+// All are linear in (phi, c_x, c_y, c_z): least squares over every step, body and component.
 // Then the member is iterated from the recorded initial state with the fitted phi and g (forces on
 // its own predicted states), and its residual is the largest |x - prediction| over the run.
 // A member whose velocity update matches but whose position update does not (after-position vs

@@ -16,7 +16,11 @@ RotationIdentification identify_rotation(const Scene& scene, const Trajectory& r
   id.damping_seen = scene.world.angular_damping_rate != 0.0;
   std::vector<Law> orders = {DampingOrder::AfterForces,
                              {DampingOrder::AfterForces, PositionUpdate::Explicit}};
-  if (id.damping_seen) orders.assign(std::begin(kLawFamily), std::end(kLawFamily));
+  if (id.damping_seen) {
+    orders.clear();  // the Euler members: the rotational family places damping as they do
+    for (Law l : kLawFamily)
+      if (l.scheme == Scheme::Euler) orders.push_back(l);
+  }
   const std::vector<RotationState> start(run.rotations.begin(),
                                          run.rotations.begin() + run.bodies());
   for (RotationLaw law : kRotationFamily)

@@ -30,10 +30,22 @@
 // damping only (gamma = 0): AfterForces is stable iff w*h < sqrt(2*(1 + phi)/phi) (the edge moves
 // up: drag helps), the other two iff w*h < sqrt(2*(1 + phi)) (the edge moves down: drag hurts).
 // phi = exp(-k*h) depends on h, so the edge is found numerically below.
+//
+// RK4 (Wild Magic) evaluates the spring, the dashpot and the drag at each of its four stages
+// (harness/core/law.hpp, advance_rk4), so its step is the stability polynomial of the linear
+// system y' = M*y, M = [[0, 1], [-w^2, -(gamma + k)]]:
+//   P = I + h*M + (h*M)^2/2 + (h*M)^3/6 + (h*M)^4/24
+// whose determinant and trace give beta and A = 1 + beta - trace for the same test. Undamped, the
+// eigenvalues of h*M are +-i*w*h and |R(i*w*h)| <= 1 iff w*h <= 2*sqrt(2) = 2.828 (RK4's edge on
+// the imaginary axis), against 2 for every semi-implicit Euler member. Stability is tested on the
+// eigenvalues z = h*lambda of h*M directly, |R(z)| <= 1: det P = |R(z)|^2 is 1 - (w*h)^6/72 + ...
+// undamped, whose rounding at small w*h would pass 1 by an ulp.
 #include "harness/stability/stability_theory.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <limits>
 #include <optional>
 #include <variant>
@@ -48,7 +60,31 @@ struct StepCoefficients {
   double beta = 0.0;  // determinant of the step matrix
 };
 
+// RK4's P (the header comment) as beta = det P and A = 1 + beta - trace P.
+StepCoefficients rk4_coefficients(const SpringModel& s, double h) {
+  Eigen::Matrix2d hm;
+  hm << 0.0, h, -s.omega * s.omega * h, -(s.gamma + s.k) * h;
+  const Eigen::Matrix2d I = Eigen::Matrix2d::Identity();
+  const Eigen::Matrix2d p = I + hm * (I + hm / 2.0 * (I + hm / 3.0 * (I + hm / 4.0)));
+  const double beta = p.determinant();
+  return {1.0 + beta - p.trace(), beta};
+}
+
+// |R(z)| <= 1 (to rounding) at both eigenvalues z of h*M, lambda = (-c +- sqrt(c^2 - 4*w^2))/2.
+bool rk4_spring_stable(const SpringModel& s, double h) {
+  using C = std::complex<double>;
+  const double c = s.gamma + s.k;
+  const C root = std::sqrt(C(c * c - 4.0 * s.omega * s.omega, 0.0));
+  for (const C lambda : {(-c + root) / 2.0, (-c - root) / 2.0}) {
+    const C z = h * lambda;
+    const C r = 1.0 + z * (1.0 + z / 2.0 * (1.0 + z / 3.0 * (1.0 + z / 4.0)));
+    if (std::norm(r) > 1.0 + 8 * std::numeric_limits<double>::epsilon()) return false;
+  }
+  return true;
+}
+
 StepCoefficients coefficients(Law law, const SpringModel& s, double h) {
+  if (law.scheme == Scheme::RK4) return rk4_coefficients(s, h);
   const double phi = std::exp(-s.k * h), wh2 = s.omega * s.omega * h * h, gh = s.gamma * h;
   if (law.position == PositionUpdate::Explicit)
     return law.damping == DampingOrder::BeforeForces
@@ -82,8 +118,13 @@ std::optional<SpringModel> body_spring(const Scene& scene, std::size_t index) {
 }
 
 bool spring_step_stable(Law law, const SpringModel& spring, double h) {
+  if (law.scheme == Scheme::RK4) return rk4_spring_stable(spring, h);
   const StepCoefficients c = coefficients(law, spring, h);
   return c.beta > -1.0 && c.beta <= 1.0 && c.a < 2.0 * (1.0 + c.beta);
+}
+
+bool damping_step_stable(Law law, double k, double h) {
+  return law.scheme != Scheme::RK4 || std::abs(rk4_decay(k * h)) <= 1.0;
 }
 
 std::optional<StepRotation> spring_step_rotation(Law law, const SpringModel& spring, double h) {

@@ -24,6 +24,14 @@ std::optional<SpringModel> body_spring(const Scene& scene, std::size_t index);
 // (derivation in stability_theory.cpp).
 bool spring_step_stable(Law law, const SpringModel& spring, double h);
 
+// True when one step of `law` keeps a velocity damped at rate k from growing at h: always for the
+// Euler members (phi = exp(-k*h) < 1); for RK4 while |R(k*h)| <= 1, i.e. k*h <= kRk4DampingEdge.
+bool damping_step_stable(Law law, double k, double h);
+
+// The root of R(u) = 1 above u = 0 (R in harness/core/law.hpp): RK4's largest stable k*h on free
+// flight. R(u) - 1 = u*(-1 + u/2 - u^2/6 + u^3/24); the cubic's one real root.
+inline constexpr double kRk4DampingEdge = 2.7852935634;
+
 // One step of a law on a spring as a rotation: its eigenvalues rho*exp(+-i*theta).
 struct StepRotation {
   double rho = 0.0;    // modulus: the amplitude factor per step (1 for an undamped spring)

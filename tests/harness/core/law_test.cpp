@@ -3,6 +3,7 @@
 #include "harness/core/law.hpp"
 
 #include <catch2/catch.hpp>
+#include <cmath>
 
 namespace dropcheck {
 namespace {
@@ -14,6 +15,7 @@ TEST_CASE("law family: every undamped member matches its closed form", "[law][re
   const long double h = 0.01L, a = -9.8L, x0 = 10.0L, v0 = 3.0L;
   const int n = 500;
   for (Law law : kLawFamily) {
+    if (law.scheme != Scheme::Euler) continue;  // RK4: its own tests below
     long double x = x0, v = v0;
     for (int i = 0; i < n; ++i) advance(law, 1.0L, h, a, x, v);
     const long double m = law.position == PositionUpdate::Explicit ? n - 1 : n + 1;
@@ -31,6 +33,7 @@ TEST_CASE("law family: every undamped member matches its closed form", "[law][re
 TEST_CASE("law family: damping decays the velocity by phi per step in every member", "[law]") {
   const double phi = 0.98, h = 1.0 / 60.0;
   for (Law law : kLawFamily) {
+    if (law.scheme != Scheme::Euler) continue;
     double x = 0.0, v = 1.0, sum_new = 0.0, sum_old = 0.0, vk = 1.0;
     for (int i = 0; i < 60; ++i) {
       sum_old += vk;
@@ -47,8 +50,57 @@ TEST_CASE("law family: damping decays the velocity by phi per step in every memb
   }
 }
 
-TEST_CASE("law family: five distinct members, each named by a key that parses back", "[law]") {
-  CHECK(std::size(kLawFamily) == 5);
+// RK4 without damping is exact for a constant acceleration: x is quadratic in t.
+TEST_CASE("law family: RK4 is exact for a constant acceleration", "[law][reference]") {
+  const long double h = 0.01L, x0 = 10.0L, v0 = 3.0L;
+  const int n = 500;
+  long double x = x0, v = v0;
+  const auto a = [](long double, long double) { return -9.8L; };
+  for (int i = 0; i < n; ++i) advance_rk4(0.0L, h, a, x, v);
+  const long double t = n * h;
+  CHECK(std::abs(static_cast<double>(x - (x0 + v0 * t - 4.9L * t * t))) < 1e-13);  // 3.6e-15
+  CHECK(std::abs(static_cast<double>(v - (v0 - 9.8L * t))) < 1e-13);
+}
+
+// Damping alone: each step keeps R(u) of the velocity, u = k*h, and moves the position by
+// h*v*(1 - u/2 + u^2/6 - u^3/24) = h*v*T(u) (the stages' mean velocity); R = exp(-u) + O(u^5).
+TEST_CASE("law family: RK4 decays a velocity by its stability polynomial", "[law][reference]") {
+  const double k = 1.5, h = 0.1, u = k * h;
+  const double r = 1 - u + u * u / 2 - u * u * u / 6 + u * u * u * u / 24;
+  CHECK(rk4_decay(u) == Approx(r).epsilon(1e-15));
+  double x = 0.0, v = 1.0, x_closed = 0.0, v_closed = 1.0;
+  const auto none = [](double, double) { return 0.0; };
+  for (int i = 0; i < 40; ++i) {
+    advance_rk4(k, h, none, x, v);
+    x_closed += h * v_closed * rk4_gain(u);
+    v_closed *= r;
+  }
+  CHECK(v == Approx(v_closed).epsilon(1e-14));
+  CHECK(x == Approx(x_closed).epsilon(1e-14));
+  // Fourth order: one step's decay differs from exp(-u) by u^5/120 to leading order.
+  CHECK(std::exp(-u) - r == Approx(-std::pow(u, 5) / 120).epsilon(0.15));
+}
+
+// On a spring x'' = -w^2*x the error after a fixed time falls 16-fold per halving of h.
+TEST_CASE("law family: RK4 converges at fourth order on a spring", "[law][reference]") {
+  const double w = 3.0, t_end = 2.0;
+  auto error = [&](int steps) {
+    const double h = t_end / steps;
+    double x = 1.0, v = 0.0;
+    const auto a = [&](double xs, double) { return -w * w * xs; };
+    for (int i = 0; i < steps; ++i) advance_rk4(0.0, h, a, x, v);
+    return std::abs(x - std::cos(w * t_end));
+  };
+  const double p1 = std::log2(error(200) / error(400)), p2 = std::log2(error(400) / error(800));
+  CHECK(p1 == Approx(4.0).margin(0.1));  // measured 4.058 (w*h = 0.03 -> 0.015)
+  CHECK(p2 == Approx(4.0).margin(0.1));  // measured 4.030
+}
+
+TEST_CASE("law family: six distinct members, each named by a key that parses back", "[law]") {
+  CHECK(std::size(kLawFamily) == 6);
+  CHECK(order_of(kRungeKutta4) == 4);
+  CHECK(order_of(Law{DampingOrder::BeforeForces}) == 1);
+  CHECK(law_key(kRungeKutta4) == "rk4");
   for (Law law : kLawFamily) CHECK(parse_law_key(law_key(law)) == law);
   CHECK(parse_law_key("after-position/explicit") ==
         Law{DampingOrder::AfterPosition, PositionUpdate::Explicit});
@@ -85,4 +137,10 @@ TEST_CASE("law family: without damping the damping order is no difference", "[la
                                 dropcheck::PositionUpdate::Explicit};
   CHECK(dropcheck::law_difference(ours, dropcheck::DampingOrder::BeforeForces, false).empty());
   CHECK(dropcheck::law_difference(ours, chipmunk, false) == "position-update");
+}
+
+TEST_CASE("law family: RK4 against an Euler member differs in scheme", "[law]") {
+  const dropcheck::Law ours = dropcheck::DampingOrder::AfterForces;
+  CHECK(dropcheck::law_difference(ours, dropcheck::kRungeKutta4) == "scheme");
+  CHECK(dropcheck::law_difference(dropcheck::kRungeKutta4, dropcheck::kRungeKutta4).empty());
 }

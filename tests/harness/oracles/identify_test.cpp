@@ -86,7 +86,7 @@ TEST_CASE("identify names the law of mujoco from its own trajectory", "[identify
   require_identified("mujoco");
 }
 
-TEST_CASE("A trajectory that is no fixed-step Euler scheme fits no member", "[identify]") {
+TEST_CASE("A trajectory that is no fixed-step scheme of the family fits no member", "[identify]") {
   const Scene s = scene("wind");
   Trajectory t = run("ours-f64", s);
   for (std::size_t i = 0; i < t.states.size(); ++i)  // a 10 cm wobble no member can follow
@@ -97,7 +97,8 @@ TEST_CASE("A trajectory that is no fixed-step Euler scheme fits no member", "[id
   std::ostringstream out, err;
   const std::string csv = temp_file("wobble.csv", trajectories_to_csv(std::span(&t, 1)));
   CHECK(cli_main({"identify", s.source, "--trajectory", csv}, out, err) == kExitCheckFailed);
-  CHECK_THAT(out.str(), Contains("no member fits better than 2 cm: not a fixed-step Euler scheme"));
+  CHECK_THAT(out.str(),
+             Contains("no member fits better than 2 cm: not a fixed-step scheme of the family"));
 }
 
 TEST_CASE("A gravity-only scene cannot separate after-forces from before-forces with g fitted",

@@ -128,6 +128,10 @@ TEST_CASE(
     const StepSearch s =
         search_max_stable_dt(factory(name), info.scalar, scene, scene.timestep.seconds);
     INFO(name << ": max_stable_dt " << s.max_stable_dt << ", first unstable " << s.min_unstable_dt);
+    if (info.law.scheme == Scheme::RK4) {  // RK4's edge on the imaginary axis: w*h = 2*sqrt(2)
+      CHECK(std::abs(s.max_stable_dt / (std::sqrt(2.0) * edge) - 1.0) < 0.01);
+      continue;
+    }
     if (info.law.position == PositionUpdate::Explicit) {
       CHECK(std::isnan(s.max_stable_dt));
       CHECK(spring_theory_max_dt(scene, info.law).value() == 0.0);
@@ -238,6 +242,36 @@ TEST_CASE("Stability: the spring theory matches the iterated step matrix of each
                             << h);
         CHECK((h < edge ? peak < 1e3 : peak > 1e6));
       }
+    }
+  }
+}
+
+TEST_CASE("Stability: RK4's edges are its stability polynomial's, on a spring and on drag alone",
+          "[stability][theory]") {
+  // Undamped: h*M has eigenvalues +-i*w*h and |R(i*y)|^2 = 1 - y^6/72 + y^8/576 <= 1 iff
+  // y <= sqrt(8): the edge is w*h = 2*sqrt(2).
+  const SpringModel undamped{60.0, 0.0, 0.0};
+  CHECK(spring_max_stable_dt(kRungeKutta4, undamped) ==
+        Approx(2.0 * std::sqrt(2.0) / 60.0).epsilon(1e-9));
+  // Drag alone: R(u) = 1 - u + u^2/2 - u^3/6 + u^4/24 returns to 1 at u = 2.7853.
+  CHECK(rk4_decay(kRk4DampingEdge) == Approx(1.0).epsilon(1e-9));
+  CHECK(damping_step_stable(kRungeKutta4, 20.0, 0.99 * kRk4DampingEdge / 20.0));
+  CHECK_FALSE(damping_step_stable(kRungeKutta4, 20.0, 1.01 * kRk4DampingEdge / 20.0));
+  CHECK(damping_step_stable(DampingOrder::AfterForces, 20.0, 1.0));
+  // Each predicted edge against the iterated RK4 step (advance_rk4), 0.5% either side.
+  const std::vector<SpringModel> springs = {
+      {60.0, 0.0, 0.0}, {60.0, 0.0, 20.0}, {60.0, 6.0, 20.0}, {10.0, 3.0, 1.2}, {60.0, 30.0, 0.0}};
+  for (const SpringModel& m : springs) {
+    const double edge = spring_max_stable_dt(kRungeKutta4, m);
+    for (double h : {edge * 0.995, edge * 1.005}) {
+      double x = 1.0, v = 0.0, peak = 0.0;
+      const auto a = [&](double xs, double vs) { return -m.omega * m.omega * xs - m.gamma * vs; };
+      for (int n = 0; n < 4000; ++n) {
+        advance_rk4(m.k, h, a, x, v);
+        peak = std::max(peak, (v * v + m.omega * m.omega * x * x) / (m.omega * m.omega));
+      }
+      INFO("w " << m.omega << " gamma " << m.gamma << " k " << m.k << " h " << h);
+      CHECK((h < edge ? peak < 1e3 : peak > 1e6));
     }
   }
 }
