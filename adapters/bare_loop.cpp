@@ -11,7 +11,8 @@ using BareLoop = double (*)(const Scene&, double);
 
 // One row per engine compiled into this build.
 const std::pair<const char*, BareLoop> kBareLoops[] = {
-    {"ours", bare_seconds_ours_f32},     {"ours-f64", bare_seconds_ours_f64},
+    {"ours", bare_seconds_ours_f32},
+    {"ours-f64", bare_seconds_ours_f64},
 #ifdef DROPCHECK_HAVE_BULLET
     {"bullet", bare_seconds_bullet},
 #endif
@@ -29,6 +30,9 @@ const std::pair<const char*, BareLoop> kBareLoops[] = {
 #endif
 #ifdef DROPCHECK_HAVE_SIMBODY
     {"simbody", bare_seconds_simbody},
+#endif
+#ifdef DROPCHECK_HAVE_WILDMAGIC
+    {"wildmagic", bare_seconds_wildmagic},
 #endif
 };
 

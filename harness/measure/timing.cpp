@@ -195,6 +195,7 @@ double nominal_ns_per_body_step(const std::string& engine) {
   if (engine == "bullet") return 580.0;
   if (engine == "chipmunk") return 33.0;
   if (engine == "simbody") return 1800.0;
+  if (engine == "wildmagic") return 100.0;
   return 1000.0;
 }
 

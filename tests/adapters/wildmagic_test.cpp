@@ -1,0 +1,115 @@
+// Tests adapters/wildmagic.cpp: Wild Magic 5.17's RigidBody<double> (fourth-order Runge-Kutta)
+// through the Engine interface, its own traps only: the RK4 member it declares, its drag figure,
+// its order against the closed form, the float mass, springs evaluated at the stages, and the
+// cause named between it and the Euler engines. What every engine must do is in
+// tests/adapters/conformance_test.cpp.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <string>
+
+#include "adapter_test_support.hpp"
+#include "harness/core/registry.hpp"
+#include "harness/core/runner.hpp"
+#include "harness/measure/attribution.hpp"
+#include "harness/measure/metrics.hpp"
+#include "harness/oracles/analytic.hpp"
+#include "harness/oracles/discrete_law.hpp"
+#include "harness/oracles/own_arithmetic.hpp"
+#include "harness/stability/stability_theory.hpp"
+#include "tests/scene_texts.hpp"
+
+using namespace dropcheck;
+using dropcheck::testing::drag_figure_run;
+using dropcheck::testing::kFreeFlightScenes;
+using dropcheck::testing::scenario;
+using dropcheck::testing::worst_dx;
+
+TEST_CASE("Wild Magic declares RK4 and follows it on every free-flight scene", "[wildmagic][law]") {
+  ENGINE_OR_RETURN(engine, "wildmagic");
+  const EngineInfo info = engine->info();
+  CHECK(info.law == kRungeKutta4);
+  CHECK(info.scalar == Scalar::f64);
+  for (const char* name : kFreeFlightScenes) {
+    const Scene scene = scenario(name);
+    const double h = scene.timestep.seconds;
+    const auto w = worst_dx(run_scene(*engine, scene, h), predict_discrete(info.law, scene, h));
+    INFO(w.where);
+    CHECK(w.dx < 1e-12);  // measured 1.8e-15 to 6.3e-15
+  }
+}
+
+TEST_CASE("Wild Magic's 60-step drag figure is RK4's, 3.4e-9 m from the closed form",
+          "[wildmagic][law]") {
+  ENGINE_OR_RETURN(engine, "wildmagic");
+  const Trajectory run = drag_figure_run(*engine);
+  // RK4's one-step map iterated in 30 digits: 6.6003646141352476, -5.6790896787855268 (engine:
+  // ...483 and ...525). The closed form is 6.6003646175315019 m, -5.6790896829023386 m/s.
+  CHECK(run.final_state(0).position.y() == Approx(6.6003646141352476).epsilon(0).margin(1e-12));
+  CHECK(run.final_state(0).velocity.y() == Approx(-5.6790896787855268).epsilon(0).margin(1e-12));
+  const double closed = 6.6003646175315019;
+  CHECK(closed - run.final_state(0).position.y() == Approx(3.396e-9).epsilon(1e-3));
+}
+
+TEST_CASE("Wild Magic converges to the closed form at fourth order", "[wildmagic][order]") {
+  ENGINE_OR_RETURN(engine, "wildmagic");
+  const Scene scene = scenario("free_fall_drag");
+  std::vector<double> errors;
+  for (double h : {1.0 / 30.0, 1.0 / 60.0, 1.0 / 120.0}) {
+    const Trajectory run = run_scene(*engine, scene, h);
+    errors.push_back(compare_worst(run, *analytic_trajectory(scene, h), scene.tolerance).max_dx);
+  }
+  const std::vector<double> hs{1.0 / 30.0, 1.0 / 60.0, 1.0 / 120.0};
+  const std::vector<double> p = observed_orders(hs, errors);
+  INFO("errors " << errors[0] << ", " << errors[1] << ", " << errors[2]);
+  CHECK(p[0] == Approx(4.0).margin(0.2));  // measured 4.024 (errors 5.6e-8, 3.5e-9, 2.1e-10 m)
+  CHECK(p[1] == Approx(4.0).margin(0.2));  // measured 4.012
+}
+
+TEST_CASE("Wild Magic's float mass leaves the acceleration F/m", "[wildmagic][law]") {
+  ENGINE_OR_RETURN(engine, "wildmagic");
+  // 0.3 kg is 0.30000001192... as a float (Wm5RigidBody.h: SetMass(float)): without the force
+  // scaling F/m would be off by 4e-8 relative: 5.6e-7 m over the run (measured with the scaling
+  // taken out), far above rounding.
+  const Scene scene = parse_scene(
+      testing::scene_head("2.0", "", testing::kEarth, "linear_damping = 0.7\n") +
+          testing::body_text("light", "[0.0, 5.0, 0.0]", "[1.0, 2.0, 0.0]", "mass = 0.3\n") +
+          "[[force]]\nconstant = [3.0, 0.5, -1.0]\n",
+      "light.toml");
+  const double h = scene.timestep.seconds;
+  const auto w = worst_dx(run_scene(*engine, scene, h), predict_discrete(kRungeKutta4, scene, h));
+  INFO(w.where);
+  CHECK(w.dx < 1e-12);
+}
+
+TEST_CASE("Wild Magic evaluates a spring at its stages: stable up to w*h = 2*sqrt(2)",
+          "[wildmagic][stability]") {
+  ENGINE_OR_RETURN(engine, "wildmagic");
+  // stiff_spring (w = 60 rad/s): every semi-implicit Euler engine blows up past h = 2/60; RK4's
+  // edge is 2*sqrt(2)/60 = 0.04714 s. At h = 1/25 (w*h = 2.4) it still follows its law.
+  const Scene scene = scenario("extreme/stiff_spring");
+  const double h = 1.0 / 25.0;
+  CHECK(spring_theory_max_dt(scene, kRungeKutta4).value() ==
+        Approx(2.0 * std::sqrt(2.0) / 60.0).epsilon(1e-9));
+  const Trajectory run = run_scene(*engine, scene, h);
+  REQUIRE(run.status == RunStatus::ok);
+  const auto w = worst_dx(run, predict_discrete(kRungeKutta4, scene, h));
+  INFO(w.where);
+  CHECK(w.dx < 1e-12);  // measured 3.6e-15
+}
+
+TEST_CASE("Between Wild Magic and an Euler engine the cause named is the scheme",
+          "[wildmagic][attribution]") {
+  ENGINE_OR_RETURN(engine, "wildmagic");
+  const Scene scene = scenario("free_fall_drag");
+  const double h = scene.timestep.seconds;
+  auto ours = make_engine("ours-f64");
+  const EngineInfo iw = engine->info(), io = ours->info();
+  const Attribution a =
+      attribute({iw, run_scene(*engine, scene, h), predict_own_arithmetic(iw, scene, h),
+                 predict_discrete(iw.law, scene, h)},
+                {io, run_scene(*ours, scene, h), predict_own_arithmetic(io, scene, h),
+                 predict_discrete(io.law, scene, h)},
+                true);
+  CHECK(a.explained());
+  CHECK(a.law_difference == "scheme");
+}
