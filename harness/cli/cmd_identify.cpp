@@ -17,6 +17,7 @@
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/io/trajectory_csv.hpp"
+#include "harness/measure/closed_form_order.hpp"
 #include "harness/oracles/identify.hpp"
 #include "harness/oracles/identify_rotation.hpp"
 #include "harness/scene/scene_loader.hpp"
@@ -198,18 +199,37 @@ bool print_rotation(const RotationIdentification& id, const std::optional<Engine
   return match;
 }
 
+// The engine's observed order against the closed form and whether it is its declared law's;
+// false only when an order was measured and it is not.
+bool print_order(const ClosedFormOrder& o, Law declared, std::ostream& out) {
+  const int want = order_of(declared);
+  if (!o.unavailable.empty()) {
+    out << "order: not measured: " << o.unavailable << "\n";
+    return true;
+  }
+  bool match = true;
+  for (double p : o.estimate.orders) match = match && order_matches(p, want);
+  out << "order against the closed form: " << o.estimate.text
+      << (o.dropped.empty() ? "" : " (left out: " + o.dropped + ")") << "; declared "
+      << law_key(declared) << " is order " << want << ": " << (match ? "matches" : "MISMATCH")
+      << "\n";
+  return match;
+}
+
 int run_identify(const IdentifyRequest& r, std::ostream& out) {
   const Scene scene = load_scene(r.scene_file);
   Trajectory run;
   std::optional<Law> declared;
   std::optional<EngineInfo> declared_info;
+  std::unique_ptr<Engine> engine;
   if (!r.engine.empty()) {
     std::vector<SelectedEngine> engines = select_engines({r.engine}, scene);
     if (!engines[0].engine)
       throw InputError("", 0, "--engine " + r.engine, engines[0].skipped_because);
-    declared_info = engines[0].engine->info();
+    engine = std::move(engines[0].engine);
+    declared_info = engine->info();
     declared = declared_info->law;
-    run = run_scene(*engines[0].engine, scene, step_from_flag(r.dt, scene).seconds);
+    run = run_scene(*engine, scene, step_from_flag(r.dt, scene).seconds);
     if (run.status != RunStatus::ok) {
       out << "identify " << scene.name << ": the run of " << run.engine << " failed at step "
           << run.failed_step << " (" << to_string(run.status) << "): " << run.failure << "\n";
@@ -235,6 +255,7 @@ int run_identify(const IdentifyRequest& r, std::ostream& out) {
                    : "MISMATCH")
         << "\n";
     ok = ok && match;
+    ok = print_order(order_against_closed_form(*engine, scene, run.h), *declared, out) && ok;
   }
   if (run.rotates)
     ok = print_rotation(identify_rotation(scene, run), declared_info, out) && ok;

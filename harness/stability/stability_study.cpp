@@ -43,7 +43,7 @@ EngineStability study_engine(const EngineSlot& slot, const Scene& scene, const S
     return r;
   }
   study_default_step(*engine, scene, o, r);
-  r.theory_max_dt = spring_theory_max_dt(scene, r.law);
+  r.theory_max_dt = theory_max_dt(scene, r.law);
   if (o.search) {
     r.search = search_max_stable_dt(slot.make, r.scalar, scene, scene.timestep.seconds,
                                     o.search_options, o.classify);

@@ -158,14 +158,17 @@ double spring_max_stable_dt(Law law, const SpringModel& spring) {
   return lo;
 }
 
-std::optional<double> spring_theory_max_dt(const Scene& scene, Law law) {
+std::optional<double> theory_max_dt(const Scene& scene, Law law) {
   std::optional<double> edge;
+  const double k = scene.world.damping_rate;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     if (scene.bodies[i].is_static) continue;
-    if (std::optional<SpringModel> s = body_spring(scene, i)) {
-      const double h = spring_max_stable_dt(law, *s);
-      edge = edge ? std::min(*edge, h) : h;
-    }
+    std::optional<double> h;
+    if (std::optional<SpringModel> s = body_spring(scene, i))
+      h = spring_max_stable_dt(law, *s);
+    else if (law.scheme == Scheme::RK4 && k > 0.0)
+      h = kRk4DampingEdge / k;
+    if (h) edge = edge ? std::min(*edge, *h) : *h;
   }
   return edge;
 }

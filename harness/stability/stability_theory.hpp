@@ -47,8 +47,9 @@ std::optional<StepRotation> spring_step_rotation(Law law, const SpringModel& spr
 // on an undamped spring (forward Euler) is unstable at every h.
 double spring_max_stable_dt(Law law, const SpringModel& spring);
 
-// The theoretical edge of `scene` under `law`: the smallest over bodies on linear springs
-// (rest_length 0); nullopt when the scene has none (free flight is stable at every h).
-std::optional<double> spring_theory_max_dt(const Scene& scene, Law law);
+// The theoretical edge of `scene` under `law`: the smallest over its dynamic bodies of the edge of
+// each body's linear springs (rest_length 0) and, for RK4 under world damping k, of the drag alone
+// (kRk4DampingEdge/k); nullopt when nothing bounds the step (free flight under an Euler member).
+std::optional<double> theory_max_dt(const Scene& scene, Law law);
 
 }  // namespace dropcheck

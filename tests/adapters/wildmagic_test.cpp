@@ -5,16 +5,20 @@
 // tests/adapters/conformance_test.cpp.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "adapter_test_support.hpp"
+#include "harness/cli/cli.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/measure/attribution.hpp"
+#include "harness/measure/closed_form_order.hpp"
 #include "harness/measure/metrics.hpp"
 #include "harness/oracles/analytic.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
+#include "harness/stability/stability_search.hpp"
 #include "harness/stability/stability_theory.hpp"
 #include "tests/scene_texts.hpp"
 
@@ -88,7 +92,7 @@ TEST_CASE("Wild Magic evaluates a spring at its stages: stable up to w*h = 2*sqr
   // edge is 2*sqrt(2)/60 = 0.04714 s. At h = 1/25 (w*h = 2.4) it still follows its law.
   const Scene scene = scenario("extreme/stiff_spring");
   const double h = 1.0 / 25.0;
-  CHECK(spring_theory_max_dt(scene, kRungeKutta4).value() ==
+  CHECK(theory_max_dt(scene, kRungeKutta4).value() ==
         Approx(2.0 * std::sqrt(2.0) / 60.0).epsilon(1e-9));
   const Trajectory run = run_scene(*engine, scene, h);
   REQUIRE(run.status == RunStatus::ok);
@@ -112,4 +116,49 @@ TEST_CASE("Between Wild Magic and an Euler engine the cause named is the scheme"
                 true);
   CHECK(a.explained());
   CHECK(a.law_difference == "scheme");
+}
+
+TEST_CASE("identify names Wild Magic RK4 and measures order 4, an Euler engine order 1",
+          "[wildmagic][identify]") {
+  ENGINE_OR_RETURN(engine, "wildmagic");
+  const std::string scene = std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/free_fall_drag.toml";
+  std::ostringstream out, err;
+  CHECK(cli_main({"identify", scene, "--engine", "wildmagic"}, out, err) == kExitOk);
+  // Measured: residual 1.24e-14 m, runner-up before-forces at 0.0472 m; orders 4.024 4.012.
+  CHECK_THAT(out.str(), Catch::Contains("best fit: rk4"));
+  CHECK_THAT(out.str(), Catch::Contains("observed orders 4.0"));
+  CHECK_THAT(out.str(), Catch::Contains("declared rk4 is order 4: matches"));
+  std::ostringstream euler;
+  CHECK(cli_main({"identify", scene, "--engine", "ours-f64"}, euler, err) != kExitBadInput);
+  // Measured 0.971 0.986 (k*h = 0.04 at 1/30: not yet asymptotic, inside 0.9-1.1).
+  CHECK_THAT(euler.str(), Catch::Contains("declared after-forces is order 1: matches"));
+}
+
+TEST_CASE("Wild Magic on free fall without drag has no order to measure: RK4 is exact there",
+          "[wildmagic][order]") {
+  ENGINE_OR_RETURN(engine, "wildmagic");
+  const Scene scene = scenario("free_fall");
+  const ClosedFormOrder o = order_against_closed_form(*engine, scene, scene.timestep.seconds);
+  CHECK_THAT(o.unavailable, Catch::Contains("at rounding"));
+  CHECK(o.h.empty());
+  auto ours = make_engine("ours-f64");
+  const ClosedFormOrder first = order_against_closed_form(*ours, scene, scene.timestep.seconds);
+  REQUIRE(first.unavailable.empty());
+  for (double p : first.estimate.orders) CHECK(order_matches(p, 1));  // measured 1.000 1.000
+  CHECK_FALSE(order_matches(first.estimate.orders[0], 4));
+}
+
+TEST_CASE("Wild Magic's damping edge on heavy drag is RK4's k*h = 2.785, found by the search",
+          "[wildmagic][stability]") {
+  ENGINE_OR_RETURN(engine, "wildmagic");
+  // heavy_drag: k = 60 1/s; every Euler member damps at any step, RK4 only up to h = 2.785/60 =
+  // 0.0464216 s. Measured: max stable 0.04637, first unstable 0.0464328 (unbounded growth).
+  const Scene scene = scenario("extreme/heavy_drag");
+  const double theory = theory_max_dt(scene, kRungeKutta4).value();
+  CHECK(theory == Approx(kRk4DampingEdge / 60.0).epsilon(1e-12));
+  CHECK_FALSE(theory_max_dt(scene, DampingOrder::AfterForces).has_value());
+  const StepSearch s = search_max_stable_dt([] { return make_engine("wildmagic"); }, Scalar::f64,
+                                            scene, scene.timestep.seconds);
+  CHECK(std::abs(s.max_stable_dt / theory - 1.0) < 0.01);
+  CHECK(s.min_unstable_dt >= theory);
 }

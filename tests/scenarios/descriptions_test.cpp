@@ -215,7 +215,7 @@ const std::vector<Phrase>& phrases() {
          if (order == "precedes the forces") orders = {DampingOrder::BeforeForces};
          if (order == "follows the position update") orders = {DampingOrder::AfterPosition};
          for (DampingOrder o : orders) {  // without an order named, every order must agree
-           const auto edge = dropcheck::spring_theory_max_dt(s, o);
+           const auto edge = dropcheck::theory_max_dt(s, o);
            std::vector<double> values;
            if (edge) values.push_back(*edge);
            const std::string problem = agrees(m[1], values);

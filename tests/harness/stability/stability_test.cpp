@@ -106,8 +106,7 @@ TEST_CASE(
   CHECK(s.min_unstable_dt >= edge);
   REQUIRE(s.limit.has_value());
   CHECK(*s.limit == FailureMode::unbounded_growth);
-  CHECK(spring_theory_max_dt(scene, DampingOrder::AfterForces).value() ==
-        Approx(edge).epsilon(1e-12));
+  CHECK(theory_max_dt(scene, DampingOrder::AfterForces).value() == Approx(edge).epsilon(1e-12));
 }
 
 TEST_CASE(
@@ -134,7 +133,7 @@ TEST_CASE(
     }
     if (info.law.position == PositionUpdate::Explicit) {
       CHECK(std::isnan(s.max_stable_dt));
-      CHECK(spring_theory_max_dt(scene, info.law).value() == 0.0);
+      CHECK(theory_max_dt(scene, info.law).value() == 0.0);
       CHECK(s.limit == FailureMode::unbounded_growth);
       continue;
     }
@@ -198,11 +197,11 @@ TEST_CASE(
   CHECK(after_forces == Approx(0.0433238).epsilon(1e-5));
   CHECK(after_position == Approx(0.0293965).epsilon(1e-5));
   const Scene scene = spring_scene(k, 0.0);
-  CHECK(spring_theory_max_dt(scene, DampingOrder::AfterForces).value() ==
+  CHECK(theory_max_dt(scene, DampingOrder::AfterForces).value() ==
         Approx(after_forces).epsilon(1e-9));
-  CHECK(spring_theory_max_dt(scene, DampingOrder::AfterPosition).value() ==
+  CHECK(theory_max_dt(scene, DampingOrder::AfterPosition).value() ==
         Approx(after_position).epsilon(1e-9));
-  CHECK(spring_theory_max_dt(scene, DampingOrder::BeforeForces).value() ==
+  CHECK(theory_max_dt(scene, DampingOrder::BeforeForces).value() ==
         Approx(after_position).epsilon(1e-9));
 
   // Measured: ours-f64 0.0433159 (-0.02%); ode and bullet 0.0293701 (-0.09%).
