@@ -17,6 +17,7 @@ std::unique_ptr<Engine> make_box2d();      // DROPCHECK_HAVE_BOX2D
 std::unique_ptr<Engine> make_mujoco();     // DROPCHECK_HAVE_MUJOCO
 std::unique_ptr<Engine> make_chipmunk();   // DROPCHECK_HAVE_CHIPMUNK
 std::unique_ptr<Engine> make_simbody();    // DROPCHECK_HAVE_SIMBODY
+std::unique_ptr<Engine> make_dart();       // DROPCHECK_HAVE_DART
 std::unique_ptr<Engine> make_wildmagic();  // DROPCHECK_HAVE_WILDMAGIC
 
 // Bare stepping loops: `scene` loaded by the adapter at step h (untimed), then step_count(scene, h)
@@ -30,6 +31,7 @@ double bare_seconds_box2d(const Scene& scene, double h);      // DROPCHECK_HAVE_
 double bare_seconds_mujoco(const Scene& scene, double h);     // DROPCHECK_HAVE_MUJOCO
 double bare_seconds_chipmunk(const Scene& scene, double h);   // DROPCHECK_HAVE_CHIPMUNK
 double bare_seconds_simbody(const Scene& scene, double h);    // DROPCHECK_HAVE_SIMBODY
+double bare_seconds_dart(const Scene& scene, double h);       // DROPCHECK_HAVE_DART
 double bare_seconds_wildmagic(const Scene& scene, double h);  // DROPCHECK_HAVE_WILDMAGIC
 
 // The bare loop of the engine registered as `engine`; throws std::invalid_argument when it is not

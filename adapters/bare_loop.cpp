@@ -31,6 +31,9 @@ const std::pair<const char*, BareLoop> kBareLoops[] = {
 #ifdef DROPCHECK_HAVE_SIMBODY
     {"simbody", bare_seconds_simbody},
 #endif
+#ifdef DROPCHECK_HAVE_DART
+    {"dart", bare_seconds_dart},
+#endif
 #ifdef DROPCHECK_HAVE_WILDMAGIC
     {"wildmagic", bare_seconds_wildmagic},
 #endif

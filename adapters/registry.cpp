@@ -48,6 +48,11 @@ std::unique_ptr<Engine> (*const make_simbody_ptr)() = nullptr;
 #else
 std::unique_ptr<Engine> (*const make_simbody_ptr)() = make_simbody;
 #endif
+#ifndef DROPCHECK_HAVE_DART
+std::unique_ptr<Engine> (*const make_dart_ptr)() = nullptr;
+#else
+std::unique_ptr<Engine> (*const make_dart_ptr)() = make_dart;
+#endif
 #ifndef DROPCHECK_HAVE_WILDMAGIC
 std::unique_ptr<Engine> (*const make_wildmagic_ptr)() = nullptr;
 #else
@@ -63,6 +68,7 @@ const Entry kEngines[] = {
     {"mujoco", make_mujoco_ptr, "DROPCHECK_WITH_MUJOCO"},
     {"chipmunk", make_chipmunk_ptr, "DROPCHECK_WITH_CHIPMUNK"},
     {"simbody", make_simbody_ptr, "DROPCHECK_WITH_SIMBODY"},
+    {"dart", make_dart_ptr, "DROPCHECK_WITH_DART"},
     {"wildmagic", make_wildmagic_ptr, "DROPCHECK_WITH_WILDMAGIC"},
 };
 
@@ -104,7 +110,7 @@ std::string engine_unavailable_reason(const std::string& name) {
   const Entry* e = find(name);
   if (!e)
     return "unknown engine (known: ours, ours-f64, bullet, ode, box2d, mujoco, chipmunk, simbody, "
-           "wildmagic, exec:PATH, FILE.toml: docs/protocol.md)";
+           "dart, wildmagic, exec:PATH, FILE.toml: docs/protocol.md)";
   if (!e->make)
     return std::string("not compiled in (library not found; CMake option ") + e->option + ")";
   return {};

@@ -16,6 +16,7 @@ DROPCHECK_PACKAGES=(
   libbullet-dev libode-dev libbox2d-dev libmujoco-dev libqhull-dev  # the engines compared
   libchipmunk-dev                      # Chipmunk2D (2-D, double)
   libsimbody-dev                       # Simbody (multibody, semi-explicit Euler)
+  libdart-dev                          # DART 6.12 (Gazebo's fourth engine; pulls Boost and Open MPI)
   libwildmagic-dev                     # Wild Magic 5 (RigidBody, fourth-order Runge-Kutta)
   libgl-dev                            # MuJoCo's CMake package requires OpenGL to be findable
   gnuplot-nox                          # report plots (SVG)
