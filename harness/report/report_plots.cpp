@@ -3,6 +3,7 @@
 #include "harness/report/report_plots.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include "harness/report/report.hpp"
@@ -100,6 +101,37 @@ PlotSpec divergence_plot(const SceneEvaluation& se) {
   return p;
 }
 
+// Guide lines of each law order present: an order-p law's error goes as h^p and its run time as
+// 1/h, so its points lie on error ~ time^(-p), a line of slope -p here. Each guide passes through
+// the coarsest point of the first engine of that order and spans every point's time range.
+void add_order_guides(const SceneEvaluation& se, PlotSpec& p) {
+  double lo = INFINITY, hi = 0.0;
+  for (const PlotSeries& s : p.series)
+    for (double x : s.x) lo = std::min(lo, x), hi = std::max(hi, x);
+  if (!(hi > lo)) return;
+  std::set<int> drawn;
+  const std::size_t engines = p.series.size();
+  for (std::size_t e = 0, k = 0; e < se.engines.size() && k < engines; ++e) {
+    const EngineEvaluation& ev = se.engines[e];
+    if (!ev.ran()) continue;
+    const PlotSeries& s = p.series[k++];
+    const int order = order_of(ev.info.law);
+    // An engine at rounding level (RK4 is exact in free fall) shows no slope to anchor on.
+    const bool converging = s.x.size() > 1 && s.y.front() > 0.0 && s.y.back() < s.y.front() / 2;
+    if (!converging || !drawn.insert(order).second) continue;
+    PlotSeries guide;
+    guide.title = "order " + std::to_string(order) + " (slope -" + std::to_string(order) + ")";
+    for (double x : {lo, hi}) {
+      guide.x.push_back(x);
+      guide.y.push_back(s.y.front() * std::pow(x / s.x.front(), -order));
+    }
+    guide.color = kAnalyticColour;
+    guide.dash = order == 1 ? 1 : 3;
+    guide.width = 1.0;
+    p.series.push_back(std::move(guide));
+  }
+}
+
 // Error against the continuous reference vs wall time per simulated second, one point per step.
 PlotSpec work_precision_plot(const SceneEvaluation& se) {
   PlotSpec p;
@@ -123,6 +155,7 @@ PlotSpec work_precision_plot(const SceneEvaluation& se) {
     }
     p.series.push_back(std::move(s));
   }
+  add_order_guides(se, p);
   return p;
 }
 
