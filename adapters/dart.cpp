@@ -9,7 +9,8 @@
 //   damping rate k      -> setDampingCoefficient(i, d) on the FreeJoint's three translational
 //                          DOFs (3, 4, 5), d = m*(exp(k*h) - 1)/h. DART's joint damping is
 //                          implicit: the damping force -d*v (GenericJoint::updateTotalForceDynamic)
-//                          meets an articulated inertia with h*d added, so a = (F - d*v)/(m + h*d)
+//                          meets a projected articulated inertia with h*d added
+//                          (updateInvProjArtInertiaImplicitDynamic), so a = (F - d*v)/(m + h*d)
 //                          and v' = (v + h*F/m)/(1 + h*d/m) = phi*(v + h*F/m) with that d:
 //                          DampingOrder::AfterForces, MuJoCo's form. The rotational DOFs keep
 //                          DART's default damping 0.

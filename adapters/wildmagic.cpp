@@ -25,9 +25,16 @@
 //                          kind on an undamped spring. The callback has no user pointer, so it
 //                          reads the body being updated from a thread_local set around Update.
 //                          The force applies to one step (the harness's contract).
-//   inertia             -> SetBodyInertia(diag(I)): the scene's principal moments; the torque
-//                          callback returns zero (bodies do not turn: Rotation::none, a scene
-//                          that needs rotation is not run).
+//   inertia             -> SetBodyInertia(diag(I)): the scene's principal moments (double).
+//   orientation, spin   -> SetQOrientation(q), then SetAngularVelocity(w) (L = R*I*R^T*w); read
+//                          back from the body's own mQuatOrient and mAngularVelocity (=
+//                          R*I^-1*R^T*L after each step). Update never renormalises q: it is
+//                          reported as it is, and the law (kRotationRk4,
+//                          harness/core/rotation_law.hpp) keeps it so.
+//   torque, k_a         -> the torque callback returns this step's torque (world frame) minus
+//                          k_a*L: the angular drag at each stage, as the linear one. Without
+//                          torque L is constant: torque-free angular momentum is conserved by
+//                          construction.
 //   position, velocity  -> SetPosition, SetLinearVelocity (P = float(m)*v); read back from the
 //                          body's own mPosition and mLinearVelocity (= P/float(m), derived after
 //                          each step) through a subclass, without a library call per number.
@@ -64,6 +71,8 @@ Vec3 from_wm(const WmVec& v) {
 struct WmBody : Wm5::RigidBodyd {
   const WmVec& x() const { return mPosition; }
   const WmVec& v() const { return mLinearVelocity; }
+  const Wm5::Quaterniond& q() const { return mQuatOrient; }
+  const WmVec& w() const { return mAngularVelocity; }
 };
 
 // What the force callback needs of the body being updated.
@@ -72,6 +81,8 @@ struct ForceContext {
   double rate = 0.0;                   // k, 1/s
   double scale = 1.0;                  // float(m)/m
   Vec3 force = Vec3::Zero();           // this step's force from the harness (N)
+  Vec3 torque = Vec3::Zero();          // this step's torque from the harness (N m, world)
+  double angular_rate = 0.0;           // k_a, 1/s
   BodyState start;                     // the body's state at the step start
   std::vector<const Spring*> springs;  // the springs on it (stage_force)
 };
@@ -87,9 +98,11 @@ WmVec force_at_stage(double, double mass, const WmVec& x, const Wm5::Quaterniond
   return to_wm(mass * c.gravity + c.scale * f - c.rate * from_wm(momentum));
 }
 
-WmVec no_torque(double, double, const WmVec&, const Wm5::Quaterniond&, const WmVec&, const WmVec&,
-                const Wm5::Matrix3d&, const WmVec&, const WmVec&) {
-  return WmVec::ZERO;
+// Wild Magic's torque callback: dL/dt at a stage's state.
+WmVec torque_at_stage(double, double, const WmVec&, const Wm5::Quaterniond&, const WmVec&,
+                      const WmVec& momentum, const Wm5::Matrix3d&, const WmVec&, const WmVec&) {
+  const ForceContext& c = *t_current;
+  return to_wm(c.torque - c.angular_rate * from_wm(momentum));
 }
 
 class WildMagicEngine final : public Engine {
@@ -99,8 +112,9 @@ class WildMagicEngine final : public Engine {
     i.name = "wildmagic";
     i.version = DROPCHECK_WILDMAGIC_VERSION;
     i.scalar = Scalar::f64;
-    i.capabilities = {.contacts = false, .planar_only = false, .rotation = Rotation::none};
+    i.capabilities = {.contacts = false, .planar_only = false, .rotation = Rotation::full};
     i.law = kRungeKutta4;
+    i.rotation_law = kRotationRk4;
     i.damping_mapping =
         "force -k*P at each RK4 stage; per step v keeps 1 - u + u^2/2 - u^3/6 + "
         "u^4/24, u = k*h";
@@ -118,7 +132,7 @@ class WildMagicEngine final : public Engine {
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
       const Body& b = scene.bodies[i];
       if (b.is_static) {
-        statics_.push_back({i, b.position});
+        statics_.push_back({i, b.position, b.orientation});
         continue;
       }
       auto body = std::make_unique<WmBody>();
@@ -127,11 +141,15 @@ class WildMagicEngine final : public Engine {
       body->SetBodyInertia(Wm5::Matrix3d(inertia.x(), inertia.y(), inertia.z()));
       body->SetPosition(to_wm(b.position));
       body->SetLinearVelocity(to_wm(b.velocity));
+      const Quat& q = b.orientation;
+      body->SetQOrientation(Wm5::Quaterniond(q.w(), q.x(), q.y(), q.z()));
+      body->SetAngularVelocity(to_wm(b.angular_velocity));
       body->mForce = force_at_stage;
-      body->mTorque = no_torque;
+      body->mTorque = torque_at_stage;
       ForceContext c;
       c.gravity = scene.world.gravity;
       c.rate = scene.world.damping_rate;
+      c.angular_rate = scene.world.angular_damping_rate;
       c.scale = static_cast<double>(static_cast<float>(b.mass)) / b.mass;
       c.springs = springs[i];
       index_.push_back(i);
@@ -145,6 +163,10 @@ class WildMagicEngine final : public Engine {
     for (std::size_t k = 0; k < bodies_.size(); ++k) contexts_[k].force = forces[index_[k]];
   }
 
+  void set_torques(std::span<const Vec3> torques) override {
+    for (std::size_t k = 0; k < bodies_.size(); ++k) contexts_[k].torque = torques[index_[k]];
+  }
+
   void step() override {
     const double t = static_cast<double>(steps_) * h_;
     for (std::size_t k = 0; k < bodies_.size(); ++k) {
@@ -152,7 +174,8 @@ class WildMagicEngine final : public Engine {
       c.start = {from_wm(bodies_[k]->x()), from_wm(bodies_[k]->v())};
       t_current = &c;
       bodies_[k]->Update(t, h_);
-      c.force.setZero();  // this step only (Engine::set_forces)
+      c.force.setZero();  // this step only (Engine::set_forces, set_torques)
+      c.torque.setZero();
     }
     t_current = nullptr;
     ++steps_;
@@ -181,14 +204,27 @@ class WildMagicEngine final : public Engine {
     return append_states(out, total_, use, [this](auto w) { return write(w); });
   }
 
+  void read_rotation(std::span<RotationState> out) const override {
+    std::size_t k = 0, s = 0;
+    for (std::size_t i = 0; i < total_; ++i) {
+      if (s < statics_.size() && statics_[s].index == i) {
+        out[i] = {statics_[s++].orientation, Vec3::Zero()};
+        continue;
+      }
+      const Wm5::Quaterniond& q = bodies_[k]->q();
+      out[i] = {Quat(q.W(), q.X(), q.Y(), q.Z()), from_wm(bodies_[k]->w())};
+      ++k;
+    }
+  }
+
  private:
   // Puts every body's state in scene order into `w`; true when all are finite.
   template <typename Writer>
   bool write(Writer&& w) const {
     std::size_t k = 0, s = 0;
     for (std::size_t i = 0; i < total_; ++i) {
-      if (s < statics_.size() && statics_[s].first == i) {
-        const Vec3& p = statics_[s++].second;
+      if (s < statics_.size() && statics_[s].index == i) {
+        const Vec3& p = statics_[s++].position;
         w.put(p.x(), p.y(), p.z(), 0.0, 0.0, 0.0);
         continue;
       }
@@ -202,10 +238,15 @@ class WildMagicEngine final : public Engine {
   double h_ = 1.0 / 60.0;
   std::int64_t steps_ = 0;
   std::size_t total_ = 0;
-  std::vector<std::unique_ptr<WmBody>> bodies_;        // the dynamic bodies, in scene order
-  std::vector<ForceContext> contexts_;                 // one per entry of bodies_
-  std::vector<std::size_t> index_;                     // scene index of each entry of bodies_
-  std::vector<std::pair<std::size_t, Vec3>> statics_;  // scene index and position, in order
+  std::vector<std::unique_ptr<WmBody>> bodies_;  // the dynamic bodies, in scene order
+  std::vector<ForceContext> contexts_;           // one per entry of bodies_
+  std::vector<std::size_t> index_;               // scene index of each entry of bodies_
+  struct Static {
+    std::size_t index;  // in Scene::bodies
+    Vec3 position;
+    Quat orientation;
+  };
+  std::vector<Static> statics_;  // in scene order
 };
 
 }  // namespace

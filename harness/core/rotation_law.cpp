@@ -13,13 +13,28 @@ const char* gyroscopic_key(Gyroscopic g) {
       return "implicit-body";
     case Gyroscopic::linearly_implicit:
       return "linearly-implicit";
+    case Gyroscopic::momentum:
+      return "momentum";
   }
   return "?";
+}
+
+const char* orientation_key(OrientationUpdate u) {
+  switch (u) {
+    case OrientationUpdate::first_order:
+      return "/first-order";
+    case OrientationUpdate::exponential_map:
+      return "/exp-map";
+    case OrientationUpdate::rk4:
+      return "/rk4";
+  }
+  return "/?";
 }
 
 }  // namespace
 
 std::string to_string(RotationLaw law) {
+  if (law == kRotationRk4) return "RK4 on (q, L): q' = (0,w)*q/2, L' = tau - k_a*L, w = I_w^-1*L";
   std::string s;
   switch (law.gyroscopic) {
     case Gyroscopic::none:
@@ -34,14 +49,23 @@ std::string to_string(RotationLaw law) {
     case Gyroscopic::linearly_implicit:
       s = "w = (I_w - h*S(L))^-1*L";
       break;
+    case Gyroscopic::momentum:
+      s = "w = I_w^-1*L";
+      break;
   }
-  return s + (law.orientation == OrientationUpdate::first_order ? "; q = normalize(q + h/2*(0,w)*q)"
-                                                                : "; q = exp(h/2*(0,w))*q");
+  switch (law.orientation) {
+    case OrientationUpdate::first_order:
+      return s + "; q = normalize(q + h/2*(0,w)*q)";
+    case OrientationUpdate::exponential_map:
+      return s + "; q = exp(h/2*(0,w))*q";
+    case OrientationUpdate::rk4:
+      return s + "; q by RK4 stages";
+  }
+  return s;
 }
 
 std::string rotation_law_key(RotationLaw law) {
-  return std::string(gyroscopic_key(law.gyroscopic)) +
-         (law.orientation == OrientationUpdate::first_order ? "/first-order" : "/exp-map");
+  return std::string(gyroscopic_key(law.gyroscopic)) + orientation_key(law.orientation);
 }
 
 std::optional<RotationLaw> parse_rotation_law_key(std::string_view key) {

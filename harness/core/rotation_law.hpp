@@ -25,6 +25,13 @@
 // A torque-free body keeps |L| under the implicit members only to first order; the explicit one
 // gains energy, none precesses wrongly: the members differ at order h, which is what lets
 // `identify` tell them apart from a trajectory.
+//
+// The RK4 member (linear law kRungeKutta4, Wild Magic) is no G and Q pair: its state is (q, L) with
+// L the world angular momentum, and one step is the four classical stages of
+//   q' = (1/2)*(0, w)*q,  L' = tau - k_a*L,  w = R(q)*diag(I)^-1*R(q)^T*L
+// (advance_rotation_rk4 below), with R(q) the rotation matrix formula applied to q as it is: q is
+// never renormalised. Without torque L stays exactly constant (conserved by construction), and the
+// gyroscopic motion comes from w = I_w^-1*L at each stage, not from a term to approximate.
 #pragma once
 
 #include <Eigen/Dense>
@@ -42,11 +49,13 @@ enum class Gyroscopic {
   explicit_term,      // evaluated at the step start (ours, MuJoCo)
   implicit_body,      // one Newton step in body coordinates (Bullet's default flag)
   linearly_implicit,  // (I_w - h*S(L))^-1*L (ODE since 0.13, on by default)
+  momentum,           // L is the state, w = I_w^-1*L at each RK4 stage (Wild Magic)
 };
 
 enum class OrientationUpdate {
   first_order,      // normalize(q + (h/2)*(0, w)*q) (ours, ODE)
   exponential_map,  // the exact rotation by w*h (Bullet, MuJoCo, Box2D's angle += h*w)
+  rk4,              // the RK4 stages of q' = (1/2)*(0, w)*q, never renormalised (Wild Magic)
 };
 
 struct RotationLaw {
@@ -65,7 +74,10 @@ inline constexpr RotationLaw kRotationFamily[] = {
     {Gyroscopic::implicit_body, OrientationUpdate::exponential_map},
     {Gyroscopic::linearly_implicit, OrientationUpdate::first_order},
     {Gyroscopic::linearly_implicit, OrientationUpdate::exponential_map},
+    {Gyroscopic::momentum, OrientationUpdate::rk4},  // with the linear law kRungeKutta4 only
 };
+
+inline constexpr RotationLaw kRotationRk4{Gyroscopic::momentum, OrientationUpdate::rk4};
 
 // "explicit + first order" and the like, as printed by `dropcheck engines`.
 std::string to_string(RotationLaw law);
@@ -81,6 +93,7 @@ struct Spin {
   using M = Eigen::Matrix<Real, 3, 3>;
   Eigen::Quaternion<Real> q = Eigen::Quaternion<Real>::Identity();
   V w = V::Zero();  // world frame
+  V L = V::Zero();  // world angular momentum: the state of the RK4 member (unused by the others)
 };
 
 namespace rotation_detail {
@@ -102,6 +115,7 @@ Eigen::Matrix<Real, 3, 1> gyroscopic_update(Gyroscopic g, const Eigen::Matrix<Re
   const V Lb = inertia.cwiseProduct(wb);
   switch (g) {
     case Gyroscopic::none:
+    case Gyroscopic::momentum:  // the RK4 member steps in advance_rotation_rk4, never here
       return w;
     case Gyroscopic::explicit_term:
       return w - R * (h * wb.cross(Lb)).cwiseQuotient(inertia);
@@ -159,6 +173,49 @@ void advance_rotation(RotationLaw law, Law linear, Real phi_a, Real h,
   if (linear.position == PositionUpdate::SemiImplicit)
     s.q = rotation_detail::orientation_update(law.orientation, s.q, s.w, h);
   if (damping == DampingOrder::AfterPosition) s.w *= phi_a;
+}
+
+// One step of the RK4 member (the comment at the top) with angular damping rate k_a, on a body of
+// principal moments `inertia` under the world torque `torque`, in the order of Wild Magic's
+// RigidBody::Update. s.L must hold the body's angular momentum; s.w is derived from it.
+template <class Real>
+void advance_rotation_rk4(Real k_a, Real h, const Eigen::Matrix<Real, 3, 1>& inertia,
+                          const Eigen::Matrix<Real, 3, 1>& torque, Spin<Real>& s) {
+  using V = Eigen::Matrix<Real, 3, 1>;
+  using Q = Eigen::Quaternion<Real>;
+  const auto spin_of = [&](const Q& q, const V& L) -> V {
+    const Eigen::Matrix<Real, 3, 3> R = q.toRotationMatrix();  // q as it is, like Wild Magic
+    return R * (R.transpose() * L).cwiseQuotient(inertia);
+  };
+  const auto dq = [](const Q& q, const V& w) -> Eigen::Matrix<Real, 4, 1> {
+    return (Q(Real(0), w.x(), w.y(), w.z()) * q).coeffs() / Real(2);
+  };
+  const auto shifted = [](const Q& q, Real t, const Eigen::Matrix<Real, 4, 1>& d) {
+    Q out;
+    out.coeffs() = q.coeffs() + t * d;
+    return out;
+  };
+  const Real half = h / Real(2);
+  const Q q0 = s.q;
+  const V L0 = s.L;
+  const Eigen::Matrix<Real, 4, 1> a1 = dq(q0, s.w);
+  const V b1 = torque - k_a * L0;
+  const Q q2 = shifted(q0, half, a1);
+  const V L2 = L0 + half * b1;
+  const Eigen::Matrix<Real, 4, 1> a2 = dq(q2, spin_of(q2, L2));
+  const V b2 = torque - k_a * L2;
+  const Q q3 = shifted(q0, half, a2);
+  const V L3 = L0 + half * b2;
+  const Eigen::Matrix<Real, 4, 1> a3 = dq(q3, spin_of(q3, L3));
+  const V b3 = torque - k_a * L3;
+  const Q q4 = shifted(q0, h, a3);
+  const V L4 = L0 + h * b3;
+  const Eigen::Matrix<Real, 4, 1> a4 = dq(q4, spin_of(q4, L4));
+  const V b4 = torque - k_a * L4;
+  const Real sixth = h / Real(6);
+  s.q = shifted(q0, sixth, a1 + Real(2) * (a2 + a3) + a4);
+  s.L = L0 + sixth * (b1 + Real(2) * (b2 + b3) + b4);
+  s.w = spin_of(s.q, s.L);
 }
 
 }  // namespace dropcheck

@@ -6,6 +6,7 @@
 #include "harness/core/number_format.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
+#include "harness/oracles/own_rotation.hpp"
 #include "harness/stability/stability.hpp"
 #include "harness/stability/stability_theory.hpp"
 
@@ -39,9 +40,32 @@ std::int64_t first_non_finite(const Trajectory& t) {
   return -1;
 }
 
+// The RK4 member never renormalises q (rotation_law.hpp): on a spin of |w| each step scales |q| by
+// |R(i*|w|*h/2)| = sqrt(1 - x^6/72 + x^8/576), x = |w|*h/2, below 1. "" while every body's |q|
+// stays within the unit band (kUnitSlack) over the run; otherwise where the law leaves it.
+std::string rk4_orientation_limit(const Scene& scene, const Timestep& h) {
+  const std::int64_t steps = step_count(scene, h.seconds);
+  std::vector<std::int64_t> recorded(static_cast<std::size_t>(steps) + 1);
+  for (std::int64_t n = 0; n <= steps; ++n) recorded[static_cast<std::size_t>(n)] = n;
+  const std::vector<RotationState> law =
+      predict_rotation(kRotationRk4, kRungeKutta4, scene, h.seconds, recorded);
+  const std::size_t bodies = scene.bodies.size();
+  for (std::size_t i = 0; i < law.size(); ++i) {
+    const double n2 = law[i].orientation.squaredNorm();
+    if (n2 >= kUnitNorm2Min && n2 <= kUnitNorm2Max) continue;
+    return "its law (RK4 on the quaternion, never renormalised) takes |q| of '" +
+           scene.bodies[i % bodies].name + "' to " + sig(std::sqrt(n2), 6) + " at step " +
+           std::to_string(i / bodies) + " (h = " + h.text + "), out of the band 1 -+ " +
+           g(kUnitSlack) + " of a rotation";
+  }
+  return "";
+}
+
 }  // namespace
 
 std::string law_instability(const Scene& scene, Law law, const Timestep& h) {
+  if (law.scheme == Scheme::RK4 && needs_rotation(scene))
+    if (std::string limit = rk4_orientation_limit(scene, h); !limit.empty()) return limit;
   const double k = scene.world.damping_rate;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     if (scene.bodies[i].is_static) continue;

@@ -23,8 +23,9 @@ RotationIdentification identify_rotation(const Scene& scene, const Trajectory& r
   }
   const std::vector<RotationState> start(run.rotations.begin(),
                                          run.rotations.begin() + run.bodies());
+  const std::vector<Law> rk4 = {kRungeKutta4};
   for (RotationLaw law : kRotationFamily)
-    for (const Law order : orders) {
+    for (const Law order : law == kRotationRk4 ? rk4 : orders) {
       const RotationResidual r = rotation_residual(
           run, predict_rotation_from(law, order, scene, run.h, run.recorded, start));
       id.fits.push_back({law, order, r.angle, r.w});

@@ -26,15 +26,25 @@ std::vector<RotationState> iterate(RotationLaw law, Law linear, const Scene& sce
   for (std::size_t b = 0; b < bodies; ++b) {
     spins[b].q = q0[b].cast<LD>();
     spins[b].w = w0[b];
+    const Eigen::Matrix<LD, 3, 3> R = spins[b].q.toRotationMatrix();
+    const VL I = inertia_of(scene.bodies[b]).cast<LD>();
+    spins[b].L = R * I.cwiseProduct(R.transpose() * w0[b]);  // the RK4 member's state
   }
-  const LD phi = std::exp(-static_cast<LD>(scene.world.angular_damping_rate) * LD(h));
+  const LD rate = static_cast<LD>(scene.world.angular_damping_rate);
+  const LD phi = std::exp(-rate * LD(h));
+  const bool rk4 = linear.scheme == Scheme::RK4;
   std::vector<RotationState> out;
   out.reserve(recorded.size() * bodies);
   std::int64_t step = 0;
   for (const std::int64_t until : recorded) {
     for (; step < until; ++step)
       for (std::size_t b = 0; b < bodies; ++b)
-        if (!scene.bodies[b].is_static)
+        if (scene.bodies[b].is_static)
+          continue;
+        else if (rk4)  // RK4 has one rotational member (rotation_law.hpp)
+          advance_rotation_rk4<LD>(rate, LD(h), inertia_of(scene.bodies[b]).cast<LD>(),
+                                   torques[b].cast<LD>(), spins[b]);
+        else
           advance_rotation<LD>(law, linear, phi, LD(h), inertia_of(scene.bodies[b]).cast<LD>(),
                                torques[b].cast<LD>(), spins[b]);
     for (const Spin<LD>& s : spins) out.push_back(to_state(s));

@@ -14,10 +14,13 @@
 #include "harness/core/runner.hpp"
 #include "harness/measure/attribution.hpp"
 #include "harness/measure/closed_form_order.hpp"
+#include "harness/measure/law_stability.hpp"
 #include "harness/measure/metrics.hpp"
+#include "harness/measure/rotation_metrics.hpp"
 #include "harness/oracles/analytic.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
+#include "harness/oracles/own_rotation.hpp"
 #include "harness/stability/stability_search.hpp"
 #include "harness/stability/stability_theory.hpp"
 #include "tests/scene_texts.hpp"
@@ -161,4 +164,45 @@ TEST_CASE("Wild Magic's damping edge on heavy drag is RK4's k*h = 2.785, found b
                                             scene, scene.timestep.seconds);
   CHECK(std::abs(s.max_stable_dt / theory - 1.0) < 0.01);
   CHECK(s.min_unstable_dt >= theory);
+}
+
+TEST_CASE("Wild Magic turns by RK4 on (q, L): its law on Gazebo's tumble, momentum kept",
+          "[wildmagic][rotation]") {
+  ENGINE_OR_RETURN(engine, "wildmagic");
+  const Scene scene = scenario("gazebo_boxes_complex");
+  const double h = 1e-3;  // Gazebo's step
+  const Trajectory run = run_scene(*engine, scene, h);
+  REQUIRE(run.status == RunStatus::ok);
+  REQUIRE(run.rotates);
+  CHECK(engine->info().rotation_law == kRotationRk4);
+  const RotationResidual r =
+      rotation_residual(run, predict_rotation(kRotationRk4, kRungeKutta4, scene, h, run.recorded));
+  CHECK(r.angle < 1e-8);  // measured 2.51e-10 rad over the 10 s tumble (amplification 860)
+  CHECK(r.w < 1e-8);      // measured 7.2e-10 rad/s
+  // Torque-free, L is the state and never changes inside Wild Magic. Gazebo's table measures max
+  // |dL|/|L0|, 0.0064 for its Simbody (tests/adapters/simbody_test.cpp); recomputed here from the
+  // reported (q, w) it is 8 orders of magnitude smaller.
+  const Vec3 I = inertia_of(scene.bodies[0]);
+  std::vector<Vec3> L;
+  for (std::size_t s = 0; s < run.samples(); ++s) {
+    const RotationState& t = run.rotation_at(s, 0);
+    L.push_back(world_momentum(t.orientation.normalized(), t.angular_velocity, I));
+  }
+  CHECK(momentum_drift(L) < 1e-9);  // measured 5.2e-11, read through the normalised q
+}
+
+TEST_CASE("Wild Magic's law lets |q| leave 1 on a fast spin: a limit its law predicts",
+          "[wildmagic][rotation][stability]") {
+  ENGINE_OR_RETURN(engine, "wildmagic");
+  // RK4 scales |q| by |R(i*x)| = sqrt(1 - x^6/72 + x^8/576) per step, x = |w|*h/2, and Update never
+  // renormalises: at h = 1/30 fast_spin's |q| is 0.993905 after one step (the run stops there, no
+  // rotation any more); the law names the same step and norm.
+  const Scene scene = scenario("extreme/fast_spin");
+  const Timestep h{1.0 / 30.0, "1/30"};
+  const std::string why = law_instability(scene, kRungeKutta4, h);
+  CHECK_THAT(why, Catch::Contains("to 0.993905 at step 1"));
+  const Trajectory run = run_scene(*engine, scene, h.seconds);
+  CHECK(run.status == RunStatus::non_finite);
+  CHECK(run.failed_step == 1);
+  CHECK_THAT(run.failure, Catch::Contains("norm 0.993905"));
 }
