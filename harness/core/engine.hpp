@@ -31,6 +31,8 @@ struct Capabilities {
   bool contacts = false;     // can collide boxes with a static floor
   bool planar_only = false;  // 2-D engine: runs x-y plane scenes only
   Rotation rotation = Rotation::none;
+  bool materials = false;  // maps a body's friction and restitution (docs/contact.md)
+  bool spheres = false;    // collides spheres as well as boxes
 };
 
 // "free flight, contacts, 3-D rotation", "free flight, 2-D (x-y plane), turns about z", ...: what

@@ -22,8 +22,26 @@ Vec3 box_inertia(double mass, const Vec3& h) {
   return mass / 3.0 * Vec3(sq.y() + sq.z(), sq.z() + sq.x(), sq.x() + sq.y());
 }
 
+Vec3 sphere_inertia(double mass, double radius) {
+  return Vec3::Constant(0.4 * mass * radius * radius);
+}
+
 Vec3 inertia_of(const Body& b) {
-  return (b.inertia.array() > 0.0).all() ? b.inertia : box_inertia(b.mass, b.half_extents);
+  if ((b.inertia.array() > 0.0).all()) return b.inertia;
+  return b.shape == Shape::sphere ? sphere_inertia(b.mass, b.radius)
+                                  : box_inertia(b.mass, b.half_extents);
+}
+
+bool has_materials(const Scene& scene) {
+  for (const Body& b : scene.bodies)
+    if (b.friction || b.restitution) return true;
+  return false;
+}
+
+bool has_spheres(const Scene& scene) {
+  for (const Body& b : scene.bodies)
+    if (b.shape == Shape::sphere) return true;
+  return false;
 }
 
 bool needs_rotation(const Scene& scene) {

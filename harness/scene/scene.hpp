@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -20,8 +21,13 @@ struct Timestep {
   std::string text = "1/60";
 };
 
+// A body's collision shape. A sphere's half_extents are (r, r, r): its bounding box.
+enum class Shape { box, sphere };
+
 struct Body {
   std::string name;
+  Shape shape = Shape::box;
+  double radius = 0.0;               // m, a sphere's (> 0); 0 for a box
   Vec3 half_extents{0.5, 0.5, 0.5};  // m
   double mass = 1.0;                 // kg, > 0
   Vec3 position = Vec3::Zero();      // m, centre of the box
@@ -33,14 +39,23 @@ struct Body {
   Vec3 angular_velocity = Vec3::Zero();  // rad/s, world frame
   Vec3 inertia = Vec3::Zero();  // principal moments in the body frame, kg m^2 (the loader sets
                                 // them: given, or a uniform box); zero: a uniform box (inertia_of)
+  // Contact material (docs/contact.md). Unset: each engine keeps the contact settings its adapter
+  // documents (EngineInfo::contact_settings); set: an engine runs the scene only if its adapter
+  // maps them (Capabilities::materials), so that the pair's effective value under the engine's
+  // combine rule is the scene's.
+  std::optional<double> friction = std::nullopt;     // Coulomb coefficient mu, >= 0
+  std::optional<double> restitution = std::nullopt;  // coefficient e in [0, 1]
 };
 
 // The principal moments of a uniform box of mass m and half extents h: m/3*(hy^2 + hz^2) about x
 // and cyclic (m/12*(b^2 + c^2) with full sides b = 2*hy, c = 2*hz).
 Vec3 box_inertia(double mass, const Vec3& half_extents);
 
-// The body's principal moments: `inertia` when set (every moment > 0), else a uniform box's (a body
-// built in code without them). What every adapter and oracle uses.
+// The principal moments of a uniform sphere: 2/5*m*r^2 about every axis.
+Vec3 sphere_inertia(double mass, double radius);
+
+// The body's principal moments: `inertia` when set (every moment > 0), else its uniform shape's (a
+// body built in code without them). What every adapter and oracle uses.
 Vec3 inertia_of(const Body& b);
 
 // F = constant (N), every step.
@@ -119,6 +134,12 @@ bool is_planar(const Scene& scene);
 // True when some body starts turned or turning, or a torque acts: then the scene's outcome depends
 // on rotation, and an engine that does not rotate bodies cannot run it.
 bool needs_rotation(const Scene& scene);
+
+// True when some body sets a contact material (friction or restitution).
+bool has_materials(const Scene& scene);
+
+// True when some body is a sphere.
+bool has_spheres(const Scene& scene);
 
 // True when every rotation of the scene is about z: orientations about z, angular velocities and
 // torques along z (what a 2-D engine can turn).

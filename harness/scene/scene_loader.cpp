@@ -243,7 +243,8 @@ void load_rotation(const Reader& r, Body& b) {
     b.orientation.normalize();
   }
   b.angular_velocity = r.vec3("angular_velocity", Vec3::Zero());
-  b.inertia = box_inertia(b.mass, b.half_extents);
+  b.inertia = b.shape == Shape::sphere ? sphere_inertia(b.mass, b.radius)
+                                       : box_inertia(b.mass, b.half_extents);
   if (r.has("inertia")) {
     b.inertia = r.vec3("inertia", b.inertia);
     if (!(b.inertia.array() > 0.0).all())
@@ -259,18 +260,51 @@ void load_rotation(const Reader& r, Body& b) {
   }
 }
 
+// shape = "box" (default: half_extents) or "sphere" (radius, required; no half_extents).
+void load_shape(const Reader& r, Body& b) {
+  const std::string shape = r.string("shape", "box");
+  if (shape != "box" && shape != "sphere")
+    r.fail("shape", "expected \"box\" or \"sphere\", got " + excerpt(shape));
+  if (shape == "box") {
+    if (r.has("radius"))
+      r.fail("radius", "a box has half_extents; radius is for shape = \"sphere\"");
+    b.half_extents = r.vec3("half_extents", b.half_extents);
+    if (!(b.half_extents.array() > 0.0).all())
+      r.fail("half_extents", "every half extent must be > 0 m");
+    return;
+  }
+  if (r.has("half_extents"))
+    r.fail("half_extents", "a sphere has a radius; half_extents are for shape = \"box\"");
+  b.shape = Shape::sphere;
+  b.radius = r.required_number("radius");
+  check_range(r, "radius", b.radius > 0.0, "must be > 0 m");
+  b.half_extents = Vec3::Constant(b.radius);
+}
+
+// friction = mu (>= 0) and restitution = e (0..1): the body's contact material (docs/contact.md).
+void load_material(const Reader& r, Body& b) {
+  if (r.has("friction")) {
+    b.friction = r.number("friction", 0.0);
+    check_range(r, "friction", *b.friction >= 0.0, "must be >= 0 (a Coulomb coefficient)");
+  }
+  if (r.has("restitution")) {
+    b.restitution = r.number("restitution", 0.0);
+    check_range(r, "restitution", *b.restitution >= 0.0 && *b.restitution <= 1.0,
+                "must be in [0, 1]");
+  }
+}
+
 void load_body(const Reader& r, Scene& s) {
-  r.only({"name", "half_extents", "mass", "position", "velocity", "static", "orientation",
-          "angular_velocity", "inertia"});
+  r.only({"name", "shape", "radius", "half_extents", "mass", "position", "velocity", "static",
+          "orientation", "angular_velocity", "inertia", "friction", "restitution"});
   Body b;
   if (!r.has("name")) r.fail("name", "required key is missing");
   b.name = r.name("name", "");
   if (b.name.empty()) r.fail("name", "must not be empty");
   for (const Body& other : s.bodies)
     if (other.name == b.name) r.fail("name", "duplicate body name \"" + b.name + "\"");
-  b.half_extents = r.vec3("half_extents", b.half_extents);
-  if (!(b.half_extents.array() > 0.0).all())
-    r.fail("half_extents", "every half extent must be > 0 m");
+  load_shape(r, b);
+  load_material(r, b);
   b.mass = r.number("mass", b.mass);
   check_range(r, "mass", b.mass > 0.0, "must be > 0 kg");
   b.position = r.vec3("position", Vec3::Zero(), true);

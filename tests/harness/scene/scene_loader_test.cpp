@@ -388,3 +388,50 @@ TEST_CASE("a static body may not turn, and a published member must fit the scene
                     "max_momentum_drift = 0.01\nlaw = \"explicit/first-order\"\nlaw_dt = 1e-12\n"),
               "published[0].law_dt", "leave at most 1e7 steps");
 }
+
+TEST_CASE("contact keys: a sphere with its radius, friction and restitution load and are kept",
+          "[loader][contact]") {
+  const dropcheck::Scene plain = dropcheck::parse_scene(scene(kHead, kWorld, kBody), "x.toml");
+  CHECK(plain.bodies[0].shape == dropcheck::Shape::box);
+  CHECK_FALSE(plain.bodies[0].friction.has_value());
+  CHECK_FALSE(plain.bodies[0].restitution.has_value());
+  CHECK_FALSE(dropcheck::has_materials(plain));
+  CHECK_FALSE(dropcheck::has_spheres(plain));
+
+  const dropcheck::Scene ball = dropcheck::parse_scene(
+      scene(kHead, kWorld,
+            kBody + "shape = \"sphere\"\nradius = 0.25\nmass = 2.0\nfriction = 0.5\n"
+                    "restitution = 0.9\n"),
+      "x.toml");
+  const dropcheck::Body& b = ball.bodies[0];
+  CHECK(b.shape == dropcheck::Shape::sphere);
+  CHECK(b.radius == 0.25);
+  CHECK(b.half_extents == dropcheck::Vec3::Constant(0.25));  // its bounding box
+  CHECK(b.inertia.isApprox(dropcheck::Vec3::Constant(0.4 * 2.0 * 0.0625), 1e-15));  // 2/5*m*r^2
+  CHECK(*b.friction == 0.5);
+  CHECK(*b.restitution == 0.9);
+  CHECK(dropcheck::has_materials(ball));
+  CHECK(dropcheck::has_spheres(ball));
+}
+
+TEST_CASE("contact keys out of range or mixed between shapes are refused naming the key",
+          "[loader][contact]") {
+  check_error(scene(kHead, kWorld, kBody + "shape = \"cone\"\n"), "body[0].shape",
+              "expected \"box\" or \"sphere\", got 'cone'");
+  check_error(scene(kHead, kWorld, kBody + "shape = \"sphere\"\n"), "body[0].radius",
+              "required key is missing");
+  check_error(scene(kHead, kWorld, kBody + "shape = \"sphere\"\nradius = 0.0\n"), "body[0].radius",
+              "must be > 0 m");
+  check_error(scene(kHead, kWorld,
+                    kBody + "shape = \"sphere\"\nradius = 1.0\n"
+                            "half_extents = [1.0, 1.0, 1.0]\n"),
+              "body[0].half_extents", "a sphere has a radius");
+  check_error(scene(kHead, kWorld, kBody + "radius = 1.0\n"), "body[0].radius",
+              "a box has half_extents");
+  check_error(scene(kHead, kWorld, kBody + "friction = -0.1\n"), "body[0].friction",
+              "must be >= 0");
+  check_error(scene(kHead, kWorld, kBody + "restitution = 1.5\n"), "body[0].restitution",
+              "must be in [0, 1]");
+  check_error(scene(kHead, kWorld, kBody + "friction = \"high\"\n"), "body[0].friction",
+              "expected a number, got a string");
+}

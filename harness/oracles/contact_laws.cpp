@@ -1,0 +1,104 @@
+#include "harness/oracles/contact_laws.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace dropcheck {
+namespace {
+
+// One axis of the discrete clamp law: v <- max(v - a*h, 0), x += h*v from v0. The velocity is 0
+// after step N = ceil(v0/(a*h)); the distance is h*sum_{n=1}^{N} (v0 - n*a*h), the last term
+// clamped at 0: h*((N - 1)*v0 - a*h*(N - 1)*N/2).
+struct AxisStop {
+  std::int64_t steps = 0;
+  double distance = 0.0;
+};
+
+AxisStop clamp_axis(double v0, double a, double h) {
+  if (v0 <= 0.0) return {};
+  const double dv = a * h;
+  const auto n = static_cast<std::int64_t>(std::ceil(v0 / dv));
+  const double moving = static_cast<double>(n - 1);  // steps that end with v > 0
+  return {n, h * (moving * v0 - dv * moving * (moving + 1.0) / 2.0)};
+}
+
+}  // namespace
+
+const char* to_string(FrictionModel model) {
+  switch (model) {
+    case FrictionModel::cone:
+      return "cone";
+    case FrictionModel::box_pyramid:
+      return "box pyramid";
+    case FrictionModel::sum_pyramid:
+      return "sum pyramid";
+  }
+  return "?";
+}
+
+SlideStop slide_to_stop(double v0, double mu, double g, double h, FrictionModel model,
+                        double angle) {
+  if (!(v0 >= 0.0 && mu > 0.0 && g > 0.0 && h > 0.0))
+    throw std::invalid_argument("slide_to_stop: needs v0 >= 0, mu > 0, g > 0, h > 0");
+  const double diagonal = std::numbers::pi / 4.0;
+  const bool along_axis = angle == 0.0, at_diagonal = std::abs(angle - diagonal) < 1e-12;
+  if (model != FrictionModel::cone && !along_axis && !at_diagonal)
+    throw std::invalid_argument("slide_to_stop: a pyramid is exact at angles 0 and pi/4 only");
+  // Per-axis deceleration: the cone and every model along an axis decelerate the slip by mu*g.
+  // At pi/4 each axis slides at v0/sqrt(2); the box pyramid stops each at mu*g (sqrt(2)*mu*g
+  // along the slip), the sum pyramid shares mu*N between them (mu*g/2 each, mu*g/sqrt(2)).
+  double axis_v = v0, axis_a = mu * g;
+  int axes = 1;
+  if (model != FrictionModel::cone && at_diagonal) {
+    axis_v = v0 / std::sqrt(2.0);
+    axis_a = model == FrictionModel::box_pyramid ? mu * g : mu * g / 2.0;
+    axes = 2;
+  }
+  SlideStop s;
+  s.deceleration = axes == 2 ? std::sqrt(2.0) * axis_a : axis_a;
+  s.stop_time = v0 / s.deceleration;
+  s.distance = v0 * v0 / (2.0 * s.deceleration);
+  const AxisStop a = clamp_axis(axis_v, axis_a, h);
+  s.stop_step = a.steps;
+  s.step_distance = axes == 2 ? std::sqrt(2.0) * a.distance : a.distance;
+  return s;
+}
+
+Bounce bounce(double h0, double e, double g, double h, int bounces) {
+  if (!(h0 > 0.0 && g > 0.0 && h > 0.0 && e >= 0.0 && e <= 1.0))
+    throw std::invalid_argument("bounce: needs h0 > 0, g > 0, h > 0, 0 <= e <= 1");
+  Bounce b;
+  b.impact_speed = std::sqrt(2.0 * g * h0);
+  const double fall = std::sqrt(2.0 * h0 / g);
+  for (int n = 1; n <= bounces; ++n) {
+    b.apexes.push_back(std::pow(e, 2 * n) * h0);
+    b.flights.push_back(2.0 * std::pow(e, n) * fall);
+  }
+  b.time_to_rest = e < 1.0 ? fall * (1.0 + e) / (1.0 - e) : INFINITY;
+  // Semi-implicit fall: after n steps the drop is g*h^2*n*(n + 1)/2; contact at the first n where
+  // that reaches h0.
+  double gap = h0, v = 0.0;
+  std::int64_t n = 0;
+  while (true) {
+    ++n;
+    v -= g * h;
+    if (gap + h * v <= 0.0) break;
+    gap += h * v;
+  }
+  b.contact_step = n;
+  b.step_speed_in = -v;
+  b.step_speed_out = e * b.step_speed_in;
+  // From the floor at e*v_in: x += h*v after v -= g*h, while the sphere rises.
+  double x = 0.0;
+  v = b.step_speed_out;
+  while (true) {
+    v -= g * h;
+    if (v <= 0.0) break;
+    x += h * v;
+  }
+  b.step_apex = x;
+  return b;
+}
+
+}  // namespace dropcheck

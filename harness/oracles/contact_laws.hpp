@@ -1,0 +1,62 @@
+// Contact with exact answers: a box sliding to a stop on a floor and a sphere bouncing on it, each
+// as the continuous closed form and as the ideal discrete contact law whose stop step or contact
+// step is an integer a check can predict (docs/contact.md). The engines' own deviations (a
+// friction pyramid, a soft contact, error reduction added to a rebound) are named against these.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace dropcheck {
+
+// How a solver bounds the friction force f of one contact with normal force N.
+enum class FrictionModel {
+  cone,         // |f| <= mu*N: friction opposes the slip, whatever its direction
+  box_pyramid,  // |f_1| <= mu*N and |f_2| <= mu*N on two fixed tangent axes, independently
+  sum_pyramid,  // |f_1| + |f_2| <= mu*N: the pyramid whose edges are n +- mu*t_i
+};
+
+// "cone", "box pyramid", "sum pyramid".
+const char* to_string(FrictionModel model);
+
+// A slide to a stop on a level floor under gravity g, friction mu, from speed v0 along a direction
+// at `angle` (rad) from the first tangent axis; only angle 0 and pi/4 are exact for the pyramids
+// (at 0 every model is the cone; at pi/4 each axis carries half the slip).
+struct SlideStop {
+  // Continuous: the deceleration is constant while the body slides.
+  double deceleration = 0.0;  // m/s^2 along the slip: mu*g (cone), sqrt(2)*mu*g or mu*g/sqrt(2)
+  double stop_time = 0.0;     // s: v0 / deceleration
+  double distance = 0.0;      // m: v0^2 / (2*deceleration)
+  // The ideal discrete law at step h: per axis v <- max(v - a_i*h, 0), then x += h*v
+  // (semi-implicit Euler with the friction impulse clamped at the velocity it cancels).
+  std::int64_t stop_step = 0;  // the first step after which the velocity is 0
+  double step_distance = 0.0;  // m: the distance travelled by then
+};
+
+// Throws std::invalid_argument for v0 < 0, mu <= 0, g <= 0, h <= 0, or a pyramid at an angle other
+// than 0 and pi/4.
+SlideStop slide_to_stop(double v0, double mu, double g, double h, FrictionModel model,
+                        double angle);
+
+// A sphere dropped from rest with its lowest point h0 above a level floor, restitution e.
+struct Bounce {
+  // Continuous: each impact returns e times the impact speed.
+  double impact_speed = 0.0;    // m/s: sqrt(2*g*h0)
+  std::vector<double> apexes;   // m above the floor after bounce n = 1, 2, ...: e^(2n)*h0
+  std::vector<double> flights;  // s, the flight after bounce n: 2*e^n*sqrt(2*h0/g)
+  double time_to_rest = 0.0;    // s: sqrt(2*h0/g)*(1 + e)/(1 - e) (infinite for e = 1)
+  // The ideal discrete law at step h: semi-implicit free fall until the step whose position update
+  // would take the sphere through the floor; there its velocity (after gravity) v_in becomes
+  // -e*v_in and it is placed on the floor; then free flight again.
+  std::int64_t contact_step = 0;  // the step of the first impact
+  double step_speed_in = 0.0;     // m/s: g*h*contact_step
+  double step_speed_out = 0.0;    // m/s: e*step_speed_in
+  double step_apex = 0.0;         // m above the floor: the highest position after that impact
+};
+
+// `bounces` continuous apexes and flights. Throws std::invalid_argument for h0 <= 0, g <= 0,
+// h <= 0, or e outside [0, 1].
+Bounce bounce(double h0, double e, double g, double h, int bounces = 3);
+
+}  // namespace dropcheck

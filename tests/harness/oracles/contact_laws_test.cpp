@@ -1,0 +1,86 @@
+// Tests harness/oracles/contact_laws.cpp against the closed forms and the figures the Contact issue
+// states (each recomputed independently: docs/contact.md gives the arithmetic).
+#include "harness/oracles/contact_laws.hpp"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+using dropcheck::bounce;
+using dropcheck::FrictionModel;
+using dropcheck::slide_to_stop;
+
+namespace {
+constexpr double kG = 9.8, kH = 1.0 / 60.0, kDiagonal = std::numbers::pi / 4.0;
+}
+
+TEST_CASE("slide to stop: a unit cube at 5 m/s with mu = 0.5 stops after 2.5510 m in 1.0204 s",
+          "[contact][reference]") {
+  const auto s = slide_to_stop(5.0, 0.5, kG, kH, FrictionModel::cone, 0.0);
+  CHECK(s.deceleration == Approx(4.9).epsilon(1e-15));
+  CHECK(s.stop_time == Approx(5.0 / 4.9).epsilon(1e-15));  // 1.0204 s
+  CHECK(s.distance == Approx(25.0 / 9.8).epsilon(1e-15));  // 2.5510 m
+  // The clamp v <- max(v - mu*g*h, 0): 61 steps leave 0.0183 m/s, the 62nd stops it; the body
+  // moved h*(61*5 - 0.081667*61*62/2) = 2.509472 m.
+  CHECK(s.stop_step == 62);
+  CHECK(s.step_distance == Approx(2.509472222222222).epsilon(1e-12));
+}
+
+TEST_CASE(
+    "slide at 45 degrees: the cone as straight, the box pyramid sqrt(2) shorter, the sum "
+    "pyramid sqrt(2) longer",
+    "[contact][reference]") {
+  const auto cone = slide_to_stop(5.0, 0.5, kG, kH, FrictionModel::cone, kDiagonal);
+  const auto box = slide_to_stop(5.0, 0.5, kG, kH, FrictionModel::box_pyramid, kDiagonal);
+  const auto sum = slide_to_stop(5.0, 0.5, kG, kH, FrictionModel::sum_pyramid, kDiagonal);
+  CHECK(cone.stop_step == 62);
+  CHECK(cone.step_distance == Approx(2.509472222222222).epsilon(1e-12));
+  CHECK(box.stop_step == 44);
+  CHECK(box.step_distance == Approx(1.7623762369377096).epsilon(1e-12));
+  CHECK(sum.stop_step == 87);
+  CHECK(sum.step_distance == Approx(3.5661378624298647).epsilon(1e-12));
+  // Continuous: the ratios identify the model (1, 1/sqrt(2), sqrt(2)).
+  CHECK(box.distance / cone.distance == Approx(1.0 / std::sqrt(2.0)).epsilon(1e-14));
+  CHECK(sum.distance / cone.distance == Approx(std::sqrt(2.0)).epsilon(1e-14));
+  // Along an axis every model is the cone.
+  const auto along = slide_to_stop(5.0, 0.5, kG, kH, FrictionModel::sum_pyramid, 0.0);
+  CHECK(along.stop_step == 62);
+  CHECK_THROWS_AS(slide_to_stop(5.0, 0.5, kG, kH, FrictionModel::box_pyramid, 0.3),
+                  std::invalid_argument);
+  CHECK_THROWS_AS(slide_to_stop(5.0, 0.0, kG, kH, FrictionModel::cone, 0.0), std::invalid_argument);
+}
+
+TEST_CASE("bounce: apexes e^(2n)*h0, flights 2*e^n*sqrt(2*h0/g), rest after 1.3553 s at e = 0.5",
+          "[contact][reference]") {
+  for (const double e : {0.1, 0.5, 0.9}) {
+    const auto b = bounce(1.0, e, kG, kH);
+    INFO("e = " << e);
+    REQUIRE(b.apexes.size() == 3);
+    for (int n = 1; n <= 3; ++n) {
+      CHECK(b.apexes[n - 1] == Approx(std::pow(e, 2 * n)).epsilon(1e-14));
+      CHECK(b.flights[n - 1] == Approx(2.0 * std::pow(e, n) * std::sqrt(2.0 / kG)).epsilon(1e-14));
+    }
+    // Energy never rises: each apex is below the last.
+    CHECK(b.apexes[1] < b.apexes[0]);
+    CHECK(b.time_to_rest == Approx(std::sqrt(2.0 / kG) * (1 + e) / (1 - e)).epsilon(1e-14));
+  }
+  CHECK(bounce(1.0, 0.5, kG, kH).time_to_rest == Approx(1.3552618543578767).epsilon(1e-14));
+  CHECK(std::isinf(bounce(1.0, 1.0, kG, kH).time_to_rest));
+  CHECK_THROWS_AS(bounce(1.0, 1.5, kG, kH), std::invalid_argument);
+}
+
+TEST_CASE(
+    "bounce, discrete: a sphere falling 1 m at h = 1/60 hits at step 27 at 4.41 m/s and "
+    "leaves at 2.205 m/s",
+    "[contact][reference]") {
+  const auto b = bounce(1.0, 0.5, kG, kH);
+  // After n steps the drop is g*h^2*n*(n + 1)/2: 0.9556 m at 26, 1.029 m at 27.
+  CHECK(b.contact_step == 27);
+  CHECK(b.step_speed_in == Approx(4.41).epsilon(1e-14));
+  CHECK(b.step_speed_out == Approx(2.205).epsilon(1e-14));
+  // From the floor at 2.205 m/s the semi-implicit climb lasts 13 steps:
+  // h*(13*2.205 - g*h*91) = 0.230028 m (the continuous 2.205^2/(2*g) is 0.248).
+  CHECK(b.step_apex == Approx((13 * 2.205 - kG * kH * 91) * kH).epsilon(1e-12));
+  CHECK(b.step_apex == Approx(0.2300277777777777).epsilon(1e-12));
+}
