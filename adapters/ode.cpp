@@ -38,7 +38,12 @@
 //   true  -> a dSimpleSpace with a dCreateBox geom per body; the near callback asks dCollide for up
 //            to 8 contacts per pair (a box face needs >= 4) and makes a contact joint for each with
 //            dContact zeroed, mode dContactApprox1 (mu is a coefficient, not a force bound),
-//            mu = 0.5 for every pair (no mixing: the callback sets the pair's value), bounce 0.
+//            mu = 0.5 for every pair (no mixing: the callback sets the pair's value), bounce 0;
+//            a scene's friction (one per scene, docs/contact.md) replaces mu. Friction
+//            directions: ODE's own (dPlaneSpace of the normal: x and z on a y-up floor), each
+//            bounded by mu*N alone with dContactApprox1: the box pyramid
+//            (FrictionModel::box_pyramid; slide_diagonal stops at step 44). Restitution is not
+//            mapped yet (no bounce is judged yet): a scene that sets it is not run.
 //            World ERP 0.2 and CFM 1e-10 (ODE's double defaults), surface layer 0.
 //            dWorldSetContactMaxCorrectingVel 0.3 m/s: ODE pushes a penetrating body out with the
 //            velocity ERP*depth/h, capped by this value, and that velocity stays in the body.
@@ -148,6 +153,7 @@ struct OdeWorld {
   dJointGroupID contacts = nullptr;    // contacts only
   std::vector<dBodyID> bodies;         // indexed like Scene::bodies; nullptr when static
   std::vector<Vec3> static_positions;  // indexed like Scene::bodies
+  dReal friction = kFriction;          // mu of every contact
   std::exception_ptr callback_error;   // thrown in the near callback, rethrown after collide
   bool poisoned = false;
 
@@ -168,7 +174,7 @@ void make_contacts(OdeWorld& w, dGeomID a, dGeomID b) {
   const int n = dCollide(a, b, kMaxContacts, &c[0].geom, sizeof(dContact));
   for (int i = 0; i < n; ++i) {
     c[i].surface.mode = dContactApprox1;
-    c[i].surface.mu = kFriction;
+    c[i].surface.mu = w.friction;
     c[i].surface.bounce = 0;
     dJointAttach(dJointCreateContact(w.world, w.contacts, &c[i]), ba, bb);
   }
@@ -196,8 +202,10 @@ class OdeEngine final : public Engine {
 #else
     i.scalar = Scalar::f32;
 #endif
-    i.capabilities = {.contacts = true, .planar_only = false, .rotation = Rotation::full};
+    i.capabilities = {
+        .contacts = true, .planar_only = false, .rotation = Rotation::full, .friction = true};
     i.law = DampingOrder::AfterPosition;
+    i.friction_model = FrictionModel::box_pyramid;
     i.rotation_law = {Gyroscopic::linearly_implicit, OrientationUpdate::first_order};
     i.damping_mapping =
         "dBodySetLinearDamping(s = 1 - exp(-k*h)), dBodySetAngularDamping(1 - exp(-k_a*h)), "
@@ -322,6 +330,7 @@ class OdeEngine final : public Engine {
     w_->contacts = dJointGroupCreate(0);
     dWorldSetContactSurfaceLayer(w_->world, 0);
     dWorldSetContactMaxCorrectingVel(w_->world, kMaxCorrectingVel);
+    if (const Material m = scene_material(scene); m.friction) w_->friction = *m.friction;
   }
 
   // A box geom of the body's size in the space, attached to `body` (nullptr: static).

@@ -16,8 +16,10 @@ std::string Engine::cannot_run(const Scene& scene) const {
   if (caps.planar_only && !is_planar(scene)) return "not planar";
   if (has_spheres(scene) && !caps.spheres)
     return "spheres: this engine's adapter builds boxes only";
-  if (has_materials(scene) && !caps.materials)
-    return "materials: this engine's adapter does not map friction and restitution";
+  const Material m = scene_material(scene);
+  if (m.friction && !caps.friction) return "friction: this engine's adapter does not map it";
+  if (m.restitution && !caps.restitution)
+    return "restitution: this engine's adapter does not map it";
   if (!needs_rotation(scene)) return {};
   if (caps.rotation == Rotation::none)
     return "rotation: this engine's adapter does not rotate bodies";
@@ -35,7 +37,8 @@ std::string to_string(const Capabilities& c) {
   if (c.planar_only) out += ", 2-D (x-y plane)";
   if (c.rotation == Rotation::full) out += ", 3-D rotation";
   if (c.rotation == Rotation::spin_z) out += ", turns about z";
-  if (c.materials) out += ", friction and restitution";
+  if (c.friction) out += ", friction";
+  if (c.restitution) out += ", restitution";
   if (c.spheres) out += ", spheres";
   return out;
 }

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "harness/core/friction_model.hpp"
 #include "harness/core/law.hpp"
 #include "harness/core/rotation_law.hpp"
 #include "harness/scene/scene.hpp"
@@ -31,8 +32,9 @@ struct Capabilities {
   bool contacts = false;     // can collide boxes with a static floor
   bool planar_only = false;  // 2-D engine: runs x-y plane scenes only
   Rotation rotation = Rotation::none;
-  bool materials = false;  // maps a body's friction and restitution (docs/contact.md)
-  bool spheres = false;    // collides spheres as well as boxes
+  bool friction = false;     // maps the scene's friction (docs/contact.md)
+  bool restitution = false;  // maps the scene's restitution
+  bool spheres = false;      // collides spheres as well as boxes
 };
 
 // "free flight, contacts, 3-D rotation", "free flight, 2-D (x-y plane), turns about z", ...: what
@@ -61,6 +63,8 @@ struct EngineInfo {
   DampingForm arithmetic = DampingForm::other;  // its operation order, when the harness copies it
   std::string damping_mapping;   // how k becomes the engine's parameter, e.g. "d = 1 - exp(-k)"
   std::string contact_settings;  // contact model and parameters used when contacts = true
+  // How its contact solver bounds friction (docs/contact.md), for an engine that maps materials.
+  FrictionModel friction_model = FrictionModel::cone;
   // Landing on a static floor: where the centre of a resting box sits relative to the geometric
   // rest height (floor top + half extent), in m, and how far from that still counts as expected.
   // Documented per engine in docs/engines.md section 5 (Box2D: +0.015 from skin and slop).

@@ -11,9 +11,11 @@
 #include "harness/measure/metrics.hpp"
 #include "harness/measure/own_law.hpp"
 #include "harness/measure/phase_drift.hpp"
+#include "harness/measure/slide_verdict.hpp"
 #include "harness/measure/sweep.hpp"
 #include "harness/measure/tolerances.hpp"
 #include "harness/oracles/analytic.hpp"
+#include "harness/oracles/contact_laws.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/oracles/landing.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
@@ -367,10 +369,32 @@ CheckResult check_landing(const Scene& scene, const EngineFactory& make, const T
   return r;
 }
 
+CheckResult check_slide(const Scene& scene, const EngineFactory& make, const Timestep& h) {
+  std::unique_ptr<Engine> engine = make();
+  const EngineInfo info = engine->info();
+  CheckResult r = result(scene, info.name, "slide at h = " + h.text);
+  const Trajectory run = run_scene(*engine, scene, h.seconds);
+  if (run.status != RunStatus::ok) {
+    r.message = std::string("run failed: ") + to_string(run.status) + ": " + run.failure;
+    return r;
+  }
+  r.passed = true;
+  for (const SlideSetup& s : slide_setups(scene)) {
+    const SlideVerdict v = judge_slide(run, s, info.friction_model, h.seconds);
+    r.passed = r.passed && (v.follows || !v.exact);
+    append(r.message, run.body_names[s.body] + ": " + v.sentence());
+  }
+  return r;
+}
+
 std::vector<CheckResult> check_scene(const Scene& scene, const EngineFactory& make,
                                      const EngineFactory& reference) {
   std::vector<CheckResult> out;
   if (!make()->cannot_run(scene).empty()) return out;
+  if (scene.world.contacts && !slide_setups(scene).empty()) {
+    out.push_back(check_slide(scene, make, scene.timestep));
+    return out;
+  }
   if (scene.world.contacts) {
     out.push_back(check_landing(scene, make, scene.timestep));
     return out;

@@ -44,8 +44,14 @@ CheckResult check_divergence(const Scene& scene, const EngineFactory& make,
 // rests within the engine's declared rest_offset +- rest_tolerance, and is still over the last 2 s.
 CheckResult check_landing(const Scene& scene, const EngineFactory& make, const Timestep& h);
 
+// A slide to a stop (harness/oracles/contact_laws.hpp): each sliding body stops at the step the
+// ideal clamp law predicts for the engine's declared friction model, after its distance (within
+// tolerance::kSlideDistance). A body that stops as another model predicts is named with that model.
+CheckResult check_slide(const Scene& scene, const EngineFactory& make, const Timestep& h);
+
 // Every check that applies to `scene` on one engine (free flight: own law at three steps and
-// divergence; contacts: landing). An engine that cannot run the scene gives no results.
+// divergence; contacts: a slide, else landing). An engine that cannot run the scene gives no
+// results.
 std::vector<CheckResult> check_scene(const Scene& scene, const EngineFactory& make,
                                      const EngineFactory& reference);
 

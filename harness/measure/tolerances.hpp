@@ -30,6 +30,15 @@ inline constexpr double kStepUlps = 16.0;
 // for the C example on gazebo_boxes_complex at h = 1e-3).
 inline constexpr double kMaxRotationTolerance = 0.1;  // rad
 
+// --- Contact, harness/oracles/contact_laws.hpp --------------------------------------------------
+// A sliding body has stopped once its horizontal speed is at most this: ODE's speed after the
+// clamp law's stop step is 2.7e-10 m/s on the straight slide (its solver's residual), 1.8e-2 m/s
+// one step before.
+inline constexpr double kStoppedSpeed = 1e-6;  // m/s
+// How far a slide's distance may be from the clamp law's and still follow it: ODE measures
+// 9.1e-12 m on the straight slide (2.5094722222313 against 2.5094722222222).
+inline constexpr double kSlideDistance = 1e-6;  // m
+
 // --- Orders of convergence, harness/measure/sweep.hpp ------------------------------------------
 // A damping-order difference, or semi-implicit Euler against the analytic solution, shrinks at
 // first order as h halves. Measured on the shipped scenes, sweep 1/30..1/240: 0.971..1.02.

@@ -25,18 +25,6 @@ AxisStop clamp_axis(double v0, double a, double h) {
 
 }  // namespace
 
-const char* to_string(FrictionModel model) {
-  switch (model) {
-    case FrictionModel::cone:
-      return "cone";
-    case FrictionModel::box_pyramid:
-      return "box pyramid";
-    case FrictionModel::sum_pyramid:
-      return "sum pyramid";
-  }
-  return "?";
-}
-
 SlideStop slide_to_stop(double v0, double mu, double g, double h, FrictionModel model,
                         double angle) {
   if (!(v0 >= 0.0 && mu > 0.0 && g > 0.0 && h > 0.0))
@@ -63,6 +51,55 @@ SlideStop slide_to_stop(double v0, double mu, double g, double h, FrictionModel 
   s.stop_step = a.steps;
   s.step_distance = axes == 2 ? std::sqrt(2.0) * a.distance : a.distance;
   return s;
+}
+
+std::vector<SlideSetup> slide_setups(const Scene& scene) {
+  std::vector<SlideSetup> out;
+  const Material m = scene_material(scene);
+  const Vec3& g = scene.world.gravity;
+  if (!scene.world.contacts || !m.friction || *m.friction <= 0.0 || g.x() != 0.0 || g.z() != 0.0 ||
+      g.y() >= 0.0 || needs_rotation(scene))
+    return out;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const Body& b = scene.bodies[i];
+    if (b.is_static || b.shape != Shape::box || b.velocity.y() != 0.0) continue;
+    const double speed = std::hypot(b.velocity.x(), b.velocity.z());
+    if (speed == 0.0) continue;
+    bool pushed = false;
+    for (const Force& f : scene.forces)
+      for (std::size_t k : f.bodies) pushed = pushed || k == i;
+    if (pushed) continue;
+    const double bottom = b.position.y() - b.half_extents.y();
+    bool rests = false;
+    for (const Body& s : scene.bodies) {
+      if (!s.is_static || s.shape != Shape::box) continue;
+      const bool under = std::abs(s.position.y() + s.half_extents.y() - bottom) <= 1e-9;
+      const bool spans = std::abs(b.position.x() - s.position.x()) <= s.half_extents.x() &&
+                         std::abs(b.position.z() - s.position.z()) <= s.half_extents.z();
+      rests = rests || (under && spans);
+    }
+    if (!rests) continue;
+    double angle = std::atan2(std::abs(b.velocity.z()), std::abs(b.velocity.x()));
+    if (angle > std::numbers::pi / 4.0) angle = std::numbers::pi / 2.0 - angle;
+    out.push_back({i, speed, angle, *m.friction, -g.y()});
+  }
+  return out;
+}
+
+SlideObservation observe_slide(const Trajectory& run, const SlideSetup& setup,
+                               double stopped_speed) {
+  SlideObservation o;
+  if (run.samples() == 0) return o;
+  const Vec3 start = run.at(0, setup.body).position;
+  for (std::size_t s = 0; s < run.samples(); ++s) {
+    const BodyState& b = run.at(s, setup.body);
+    o.distance = std::hypot(b.position.x() - start.x(), b.position.z() - start.z());
+    if (std::hypot(b.velocity.x(), b.velocity.z()) <= stopped_speed) {
+      o.stop_step = run.recorded[s];
+      return o;
+    }
+  }
+  return o;
 }
 
 Bounce bounce(double h0, double e, double g, double h, int bounces) {

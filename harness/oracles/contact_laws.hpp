@@ -8,17 +8,11 @@
 #include <string>
 #include <vector>
 
+#include "harness/core/friction_model.hpp"
+#include "harness/core/trajectory.hpp"
+#include "harness/scene/scene.hpp"
+
 namespace dropcheck {
-
-// How a solver bounds the friction force f of one contact with normal force N.
-enum class FrictionModel {
-  cone,         // |f| <= mu*N: friction opposes the slip, whatever its direction
-  box_pyramid,  // |f_1| <= mu*N and |f_2| <= mu*N on two fixed tangent axes, independently
-  sum_pyramid,  // |f_1| + |f_2| <= mu*N: the pyramid whose edges are n +- mu*t_i
-};
-
-// "cone", "box pyramid", "sum pyramid".
-const char* to_string(FrictionModel model);
 
 // A slide to a stop on a level floor under gravity g, friction mu, from speed v0 along a direction
 // at `angle` (rad) from the first tangent axis; only angle 0 and pi/4 are exact for the pyramids
@@ -38,6 +32,30 @@ struct SlideStop {
 // than 0 and pi/4.
 SlideStop slide_to_stop(double v0, double mu, double g, double h, FrictionModel model,
                         double angle);
+
+// A box resting on a static floor box and launched along it: the slide slide_to_stop predicts.
+struct SlideSetup {
+  std::size_t body = 0;  // index into Scene::bodies
+  double v0 = 0.0;       // m/s, the launch speed (horizontal)
+  double angle = 0.0;    // rad from the x axis toward z, folded into [0, pi/4] (x and z symmetric)
+  double mu = 0.0;       // the scene's friction
+  double g = 0.0;        // m/s^2, gravity straight down
+};
+
+// The slides of `scene`: dynamic, unturned boxes whose bottom rests on the top of a static box
+// (within 1e-9 m) that spans them, launched with a horizontal velocity, no force or torque on them,
+// gravity straight down (-y), contacts on and the scene's friction set. Empty when none.
+std::vector<SlideSetup> slide_setups(const Scene& scene);
+
+// What a run shows of a slide: the first recorded step whose horizontal speed is at most
+// `stopped_speed`, and the horizontal distance from the start by then (-1 and the last distance
+// when it never stops).
+struct SlideObservation {
+  std::int64_t stop_step = -1;
+  double distance = 0.0;  // m
+};
+SlideObservation observe_slide(const Trajectory& run, const SlideSetup& setup,
+                               double stopped_speed);
 
 // A sphere dropped from rest with its lowest point h0 above a level floor, restitution e.
 struct Bounce {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <variant>
 
+#include "harness/report/report_contact.hpp"
 #include "harness/report/report_format.hpp"
 #include "harness/report/report_landing.hpp"
 #include "harness/report/report_rotation.hpp"
@@ -317,7 +318,8 @@ std::string scene_section(const SceneEvaluation& se, const std::vector<ReportPlo
   std::string md = "### " + se.scene.name + "\n\n" + intro(se);
   for (const ReportPlot& p : plots)
     if (p.file.find("-trajectory.svg") != std::string::npos) md += plot_md(p, outcomes);
-  md += failures(se) + landing_section(se) + rotation_section(se) +
+  const std::string slide = slide_section(se);  // a slide replaces the landing table
+  md += failures(se) + (slide.empty() ? landing_section(se) : slide) + rotation_section(se) +
         divergence(se, plots, outcomes) + oracles(se) + run_time(se, plots, outcomes, timing);
   return md + orders_table(se);
 }

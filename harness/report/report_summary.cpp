@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "harness/report/report_contact.hpp"
 #include "harness/report/report_format.hpp"
 #include "harness/report/report_landing.hpp"
 #include "harness/report/report_scene.hpp"
@@ -84,7 +85,7 @@ bool clamped(const EngineEvaluation& ev) {
 
 // "FAILED: box2d; UNEXPLAINED: ode", or "ok". Each flag names the engines it concerns.
 std::string verdict(const SceneEvaluation& se) {
-  std::string failed, clamps, unexp, offlaw, rest, moving, tunnels;
+  std::string failed, clamps, unexp, offlaw, rest, moving, tunnels, slides;
   auto add = [](std::string& list, const std::string& name) {
     list += (list.empty() ? "" : ", ") + name;
   };
@@ -97,6 +98,7 @@ std::string verdict(const SceneEvaluation& se) {
     if (off_rest(se, ev)) add(rest, ev.name);
     if (restless(se, ev)) add(moving, ev.name);
     if (tunnelled(se, ev)) add(tunnels, ev.name);
+    if (off_slide_law(se, ev)) add(slides, ev.name);
   }
   std::string v;
   auto flag = [&v](const char* what, const std::string& list) {
@@ -108,6 +110,7 @@ std::string verdict(const SceneEvaluation& se) {
   flag("**CLAMPED**", clamps);
   flag("**REST OFFSET**", rest);
   flag("**NOT STILL**", moving);
+  flag("**OFF SLIDE LAW**", slides);
   flag("tunnelled, no continuous collision (a limit)", tunnels);
   if (se.reference.empty()) flag("**NOT RUN**", "every engine");
   return v.empty() ? "ok" : v;

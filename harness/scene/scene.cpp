@@ -32,10 +32,13 @@ Vec3 inertia_of(const Body& b) {
                                   : box_inertia(b.mass, b.half_extents);
 }
 
-bool has_materials(const Scene& scene) {
-  for (const Body& b : scene.bodies)
-    if (b.friction || b.restitution) return true;
-  return false;
+Material scene_material(const Scene& scene) {
+  Material m;
+  for (const Body& b : scene.bodies) {
+    if (b.friction) m.friction = b.friction;
+    if (b.restitution) m.restitution = b.restitution;
+  }
+  return m;
 }
 
 bool has_spheres(const Scene& scene) {

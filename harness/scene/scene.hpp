@@ -39,10 +39,10 @@ struct Body {
   Vec3 angular_velocity = Vec3::Zero();  // rad/s, world frame
   Vec3 inertia = Vec3::Zero();  // principal moments in the body frame, kg m^2 (the loader sets
                                 // them: given, or a uniform box); zero: a uniform box (inertia_of)
-  // Contact material (docs/contact.md). Unset: each engine keeps the contact settings its adapter
-  // documents (EngineInfo::contact_settings); set: an engine runs the scene only if its adapter
-  // maps them (Capabilities::materials), so that the pair's effective value under the engine's
-  // combine rule is the scene's.
+  // Contact material (docs/contact.md): one value per scene (scene_material). Unset: each engine
+  // keeps the contact settings its adapter documents (EngineInfo::contact_settings); set: an engine
+  // runs the scene only if its adapter maps it (Capabilities::friction, ::restitution), so that
+  // every contact's effective value under the engine's combine rule is the scene's.
   std::optional<double> friction = std::nullopt;     // Coulomb coefficient mu, >= 0
   std::optional<double> restitution = std::nullopt;  // coefficient e in [0, 1]
 };
@@ -135,8 +135,13 @@ bool is_planar(const Scene& scene);
 // on rotation, and an engine that does not rotate bodies cannot run it.
 bool needs_rotation(const Scene& scene);
 
-// True when some body sets a contact material (friction or restitution).
-bool has_materials(const Scene& scene);
+// A scene's contact material: one friction and one restitution for every contact (the loader
+// refuses two bodies that set different values; docs/contact.md). Unset: the engines' defaults.
+struct Material {
+  std::optional<double> friction;
+  std::optional<double> restitution;
+};
+Material scene_material(const Scene& scene);
 
 // True when some body is a sphere.
 bool has_spheres(const Scene& scene);

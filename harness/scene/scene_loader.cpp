@@ -282,7 +282,9 @@ void load_shape(const Reader& r, Body& b) {
 }
 
 // friction = mu (>= 0) and restitution = e (0..1): the body's contact material (docs/contact.md).
-void load_material(const Reader& r, Body& b) {
+// One value per scene: every contact of the scene uses it, so that no engine's combine rule (a
+// product, a mean, the larger) decides what two bodies' values make.
+void load_material(const Reader& r, Body& b, const Scene& s) {
   if (r.has("friction")) {
     b.friction = r.number("friction", 0.0);
     check_range(r, "friction", *b.friction >= 0.0, "must be >= 0 (a Coulomb coefficient)");
@@ -291,6 +293,14 @@ void load_material(const Reader& r, Body& b) {
     b.restitution = r.number("restitution", 0.0);
     check_range(r, "restitution", *b.restitution >= 0.0 && *b.restitution <= 1.0,
                 "must be in [0, 1]");
+  }
+  for (const Body& other : s.bodies) {
+    if (b.friction && other.friction && *b.friction != *other.friction)
+      r.fail("friction", "one friction per scene (docs/contact.md): body \"" + other.name +
+                             "\" sets " + shortest(*other.friction));
+    if (b.restitution && other.restitution && *b.restitution != *other.restitution)
+      r.fail("restitution", "one restitution per scene (docs/contact.md): body \"" + other.name +
+                                "\" sets " + shortest(*other.restitution));
   }
 }
 
@@ -304,7 +314,7 @@ void load_body(const Reader& r, Scene& s) {
   for (const Body& other : s.bodies)
     if (other.name == b.name) r.fail("name", "duplicate body name \"" + b.name + "\"");
   load_shape(r, b);
-  load_material(r, b);
+  load_material(r, b, s);
   b.mass = r.number("mass", b.mass);
   check_range(r, "mass", b.mass > 0.0, "must be > 0 kg");
   b.position = r.vec3("position", Vec3::Zero(), true);

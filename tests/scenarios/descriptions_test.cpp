@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "harness/oracles/analytic.hpp"
+#include "harness/oracles/contact_laws.hpp"
 #include "harness/oracles/free_rotation.hpp"
 #include "harness/oracles/landing.hpp"
 #include "harness/scene/scene_loader.hpp"
@@ -198,10 +199,87 @@ std::vector<double> per_landing(const Scene& s, double dropcheck::LandingSetup::
   return out;
 }
 
+// `field` of the slide law of `model` for each slide of the scene
+// (harness/oracles/contact_laws.hpp), at the scene's step.
+std::vector<double> per_slide(const Scene& s, dropcheck::FrictionModel model,
+                              const std::function<double(const dropcheck::SlideStop&)>& field) {
+  std::vector<double> out;
+  for (const dropcheck::SlideSetup& l : dropcheck::slide_setups(s))
+    out.push_back(
+        field(dropcheck::slide_to_stop(l.v0, l.mu, l.g, s.timestep.seconds, model, l.angle)));
+  return out;
+}
+
+dropcheck::FrictionModel model_named(const std::string& name) {
+  if (name == "box pyramid") return dropcheck::FrictionModel::box_pyramid;
+  if (name == "sum pyramid") return dropcheck::FrictionModel::sum_pyramid;
+  return dropcheck::FrictionModel::cone;
+}
+
 const std::vector<Phrase>& phrases() {
   using dropcheck::landing_setups;
   static const std::vector<Phrase> list = {
       // Phrases that contain shorter ones ("h = X s", "at x = X m") come first.
+      // A slide to a stop (harness/oracles/contact_laws.hpp, docs/contact.md).
+      {"(cone|box pyramid|sum pyramid)[^()]*\\(step " + N + ", " + N + " m\\)",
+       [](const Scene& s, const std::smatch& m) {
+         const dropcheck::FrictionModel model = model_named(m[1]);
+         const std::string step = agrees(
+             m[2], per_slide(s, model, [](const auto& l) { return double(l.stop_step); }));
+         return step.empty() ? agrees(m[3], per_slide(s, model, [](const auto& l) {
+                                 return l.step_distance;
+                               }))
+                             : step;
+       }},
+      {"continuous distances are " + N + ", " + N + " and " + N + " m",
+       [](const Scene& s, const std::smatch& m) {
+         int k = 1;
+         for (auto model : {dropcheck::FrictionModel::cone, dropcheck::FrictionModel::box_pyramid,
+                            dropcheck::FrictionModel::sum_pyramid}) {
+           const std::string p =
+               agrees(m[k++], per_slide(s, model, [](const auto& l) { return l.distance; }));
+           if (!p.empty()) return p;
+         }
+         return std::string();
+       }},
+      {"stops it after " + N + " s and " + N + " m",
+       [](const Scene& s, const std::smatch& m) {
+         const auto cone = dropcheck::FrictionModel::cone;
+         const std::string t =
+             agrees(m[1], per_slide(s, cone, [](const auto& l) { return l.stop_time; }));
+         return t.empty() ? agrees(m[2], per_slide(s, cone, [](const auto& l) { return l.distance; }))
+                          : t;
+       }},
+      {"at step " + N + " after " + N + " m",
+       [](const Scene& s, const std::smatch& m) {
+         const auto cone = dropcheck::FrictionModel::cone;
+         const std::string n = agrees(
+             m[1], per_slide(s, cone, [](const auto& l) { return double(l.stop_step); }));
+         return n.empty()
+                    ? agrees(m[2], per_slide(s, cone, [](const auto& l) { return l.step_distance; }))
+                    : n;
+       }},
+      {"launched at " + N + " m/s",
+       [](const Scene& s, const std::smatch& m) {
+         std::vector<double> v;
+         for (const auto& l : dropcheck::slide_setups(s)) v.push_back(l.v0);
+         return agrees(m[1], v);
+       }},
+      {"at " + N + " degrees between x and z",
+       [](const Scene& s, const std::smatch& m) {
+         std::vector<double> a;
+         for (const auto& l : dropcheck::slide_setups(s)) a.push_back(l.angle * 180.0 / M_PI);
+         return agrees(m[1], a);
+       }},
+      {"friction mu = " + N,
+       [](const Scene& s, const std::smatch& m) {
+         const auto f = dropcheck::scene_material(s).friction;
+         return agrees(m[1], f ? std::vector<double>{*f} : std::vector<double>{});
+       }},
+      {"at h = 1/" + N,
+       [](const Scene& s, const std::smatch& m) {
+         return agrees(m[1], {1.0 / s.timestep.seconds});
+       }},
       // Stability edge of a spring (harness/stability: theory per damping order).
       {"stability edge h = " + N +
            " s(?: where damping (follows the forces|precedes the forces|"

@@ -45,14 +45,17 @@ TEST_CASE("a scene with a material or a sphere runs only where the adapter maps 
   const Declares boxes_only(Capabilities{.contacts = true});
   CHECK(boxes_only.cannot_run(scene).empty());
   scene.bodies[0].friction = 0.5;
-  CHECK(boxes_only.cannot_run(scene) ==
-        "materials: this engine's adapter does not map friction and restitution");
-  const Declares mapped(Capabilities{.contacts = true, .materials = true, .spheres = true});
+  CHECK(boxes_only.cannot_run(scene) == "friction: this engine's adapter does not map it");
+  const Declares mapped(Capabilities{.contacts = true, .friction = true, .spheres = true});
   CHECK(mapped.cannot_run(scene).empty());
+  scene.bodies[0].restitution = 0.5;
+  CHECK(mapped.cannot_run(scene) == "restitution: this engine's adapter does not map it");
+  scene.bodies[0].restitution.reset();
   scene.bodies[0].shape = dropcheck::Shape::sphere;
   scene.bodies[0].radius = 0.5;
   CHECK(boxes_only.cannot_run(scene) == "spheres: this engine's adapter builds boxes only");
   CHECK(mapped.cannot_run(scene).empty());
-  CHECK(to_string(Capabilities{.contacts = true, .materials = true, .spheres = true}) ==
-        "free flight, contacts, friction and restitution, spheres");
+  CHECK(to_string(Capabilities{
+            .contacts = true, .friction = true, .restitution = true, .spheres = true}) ==
+        "free flight, contacts, friction, restitution, spheres");
 }

@@ -395,7 +395,7 @@ TEST_CASE("contact keys: a sphere with its radius, friction and restitution load
   CHECK(plain.bodies[0].shape == dropcheck::Shape::box);
   CHECK_FALSE(plain.bodies[0].friction.has_value());
   CHECK_FALSE(plain.bodies[0].restitution.has_value());
-  CHECK_FALSE(dropcheck::has_materials(plain));
+  CHECK_FALSE(dropcheck::scene_material(plain).friction.has_value());
   CHECK_FALSE(dropcheck::has_spheres(plain));
 
   const dropcheck::Scene ball = dropcheck::parse_scene(
@@ -410,7 +410,7 @@ TEST_CASE("contact keys: a sphere with its radius, friction and restitution load
   CHECK(b.inertia.isApprox(dropcheck::Vec3::Constant(0.4 * 2.0 * 0.0625), 1e-15));  // 2/5*m*r^2
   CHECK(*b.friction == 0.5);
   CHECK(*b.restitution == 0.9);
-  CHECK(dropcheck::has_materials(ball));
+  CHECK(*dropcheck::scene_material(ball).friction == 0.5);
   CHECK(dropcheck::has_spheres(ball));
 }
 
@@ -434,4 +434,21 @@ TEST_CASE("contact keys out of range or mixed between shapes are refused naming 
               "must be in [0, 1]");
   check_error(scene(kHead, kWorld, kBody + "friction = \"high\"\n"), "body[0].friction",
               "expected a number, got a string");
+}
+
+TEST_CASE("one friction and one restitution per scene: two bodies that differ are refused",
+          "[loader][contact]") {
+  const std::string floor =
+      "[[body]]\nname = \"floor\"\nstatic = true\nposition = [0.0, -0.5, 0.0]\n";
+  check_error(scene(kHead, kWorld, kBody + "friction = 0.5\n" + floor + "friction = 0.3\n"),
+              "body[1].friction",
+              "one friction per scene (docs/contact.md): body \"cube\" sets 0.5");
+  check_error(scene(kHead, kWorld, kBody + "restitution = 0.5\n" + floor + "restitution = 0.0\n"),
+              "body[1].restitution", "one restitution per scene");
+  const dropcheck::Scene same = dropcheck::parse_scene(
+      scene(kHead, kWorld,
+            kBody + "friction = 0.5\n" + floor + "friction = 0.5\nrestitution = 0.2\n"),
+      "x.toml");
+  CHECK(*dropcheck::scene_material(same).friction == 0.5);
+  CHECK(*dropcheck::scene_material(same).restitution == 0.2);
 }
