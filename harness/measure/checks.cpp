@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "harness/core/number_format.hpp"
 #include "harness/core/runner.hpp"
@@ -327,16 +328,38 @@ CheckResult turning_landing(const Scene& scene, const Trajectory& run, CheckResu
 
 }  // namespace
 
-CheckResult check_landing(const Scene& scene, const EngineFactory& make, const Timestep& h) {
+namespace {
+
+// The one run of a contact check named `what` ("landing", "slide") at h: its result, passed so far,
+// or failed with the reason when the run did not finish (then `run` is empty).
+struct ContactRun {
+  CheckResult result;
+  EngineInfo info;
+  std::optional<Trajectory> run;
+};
+
+ContactRun contact_run(const Scene& scene, const EngineFactory& make, const Timestep& h,
+                       const std::string& what) {
   std::unique_ptr<Engine> engine = make();
-  const EngineInfo info = engine->info();
-  CheckResult r = result(scene, info.name, "landing at h = " + h.text);
-  const Trajectory run = run_scene(*engine, scene, h.seconds);
+  ContactRun c{result(scene, engine->info().name, what + " at h = " + h.text), engine->info(), {}};
+  Trajectory run = run_scene(*engine, scene, h.seconds);
   if (run.status != RunStatus::ok) {
-    r.message = std::string("run failed: ") + to_string(run.status) + ": " + run.failure;
-    return r;
+    c.result.message = std::string("run failed: ") + to_string(run.status) + ": " + run.failure;
+    return c;
   }
-  r.passed = true;
+  c.result.passed = true;
+  c.run = std::move(run);
+  return c;
+}
+
+}  // namespace
+
+CheckResult check_landing(const Scene& scene, const EngineFactory& make, const Timestep& h) {
+  ContactRun c = contact_run(scene, make, h, "landing");
+  if (!c.run) return c.result;
+  CheckResult& r = c.result;
+  const EngineInfo& info = c.info;
+  const Trajectory& run = *c.run;
   if (needs_rotation(scene)) return turning_landing(scene, run, r);
   const std::vector<LandingSetup> setups = engine_landing_setups(scene, info);
   std::vector<std::string> limits;
@@ -370,17 +393,12 @@ CheckResult check_landing(const Scene& scene, const EngineFactory& make, const T
 }
 
 CheckResult check_slide(const Scene& scene, const EngineFactory& make, const Timestep& h) {
-  std::unique_ptr<Engine> engine = make();
-  const EngineInfo info = engine->info();
-  CheckResult r = result(scene, info.name, "slide at h = " + h.text);
-  const Trajectory run = run_scene(*engine, scene, h.seconds);
-  if (run.status != RunStatus::ok) {
-    r.message = std::string("run failed: ") + to_string(run.status) + ": " + run.failure;
-    return r;
-  }
-  r.passed = true;
+  ContactRun c = contact_run(scene, make, h, "slide");
+  if (!c.run) return c.result;
+  CheckResult& r = c.result;
+  const Trajectory& run = *c.run;
   for (const SlideSetup& s : slide_setups(scene)) {
-    const SlideVerdict v = judge_slide(run, s, info.friction_model, h.seconds);
+    const SlideVerdict v = judge_slide(run, s, c.info.friction_model, h.seconds);
     r.passed = r.passed && (v.follows || !v.exact);
     append(r.message, run.body_names[s.body] + ": " + v.sentence());
   }
