@@ -211,7 +211,8 @@ class OdeEngine final : public Engine {
         "dBodySetLinearDamping(s = 1 - exp(-k*h)), dBodySetAngularDamping(1 - exp(-k_a*h)), "
         "thresholds 0";
     i.contact_settings =
-        "dWorldStep; box geoms, <= 8 contacts per pair, dContactApprox1, mu 0.5, bounce 0, "
+        "dWorldStep; box geoms, <= 8 contacts per pair, dContactApprox1, mu 0.5 or the scene's "
+        "friction, bounce 0, "
         "ERP 0.2, CFM 1e-10, surface layer 0, max correcting vel 0.3 m/s";
     // Measured on drop_on_floor(_undamped): final y - 0.5 = -2.04e-11 m at 1/60 (proportional to
     // h: -5.1e-12 m at 1/240), -9.8e-10 m at 1/30 where it is still settling (ode_test.cpp).
