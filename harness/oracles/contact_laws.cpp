@@ -4,6 +4,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "harness/oracles/landing.hpp"
+
 namespace dropcheck {
 namespace {
 
@@ -60,25 +62,18 @@ std::vector<SlideSetup> slide_setups(const Scene& scene) {
   if (!scene.world.contacts || !m.friction || *m.friction <= 0.0 || g.x() != 0.0 || g.z() != 0.0 ||
       g.y() >= 0.0 || needs_rotation(scene))
     return out;
-  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+  // The floor under each body is the landing oracle's (the highest static box holding it).
+  for (const LandingSetup& l : landing_setups(scene)) {
+    const std::size_t i = l.body;
     const Body& b = scene.bodies[i];
-    if (b.is_static || b.shape != Shape::box || b.velocity.y() != 0.0) continue;
+    if (b.shape != Shape::box || b.velocity.y() != 0.0) continue;
+    if (std::abs(b.position.y() - l.rest_height) > 1e-9) continue;  // not resting on it
     const double speed = std::hypot(b.velocity.x(), b.velocity.z());
     if (speed == 0.0) continue;
     bool pushed = false;
     for (const Force& f : scene.forces)
       for (std::size_t k : f.bodies) pushed = pushed || k == i;
     if (pushed) continue;
-    const double bottom = b.position.y() - b.half_extents.y();
-    bool rests = false;
-    for (const Body& s : scene.bodies) {
-      if (!s.is_static || s.shape != Shape::box) continue;
-      const bool under = std::abs(s.position.y() + s.half_extents.y() - bottom) <= 1e-9;
-      const bool spans = std::abs(b.position.x() - s.position.x()) <= s.half_extents.x() &&
-                         std::abs(b.position.z() - s.position.z()) <= s.half_extents.z();
-      rests = rests || (under && spans);
-    }
-    if (!rests) continue;
     double angle = std::atan2(std::abs(b.velocity.z()), std::abs(b.velocity.x()));
     if (angle > std::numbers::pi / 4.0) angle = std::numbers::pi / 2.0 - angle;
     out.push_back({i, speed, angle, *m.friction, -g.y()});
