@@ -188,7 +188,7 @@ double nominal_ns_per_body_step(const std::string& engine) {
   // Bare loop at N = 1000 free cubes on the 2-core VM, quiet (bench/results, 2026-11-23):
   // ours 3.72, ours-f64 4.23, ode 189, box2d 259, mujoco 567, bullet 591 ns; contact scenes cost
   // the engines more. Chipmunk 33.9, Simbody 1824 (2026-11-25); DART 1817-1924, Wild Magic
-  // 143-145 (2026-11-26). Rounded down.
+  // 142-146 (2026-11-26, six and nine runs). Rounded down.
   if (engine == "ours" || engine == "ours-f64") return 3.5;
   if (engine == "ode") return 180.0;
   if (engine == "box2d") return 250.0;
