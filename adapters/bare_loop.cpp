@@ -30,6 +30,7 @@ const std::pair<const char*, BareLoop> kBareLoops[] = {
 #endif
 #ifdef DROPCHECK_HAVE_SIMBODY
     {"simbody", bare_seconds_simbody},
+    {"simbody-rkm", bare_seconds_simbody_rkm},
 #endif
 #ifdef DROPCHECK_HAVE_DART
     {"dart", bare_seconds_dart},

@@ -45,8 +45,10 @@ std::unique_ptr<Engine> (*const make_chipmunk_ptr)() = make_chipmunk;
 #endif
 #ifndef DROPCHECK_HAVE_SIMBODY
 std::unique_ptr<Engine> (*const make_simbody_ptr)() = nullptr;
+std::unique_ptr<Engine> (*const make_simbody_rkm_ptr)() = nullptr;
 #else
 std::unique_ptr<Engine> (*const make_simbody_ptr)() = make_simbody;
+std::unique_ptr<Engine> (*const make_simbody_rkm_ptr)() = make_simbody_rkm;
 #endif
 #ifndef DROPCHECK_HAVE_DART
 std::unique_ptr<Engine> (*const make_dart_ptr)() = nullptr;
@@ -68,6 +70,7 @@ const Entry kEngines[] = {
     {"mujoco", make_mujoco_ptr, "DROPCHECK_WITH_MUJOCO"},
     {"chipmunk", make_chipmunk_ptr, "DROPCHECK_WITH_CHIPMUNK"},
     {"simbody", make_simbody_ptr, "DROPCHECK_WITH_SIMBODY"},
+    {"simbody-rkm", make_simbody_rkm_ptr, "DROPCHECK_WITH_SIMBODY"},
     {"dart", make_dart_ptr, "DROPCHECK_WITH_DART"},
     {"wildmagic", make_wildmagic_ptr, "DROPCHECK_WITH_WILDMAGIC"},
 };
@@ -110,7 +113,7 @@ std::string engine_unavailable_reason(const std::string& name) {
   const Entry* e = find(name);
   if (!e)
     return "unknown engine (known: ours, ours-f64, bullet, ode, box2d, mujoco, chipmunk, simbody, "
-           "dart, wildmagic, exec:PATH, FILE.toml: docs/protocol.md)";
+           "simbody-rkm, dart, wildmagic, exec:PATH, FILE.toml: docs/protocol.md)";
   if (!e->make)
     return std::string("not compiled in (library not found; CMake option ") + e->option + ")";
   return {};

@@ -43,10 +43,15 @@
 #include <vector>
 
 #include "adapters.hpp"
+#include "harness/core/number_format.hpp"
 #include "simbody_world.hpp"
 
 namespace dropcheck {
 namespace {
+
+// simbody-rkm's accuracy: Simbody's own default, which it uses when none is set (IntegratorRep.h,
+// initialize(): accuracyInUse = 1e-3 when the user gave none).
+constexpr double kSimbodyDefaultAccuracy = 1e-3;
 
 simbody::Vec to_array(const Vec3& v) {
   return {v.x(), v.y(), v.z()};
@@ -70,11 +75,25 @@ auto guarded(F&& call) {
 
 class SimbodyEngine final : public Engine {
  public:
+  // accuracy 0: the fixed-step SemiExplicitEulerIntegrator ("simbody"); above 0: the
+  // error-controlled RungeKuttaMersonIntegrator at that accuracy ("simbody-rkm").
+  explicit SimbodyEngine(double accuracy = 0.0) : accuracy_(accuracy) {}
+
   EngineInfo info() const override {
     EngineInfo i;
-    i.name = "simbody";
+    i.name = error_controlled() ? "simbody-rkm" : "simbody";
     i.version = "3.7";  // Debian's libsimbody-dev; Simbody.h defines no version macro
     i.scalar = Scalar::f64;
+    if (error_controlled()) {
+      i.capabilities = {.contacts = false, .planar_only = false, .rotation = Rotation::none};
+      i.law = kErrorControlled;
+      i.accuracy = accuracy_;
+      i.damping_mapping =
+          "MobilityLinearDamper c = m*k per translational u (the continuous drag); "
+          "RungeKuttaMersonIntegrator, setAccuracy(" +
+          g3(accuracy_) + "), a step ending at every h";
+      return i;
+    }
     i.capabilities = {.contacts = false, .planar_only = false, .rotation = Rotation::full};
     i.law = DampingOrder::BeforeForces;
     i.rotation_law = {Gyroscopic::explicit_term, OrientationUpdate::first_order};
@@ -82,6 +101,16 @@ class SimbodyEngine final : public Engine {
         "MobilityLinearDamper c = m*(1 - exp(-k*h))/h per translational u, I_i*(1 - exp(-k_a*h))/h "
         "per rotational u; SemiExplicitEulerIntegrator(h)";
     return i;
+  }
+
+  std::int64_t engine_steps() const override {
+    return error_controlled() && world_ ? world_->steps_taken() : 0;
+  }
+
+  bool set_accuracy(double a) override {
+    if (!error_controlled()) return false;
+    accuracy_ = a;
+    return true;
   }
 
   std::string cannot_run(const Scene& scene) const override {
@@ -96,6 +125,7 @@ class SimbodyEngine final : public Engine {
     world_.reset();
     simbody::WorldSpec spec{to_array(scene.world.gravity), scene.world.damping_rate,
                             scene.world.angular_damping_rate, h};
+    spec.accuracy = accuracy_;
     std::vector<simbody::BodySpec> bodies;
     for (const Body& b : scene.bodies) {
       const Quat& q = b.orientation;
@@ -150,6 +180,9 @@ class SimbodyEngine final : public Engine {
   }
 
  private:
+  bool error_controlled() const { return accuracy_ > 0.0; }
+
+  double accuracy_ = 0.0;
   std::unique_ptr<simbody::World> world_;
   std::size_t bodies_ = 0;
 };
@@ -160,8 +193,18 @@ std::unique_ptr<Engine> make_simbody() {
   return std::make_unique<SimbodyEngine>();
 }
 
+std::unique_ptr<Engine> make_simbody_rkm() {
+  return std::make_unique<SimbodyEngine>(kSimbodyDefaultAccuracy);
+}
+
 double bare_seconds_simbody(const Scene& scene, double h) {
   SimbodyEngine e;
+  e.load(scene, h);
+  return e.bare_seconds(step_count(scene, h));
+}
+
+double bare_seconds_simbody_rkm(const Scene& scene, double h) {
+  SimbodyEngine e(kSimbodyDefaultAccuracy);
   e.load(scene, h);
   return e.bare_seconds(step_count(scene, h));
 }

@@ -47,9 +47,10 @@ class AppliedForce final : public SimTK::Force::Custom::Implementation {
 };
 
 // The damper coefficient that decays a mobility of inertia `inertia` by phi = exp(-rate*h) per
-// step: udot = -c/inertia*u, so one explicit step multiplies u by 1 - h*c/inertia = phi.
+// step: udot = -c/inertia*u, so one explicit step multiplies u by 1 - h*c/inertia = phi. With
+// h = 0 (an error-controlled integrator, no step of its own), the continuous drag c = inertia*k.
 double damper(double inertia, double rate, double h) {
-  return inertia * -std::expm1(-rate * h) / h;
+  return h == 0.0 ? inertia * rate : inertia * -std::expm1(-rate * h) / h;
 }
 
 }  // namespace
@@ -66,7 +67,8 @@ struct World::Impl {
   std::int64_t n = 0;  // steps taken
 
   void add_body(const WorldSpec& world, const BodySpec& b) {
-    const double step = world.two_half_steps ? h / 2 : h;  // what one velocity update spans
+    // What one velocity update spans (none for an error-controlled integrator).
+    const double step = world.accuracy > 0.0 ? 0.0 : world.two_half_steps ? h / 2 : h;
     static_positions.push_back(b.position);
     applied.force.emplace_back(0);
     applied.torque.emplace_back(0);
@@ -124,7 +126,10 @@ World::World(const WorldSpec& world, const std::vector<BodySpec>& bodies)
     m.bodies[i].setUToFitVelocity(
         state, SimTK::SpatialVec(to_sim(b.angular_velocity), to_sim(b.velocity)));
   }
-  if (world.two_half_steps) {
+  if (world.accuracy > 0.0) {
+    m.integrator = std::make_unique<SimTK::RungeKuttaMersonIntegrator>(m.system);
+    m.integrator->setAccuracy(world.accuracy);
+  } else if (world.two_half_steps) {
     m.integrator = std::make_unique<SimTK::SemiExplicitEuler2Integrator>(m.system);
     m.integrator->setFixedStepSize(m.h);  // no error control: every step is h
   } else {
@@ -179,6 +184,14 @@ BodyMotion World::motion(std::size_t i) const {
 // divided by its norm: Simbody lets that q drift off unit length between projections and turns
 // the body by q/|q| (its rotation matrix). Cheaper than a quaternion rebuilt from the rotation
 // matrix (getBodyRotation then convertRotationToQuaternion), which rounds it again.
+long World::steps_taken() const {
+  return impl_->integrator->getNumStepsTaken();
+}
+
+long World::steps_attempted() const {
+  return impl_->integrator->getNumStepsAttempted();
+}
+
 BodyTurn World::turn(std::size_t i) const {
   const Impl& m = *impl_;
   if (!m.applied.index[i].isValid()) return {};

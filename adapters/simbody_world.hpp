@@ -32,6 +32,10 @@ struct WorldSpec {
   // engine of its own: tests/adapters/simbody_test.cpp reproduces Gazebo's published column with
   // it. Damping is then matched per half step.
   bool two_half_steps = false;
+  // Above 0: RungeKuttaMersonIntegrator instead, error-controlled at this relative accuracy. It
+  // picks its own steps and ends one at every multiple of h (interpolation off), and the damper
+  // is the continuous drag c = m*k: it integrates the continuous model, not a per-step map.
+  double accuracy = 0.0;
 };
 
 struct BodyMotion {
@@ -63,6 +67,9 @@ class World {
   // Body i's state after the last step (a static body: its position, at rest, unturned).
   BodyMotion motion(std::size_t i) const;
   BodyTurn turn(std::size_t i) const;
+  // Steps the integrator has taken (and attempted, failures included) since it was built.
+  long steps_taken() const;
+  long steps_attempted() const;
 
  private:
   struct Impl;

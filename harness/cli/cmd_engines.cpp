@@ -21,7 +21,7 @@ const CommandSpec& engines_spec() {
 
 int cmd_engines(const std::vector<std::string>& argv, std::ostream& out, std::ostream&) {
   parse_args(engines_spec(), argv);
-  const char* row = "%-9s %-14s %-6s %-53s %-36s %s\n";
+  const char* row = "%-11s %-14s %-6s %-53s %-38s %s\n";
   out << printf_string(row, "engine", "version", "scalar", "capabilities", "discrete law",
                        "damping mapping");
   for (const std::string& name : known_engine_names()) {

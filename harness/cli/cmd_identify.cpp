@@ -17,6 +17,7 @@
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/io/trajectory_csv.hpp"
+#include "harness/measure/accuracy_response.hpp"
 #include "harness/measure/closed_form_order.hpp"
 #include "harness/oracles/identify.hpp"
 #include "harness/oracles/identify_rotation.hpp"
@@ -216,6 +217,27 @@ bool print_order(const ClosedFormOrder& o, Law declared, std::ostream& out) {
   return match;
 }
 
+// An error-controlled engine is not fitted to a discrete member (law.hpp: it has none); its error
+// against the closed form is printed per accuracy, each against its budget. True when within all.
+bool print_accuracy_response(const AccuracyResponse& a, const EngineInfo& info, std::ostream& out) {
+  out << "declared " << law_key(info.law) << " (" << to_string(info.law)
+      << "): not fitted to a discrete member; its law is the continuous model, judged against "
+         "the closed form within each accuracy's budget\n";
+  if (!a.unavailable.empty()) {
+    out << "error per accuracy: not measured: " << a.unavailable << "\n";
+    return false;
+  }
+  out << printf_string("  %-10s %16s %16s %14s %14s\n", "accuracy", "max|x - exact| m",
+                       "max|v - exact|", "engine steps", "budget x m");
+  for (const AccuracyPoint& p : a.points)
+    out << printf_string("  %-10.3g %16.3g %16.3g %14lld %14.3g%s\n", p.accuracy, p.error_x,
+                         p.error_v, static_cast<long long>(p.engine_steps), p.budget_x,
+                         p.within() ? "" : "  OUTSIDE");
+  out << "error per accuracy: "
+      << (a.within() ? "within the budget at every accuracy" : "OUTSIDE the budget") << "\n";
+  return a.within();
+}
+
 int run_identify(const IdentifyRequest& r, std::ostream& out) {
   const Scene scene = load_scene(r.scene_file);
   Trajectory run;
@@ -229,7 +251,15 @@ int run_identify(const IdentifyRequest& r, std::ostream& out) {
     engine = std::move(engines[0].engine);
     declared_info = engine->info();
     declared = declared_info->law;
-    run = run_scene(*engine, scene, step_from_flag(r.dt, scene).seconds);
+    const double h = step_from_flag(r.dt, scene).seconds;
+    if (declared->scheme == Scheme::ErrorControlled) {
+      out << "identify " << scene.name << ": " << declared_info->name << " at h = " << sig(h, 9)
+          << " s\n";
+      const bool within =
+          print_accuracy_response(error_per_accuracy(*engine, scene, h), *declared_info, out);
+      return within ? kExitOk : kExitCheckFailed;
+    }
+    run = run_scene(*engine, scene, h);
     if (run.status != RunStatus::ok) {
       out << "identify " << scene.name << ": the run of " << run.engine << " failed at step "
           << run.failed_step << " (" << to_string(run.status) << "): " << run.failure << "\n";

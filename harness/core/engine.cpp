@@ -11,7 +11,8 @@
 namespace dropcheck {
 
 std::string Engine::cannot_run(const Scene& scene) const {
-  const Capabilities caps = info().capabilities;
+  const EngineInfo self = info();
+  const Capabilities& caps = self.capabilities;
   if (scene.world.contacts && !caps.contacts) return "no contacts";
   if (caps.planar_only && !is_planar(scene)) return "not planar";
   if (has_spheres(scene) && !caps.spheres)
@@ -20,6 +21,11 @@ std::string Engine::cannot_run(const Scene& scene) const {
   if (m.friction && !caps.friction) return "friction: this engine's adapter does not map it";
   if (m.restitution && !caps.restitution)
     return "restitution: this engine's adapter does not map it";
+  if (self.law.scheme == Scheme::ErrorControlled)
+    for (const Force& f : scene.forces)
+      if (std::holds_alternative<Spring>(f.law))
+        return "springs: the harness sets a spring's force once per step, and an "
+               "error-controlled integrator would integrate that held force, not the spring";
   if (!needs_rotation(scene)) return {};
   if (caps.rotation == Rotation::none)
     return "rotation: this engine's adapter does not rotate bodies";

@@ -57,6 +57,9 @@ struct EngineInfo {
   Scalar scalar = Scalar::f64;
   Capabilities capabilities;
   Law law;  // its member of the discrete-law family (harness/core/law.hpp)
+  // The relative accuracy an error-controlled engine (law.scheme == Scheme::ErrorControlled) is
+  // asked for, as its integrator takes it; 0 for a fixed-step engine.
+  double accuracy = 0.0;
   // Its rotational member (harness/core/rotation_law.hpp), when capabilities.rotation is not none;
   // the angular damping sits where law.damping puts the linear one.
   RotationLaw rotation_law;
@@ -180,6 +183,14 @@ class Engine {
   // Builds the engine's world for `scene`, to be stepped at exactly h seconds per step.
   virtual void load(const Scene& scene, double h) = 0;
 
+  // Asks an error-controlled engine for relative accuracy `a` (> 0) from the next load() on
+  // (info().accuracy then says `a`). A fixed-step engine returns false and changes nothing.
+  virtual bool set_accuracy(double /*a*/) { return false; }
+
+  // The steps an error-controlled engine has taken of its own since load() (it may take several
+  // per step of h); 0 for a fixed-step engine.
+  virtual std::int64_t engine_steps() const { return 0; }
+
   // This step's external force on each body (N), indexed like Scene::bodies; applied once, by the
   // next step() only. Entries of static bodies are zero and ignored.
   virtual void set_forces(std::span<const Vec3> forces) = 0;
@@ -229,6 +240,8 @@ class ForwardingEngine : public Engine {
   EngineInfo info() const override { return inner_.info(); }
   std::string cannot_run(const Scene& scene) const override { return inner_.cannot_run(scene); }
   void load(const Scene& scene, double h) override { inner_.load(scene, h); }
+  bool set_accuracy(double a) override { return inner_.set_accuracy(a); }
+  std::int64_t engine_steps() const override { return inner_.engine_steps(); }
   void set_forces(std::span<const Vec3> forces) override { inner_.set_forces(forces); }
   void set_torques(std::span<const Vec3> torques) override { inner_.set_torques(torques); }
   void step() override { inner_.step(); }

@@ -12,8 +12,12 @@
 //
 // A sixth member is not Euler at all: the classical fourth-order Runge-Kutta scheme (Scheme::RK4,
 // Wild Magic's RigidBody::Update), which evaluates the forces at four stages of the step and damps
-// through the force -k*v rather than a per-step factor (advance_rk4 below). Adding an engine or a
-// scheme means naming its member here; every oracle then predicts it.
+// through the force -k*v rather than a per-step factor (advance_rk4 below). A seventh has no
+// fixed step: an error-controlled integrator (Scheme::ErrorControlled, Simbody's
+// Runge-Kutta-Merson) picks its own steps to hold an estimate of each step's error under a
+// requested accuracy, so its law is the continuous model itself, met within that accuracy rather
+// than to rounding (harness/measure/own_law.cpp says how far). Adding an engine or a scheme means
+// naming its member here; every oracle then predicts it.
 #pragma once
 
 #include <optional>
@@ -38,8 +42,9 @@ enum class PositionUpdate {
 
 // How many times a step evaluates the forces.
 enum class Scheme {
-  Euler,  // once, at the step start: the five members above (every engine but Wild Magic)
-  RK4,    // four stages, classical Runge-Kutta; damping is the force -m*k*v (Wild Magic)
+  Euler,            // once, at the step start: the five members above (every engine but Wild Magic)
+  RK4,              // four stages, classical Runge-Kutta; damping is the force -m*k*v (Wild Magic)
+  ErrorControlled,  // variable steps under a requested accuracy; damping is the force -m*k*v
 };
 
 // One member of the family. Implicit from DampingOrder: a semi-implicit engine names only its
@@ -57,8 +62,11 @@ struct Law {
 };
 
 inline constexpr Law kRungeKutta4{Scheme::RK4};
+inline constexpr Law kErrorControlled{Scheme::ErrorControlled};
 
-// Every distinct member, in a fixed order (for identification and sweeps).
+// Every distinct fixed-step member, in a fixed order (for identification and sweeps). The
+// error-controlled member is not among them: no trajectory at one accuracy tells it apart from the
+// continuous model, so it is declared, never fitted.
 inline constexpr Law kLawFamily[] = {
     {DampingOrder::AfterForces, PositionUpdate::SemiImplicit},
     {DampingOrder::BeforeForces, PositionUpdate::SemiImplicit},
@@ -69,9 +77,17 @@ inline constexpr Law kLawFamily[] = {
 };
 
 // The order of convergence of a member: its global error shrinks as h^order (1 for every Euler
-// member, 4 for RK4).
+// member, 4 for RK4; 0 for the error-controlled member, whose error follows its accuracy, not h).
 constexpr int order_of(Law law) {
-  return law.scheme == Scheme::RK4 ? 4 : 1;
+  switch (law.scheme) {
+    case Scheme::Euler:
+      return 1;
+    case Scheme::RK4:
+      return 4;
+    case Scheme::ErrorControlled:
+      return 0;
+  }
+  return 1;
 }
 
 // One step of an Euler member (law.scheme == Scheme::Euler) on one coordinate or vector (Real:

@@ -247,6 +247,7 @@ Trajectory run_scene_in_process(Engine& engine, const Scene& scene, double h,
     t.failure = e.what();
   }
   end_streamed_writes();  // kept states streamed by the engine: ordered before what follows
+  t.engine_steps = engine.engine_steps();
   t.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   t.states.resize(t.samples() * t.bodies());  // drops the slot of a step that failed
   if (t.rotates) t.rotations.resize(t.samples() * t.bodies());

@@ -45,6 +45,9 @@ struct Trajectory {
   std::int64_t failed_step = -1;   // first step that failed
   std::int64_t clamped_steps = 0;  // steps on which the engine clamped a speed
   std::int64_t first_clamped_step = -1;
+  // Steps an error-controlled engine took of its own over the run (Engine::engine_steps), at least
+  // one per step of h; 0 for a fixed-step engine, whose steps are the run's.
+  std::int64_t engine_steps = 0;
   double wall_seconds = 0.0;  // stepping loop (forces, step, read, sampling), not load
 
   std::size_t samples() const { return recorded.size(); }

@@ -94,8 +94,8 @@ bool write_trajectory(const Trajectory& t, const WireWrite& write) {
             put(write, t.h) && put(write, t.steps) &&
             put(write, static_cast<std::int32_t>(t.status)) && put_string(write, t.failure) &&
             put(write, t.failed_step) && put(write, t.clamped_steps) &&
-            put(write, t.first_clamped_step) && put(write, t.wall_seconds) &&
-            put(write, std::uint64_t{t.bodies()});
+            put(write, t.first_clamped_step) && put(write, t.engine_steps) &&
+            put(write, t.wall_seconds) && put(write, std::uint64_t{t.bodies()});
   for (std::size_t b = 0; ok && b < t.bodies(); ++b) ok = put_string(write, t.body_names[b]);
   ok = ok && put(write, std::uint64_t{t.samples()}) &&
        write(t.recorded.data(), t.samples() * sizeof(std::int64_t)) && put_states(write, t) &&
@@ -111,8 +111,8 @@ bool read_trajectory(Trajectory& t, std::size_t bodies, std::int64_t max_samples
   if (!get(read, magic) || magic != kMagic || !get_string(read, t.engine) ||
       !get_string(read, t.scene) || !get(read, t.h) || !get(read, t.steps) || !get(read, status) ||
       !get_string(read, t.failure) || !get(read, t.failed_step) || !get(read, t.clamped_steps) ||
-      !get(read, t.first_clamped_step) || !get(read, t.wall_seconds) || !get(read, n) ||
-      n != bodies)
+      !get(read, t.first_clamped_step) || !get(read, t.engine_steps) ||
+      !get(read, t.wall_seconds) || !get(read, n) || n != bodies)
     return false;
   if (status < 0 || status > static_cast<std::int32_t>(RunStatus::refused)) return false;
   t.status = static_cast<RunStatus>(status);

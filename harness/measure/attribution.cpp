@@ -50,6 +50,14 @@ std::string follows(const OwnLawVerdict& v) {
   return v.engine + " follows its own law to " + format_length(v.residual_x);
 }
 
+// What one engine's run may add to the distance between two runs beyond the laws' difference: its
+// own-law tolerance (rounding, up to that bound anywhere). An error-controlled engine's tolerance
+// is its accuracy budget, which may exceed its actual error by orders of magnitude (own_law.cpp),
+// so its measured departure from its law is used: |run - law| bounds its share exactly.
+double share_of_budget(const EngineInfo& info, const OwnLawVerdict& v) {
+  return info.law.scheme == Scheme::ErrorControlled ? v.residual_x : v.tolerance.x;
+}
+
 }  // namespace
 
 bool Attribution::explained() const {
@@ -73,7 +81,7 @@ Attribution attribute(const RunWithLaws& e, const RunWithLaws& r, bool damped) {
   er.first_clamped_step = rr.first_clamped_step = a.clamped_from;  // both stop at either clamp
   a.engine_law = judge_own_law(e.info, er, e.own, e.exact);
   a.reference_law = judge_own_law(r.info, rr, r.own, r.exact);
-  a.budget = a.engine_law.tolerance.x + a.reference_law.tolerance.x;
+  a.budget = share_of_budget(e.info, a.engine_law) + share_of_budget(r.info, a.reference_law);
   const std::size_t samples = std::min({e.run.samples(), r.run.samples(), e.own.samples(),
                                         r.own.samples(), e.exact.samples(), r.exact.samples()});
   for (std::size_t s = 0; s < samples; ++s) {

@@ -35,8 +35,9 @@ struct Attribution {
   double law_part = 0.0;        // max |L_E - L_R|
   double precision_part = 0.0;  // max |(A_E - L_E) - (A_R - L_R)|
   double residual = 0.0;        // max |(x_E - x_R) - (A_E - A_R)|
-  double budget = 0.0;          // the two own-law tolerances (positions), added
-  std::string law_difference;   // what the two members differ in (law.hpp): "damping-order", ...
+  double budget = 0.0;         // the two own-law tolerances (positions), added (an error-controlled
+                               // engine adds its measured departure from its law instead)
+  std::string law_difference;  // what the two members differ in (law.hpp): "damping-order", ...
   OwnLawVerdict engine_law, reference_law;  // each engine against its own law
   std::int64_t clamped_from = -1;  // first step either engine clamped a speed; compared before it
   // Rotation, when both runs rotate: the largest geodesic angle between the two engines'

@@ -29,8 +29,10 @@ struct OwnLawTolerance {
 // THE answer to "what is the own-law tolerance of engine E at step h": from E's arithmetic and its
 // law's trajectory at h (`own_law` = predict_own_arithmetic(info, scene, h)). Copied order:
 // tolerance::kCopiedUlps ulps of the largest |x| or |v|; otherwise tolerance::kStepUlps ulps of it
-// per step.
-OwnLawTolerance own_law_tolerance(const EngineInfo& info, const Trajectory& own_law);
+// per step. An error-controlled engine's is its accuracy budget over `engine_steps` of its own
+// steps (Trajectory::engine_steps; at least own_law.steps are counted): own_law.cpp derives it.
+OwnLawTolerance own_law_tolerance(const EngineInfo& info, const Trajectory& own_law,
+                                  std::int64_t engine_steps = 0);
 
 // One run against its own law.
 struct OwnLawVerdict {

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "harness/core/forces.hpp"
+#include "harness/oracles/analytic.hpp"
 
 namespace dropcheck {
 namespace {
@@ -15,9 +16,27 @@ struct StateL {
   VecL x, v;
 };
 
+// The error-controlled member's law is the continuous model (law.hpp): its closed form, or, for a
+// scene without one, a trajectory that says so (status engine_error, no samples past step 0).
+Trajectory continuous_law(Law law, const Scene& scene, double h, const RunOptions& options) {
+  std::optional<Trajectory> exact = analytic_trajectory(scene, h, options);
+  if (!exact) {
+    Trajectory t;
+    t.scene = scene.name;
+    t.h = h;
+    t.steps = step_count(scene, h);
+    t.status = RunStatus::engine_error;
+    t.failure = "no closed form to follow: " + analytic_unavailable(scene);
+    exact = std::move(t);
+  }
+  exact->engine = "law: " + to_string(law);
+  return *exact;
+}
+
 }  // namespace
 
 Trajectory predict_discrete(Law law, const Scene& scene, double h, const RunOptions& options) {
+  if (law.scheme == Scheme::ErrorControlled) return continuous_law(law, scene, h, options);
   Trajectory t;
   t.engine = "law: " + to_string(law);
   t.scene = scene.name;

@@ -116,6 +116,7 @@ void add_order_guides(const SceneEvaluation& se, PlotSpec& p) {
     if (!ev.ran()) continue;
     const PlotSeries& s = p.series[k++];
     const int order = order_of(ev.info.law);
+    if (order == 0) continue;  // error-controlled: its error follows its accuracy, not h
     // An engine at rounding level (RK4 is exact in free fall) shows no slope to anchor on.
     const bool converging = s.x.size() > 1 && s.y.front() > 0.0 && s.y.back() < s.y.front() / 2;
     if (!converging || !drawn.insert(order).second) continue;

@@ -118,6 +118,8 @@ std::optional<SpringModel> body_spring(const Scene& scene, std::size_t index) {
 }
 
 bool spring_step_stable(Law law, const SpringModel& spring, double h) {
+  // An error-controlled integrator steps below any edge its accuracy needs: no step bound.
+  if (law.scheme == Scheme::ErrorControlled) return true;
   if (law.scheme == Scheme::RK4) return rk4_spring_stable(spring, h);
   const StepCoefficients c = coefficients(law, spring, h);
   return c.beta > -1.0 && c.beta <= 1.0 && c.a < 2.0 * (1.0 + c.beta);
@@ -132,6 +134,7 @@ std::optional<StepRotation> spring_step_rotation(Law law, const SpringModel& spr
   // t^2 < 4*beta, cos(theta) = t/(2*sqrt(beta)). theta is found from 1 - cos(theta) =
   // 2*sin^2(theta/2) = (2*sqrt(beta) - t)/(2*sqrt(beta)), which keeps its digits at small theta
   // where acos would not (undamped: beta = 1, 2 - t = A = (w*h)^2, theta = 2*asin(w*h/2)).
+  if (law.scheme == Scheme::ErrorControlled) return std::nullopt;
   const StepCoefficients c = coefficients(law, spring, h);
   if (c.beta <= 0.0) return std::nullopt;
   const double root = std::sqrt(c.beta), t = 1.0 + c.beta - c.a;
@@ -159,6 +162,7 @@ double spring_max_stable_dt(Law law, const SpringModel& spring) {
 }
 
 std::optional<double> theory_max_dt(const Scene& scene, Law law) {
+  if (law.scheme == Scheme::ErrorControlled) return std::nullopt;  // no step bound (above)
   std::optional<double> edge;
   const double k = scene.world.damping_rate;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {

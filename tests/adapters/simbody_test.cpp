@@ -2,15 +2,24 @@
 // semi-explicit Euler integrator, through the Engine interface, its own traps only: its declared
 // laws and drag figure (docs/engines.md sections 2 and 8), its rotational member over Gazebo's
 // tumble, and the scenes its damper cannot express. What every engine must do (its own law, a
-// force for one step, reload, static bodies) is in tests/adapters/conformance_test.cpp.
+// force for one step, reload, static bodies) is in tests/adapters/conformance_test.cpp. The
+// error-controlled engine built from the same code (simbody-rkm, Runge-Kutta-Merson) is tested at
+// the end: the continuous model met within its accuracy.
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <sstream>
 #include <string>
 
 #include "adapter_test_support.hpp"
 #include "adapters/simbody_world.hpp"
+#include "harness/cli/cli.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
+#include "harness/measure/accuracy_response.hpp"
+#include "harness/measure/metrics.hpp"
+#include "harness/measure/own_law.hpp"
+#include "harness/oracles/analytic.hpp"
 #include "harness/oracles/identify_rotation.hpp"
 #include "harness/oracles/own_rotation.hpp"
 
@@ -95,4 +104,71 @@ TEST_CASE("Simbody's two-half-step integrator reproduces Gazebo's published Simb
         Approx(predicted_momentum_drift(
                    scene, {Gyroscopic::explicit_term, OrientationUpdate::first_order}, 5e-4, 0))
             .epsilon(1e-4));
+}
+
+TEST_CASE("simbody-rkm meets the continuous drag model far inside its accuracy",
+          "[simbody][error-controlled]") {
+  ENGINE_OR_RETURN(engine, "simbody-rkm");
+  const EngineInfo info = engine->info();
+  CHECK(info.law == kErrorControlled);
+  CHECK(info.accuracy == 1e-3);  // Simbody's default (IntegratorRep.h)
+  const Scene scene = scenario("free_fall_drag");
+  const Trajectory run = drag_figure_run(*engine);
+  // Measured: 5.57e-10 m and 6.75e-10 m/s from the closed form over 61 Runge-Kutta-Merson steps
+  // (one per step of h, and one more): its fourth-order truncation at h = 1/60, far inside the
+  // accuracy. The damper at the per-step value m*(1 - exp(-k*h))/h instead of the continuous m*k
+  // would miss by 0.5 % of the drag's share: mm, not 1e-10 m.
+  const ErrorStats e = compare_worst(run, *analytic_trajectory(scene, run.h), 0.0);
+  CHECK(e.max_dx < 1e-9);
+  CHECK(e.max_dv < 1e-9);
+  CHECK(run.engine_steps >= 60);
+  CHECK(run.engine_steps <= 62);
+  const OwnLawVerdict v = judge_own_law(info, scene, run);
+  CHECK(v.follows());
+  CHECK(v.residual_x == e.max_dx);
+  // The budget: 61 steps x 1e-3 x (sqrt(7) + sqrt(6) x 5.679 m/s x 1 s) = 1.01 m (own_law.cpp).
+  CHECK(v.tolerance.x ==
+        Approx(61 * 1e-3 * (std::sqrt(7.0) + std::sqrt(6.0) * 5.679089678785525)).epsilon(1e-3));
+}
+
+TEST_CASE("simbody-rkm's error answers its accuracy: within every budget, more steps when tighter",
+          "[simbody][error-controlled]") {
+  ENGINE_OR_RETURN(engine, "simbody-rkm");
+  const AccuracyResponse r = error_per_accuracy(*engine, scenario("free_fall_drag"), 1.0 / 60.0);
+  REQUIRE(r.unavailable.empty());
+  REQUIRE(r.points.size() == 4);
+  CHECK(r.within());
+  // Measured: 5.57e-10 m at 1e-3, 1e-6 and 1e-9 over 61 steps (the step h already meets them);
+  // 5.02e-11 m over 120 steps at 1e-12, where the controller halves the step.
+  CHECK(r.points[0].engine_steps == r.points[2].engine_steps);
+  CHECK(r.points[3].engine_steps > r.points[0].engine_steps);
+  CHECK(r.points[3].error_x < r.points[0].error_x / 5.0);
+  CHECK(engine->info().accuracy == 1e-3);  // left as it was
+  // A fixed-step engine takes no accuracy and is reported so.
+  ENGINE_OR_RETURN(fixed, "simbody");
+  CHECK_FALSE(fixed->set_accuracy(1e-6));
+  CHECK_THAT(error_per_accuracy(*fixed, scenario("free_fall_drag"), 1.0 / 60.0).unavailable,
+             Catch::Contains("not error-controlled"));
+}
+
+TEST_CASE("simbody-rkm runs only what its continuous law covers, and says why not the rest",
+          "[simbody][error-controlled]") {
+  ENGINE_OR_RETURN(engine, "simbody-rkm");
+  CHECK(engine->cannot_run(scenario("wind")).empty());  // constant forces: held exactly
+  CHECK_THAT(engine->cannot_run(scenario("extreme/stiff_spring")),
+             Catch::Contains("error-controlled integrator would integrate that held force"));
+  CHECK_THAT(engine->cannot_run(scenario("gazebo_boxes_simple")), Catch::Contains("rotation"));
+  CHECK_THAT(engine->cannot_run(scenario("drop_on_floor")), Catch::Contains("no contacts"));
+}
+
+TEST_CASE("identify on simbody-rkm prints its error per accuracy, each within its budget",
+          "[simbody][error-controlled][identify]") {
+  ENGINE_OR_RETURN(engine, "simbody-rkm");
+  const std::string scene = std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/free_fall_drag.toml";
+  std::ostringstream out, err;
+  CHECK(cli_main({"identify", scene, "--engine", "simbody-rkm"}, out, err) == kExitOk);
+  CHECK_THAT(out.str(), Catch::Contains("declared error-controlled"));
+  CHECK_THAT(out.str(), Catch::Contains("not fitted to a discrete member"));
+  CHECK_THAT(out.str(), Catch::Contains("within the budget at every accuracy"));
+  CHECK_THAT(out.str(), !Catch::Contains("OUTSIDE"));
 }

@@ -2,6 +2,7 @@
 // acceleration, and the keys that name members on the command line and in files.
 #include "harness/core/law.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -143,4 +144,16 @@ TEST_CASE("law family: RK4 against an Euler member differs in scheme", "[law]") 
   const dropcheck::Law ours = dropcheck::DampingOrder::AfterForces;
   CHECK(dropcheck::law_difference(ours, dropcheck::kRungeKutta4) == "scheme");
   CHECK(dropcheck::law_difference(dropcheck::kRungeKutta4, dropcheck::kRungeKutta4).empty());
+}
+
+TEST_CASE("law family: the error-controlled member is declared, never fitted, has no order in h",
+          "[law]") {
+  using namespace dropcheck;
+  CHECK(law_key(kErrorControlled) == "error-controlled");
+  CHECK(parse_law_key("error-controlled") == kErrorControlled);
+  CHECK(order_of(kErrorControlled) == 0);
+  CHECK(std::find(std::begin(kLawFamily), std::end(kLawFamily), kErrorControlled) ==
+        std::end(kLawFamily));
+  CHECK(law_difference(kErrorControlled, Law{DampingOrder::AfterForces}) == "scheme");
+  CHECK(law_difference(kErrorControlled, kErrorControlled).empty());
 }

@@ -99,3 +99,25 @@ TEST_CASE("the attribution of two engines on the same law is rounding only", "[a
   CHECK_THAT(attribute({oi, law, law, law}, {oi, law, law, law}, true).sentence(),
              Contains("identical"));
 }
+
+TEST_CASE("an error-controlled engine adds its measured departure to the budget, not its accuracy",
+          "[attribution][error-controlled]") {
+  const Scene s = drop();
+  const double h = 1.0 / 60;
+  // The continuous model (the error-controlled member's law), and a run 1 um off it.
+  const Trajectory model = predict_discrete(kErrorControlled, s, h);
+  Trajectory run = model;
+  for (BodyState& b : run.states) b.position.y() += 1e-6;
+  const Trajectory ours = predict_discrete(DampingOrder::AfterForces, s, h);
+  EngineInfo ri = info("simbody-rkm", kErrorControlled);
+  ri.accuracy = 1e-3;  // a budget near 1 m: as a rounding bound it would swallow every law part
+  const Attribution a =
+      attribute({ri, run, model, model},
+                {info("ours-f64", DampingOrder::AfterForces), ours, ours, ours}, true);
+  CHECK(a.engine_law.follows());
+  CHECK(a.engine_law.tolerance.x > 0.5);
+  CHECK(a.budget == Approx(1e-6).epsilon(1e-5));  // 1 um, plus ours-f64's 2e-12 m rounding bound
+  CHECK(a.law_part > 0.01);                       // semi-implicit Euler against the model: cm
+  CHECK(a.law_difference == "scheme");
+  CHECK_THAT(a.sentence(), Contains("from the two discrete laws (scheme)"));
+}

@@ -76,3 +76,41 @@ TEST_CASE("a finite law whose |x| overflows a squared norm still gets a finite t
   CHECK(t.x == Approx(4.0 * 0x1p-52 * std::sqrt(2.0) * 1e300));
   CHECK(judge_own_law(c.info, law, law, law).follows());
 }
+
+TEST_CASE("an error-controlled engine's tolerance is its accuracy budget over its own steps",
+          "[own_law][error-controlled]") {
+  const Scene s = load_scene("scenarios/free_fall.toml");  // 1 s at 1/60 from rest: |v| <= 9.8
+  EngineInfo info;
+  info.law = kErrorControlled;
+  info.accuracy = 1e-6;
+  const Trajectory law = predict_discrete(info.law, s, 1.0 / 60.0);
+  REQUIRE(law.engine == "law: " + to_string(kErrorControlled));
+  // The law is the closed form: x = 10 - 4.9 t^2 at t = 1.
+  CHECK(law.final_state(0).position.y() == Approx(5.1).epsilon(1e-15));
+  // N*a*(sqrt(7) + sqrt(6)*max|v|*T) and N*a*sqrt(6)*max|v|, N the engine's steps (at least 60).
+  const double vmax = 9.8;
+  for (const std::int64_t steps : {0, 60, 90}) {
+    const double n = steps < 60 ? 60.0 : static_cast<double>(steps);
+    const OwnLawTolerance t = own_law_tolerance(info, law, steps);
+    CHECK(t.x == Approx(n * 1e-6 * (std::sqrt(7.0) + std::sqrt(6.0) * vmax)).epsilon(1e-12));
+    CHECK(t.v == Approx(n * 1e-6 * std::sqrt(6.0) * vmax).epsilon(1e-12));
+    CHECK_THAT(t.rule, Contains("accuracy 1e-06 per step"));
+  }
+}
+
+TEST_CASE("an error-controlled law without a closed form fails rather than passing on no samples",
+          "[own_law][error-controlled]") {
+  const Scene s = load_scene("scenarios/gazebo_boxes_simple.toml");  // turns: no closed form
+  EngineInfo info;
+  info.law = kErrorControlled;
+  info.accuracy = 1e-3;
+  const Trajectory law = predict_discrete(info.law, s, 1e-3);
+  CHECK(law.status != RunStatus::ok);
+  CHECK_THAT(law.failure, Contains("no closed form"));
+  Trajectory run = law;  // a finished run: the failure is the law's
+  run.status = RunStatus::ok;
+  run.failure.clear();
+  const OwnLawVerdict v = judge_own_law(info, run, law, law);
+  CHECK_FALSE(v.follows());
+  CHECK_THAT(v.failure, Contains("its law: no closed form"));
+}

@@ -123,6 +123,7 @@ TEST_CASE(
   const Scene scene = extreme("stiff_spring");
   const double edge = 2.0 / kOmega;
   for (const std::string& name : available_engine_names()) {
+    if (!make_engine(name)->cannot_run(scene).empty()) continue;  // simbody-rkm: springs
     const EngineInfo info = make_engine(name)->info();
     const StepSearch s =
         search_max_stable_dt(factory(name), info.scalar, scene, scene.timestep.seconds);
