@@ -28,6 +28,10 @@ const CommandEntry kCommands[] = {
      "dropcheck report [FILE|DIR]... [--out DIR] [--engine E]... [--no-timing]"},
     {"stability", cmd_stability, "dropcheck stability FILE [--engine E]... [--json OUT]"},
     {"identify", cmd_identify, "dropcheck identify FILE (--engine E [--dt H] | --trajectory CSV)"},
+    {"plan", cmd_plan, "dropcheck plan SWEEP --out PLAN [--keys]"},
+    {"sweep", cmd_sweep,
+     "dropcheck sweep PLAN (--shard I/N | --cells-from FILE) --out DIR [--quiet]"},
+    {"merge", cmd_merge, "dropcheck merge PLAN DIR --out RESULTS [--missing FILE]"},
 };
 
 void usage(std::ostream& err) {

@@ -27,6 +27,9 @@ int cmd_check(const std::vector<std::string>& argv, std::ostream& out, std::ostr
 int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
 int cmd_stability(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
 int cmd_identify(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
+int cmd_plan(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
+int cmd_sweep(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
+int cmd_merge(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err);
 
 // Each command's arguments (harness/cli/args.hpp), defined beside the command.
 const CommandSpec& engines_spec();
@@ -37,5 +40,8 @@ const CommandSpec& check_spec();
 const CommandSpec& report_spec();
 const CommandSpec& stability_spec();
 const CommandSpec& identify_spec();
+const CommandSpec& plan_spec();
+const CommandSpec& sweep_spec();
+const CommandSpec& merge_spec();
 
 }  // namespace dropcheck

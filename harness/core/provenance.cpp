@@ -65,6 +65,8 @@ std::string commit_of(const std::string& git, const std::string& output_dir) {
   return hash;
 }
 
+}  // namespace
+
 std::string cpu_model() {
   std::ifstream in("/proc/cpuinfo");
   std::string line;
@@ -78,8 +80,6 @@ std::string cpu_model() {
   }
   return {};
 }
-
-}  // namespace
 
 std::string iso_date_from_epoch(const std::string& epoch) {
   if (epoch.empty() || epoch.size() > 15 ||

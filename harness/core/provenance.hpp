@@ -22,6 +22,10 @@ struct Provenance {
 // found read "unknown".
 Provenance current_provenance(const std::string& dir, const std::string& output_dir = "");
 
+// "model name" of /proc/cpuinfo with the number of logical CPUs ("AMD EPYC 7B13, 2 logical CPUs");
+// "" when it cannot be read.
+std::string cpu_model();
+
 // SOURCE_DATE_EPOCH (seconds since 1970, UTC) as ISO 8601 ("2026-11-21T18:24:33Z"); "" when the
 // text is not a non-negative whole number.
 std::string iso_date_from_epoch(const std::string& epoch);

@@ -24,6 +24,26 @@ const char* to_string(RunStatus status) {
   return "?";
 }
 
+const char* status_key(RunStatus status) {
+  switch (status) {
+    case RunStatus::ok:
+      return "ok";
+    case RunStatus::non_finite:
+      return "non-finite";
+    case RunStatus::engine_error:
+      return "engine-error";
+    case RunStatus::out_of_memory:
+      return "out-of-memory";
+    case RunStatus::crashed:
+      return "crashed";
+    case RunStatus::timed_out:
+      return "timed-out";
+    case RunStatus::refused:
+      return "refused";
+  }
+  return "?";
+}
+
 Trajectory unstarted_trajectory(const std::string& engine, const Scene& scene, double h) {
   Trajectory t;
   t.engine = engine;

@@ -63,6 +63,9 @@ struct Trajectory {
 };
 
 const char* to_string(RunStatus status);
+// The same as one word for machine-read records: "ok", "non-finite", "engine-error",
+// "out-of-memory", "crashed", "timed-out", "refused".
+const char* status_key(RunStatus status);
 
 // A trajectory with no samples yet: the names, h and step count of `scene` run on `engine`.
 Trajectory unstarted_trajectory(const std::string& engine, const Scene& scene, double h);

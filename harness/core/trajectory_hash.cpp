@@ -53,10 +53,14 @@ std::string trajectory_hash_hex(const Trajectory& t) {
   return hex16(trajectory_hash(t));
 }
 
-std::string fnv1a_hex(std::string_view bytes) {
+std::uint64_t fnv1a(std::string_view bytes) {
   Fnv1a f;
   for (char c : bytes) f.add_byte(static_cast<unsigned char>(c));
-  return hex16(f.h);
+  return f.h;
+}
+
+std::string fnv1a_hex(std::string_view bytes) {
+  return hex16(fnv1a(bytes));
 }
 
 }  // namespace dropcheck

@@ -19,6 +19,9 @@ std::uint64_t trajectory_hash(const Trajectory& t);
 // The hash as 16 lower-case hex digits.
 std::string trajectory_hash_hex(const Trajectory& t);
 
+// The same FNV-1a (64-bit) over a byte string.
+std::uint64_t fnv1a(std::string_view bytes);
+
 // The same FNV-1a over a byte string, as 16 lower-case hex digits: a stable short name for a long
 // one (harness/io/file_slug.hpp), the same on every build and machine.
 std::string fnv1a_hex(std::string_view bytes);

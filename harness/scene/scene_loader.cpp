@@ -324,6 +324,10 @@ Scene parse_scene(const std::string& text, const std::string& path) {
   return build(parse_toml(text, path), path);
 }
 
+Scene scene_from_table(const toml::table& root, const std::string& path) {
+  return build(root, path);
+}
+
 Scene load_scene(const std::string& path) {
   return parse_scene(read_scene_text(path), path);
 }

@@ -1,0 +1,42 @@
+// dropcheck plan SWEEP --out PLAN: a sweep file resolved into a plan any machine can run a share
+// of.
+#include "args.hpp"
+#include "cli.hpp"
+#include "harness/core/input_error.hpp"
+#include "harness/io/atomic_file.hpp"
+#include "harness/plan/plan.hpp"
+
+namespace dropcheck {
+
+const CommandSpec& plan_spec() {
+  static const CommandSpec spec{
+      "plan",
+      "Resolves a sweep file (docs/sweeps.md) into a plan: its scenes' texts, engines, axes and "
+      "measures, and a hash of all of it. The cells are every scene x engine x axis value; each "
+      "has a key, and a shard of N is chosen by a hash of that key alone. Every axis value is "
+      "tried on every scene first: one that cannot apply is refused here, before any cell runs.",
+      "SWEEP",
+      "the sweep file (.toml)",
+      1,
+      1,
+      {{"--out", "PLAN", "where to write the plan (JSON)"},
+       {"--keys", "", "also print every cell's key, in plan order"}}};
+  return spec;
+}
+
+int cmd_plan(const std::vector<std::string>& argv, std::ostream& out, std::ostream&) {
+  const Args args = parse_args(plan_spec(), argv);
+  const std::string target = args.value("--out");
+  if (target.empty()) throw InputError("", 0, "--out", "required: where to write the plan");
+  const Plan plan = make_plan(load_sweep(args.positional[0]));
+  write_file_atomic(target, plan_text(plan));
+  out << "plan " << plan.hash << ": " << plan.cell_count() << " cells (" << plan.scenes.size()
+      << " scenes x " << plan.engines.size() << " engines";
+  for (const Axis& a : plan.axes) out << " x " << a.values.size() << " " << a.name;
+  out << ") -> " << target << "\n";
+  if (args.has("--keys"))
+    for (std::size_t i = 0; i < plan.cell_count(); ++i) out << plan.cell(i).key << "\n";
+  return kExitOk;
+}
+
+}  // namespace dropcheck

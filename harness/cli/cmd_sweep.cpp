@@ -1,0 +1,57 @@
+// dropcheck sweep PLAN (--shard I/N | --cells-from FILE) --out DIR: runs a share of a plan.
+#include <filesystem>
+#include <iostream>
+
+#include "args.hpp"
+#include "cli.hpp"
+#include "harness/core/input_error.hpp"
+#include "harness/plan/shard.hpp"
+
+namespace dropcheck {
+
+const CommandSpec& sweep_spec() {
+  static const CommandSpec spec{
+      "sweep",
+      "Runs shard I of N of a plan (the cells whose key hashes to it) or the cells a file lists "
+      "(one key per line, as `dropcheck merge` writes the missing ones), and writes their records "
+      "(docs/results.md) to DIR/shard-I-of-N.jsonl or DIR/cells-HASH.jsonl, whole or not at all. "
+      "An engine that fails, blows up or hangs in a cell is that cell's record: the exit code is "
+      "0 unless the sweep itself could not run (2).",
+      "PLAN",
+      "the plan file (dropcheck plan)",
+      1,
+      1,
+      {{"--shard", "I/N", "run shard I of N (1 <= I <= N)"},
+       {"--cells-from", "FILE", "run the cells FILE lists instead"},
+       {"--out", "DIR", "the folder of shard files (created when missing)"},
+       {"--quiet", "", "no progress line per cell"}}};
+  return spec;
+}
+
+int cmd_sweep(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
+  const Args args = parse_args(sweep_spec(), argv);
+  const std::string dir = args.value("--out");
+  if (dir.empty()) throw InputError("", 0, "--out", "required: the folder of shard files");
+  if (args.has("--shard") == args.has("--cells-from"))
+    throw InputError("", 0, "--shard", "give either --shard I/N or --cells-from FILE");
+  const Plan plan = read_plan(args.positional[0]);
+  std::vector<std::size_t> cells;
+  std::string name;
+  if (args.has("--shard")) {
+    const ShardSpec s = parse_shard(args.value("--shard"));
+    cells = cells_of_shard(plan, s);
+    name = shard_file_name(s);
+  } else {
+    cells = cells_from(plan, args.value("--cells-from"), name);
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  const std::string target = (std::filesystem::path(dir) / name).string();
+  std::ostream null_stream(nullptr);
+  const ShardSummary s = run_cells(plan, cells, target, args.has("--quiet") ? null_stream : err);
+  out << "sweep " << plan.hash << ": " << s.cells << " cells (" << s.ok << " ok, " << s.failed
+      << " not ok, " << s.skipped << " skipped) -> " << target << "\n";
+  return kExitOk;
+}
+
+}  // namespace dropcheck

@@ -1,0 +1,147 @@
+#include "harness/plan/cell_record.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "harness/core/build_id.hpp"
+#include "harness/core/input_error.hpp"
+#include "harness/core/provenance.hpp"
+#include "harness/core/registry.hpp"
+#include "harness/core/rotation_law.hpp"
+#include "harness/core/runner.hpp"
+#include "harness/core/trajectory_hash.hpp"
+#include "harness/measure/law_stability.hpp"
+#include "harness/measure/metrics.hpp"
+#include "harness/measure/own_law.hpp"
+#include "harness/oracles/analytic.hpp"
+#include "harness/plan/axes.hpp"
+#include "harness/stability/stability_theory.hpp"
+
+namespace dropcheck {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+// A number; Inf and NaN as the strings "inf", "-inf", "nan" (JSON has no such numbers).
+Json number(double v) {
+  if (std::isfinite(v)) return v;
+  return std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf";
+}
+
+Json engine_json(const EngineInfo& i) {
+  Json e{{"name", i.name},
+         {"version", i.version},
+         {"scalar", to_string(i.scalar)},
+         {"law", law_key(i.law)}};
+  if (i.capabilities.rotation != Rotation::none)
+    e["rotation_law"] = rotation_law_key(i.rotation_law);
+  if (i.accuracy > 0.0) e["accuracy"] = i.accuracy;
+  e["settings"] = i.damping_mapping;
+  if (!i.contact_settings.empty()) e["contact_settings"] = i.contact_settings;
+  return e;
+}
+
+std::string host_name() {
+  char name[256] = {};
+  return gethostname(name, sizeof name - 1) == 0 ? std::string(name) : std::string("unknown");
+}
+
+void measure_error(const Scene& scene, const Trajectory& run, Json& r) {
+  if (const std::string why = analytic_unavailable(scene); !why.empty()) {
+    r["error"] = {{"closed_form", nullptr}, {"why_none", why}};
+    return;
+  }
+  const ErrorStats e = compare_worst(run, *analytic_trajectory(scene, run.h), 0.0);
+  r["error"] = {{"closed_form", {{"max_dx", number(e.max_dx)}, {"max_dv", number(e.max_dv)}}}};
+}
+
+void measure_own_law(const EngineInfo& info, const Scene& scene, const Trajectory& run, Json& r) {
+  if (scene.world.contacts) {
+    r["own_law"] = {{"judged", false}, {"why_not", "contacts: the law family is free flight"}};
+    return;
+  }
+  const OwnLawVerdict v = judge_own_law(info, scene, run);
+  r["own_law"] = {{"judged", true},
+                  {"follows", v.follows()},
+                  {"residual_x", number(v.residual_x)},
+                  {"residual_v", number(v.residual_v)},
+                  {"tolerance_x", number(v.tolerance.x)},
+                  {"tolerance_v", number(v.tolerance.v)}};
+}
+
+void measure_stability(const EngineInfo& info, const Scene& scene, const Timestep& h,
+                       const Trajectory& run, Json& r) {
+  const std::optional<double> edge = theory_max_dt(scene, info.law);
+  r["stability"] = {{"stable", run.status == RunStatus::ok},
+                    {"law_unstable", law_instability(scene, info.law, h)},
+                    {"theory_max_h", edge ? number(*edge) : Json(nullptr)}};
+}
+
+void measure_timing(const Scene& scene, const Trajectory& run, Json& r) {
+  std::size_t dynamic = 0;
+  for (const Body& b : scene.bodies) dynamic += b.is_static ? 0 : 1;
+  const double body_steps = static_cast<double>(run.steps) * static_cast<double>(dynamic);
+  r["timing"] = {{"wall_time", true},
+                 {"ns_per_body_step", number(run.wall_seconds * 1e9 / std::max(body_steps, 1.0))},
+                 {"cpu", cpu_model()},
+                 {"host", host_name()}};
+}
+
+CellRecord finish(Json& r, const std::string& status, const std::string& reason) {
+  r["status"] = status;
+  if (!reason.empty()) r["reason"] = reason;
+  return {status, r.dump()};
+}
+
+}  // namespace
+
+CellRecord run_cell(const Plan& plan, const Cell& cell) {
+  Json r;
+  r["format"] = kRecordFormat;
+  r["key"] = cell.key;
+  r["plan"] = plan.hash;
+  const BuildId build = current_build();
+  r["build"] = {{"key", build.key}, {"flags", build.flags}, {"commit", source_commit()}};
+  const PlanScene& ps = plan.scenes[cell.scene];
+  r["scene"] = ps.name;
+  Json axes = Json::object();
+  std::vector<std::string> values;
+  for (std::size_t k = 0; k < plan.axes.size(); ++k) {
+    values.push_back(plan.axes[k].values[cell.values[k]]);
+    axes[plan.axes[k].name] = values.back();
+  }
+  r["axes"] = axes;
+  CellSetup c;
+  try {
+    c = setup_cell(ps.text, ps.file, plan.engines[cell.engine], plan.axes, values);
+  } catch (const InputError& e) {
+    return finish(r, "invalid", e.what());
+  }
+  std::unique_ptr<Engine> engine = make_engine(c.engine);
+  if (!engine) return finish(r, "skipped", c.engine + ": " + engine_unavailable_reason(c.engine));
+  const EngineInfo info = engine->info();
+  r["engine"] = engine_json(info);
+  r["h"] = c.h.text;
+  r["steps"] = step_count(c.scene, c.h.seconds);
+  if (!c.scalar.empty() && c.scalar != to_string(info.scalar))
+    return finish(r, "skipped", info.name + " runs in " + to_string(info.scalar) + " only");
+  if (const std::string why = engine->cannot_run(c.scene); !why.empty())
+    return finish(r, "skipped", why);
+  const Trajectory run = run_scene(*engine, c.scene, c.h.seconds);
+  const std::string status = status_key(run.status);
+  r["status"] = status;
+  if (run.status != RunStatus::ok) {
+    r["reason"] = run.failure;
+    r["failed_step"] = run.failed_step;
+  }
+  if (plan.has(Measure::error)) measure_error(c.scene, run, r);
+  if (plan.has(Measure::own_law)) measure_own_law(info, c.scene, run, r);
+  if (plan.has(Measure::stability)) measure_stability(info, c.scene, c.h, run, r);
+  if (plan.has(Measure::hash)) r["hash"] = trajectory_hash_hex(run);
+  if (plan.has(Measure::timing)) measure_timing(c.scene, run, r);
+  return {status, r.dump()};
+}
+
+}  // namespace dropcheck

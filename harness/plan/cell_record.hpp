@@ -1,0 +1,26 @@
+// One cell of a plan, run and measured: its record, one line of JSON (docs/results.md).
+//
+// A record is a pure function of the plan's cell, this build and the engines' libraries: the same
+// cell gives the same bytes on every run (no wall time unless the plan measures timing, and then
+// the figures that depend on it sit under "timing", marked, with the CPU model and host). What
+// the engine does is a result, never a failure of the sweep: an engine that blows up, aborts,
+// hangs or cannot run the cell leaves a record saying so.
+#pragma once
+
+#include <string>
+
+#include "harness/plan/plan.hpp"
+
+namespace dropcheck {
+
+inline constexpr const char* kRecordFormat = "dropcheck-record/1";
+
+struct CellRecord {
+  std::string status;  // "ok", a run status ("non_finite", "crashed", ...), "skipped", "invalid"
+  std::string line;    // the record: one JSON object, no trailing newline
+};
+
+// Runs cell `cell` of `plan` (in a child process where the runner isolates runs) and records it.
+CellRecord run_cell(const Plan& plan, const Cell& cell);
+
+}  // namespace dropcheck

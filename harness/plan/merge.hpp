@@ -1,0 +1,29 @@
+// Merging a plan's shard files into one result file: every record once, sorted by key, so that the
+// result is the same bytes however the plan was split (N = 1, 7 or 1000) and wherever it ran.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "harness/plan/plan.hpp"
+
+namespace dropcheck {
+
+struct MergeResult {
+  std::size_t files = 0;             // shard files read
+  std::size_t records = 0;           // distinct cells recorded
+  std::vector<std::string> missing;  // keys of the plan's cells no file holds, in plan order
+};
+
+// Reads every shard file in `dir` ("shard-*.jsonl", "cells-*.jsonl"; anything else is left alone).
+// Throws InputError naming the file and line for a line that is not a record of this plan (another
+// plan's hash, a key the plan does not have, not JSON), for a shard entry that is a symbolic link
+// or not a regular file, and naming both files for one cell recorded twice with different bytes
+// (the same bytes twice are one record: a shard rerun beside its first run). When no cell is
+// missing, writes the records, one line each in key order, to `out` atomically.
+MergeResult merge_shards(const Plan& plan, const std::string& dir, const std::string& out);
+
+// Largest shard file read: 4 GiB.
+inline constexpr long long kMaxShardBytes = 4LL << 30;
+
+}  // namespace dropcheck

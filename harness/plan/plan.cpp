@@ -1,0 +1,186 @@
+#include "harness/plan/plan.hpp"
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "harness/core/input_error.hpp"
+#include "harness/core/registry.hpp"
+#include "harness/core/trajectory_hash.hpp"
+#include "harness/io/bounded_read.hpp"
+#include "harness/plan/axes.hpp"
+#include "harness/scene/scene_loader.hpp"
+
+namespace dropcheck {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+constexpr const char* kPlanFormat = "dropcheck-plan/1";
+
+// Checks that each value of each axis applies to each scene on its own (the product is not
+// built: a combination that cannot apply becomes its cell's record).
+void validate_axes(const SweepSpec& sweep, const Plan& plan) {
+  for (std::size_t i = 0; i < sweep.axes.size(); ++i) {
+    const Axis& a = sweep.axes[i];
+    for (const PlanScene& s : plan.scenes)
+      for (const std::string& v : a.values) {
+        try {
+          setup_cell(s.text, s.file, sweep.engines.front(), {&a, 1}, {&v, 1});
+        } catch (const InputError& e) {
+          throw InputError(sweep.file, a.line, "axis[" + std::to_string(i) + "]",
+                           a.name + " = " + v + " on scene " + s.name + ": " + e.what());
+        }
+      }
+  }
+}
+
+Json content(const Plan& p) {
+  Json j;
+  j["format"] = kPlanFormat;
+  j["sweep"] = p.sweep;
+  j["description"] = p.description;
+  j["engines"] = p.engines;
+  Json measures = Json::array();
+  for (Measure m : p.measures) measures.push_back(to_string(m));
+  j["measure"] = measures;
+  Json axes = Json::array();
+  for (const Axis& a : p.axes)
+    axes.push_back(
+        {{a.kind == AxisKind::scene_key ? "key" : "name", a.name}, {"values", a.values}});
+  j["axes"] = axes;
+  Json scenes = Json::array();
+  for (const PlanScene& s : p.scenes)
+    scenes.push_back({{"name", s.name}, {"file", s.file}, {"text", s.text}});
+  j["scenes"] = scenes;
+  return j;
+}
+
+std::string hash_of(const Plan& p) {
+  return fnv1a_hex(content(p).dump());
+}
+
+AxisKind kind_named(const std::string& name) {
+  for (AxisKind k :
+       {AxisKind::timestep, AxisKind::damping_rate, AxisKind::gravity, AxisKind::spring_stiffness,
+        AxisKind::mass_ratio, AxisKind::initial_speed, AxisKind::scalar})
+    if (name == to_string(k)) return k;
+  throw std::invalid_argument("unknown axis " + excerpt(name));
+}
+
+Measure measure_named(const std::string& name) {
+  for (Measure m :
+       {Measure::error, Measure::own_law, Measure::stability, Measure::hash, Measure::timing})
+    if (name == to_string(m)) return m;
+  throw std::invalid_argument("unknown measure " + excerpt(name));
+}
+
+Plan from_json(const Json& j) {
+  if (j.at("format").get<std::string>() != kPlanFormat)
+    throw std::invalid_argument("format is not " + std::string(kPlanFormat));
+  Plan p;
+  p.sweep = j.at("sweep").get<std::string>();
+  p.description = j.at("description").get<std::string>();
+  p.engines = j.at("engines").get<std::vector<std::string>>();
+  // Only dropcheck's own engines: a plan is data, and an external engine is a program to start.
+  const std::vector<std::string>& known = known_engine_names();
+  for (const std::string& e : p.engines)
+    if (std::find(known.begin(), known.end(), e) == known.end())
+      throw std::invalid_argument("unknown engine " + excerpt(e));
+  for (const Json& m : j.at("measure")) p.measures.push_back(measure_named(m.get<std::string>()));
+  for (const Json& a : j.at("axes")) {
+    Axis axis;
+    if (a.contains("key")) {
+      axis.kind = AxisKind::scene_key;
+      axis.name = a.at("key").get<std::string>();
+    } else {
+      axis.name = a.at("name").get<std::string>();
+      axis.kind = kind_named(axis.name);
+    }
+    axis.values = a.at("values").get<std::vector<std::string>>();
+    if (axis.values.empty()) throw std::invalid_argument("axis " + axis.name + " has no values");
+    p.axes.push_back(std::move(axis));
+  }
+  for (const Json& s : j.at("scenes"))
+    p.scenes.push_back({s.at("name").get<std::string>(), s.at("file").get<std::string>(),
+                        s.at("text").get<std::string>()});
+  if (p.scenes.empty() || p.engines.empty())
+    throw std::invalid_argument("a plan needs scenes and engines");
+  p.hash = j.at("hash").get<std::string>();
+  return p;
+}
+
+}  // namespace
+
+std::size_t Plan::cell_count() const {
+  std::size_t n = scenes.size() * engines.size();
+  for (const Axis& a : axes) n *= a.values.size();
+  return n;
+}
+
+Cell Plan::cell(std::size_t i) const {
+  Cell c;
+  c.values.resize(axes.size());
+  for (std::size_t k = axes.size(); k-- > 0;) {
+    c.values[k] = i % axes[k].values.size();
+    i /= axes[k].values.size();
+  }
+  c.engine = i % engines.size();
+  c.scene = i / engines.size();
+  c.key = scenes[c.scene].name + "|" + engines[c.engine];
+  for (std::size_t k = 0; k < axes.size(); ++k)
+    c.key += "|" + axes[k].name + "=" + axes[k].values[c.values[k]];
+  return c;
+}
+
+bool Plan::has(Measure m) const {
+  return std::find(measures.begin(), measures.end(), m) != measures.end();
+}
+
+Plan make_plan(const SweepSpec& sweep) {
+  Plan p;
+  p.sweep = sweep.file;
+  p.description = sweep.description;
+  p.engines = sweep.engines;
+  p.axes = sweep.axes;
+  p.measures = sweep.measures;
+  std::set<std::string> names;
+  for (const std::string& file : sweep.scene_files) {
+    std::string text = read_scene_text(file);
+    const Scene s = parse_scene(text, file);
+    if (!names.insert(s.name).second)
+      throw InputError(sweep.file, 0, "scenes",
+                       "two scenes are named " + excerpt(s.name) + " (the second: " + file + ")");
+    p.scenes.push_back({s.name, file, std::move(text)});
+  }
+  validate_axes(sweep, p);
+  p.hash = hash_of(p);
+  return p;
+}
+
+std::string plan_text(const Plan& plan) {
+  Json j = content(plan);
+  j["hash"] = plan.hash;
+  return j.dump(1) + "\n";
+}
+
+Plan read_plan(const std::string& path) {
+  const std::string text = read_regular_file(path, kMaxPlanBytes, "256 MiB, for a plan");
+  Plan p;
+  try {
+    p = from_json(Json::parse(text));
+  } catch (const std::exception& e) {
+    throw InputError(path, 0, "", std::string("not a dropcheck plan: ") + e.what());
+  }
+  if (hash_of(p) != p.hash)
+    throw InputError(path, 0, "hash",
+                     "the plan's content does not match its hash " + excerpt(p.hash) +
+                         " (edited after `dropcheck plan`? plan the sweep again)");
+  return p;
+}
+
+std::size_t shard_of(std::string_view key, std::size_t n) {
+  return static_cast<std::size_t>(fnv1a(key) % n);
+}
+
+}  // namespace dropcheck

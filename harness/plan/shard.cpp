@@ -1,0 +1,105 @@
+#include "harness/plan/shard.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <sstream>
+#include <unordered_map>
+
+#include "harness/core/input_error.hpp"
+#include "harness/core/trajectory_hash.hpp"
+#include "harness/io/atomic_file.hpp"
+#include "harness/io/bounded_read.hpp"
+#include "harness/plan/cell_record.hpp"
+
+namespace dropcheck {
+namespace {
+
+std::size_t whole(const std::string& text, const std::string& all) {
+  std::size_t v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size() || text.empty())
+    throw InputError("", 0, "--shard",
+                     "expected I/N (whole numbers, 1 <= I <= N), got " + excerpt(all));
+  return v;
+}
+
+std::string padded(std::size_t v, std::size_t width) {
+  std::string s = std::to_string(v);
+  return std::string(width > s.size() ? width - s.size() : 0, '0') + s;
+}
+
+}  // namespace
+
+ShardSpec parse_shard(const std::string& text) {
+  const std::size_t slash = text.find('/');
+  if (slash == std::string::npos)
+    throw InputError("", 0, "--shard", "expected I/N, got " + excerpt(text));
+  const std::size_t i = whole(text.substr(0, slash), text), n = whole(text.substr(slash + 1), text);
+  if (n < 1 || n > kMaxShards || i < 1 || i > n)
+    throw InputError("", 0, "--shard",
+                     "expected 1 <= I <= N <= " + std::to_string(kMaxShards) + ", got " + text);
+  return {i - 1, n};
+}
+
+std::string shard_file_name(ShardSpec s) {
+  const std::size_t width = std::to_string(s.count).size();
+  return "shard-" + padded(s.index + 1, width) + "-of-" + padded(s.count, width) + ".jsonl";
+}
+
+std::vector<std::size_t> cells_of_shard(const Plan& plan, ShardSpec s) {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < plan.cell_count(); ++i)
+    if (shard_of(plan.cell(i).key, s.count) == s.index) out.push_back(i);
+  return out;
+}
+
+std::vector<std::size_t> cells_from(const Plan& plan, const std::string& path,
+                                    std::string& file_name) {
+  std::unordered_map<std::string, std::size_t> index;
+  for (std::size_t i = 0; i < plan.cell_count(); ++i) index.emplace(plan.cell(i).key, i);
+  const std::string text = read_regular_file(path, kMaxPlanBytes, "256 MiB, for a cell list");
+  std::istringstream in(text);
+  std::vector<std::size_t> out;
+  int line = 0;
+  for (std::string key; std::getline(in, key);) {
+    ++line;
+    if (key.empty()) continue;
+    const auto it = index.find(key);
+    if (it == index.end())
+      throw InputError(path, line, "", "cell " + excerpt(key) + " is not in plan " + plan.hash);
+    out.push_back(it->second);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  if (out.empty()) throw InputError(path, 0, "", "lists no cell");
+  std::string joined;
+  for (std::size_t i : out) joined += plan.cell(i).key + "\n";
+  file_name = "cells-" + fnv1a_hex(joined) + ".jsonl";
+  return out;
+}
+
+ShardSummary run_cells(const Plan& plan, const std::vector<std::size_t>& cells,
+                       const std::string& out, std::ostream& progress) {
+  std::vector<std::pair<std::string, std::string>> records;  // key, record
+  ShardSummary s;
+  for (std::size_t i : cells) {
+    const Cell c = plan.cell(i);
+    CellRecord record = run_cell(plan, c);
+    const bool ok = record.status == "ok", skipped = record.status == "skipped";
+    ++s.cells;
+    (ok ? s.ok : skipped ? s.skipped : s.failed) += 1;
+    progress << "cell " << s.cells << " of " << cells.size() << ": " << c.key << ": "
+             << record.status << "\n";
+    records.emplace_back(c.key, std::move(record.line));
+  }
+  std::sort(records.begin(), records.end());
+  write_file_atomic(
+      out,
+      [&](std::ostream& o) {
+        for (const auto& [key, record] : records) o << record << "\n";
+      },
+      Links::refuse);
+  return s;
+}
+
+}  // namespace dropcheck

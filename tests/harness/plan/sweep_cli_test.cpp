@@ -1,0 +1,154 @@
+// Tests `dropcheck plan`, `sweep` and `merge` as a user runs them: the merged result is the same
+// bytes for any number of shards; a missing shard is listed and rerun from the list; a cell
+// recorded twice with different bytes, a record of another plan and a planted link are refused,
+// naming the files; an engine that blows up is a record, not a failed shard.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "harness/cli/cli.hpp"
+#include "tests/harness/test_dirs.hpp"
+
+using namespace dropcheck;
+using Catch::Matchers::Contains;
+using dropcheck::testing::ScratchDir;
+using dropcheck::testing::slurp;
+
+namespace {
+
+struct Cli {
+  int code = 0;
+  std::string out, err;
+};
+
+Cli run(const std::vector<std::string>& argv) {
+  std::ostringstream out, err;
+  const int code = cli_main(argv, out, err);
+  return {code, out.str(), err.str()};
+}
+
+// 2 engines x 4 steps x 2 stiffnesses of the stiff spring: 16 cells. At 1/25 and 3600 N/m ours
+// (float) passes its stability edge and overflows (non-finite at step 68).
+std::string make_plan_file(const ScratchDir& d) {
+  const std::string sweep = d.write(
+      "s.toml",
+      "scenes = [\"" + std::string(DROPCHECK_SOURCE_DIR) +
+          "/scenarios/extreme/stiff_spring.toml\"]\n"
+          "engines = [\"ours\", \"chipmunk\"]\n"
+          "[[axis]]\nname = \"timestep\"\nvalues = [\"1/120\", \"1/60\", \"1/32\", \"1/25\"]\n"
+          "[[axis]]\nkey = \"force[0].spring.stiffness\"\nvalues = [900.0, 3600.0]\n");
+  const Cli p = run({"plan", sweep, "--out", d.file("p.plan")});
+  REQUIRE(p.code == 0);
+  CHECK_THAT(p.out, Contains("16 cells"));
+  return d.file("p.plan");
+}
+
+void run_shards(const std::string& plan, const std::string& dir, int n) {
+  for (int i = 1; i <= n; ++i)
+    REQUIRE(run({"sweep", plan, "--shard", std::to_string(i) + "/" + std::to_string(n), "--out",
+                 dir, "--quiet"})
+                .code == 0);
+}
+
+}  // namespace
+
+TEST_CASE("sweep: the merged result is the same bytes for 1, 7 and 20 shards", "[plan][cli]") {
+  ScratchDir d("sweep-shards");
+  const std::string plan = make_plan_file(d);
+  std::vector<std::string> results;
+  for (int n : {1, 7, 20}) {
+    const std::string dir = d.file("shards-" + std::to_string(n));
+    run_shards(plan, dir, n);
+    const std::string out = d.file("r" + std::to_string(n) + ".jsonl");
+    const Cli m = run({"merge", plan, dir, "--out", out});
+    REQUIRE(m.code == 0);
+    CHECK_THAT(m.out, Contains("16 records"));
+    results.push_back(slurp(out));
+  }
+  CHECK(results[0] == results[1]);
+  CHECK(results[0] == results[2]);
+  // Each record names its cell, plan and build; the blown-up cells are records.
+  CHECK_THAT(
+      results[0],
+      Contains("\"key\":\"stiff_spring|chipmunk|timestep=1/120|force[0].spring.stiffness=900\""));
+  CHECK_THAT(results[0], Contains("\"build\":{\"key\":"));
+  CHECK_THAT(results[0], Contains("\"status\":\"non-finite\""));
+  // Rerunning a shard replaces its file with the same bytes.
+  const std::string first = slurp(d.file("shards-7/shard-3-of-7.jsonl"));
+  REQUIRE(run({"sweep", plan, "--shard", "3/7", "--out", d.file("shards-7"), "--quiet"}).code == 0);
+  CHECK(slurp(d.file("shards-7/shard-3-of-7.jsonl")) == first);
+}
+
+TEST_CASE("merge lists missing cells, and sweep --cells-from runs just those", "[plan][cli]") {
+  ScratchDir d("sweep-missing");
+  const std::string plan = make_plan_file(d), dir = d.file("shards");
+  run_shards(plan, dir, 4);
+  run_shards(plan, d.file("whole"), 1);
+  REQUIRE(run({"merge", plan, d.file("whole"), "--out", d.file("whole.jsonl")}).code == 0);
+  std::filesystem::remove(dir + "/shard-2-of-4.jsonl");
+  const Cli m = run({"merge", plan, dir, "--out", d.file("r.jsonl")});
+  CHECK(m.code == 1);
+  CHECK_THAT(m.err, Contains("cells missing"));
+  CHECK_FALSE(std::filesystem::exists(d.file("r.jsonl")));
+  const Cli again = run({"sweep", plan, "--cells-from", d.file("r.jsonl.missing"), "--out", dir});
+  REQUIRE(again.code == 0);
+  REQUIRE(run({"merge", plan, dir, "--out", d.file("r.jsonl")}).code == 0);
+  CHECK(slurp(d.file("r.jsonl")) == slurp(d.file("whole.jsonl")));
+}
+
+TEST_CASE(
+    "merge refuses a cell recorded twice with different bytes, another plan's record and a "
+    "planted link, naming the files",
+    "[plan][cli]") {
+  ScratchDir d("sweep-refusals");
+  const std::string plan = make_plan_file(d), dir = d.file("shards");
+  run_shards(plan, dir, 1);
+  const std::string whole = slurp(dir + "/shard-1-of-1.jsonl");
+  // The same bytes twice (a shard rerun beside the first run) are one record.
+  d.write("shards/cells-copy.jsonl", whole.substr(0, whole.find('\n') + 1));
+  CHECK(run({"merge", plan, dir, "--out", d.file("r.jsonl")}).code == 0);
+  // Different bytes for one cell: both files named.
+  std::string changed = whole.substr(0, whole.find('\n') + 1);
+  changed.replace(changed.find("\"hash\":\"") + 8, 4, "0000");
+  d.write("shards/cells-copy.jsonl", changed);
+  Cli m = run({"merge", plan, dir, "--out", d.file("r2.jsonl")});
+  CHECK(m.code == 2);
+  CHECK_THAT(m.err, Contains("cells-copy.jsonl") && Contains("shard-1-of-1.jsonl:1") &&
+                        Contains("different bytes"));
+  // Another plan's record.
+  std::string other = whole.substr(0, whole.find('\n') + 1);
+  other.replace(other.find("\"plan\":\"") + 8, 16, "0123456789abcdef");
+  d.write("shards/cells-copy.jsonl", other);
+  m = run({"merge", plan, dir, "--out", d.file("r2.jsonl")});
+  CHECK(m.code == 2);
+  CHECK_THAT(m.err, Contains("belongs to plan"));
+  // A planted link among the shard files: refused, not followed.
+  std::filesystem::remove(dir + "/cells-copy.jsonl");
+  std::filesystem::create_symlink("/etc/passwd", dir + "/shard-9-of-9.jsonl");
+  m = run({"merge", plan, dir, "--out", d.file("r2.jsonl")});
+  CHECK(m.code == 2);
+  CHECK_THAT(m.err, Contains("not a regular file"));
+  CHECK_THAT(m.err, !Contains("root:"));
+  // A link planted where a shard is written: refused, and what it points at is untouched.
+  std::filesystem::remove(dir + "/shard-9-of-9.jsonl");
+  const std::string victim = d.write("victim.txt", "keep me\n");
+  std::filesystem::create_symlink(victim, dir + "/shard-1-of-2.jsonl");
+  CHECK(run({"sweep", plan, "--shard", "1/2", "--out", dir, "--quiet"}).code == 2);
+  CHECK(slurp(victim) == "keep me\n");
+}
+
+TEST_CASE("sweep and plan refuse bad arguments with exit 2", "[plan][cli]") {
+  ScratchDir d("sweep-args");
+  const std::string plan = make_plan_file(d);
+  CHECK_THAT(run({"sweep", plan, "--shard", "0/7", "--out", d.file("x")}).err,
+             Contains("--shard: expected 1 <= I <= N"));
+  CHECK(run({"sweep", plan, "--shard", "8/7", "--out", d.file("x")}).code == 2);
+  CHECK(run({"sweep", plan, "--out", d.file("x")}).code == 2);  // neither --shard nor --cells-from
+  CHECK(run({"sweep", d.write("junk.plan", "{}"), "--shard", "1/1", "--out", d.file("x")}).code ==
+        2);
+  CHECK_THAT(
+      run({"sweep", plan, "--cells-from", d.write("list", "no|such|cell\n"), "--out", d.file("x")})
+          .err,
+      Contains("list:1") && Contains("is not in plan"));
+}

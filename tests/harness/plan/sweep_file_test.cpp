@@ -1,0 +1,135 @@
+// Tests harness/plan/sweep_file.cpp and plan.cpp: a sweep file is refused with its file, line, key
+// and problem before any cell runs; a plan is the same bytes from the same inputs, its hash follows
+// every scene's text, and a cell's shard depends on its key alone.
+#include "harness/plan/sweep_file.hpp"
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <map>
+
+#include "harness/core/input_error.hpp"
+#include "harness/plan/plan.hpp"
+#include "tests/harness/test_dirs.hpp"
+
+using namespace dropcheck;
+using Catch::Matchers::Contains;
+using dropcheck::testing::ScratchDir;
+using dropcheck::testing::slurp;
+
+namespace {
+
+const std::string kSpring =
+    std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/extreme/stiff_spring.toml";
+const std::string kFall = std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/free_fall.toml";
+
+std::string sweep_text(const std::string& scenes, const std::string& axes) {
+  return "scenes = [" + scenes + "]\nengines = [\"ours\", \"ours-f64\"]\n" + axes;
+}
+
+std::string refusal(const ScratchDir& d, const std::string& text) {
+  const std::string path = d.write("s.toml", text);
+  try {
+    make_plan(load_sweep(path));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("a bad sweep file is refused naming the file, line, key and problem", "[plan]") {
+  ScratchDir d("sweep-refusals");
+  const std::string spring = "\"" + kSpring + "\"";
+  CHECK_THAT(refusal(d, sweep_text(spring, "colour = 1\n")),
+             Contains("s.toml:3: colour: unknown key"));
+  CHECK_THAT(refusal(d, sweep_text(spring, "[[axis]]\nname = \"wind\"\nvalues = [1]\n")),
+             Contains("axis[0].name: unknown axis 'wind'"));
+  CHECK_THAT(refusal(d, "scenes = [" + spring + "]\nengines = [\"havok\"]\n"),
+             Contains("engines[0]: unknown engine 'havok'"));
+  CHECK_THAT(
+      refusal(d, sweep_text(spring,
+                            "[[axis]]\nname = \"timestep\"\nfrom = 0.01\nto = 0.1\ncount = 0\n")),
+      Contains("axis[0].count: must be a whole number"));
+  CHECK_THAT(refusal(d, sweep_text(spring,
+                                   "[[axis]]\nname = \"damping_rate\"\nfrom = 0.0\nto = 1.0\ncount "
+                                   "= 3\nscale = \"log\"\n")),
+             Contains("a log range needs from > 0"));
+  CHECK_THAT(refusal(d, sweep_text(spring, "[[axis]]\nname = \"scalar\"\nvalues = [\"f16\"]\n")),
+             Contains("expected \"f32\" or \"f64\""));
+  CHECK_THAT(refusal(d, sweep_text(spring,
+                                   "[[axis]]\nname = \"gravity\"\nvalues = [1.0]\n[[axis]]\nname = "
+                                   "\"gravity\"\nvalues = [2.0]\n")),
+             Contains("axis gravity given twice"));
+  CHECK_THAT(refusal(d, sweep_text("\"nowhere.toml\"", "")),
+             Contains("not a scene file or folder"));
+  // A value that cannot apply to a scene: named with the axis and the scene, before any cell runs.
+  CHECK_THAT(
+      refusal(d, sweep_text("\"" + kFall + "\"",
+                            "[[axis]]\nname = \"spring_stiffness\"\nvalues = [10.0]\n")),
+      Contains("axis[0]: spring_stiffness = 10 on scene free_fall") && Contains("has no spring"));
+  CHECK_THAT(
+      refusal(d, sweep_text(spring, "[[axis]]\nkey = \"body.nobody.mass\"\nvalues = [2.0]\n")),
+      Contains("no body named 'nobody'"));
+  CHECK_THAT(
+      refusal(d, sweep_text(spring, "[[axis]]\nkey = \"world.gravity[1]\"\nvalues = [inf]\n")),
+      Contains("must be finite"));
+}
+
+TEST_CASE("a plan is the same bytes from the same inputs, and its hash follows the scenes' text",
+          "[plan]") {
+  ScratchDir d("plan-hash");
+  std::filesystem::copy_file(kSpring, d.file("spring.toml"));
+  const std::string axes = "[[axis]]\nname = \"timestep\"\nvalues = [\"1/60\", \"1/30\"]\n";
+  const std::string sweep = d.write("s.toml", sweep_text("\"spring.toml\"", axes));
+  const Plan a = make_plan(load_sweep(sweep)), b = make_plan(load_sweep(sweep));
+  CHECK(plan_text(a) == plan_text(b));
+  CHECK(a.cell_count() == 4);
+  CHECK(a.cell(0).key == "spring|ours|timestep=1/60");  // named by its file
+  CHECK(a.cell(3).key == "spring|ours-f64|timestep=1/30");
+  // One byte more in the scene: another plan.
+  d.write("spring.toml", slurp(kSpring) + "\n");
+  CHECK(make_plan(load_sweep(sweep)).hash != a.hash);
+  // Read back: the same plan; edited: refused.
+  const std::string file = d.write("a.plan", plan_text(a));
+  CHECK(plan_text(read_plan(file)) == plan_text(a));
+  std::string edited = plan_text(a);
+  edited.replace(edited.find("1/30"), 4, "1/31");
+  CHECK_THROWS_WITH(read_plan(d.write("edited.plan", edited)), Contains("does not match its hash"));
+  std::string exec = plan_text(a);
+  exec.replace(exec.find("\"ours-f64\""), 10, "\"exec:/bin/sh\"");
+  CHECK_THROWS_WITH(read_plan(d.write("exec.plan", exec)), Contains("unknown engine"));
+}
+
+TEST_CASE("a cell's shard depends on its key alone: a larger sweep moves no cell", "[plan]") {
+  ScratchDir d("plan-shards");
+  const std::string spring = "\"" + kSpring + "\"";
+  const Plan small = make_plan(load_sweep(d.write(
+      "a.toml",
+      sweep_text(spring, "[[axis]]\nname = \"timestep\"\nvalues = [\"1/60\", \"1/30\"]\n"))));
+  const Plan large = make_plan(load_sweep(d.write(
+      "b.toml",
+      sweep_text(
+          spring,
+          "[[axis]]\nname = \"timestep\"\nvalues = [\"1/120\", \"1/60\", \"1/45\", \"1/30\"]\n"))));
+  std::map<std::string, std::size_t> in_large;
+  for (std::size_t i = 0; i < large.cell_count(); ++i)
+    in_large[large.cell(i).key] = shard_of(large.cell(i).key, 7);
+  for (std::size_t i = 0; i < small.cell_count(); ++i) {
+    const std::string key = small.cell(i).key;
+    REQUIRE(in_large.count(key));
+    CHECK(shard_of(key, 7) == in_large[key]);
+  }
+}
+
+TEST_CASE("a range's values end where they were asked, in the shortest text", "[plan]") {
+  ScratchDir d("plan-range");
+  const SweepSpec s = load_sweep(d.write(
+      "s.toml",
+      sweep_text("\"" + kSpring + "\"",
+                 "[[axis]]\nname = \"spring_stiffness\"\nfrom = 100.0\nto = 10000.0\ncount = 3\n"
+                 "scale = \"log\"\n[[axis]]\nname = \"damping_rate\"\nfrom = 0.0\nto = 1.0\n"
+                 "count = 3\n")));
+  CHECK(s.axes[0].values == std::vector<std::string>{"100", "1000", "10000"});
+  CHECK(s.axes[1].values == std::vector<std::string>{"0", "0.5", "1"});
+}
