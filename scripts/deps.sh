@@ -22,6 +22,7 @@ DROPCHECK_PACKAGES=(
   gnuplot-nox                          # report plots (SVG)
   clang-format-14 git                  # scripts/format.sh and the ctest entry `format`
   libbenchmark-dev                     # benchmarks (bench/, scripts/bench.sh)
+  slurmctld slurmd slurm-client munge  # sweeps on a localhost Slurm (ctest slurm, scripts/slurm/)
 )
 
 missing=()

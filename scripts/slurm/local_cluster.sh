@@ -1,0 +1,386 @@
+#!/usr/bin/env bash
+# Start / stop a throw-away ONE-NODE Slurm cluster on localhost (for tests/CI).
+#
+#   local_cluster.sh start STATE_DIR   start munged + slurmctld + slurmd; print
+#                                      "export ..." lines (and nothing else) on stdout
+#   local_cluster.sh stop  STATE_DIR   stop the daemons started for STATE_DIR (idempotent)
+#   local_cluster.sh check             exit 0 if the needed binaries exist, else 77
+#
+# Typical use:
+#   eval "$(scripts/slurm/local_cluster.sh start "$dir")"   # sets SLURM_CONF
+#   sbatch --wait --wrap 'hostname'
+#   scripts/slurm/local_cluster.sh stop "$dir"
+#
+# No systemd, no cgroups, no accounting; everything (config, munge key/socket,
+# state, spool, logs, pid files) lives under STATE_DIR. A private munged with its
+# own key and socket is used, so a system-wide munge (if any) is not touched.
+# Debian 12 packages: slurmctld slurmd slurm-client munge.
+set -euo pipefail
+
+PATH="$PATH:/usr/sbin:/sbin:/usr/local/sbin"
+# Do not let an outer Slurm environment leak into the daemons or our clients.
+unset SLURM_CONF SLURM_JOB_ID SLURM_JOBID 2>/dev/null || true
+
+START_TIMEOUT=${LOCAL_SLURM_START_TIMEOUT:-60}
+STOP_TIMEOUT=${LOCAL_SLURM_STOP_TIMEOUT:-30}
+# Seconds a finished job stays visible (squeue/scontrol; there is no accounting).
+# Trade-off: `sbatch --wait` polls after 2,8,32,32.. s when MinJobAge >= 6, but
+# every 2 s when MinJobAge <= 5 (then finished jobs vanish after 5..~65 s).
+MIN_JOB_AGE=${LOCAL_SLURM_MIN_JOB_AGE:-300}
+REQUIRED_BINS=(slurmctld slurmd sbatch squeue sinfo scontrol munged)
+
+log() { echo "local_cluster: $*" >&2; }
+die() { log "ERROR: $*"; exit 1; }
+
+usage() {
+    echo "usage: $0 start STATE_DIR | stop STATE_DIR | check" >&2
+    exit 2
+}
+
+cmd_check() {
+    local missing=() b
+    for b in "${REQUIRED_BINS[@]}"; do
+        command -v "$b" >/dev/null 2>&1 || missing+=("$b")
+    done
+    if ((${#missing[@]})); then
+        echo "local_cluster: missing: ${missing[*]}" \
+             "(Debian: apt-get install slurmctld slurmd slurm-client munge)"
+        exit 77
+    fi
+    return 0
+}
+
+# ---------------------------------------------------------------- paths ----
+# Sets STATE (absolute), CONF, and RUNROOT. Unix socket paths (munge socket and
+# slurmstepd sockets in SlurmdSpoolDir) are limited to ~107 bytes, so if STATE
+# is long we reach it through a short symlink /tmp/lslurm.XXXXXX/s -> STATE.
+setup_paths() {
+    local dir=$1
+    mkdir -p "$dir"
+    STATE=$(cd "$dir" && pwd -P)
+    CONF="$STATE/slurm.conf"
+    LINKFILE="$STATE/run/shortlink"
+}
+
+choose_runroot() {
+    if ((${#STATE} <= 60)); then
+        RUNROOT=$STATE
+    else
+        local tmp
+        tmp=$(mktemp -d "${TMPDIR:-/tmp}/lslurm.XXXXXX")
+        chmod 700 "$tmp"
+        ln -s "$STATE" "$tmp/s"
+        RUNROOT="$tmp/s"
+        echo "$tmp" >"$LINKFILE"
+    fi
+}
+
+# ---------------------------------------------------------------- stop -----
+# First line of a file, using builtins only (no fork; /proc files lack a final \n).
+read_first() { local -n _out=$1; _out=; { read -r _out || true; } <"$2"; } 2>/dev/null
+
+# True if pid exists and is not a zombie (our daemons are re-parented to init,
+# which may reap them late; kill -0 succeeds on zombies).
+pid_alive() {
+    local line rest
+    [[ -n ${1:-} ]] && read_first line "/proc/$1/stat" && [[ -n $line ]] || return 1
+    rest=${line##*) }
+    [[ ${rest%% *} != [ZX] ]]
+}
+
+# pid from pidfile, only if that process' command line mentions $2 (guards
+# against killing an unrelated process that reused the pid).
+pid_from_file() {
+    local pidfile=$1 marker=$2 pid
+    [[ -r $pidfile ]] || return 1
+    pid=$(tr -cd '0-9' <"$pidfile")
+    [[ -n $pid ]] && pid_alive "$pid" || return 1
+    tr '\0' ' ' <"/proc/$pid/cmdline" 2>/dev/null | grep -qF -- "$marker" || return 1
+    echo "$pid"
+}
+
+stop_daemon() {
+    local name=$1 pidfile=$2 marker=$3 pid i
+    pid=$(pid_from_file "$pidfile" "$marker") || { rm -f "$pidfile"; return 0; }
+    kill -TERM "$pid" 2>/dev/null || true
+    for ((i = 0; i < STOP_TIMEOUT * 10; i++)); do
+        pid_alive "$pid" || break
+        sleep 0.1
+    done
+    if pid_alive "$pid"; then
+        log "$name (pid $pid) did not exit after ${STOP_TIMEOUT}s, sending SIGKILL"
+        kill -KILL "$pid" 2>/dev/null || true
+        for ((i = 0; i < 50; i++)); do pid_alive "$pid" || break; sleep 0.1; done
+    fi
+    rm -f "$pidfile"
+}
+
+# slurmstepd processes of our slurmd: they keep SlurmdLogFile open.
+our_stepds() {
+    local d fd comm
+    for d in /proc/[0-9]*; do
+        read_first comm "$d/comm" || continue
+        [[ $comm == slurmstepd ]] || continue
+        for fd in "$d"/fd/*; do
+            if [[ $(readlink "$fd" 2>/dev/null) == "$STATE/log/slurmd.log" ]]; then
+                pid_alive "${d#/proc/}" && echo "${d#/proc/}"
+                break
+            fi
+        done
+    done
+    return 0
+}
+
+# Print the given pids and all their descendants.
+with_descendants() {
+    local -A kids=()
+    local d line rest ppid pid queue=("$@") out=()
+    for d in /proc/[0-9]*; do
+        read_first line "$d/stat" || continue
+        [[ -n $line ]] || continue
+        rest=${line##*) }; rest=${rest#* }; ppid=${rest%% *}
+        kids[$ppid]+=" ${d#/proc/}"
+    done
+    while ((${#queue[@]})); do
+        pid=${queue[0]}; queue=("${queue[@]:1}")
+        out+=("$pid")
+        # shellcheck disable=SC2206
+        [[ -n ${kids[$pid]:-} ]] && queue+=(${kids[$pid]})
+    done
+    echo "${out[@]}"
+}
+
+# Normally slurmstepd exits right after its job; if slurmd died hard they (and
+# their job processes) can linger: kill those process trees.
+stop_stepds() {
+    local i pids
+    for ((i = 0; i < 30; i++)); do
+        pids=$(our_stepds)
+        [[ -z $pids ]] && return 0
+        sleep 0.1
+    done
+    # shellcheck disable=SC2086
+    pids=$(with_descendants $pids)
+    log "killing leftover slurmstepd process trees: $pids"
+    # shellcheck disable=SC2086
+    kill -KILL $pids 2>/dev/null || true
+}
+
+cmd_stop() {
+    [[ -d $1 ]] || return 0
+    setup_paths "$1"
+    # Cancel leftover jobs (needs both daemons) so no job processes outlive slurmd.
+    if [[ -f $CONF ]] && pid_from_file "$STATE/run/slurmctld.pid" "$CONF" >/dev/null &&
+       pid_from_file "$STATE/run/slurmd.pid" "$CONF" >/dev/null; then
+        local jobs
+        jobs=$(SLURM_CONF=$CONF timeout 10 squeue -h -o %A 2>/dev/null | tr '\n' ' ') || true
+        if [[ -n ${jobs// /} ]]; then
+            # shellcheck disable=SC2086
+            SLURM_CONF=$CONF timeout 10 scancel $jobs >/dev/null 2>&1 || true
+            local i
+            for ((i = 0; i < 50; i++)); do
+                [[ -z $(SLURM_CONF=$CONF timeout 5 squeue -h -o %A 2>/dev/null) ]] && break
+                sleep 0.2
+            done
+        fi
+    fi
+    stop_daemon slurmd "$STATE/run/slurmd.pid" "$CONF"
+    stop_stepds
+    stop_daemon slurmctld "$STATE/run/slurmctld.pid" "$CONF"
+    stop_daemon munged "$STATE/munge/munged.pid" "$STATE/munge/munged.pid"
+    if [[ -f $LINKFILE ]]; then
+        local tmp
+        tmp=$(<"$LINKFILE")
+        [[ $tmp == */lslurm.* ]] && rm -rf -- "$tmp"
+        rm -f "$LINKFILE"
+    fi
+    return 0
+}
+
+# ---------------------------------------------------------------- start ----
+port_in_use() {
+    local hex
+    hex=$(printf ':%04X ' "$1")
+    cat /proc/net/tcp /proc/net/tcp6 2>/dev/null | awk '{print $2" "}' | grep -qF -- "$hex"
+}
+
+pick_ports() {
+    local base tries=0
+    while ((tries++ < 200)); do
+        base=$((20000 + (RANDOM % 5000) * 2))   # below the ephemeral range
+        if ! port_in_use "$base" && ! port_in_use $((base + 1)); then
+            CTLD_PORT=$base
+            SLURMD_PORT=$((base + 1))
+            return 0
+        fi
+    done
+    die "could not find two free TCP ports"
+}
+
+show_logs() {
+    local f
+    for f in "$STATE/munge/munged.log" "$STATE/log/slurmctld.log" "$STATE/log/slurmd.log" \
+             "$STATE/log/slurmctld.out" "$STATE/log/slurmd.out" "$STATE/log/munged.out"; do
+        [[ -s $f ]] || continue
+        echo "----- tail -n 30 $f -----" >&2
+        tail -n 30 "$f" >&2 || true
+    done
+}
+
+fail_start() {
+    log "ERROR: $*"
+    show_logs
+    cmd_stop "$STATE" >/dev/null 2>&1 || true
+    exit 1
+}
+
+write_conf() {
+    local ncpu
+    ncpu=$(nproc)
+    cat >"$CONF" <<EOF
+# Generated by local_cluster.sh -- one-node test cluster, do not edit.
+ClusterName=localtest
+SlurmctldHost=$NODE(127.0.0.1)
+SlurmctldPort=$CTLD_PORT
+SlurmdPort=$SLURMD_PORT
+SlurmUser=root
+SlurmdUser=root
+DisableRootJobs=NO
+AuthType=auth/munge
+CredType=cred/munge
+AuthInfo=socket=$RUNROOT/munge/munged.sock
+StateSaveLocation=$STATE/ctld
+SlurmdSpoolDir=$RUNROOT/spool
+SlurmctldPidFile=$STATE/run/slurmctld.pid
+SlurmdPidFile=$STATE/run/slurmd.pid
+SlurmctldLogFile=$STATE/log/slurmctld.log
+SlurmdLogFile=$STATE/log/slurmd.log
+SlurmctldDebug=info
+SlurmdDebug=info
+PlugStackConfig=$STATE/plugstack.conf
+MailProg=/bin/true
+ProctrackType=proctrack/linuxproc
+TaskPlugin=task/none
+JobAcctGatherType=jobacct_gather/none
+AccountingStorageType=accounting_storage/none
+JobCompType=jobcomp/none
+SwitchType=switch/none
+MpiDefault=none
+SchedulerType=sched/backfill
+SelectType=select/cons_tres
+SelectTypeParameters=CR_CPU
+SlurmdParameters=config_overrides
+ReturnToService=2
+SchedulerParameters=batch_sched_delay=0
+InactiveLimit=0
+KillWait=5
+MinJobAge=$MIN_JOB_AGE
+NodeName=$NODE NodeHostname=$NODE NodeAddr=127.0.0.1 CPUs=$ncpu State=UNKNOWN
+PartitionName=debug Nodes=$NODE Default=YES MaxTime=INFINITE State=UP
+EOF
+    : >"$STATE/plugstack.conf"
+}
+
+start_munged() {
+    local m="$STATE/munge" sock="$RUNROOT/munge/munged.sock" i
+    if command -v mungekey >/dev/null 2>&1; then
+        mungekey --create --force --keyfile="$m/munge.key" >/dev/null 2>&1 \
+            || dd if=/dev/urandom of="$m/munge.key" bs=1024 count=1 status=none
+    else
+        dd if=/dev/urandom of="$m/munge.key" bs=1024 count=1 status=none
+    fi
+    chmod 600 "$m/munge.key"
+    # --force: tolerate group-writable ancestors of STATE_DIR (CI workspaces).
+    setsid munged --force --socket="$sock" --key-file="$m/munge.key" \
+        --pid-file="$m/munged.pid" --log-file="$m/munged.log" \
+        --seed-file="$m/munged.seed" --num-threads=2 \
+        </dev/null >>"$STATE/log/munged.out" 2>&1 || fail_start "munged failed to start"
+    for ((i = 0; i < 100; i++)); do
+        if [[ -S $sock ]] &&
+           munge -n -S "$sock" 2>/dev/null | unmunge -S "$sock" >/dev/null 2>&1; then
+            return 0
+        fi
+        sleep 0.1
+    done
+    fail_start "munged did not become ready (socket $sock)"
+}
+
+# Start slurmctld + slurmd; returns 2 if a port was already taken (caller retries).
+start_slurm() {
+    local deadline=$1 st t0=$SECONDS
+    : >"$STATE/log/slurmctld.log"
+    : >"$STATE/log/slurmd.log"
+    setsid slurmctld -c -f "$CONF" </dev/null >>"$STATE/log/slurmctld.out" 2>&1 \
+        || return 1
+    for ((;;)); do
+        SLURM_CONF=$CONF timeout 5 scontrol ping 2>/dev/null | grep -q 'is UP' && break
+        if grep -q 'Address already in use' "$STATE/log/slurmctld.log" "$STATE/log/slurmctld.out" 2>/dev/null; then
+            return 2
+        fi
+        if ((SECONDS - t0 > 3)) && ! pid_from_file "$STATE/run/slurmctld.pid" "$CONF" >/dev/null; then
+            log "slurmctld is not running"; return 1
+        fi
+        ((SECONDS < deadline)) || { log "slurmctld did not answer 'scontrol ping'"; return 1; }
+        sleep 0.2
+    done
+    t0=$SECONDS
+    setsid slurmd -c -f "$CONF" -N "$NODE" </dev/null >>"$STATE/log/slurmd.out" 2>&1 \
+        || return 1
+    for ((;;)); do
+        st=$(SLURM_CONF=$CONF timeout 5 sinfo -h -N -n "$NODE" -o '%T' 2>/dev/null | head -n1) || st=
+        [[ $st == idle ]] && return 0
+        if ((SECONDS - t0 > 3)) && ! pid_from_file "$STATE/run/slurmd.pid" "$CONF" >/dev/null; then
+            log "slurmd is not running"; return 1
+        fi
+        if grep -q 'Address already in use' "$STATE/log/slurmd.log" "$STATE/log/slurmd.out" 2>/dev/null; then
+            return 2
+        fi
+        ((SECONDS < deadline)) || { log "node '$NODE' not idle (state: '${st:-?}')"; return 1; }
+        sleep 0.2
+    done
+}
+
+cmd_start() {
+    cmd_check >&2   # exits 77 if binaries are missing (ctest SKIP_RETURN_CODE)
+    setup_paths "$1"
+    SECONDS=0
+    local deadline=$START_TIMEOUT attempt rc
+    # Clean up whatever a previous run left behind (daemons and state).
+    cmd_stop "$STATE" >/dev/null 2>&1 || true
+    rm -rf -- "$STATE/munge" "$STATE/ctld" "$STATE/spool" "$STATE/log" "$STATE/run" \
+              "$STATE/slurm.conf" "$STATE/plugstack.conf"
+    mkdir -p "$STATE/log" "$STATE/run"
+    chmod 700 "$STATE/run"
+    choose_runroot
+    mkdir -p "$STATE/munge" "$STATE/ctld" "$STATE/spool"
+    chmod 700 "$STATE/ctld" "$STATE/spool"
+    chmod 711 "$STATE/munge"   # munged: socket dir must not be group/world writable
+
+    NODE=$(hostname -s 2>/dev/null || true)
+    [[ $NODE =~ ^[A-Za-z0-9][A-Za-z0-9_-]*$ ]] || NODE=localhost
+
+    start_munged
+    for attempt in 1 2 3; do
+        pick_ports
+        write_conf
+        rc=0
+        start_slurm "$deadline" || rc=$?
+        ((rc == 0)) && break
+        if ((rc == 2 && attempt < 3)); then
+            log "port clash on $CTLD_PORT/$SLURMD_PORT, retrying with other ports"
+            stop_daemon slurmd "$STATE/run/slurmd.pid" "$CONF"
+            stop_daemon slurmctld "$STATE/run/slurmctld.pid" "$CONF"
+            continue
+        fi
+        fail_start "Slurm did not come up (timeout ${START_TIMEOUT}s, state dir $STATE)"
+    done
+    log "cluster up in ${SECONDS}s: node $NODE, $(nproc) CPUs, slurmctld port $CTLD_PORT, slurmd port $SLURMD_PORT"
+    printf 'export SLURM_CONF=%q\n' "$CONF"
+}
+
+case ${1:-} in
+    check) (($# == 1)) || usage; cmd_check ;;
+    start) (($# == 2)) || usage; cmd_start "$2" ;;
+    stop)  (($# == 2)) || usage; cmd_stop "$2" ;;
+    *) usage ;;
+esac
