@@ -23,6 +23,7 @@ DROPCHECK_PACKAGES=(
   clang-format-14 git                  # scripts/format.sh and the ctest entry `format`
   libbenchmark-dev                     # benchmarks (bench/, scripts/bench.sh)
   slurmctld slurmd slurm-client munge  # sweeps on a localhost Slurm (ctest slurm, scripts/slurm/)
+  python3-jsonschema                   # validates sweep records against docs/results.schema.json
 )
 
 missing=()
