@@ -30,7 +30,7 @@ const CommandEntry kCommands[] = {
     {"identify", cmd_identify, "dropcheck identify FILE (--engine E [--dt H] | --trajectory CSV)"},
     {"plan", cmd_plan, "dropcheck plan SWEEP --out PLAN [--keys]"},
     {"sweep", cmd_sweep,
-     "dropcheck sweep PLAN (--shard I/N | --cells-from FILE) --out DIR [--quiet]"},
+     "dropcheck sweep PLAN (--shard I/N | --cells-from FILE) --out DIR [--cache DIR] [--quiet]"},
     {"merge", cmd_merge, "dropcheck merge PLAN DIR --out RESULTS [--missing FILE]"},
 };
 

@@ -24,6 +24,7 @@ const CommandSpec& sweep_spec() {
       {{"--shard", "I/N", "run shard I of N (1 <= I <= N)"},
        {"--cells-from", "FILE", "run the cells FILE lists instead"},
        {"--out", "DIR", "the folder of shard files (created when missing)"},
+       {"--cache", "DIR", "reuse records this build made for the same cells (in any plan)"},
        {"--quiet", "", "no progress line per cell"}}};
   return spec;
 }
@@ -48,9 +49,12 @@ int cmd_sweep(const std::vector<std::string>& argv, std::ostream& out, std::ostr
   std::filesystem::create_directories(dir, ec);
   const std::string target = (std::filesystem::path(dir) / name).string();
   std::ostream null_stream(nullptr);
-  const ShardSummary s = run_cells(plan, cells, target, args.has("--quiet") ? null_stream : err);
+  const ShardSummary s = run_cells(plan, cells, target, args.has("--quiet") ? null_stream : err,
+                                   args.value("--cache"));
   out << "sweep " << plan.hash << ": " << s.cells << " cells (" << s.ok << " ok, " << s.failed
-      << " not ok, " << s.skipped << " skipped) -> " << target << "\n";
+      << " not ok, " << s.skipped << " skipped";
+  if (args.has("--cache")) out << "; " << s.cached << " from the cache";
+  out << ") -> " << target << "\n";
   return kExitOk;
 }
 

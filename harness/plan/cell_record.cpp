@@ -95,15 +95,40 @@ CellRecord finish(Json& r, const std::string& status, const std::string& reason)
   return {status, r.dump()};
 }
 
+Json build_json() {
+  const BuildId build = current_build();
+  return {{"key", build.key}, {"flags", build.flags}, {"commit", source_commit()}};
+}
+
 }  // namespace
+
+std::string cell_identity(const Plan& plan, const Cell& cell) {
+  std::string id = cell.key + "\n" + plan.scenes[cell.scene].text + "\n";
+  for (Measure m : plan.measures) id += std::string(to_string(m)) + ",";
+  return fnv1a_hex(id + "\n" + build_json().dump());
+}
+
+CellRecord adopt_record(const Plan& plan, const Cell& cell, const std::string& line) {
+  Json r;
+  try {
+    r = Json::parse(line);
+  } catch (const std::exception&) {
+    return {};
+  }
+  if (!r.is_object() || r.value("format", "") != kRecordFormat || r.value("key", "") != cell.key ||
+      !r.contains("build") || r["build"] != build_json() || !r.contains("status") ||
+      !r["status"].is_string())
+    return {};
+  r["plan"] = plan.hash;
+  return {r["status"].get<std::string>(), r.dump()};
+}
 
 CellRecord run_cell(const Plan& plan, const Cell& cell) {
   Json r;
   r["format"] = kRecordFormat;
   r["key"] = cell.key;
   r["plan"] = plan.hash;
-  const BuildId build = current_build();
-  r["build"] = {{"key", build.key}, {"flags", build.flags}, {"commit", source_commit()}};
+  r["build"] = build_json();
   const PlanScene& ps = plan.scenes[cell.scene];
   r["scene"] = ps.name;
   Json axes = Json::object();

@@ -23,4 +23,13 @@ struct CellRecord {
 // Runs cell `cell` of `plan` (in a child process where the runner isolates runs) and records it.
 CellRecord run_cell(const Plan& plan, const Cell& cell);
 
+// What a cell's record depends on besides the plan's hash, as 16 hex digits: its key, its scene's
+// text, the measures, and this build (key, flags, commit). Two plans that share a cell share this.
+std::string cell_identity(const Plan& plan, const Cell& cell);
+
+// A record kept for `cell_identity` (a cache, shard.hpp) made this plan's: its plan field set to
+// plan.hash, the rest unchanged byte for byte. Empty when `line` is not a record of this cell made
+// by this build.
+CellRecord adopt_record(const Plan& plan, const Cell& cell, const std::string& line);
+
 }  // namespace dropcheck

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <filesystem>
 #include <sstream>
 #include <unordered_map>
 
@@ -78,13 +79,41 @@ std::vector<std::size_t> cells_from(const Plan& plan, const std::string& path,
   return out;
 }
 
+namespace {
+
+// The cached record of `c`, or an empty one; a cache entry that cannot be read is no entry.
+CellRecord cached(const Plan& plan, const Cell& c, const std::string& entry) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(std::filesystem::symlink_status(entry, ec))) return {};
+  try {
+    return adopt_record(plan, c,
+                        read_regular_file(entry, kMaxPlanBytes, "a cache entry", Links::refuse));
+  } catch (const InputError&) {
+    return {};
+  }
+}
+
+std::string cache_entry(const std::string& cache, const Plan& plan, const Cell& c) {
+  const std::string id = cell_identity(plan, c);
+  return (std::filesystem::path(cache) / id.substr(0, 2) / (id + ".json")).string();
+}
+
+}  // namespace
+
 ShardSummary run_cells(const Plan& plan, const std::vector<std::size_t>& cells,
-                       const std::string& out, std::ostream& progress) {
+                       const std::string& out, std::ostream& progress, const std::string& cache) {
   std::vector<std::pair<std::string, std::string>> records;  // key, record
   ShardSummary s;
   for (std::size_t i : cells) {
     const Cell c = plan.cell(i);
-    CellRecord record = run_cell(plan, c);
+    const std::string entry = cache.empty() ? "" : cache_entry(cache, plan, c);
+    CellRecord record = entry.empty() ? CellRecord{} : cached(plan, c, entry);
+    if (!record.line.empty()) {
+      ++s.cached;
+    } else {
+      record = run_cell(plan, c);
+      if (!entry.empty()) write_file_atomic(entry, record.line + "\n", Links::refuse);
+    }
     const bool ok = record.status == "ok", skipped = record.status == "skipped";
     ++s.cells;
     (ok ? s.ok : skipped ? s.skipped : s.failed) += 1;

@@ -36,11 +36,15 @@ std::vector<std::size_t> cells_from(const Plan& plan, const std::string& path,
 
 // Runs `cells` and writes their records, one line each, sorted by key, to `out` atomically (a
 // symbolic link at `out` is refused: the folder is shared by every shard). Prints one progress line
-// per cell to `progress`. Returns the number of records per status ("ok", "skipped", ...).
+// per cell to `progress`. With a `cache` folder, a cell whose record this build already made
+// (cell_identity: same key, scene text, measures and build, in any plan) is taken from it instead
+// of run again, and every record made is kept there (cache/ab/abcdef....json, written atomically,
+// links refused); an entry that is not such a record is ignored and replaced.
 struct ShardSummary {
-  std::size_t cells = 0, ok = 0, failed = 0, skipped = 0;
+  std::size_t cells = 0, ok = 0, failed = 0, skipped = 0, cached = 0;
 };
 ShardSummary run_cells(const Plan& plan, const std::vector<std::size_t>& cells,
-                       const std::string& out, std::ostream& progress);
+                       const std::string& out, std::ostream& progress,
+                       const std::string& cache = "");
 
 }  // namespace dropcheck

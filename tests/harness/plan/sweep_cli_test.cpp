@@ -152,3 +152,41 @@ TEST_CASE("sweep and plan refuse bad arguments with exit 2", "[plan][cli]") {
           .err,
       Contains("list:1") && Contains("is not in plan"));
 }
+
+TEST_CASE(
+    "sweep --cache: a cell this build already ran, in any plan, is not run again, and the "
+    "result is the same bytes",
+    "[plan][cli]") {
+  ScratchDir d("sweep-cache");
+  const std::string plan = make_plan_file(d), cache = d.file("cache");
+  Cli first = run({"sweep", plan, "--shard", "1/1", "--out", d.file("a"), "--cache", cache});
+  REQUIRE(first.code == 0);
+  CHECK_THAT(first.out, Contains("0 from the cache"));
+  // A larger sweep: one more step. Its 16 old cells come from the cache, its 4 new ones run.
+  const std::string sweep = d.write(
+      "t.toml", "scenes = [\"" + std::string(DROPCHECK_SOURCE_DIR) +
+                    "/scenarios/extreme/stiff_spring.toml\"]\n"
+                    "engines = [\"ours\", \"chipmunk\"]\n"
+                    "[[axis]]\nname = \"timestep\"\n"
+                    "values = [\"1/120\", \"1/60\", \"1/32\", \"1/25\", \"1/240\"]\n"
+                    "[[axis]]\nkey = \"force[0].spring.stiffness\"\nvalues = [900.0, 3600.0]\n");
+  REQUIRE(run({"plan", sweep, "--out", d.file("t.plan")}).code == 0);
+  Cli second =
+      run({"sweep", d.file("t.plan"), "--shard", "1/1", "--out", d.file("b"), "--cache", cache});
+  REQUIRE(second.code == 0);
+  CHECK_THAT(second.out, Contains("20 cells") && Contains("16 from the cache"));
+  REQUIRE(
+      run({"sweep", d.file("t.plan"), "--shard", "1/1", "--out", d.file("c"), "--quiet"}).code ==
+      0);
+  CHECK(slurp(d.file("b/shard-1-of-1.jsonl")) == slurp(d.file("c/shard-1-of-1.jsonl")));
+  // A damaged entry is no entry: that cell runs again.
+  for (const auto& e : std::filesystem::recursive_directory_iterator(cache))
+    if (e.is_regular_file()) {
+      std::ofstream(e.path()) << "{\"format\":\"junk\"}\n";
+      break;
+    }
+  Cli third =
+      run({"sweep", d.file("t.plan"), "--shard", "1/1", "--out", d.file("e"), "--cache", cache});
+  CHECK_THAT(third.out, Contains("19 from the cache"));
+  CHECK(slurp(d.file("e/shard-1-of-1.jsonl")) == slurp(d.file("c/shard-1-of-1.jsonl")));
+}
