@@ -2,11 +2,12 @@
 # Fuzzes what reads a stranger's bytes with libFuzzer (clang, AddressSanitizer and
 # UndefinedBehaviorSanitizer), one target after the other: the scene loader, the baseline parser,
 # the timings record reader, the trajectory CSV reader of `identify --trajectory`, and the engine
-# protocol reader (what an external engine answers).
+# protocol reader (what an external engine answers), and the sweep plan reader with the cell set-up
+# it feeds.
 #
 #   scripts/fuzz.sh [SECONDS] [TARGET...]   SECONDS per target (default 600); TARGET scene_loader,
 #                                           baseline_parse, timing_record, trajectory_csv,
-#                                           exec_protocol (default all five)
+#                                           exec_protocol, plan_reader (default all six)
 #   scripts/fuzz.sh --build-only            only compile build/fuzz/<target>
 #
 # Seeds: scenarios/ (scenes), tests/baselines/ (baselines) and reports/ (timings.json), plus
@@ -27,14 +28,16 @@ for a in "$@"; do
     *) seconds=$a ;;
   esac
 done
-[ ${#targets[@]} -gt 0 ] || targets=(scene_loader baseline_parse timing_record trajectory_csv exec_protocol)
+[ ${#targets[@]} -gt 0 ] || targets=(scene_loader baseline_parse timing_record trajectory_csv exec_protocol
+  plan_reader)
 
 # The sources a target needs (a static library: only what is referenced gets linked). toml++ is
 # compiled header-only here so that its parser is instrumented too, with its internal debug
 # assertions off as in the library dropcheck links (the loader refuses control characters before
 # toml++ sees them, and hands it ASCII only: harness/scene/toml_ascii.hpp).
 sources=("$root"/harness/{core,scene,io,process}/*.cpp "$root"/harness/guard/baseline_parse.cpp "$root"/harness/guard/baseline_io.cpp
-         "$root"/harness/measure/timing_record.cpp "$root"/adapters/exec_protocol.cpp)
+         "$root"/harness/measure/timing_record.cpp "$root"/adapters/exec_protocol.cpp
+         "$root"/harness/plan/{plan,axes,sweep_file}.cpp)
 flags=(-std=c++20 -O1 -g -fno-omit-frame-pointer -fsanitize=fuzzer-no-link,address,undefined
        -fno-sanitize-recover=all -ffp-contract=off -I"$root" -I/usr/include/eigen3
        -DTOML_HEADER_ONLY=1 '-DTOML_ASSERT(expr)=static_assert(true)')
@@ -59,7 +62,7 @@ seeds() {
     scene_loader) echo "$root/scenarios" ;;
     baseline_parse) echo "$root/tests/baselines" ;;
     timing_record) echo "$root/reports" ;;
-    trajectory_csv|exec_protocol) echo "$root/fuzz/regressions/$1" ;;
+    trajectory_csv|exec_protocol|plan_reader) echo "$root/fuzz/regressions/$1" ;;
   esac
 }
 

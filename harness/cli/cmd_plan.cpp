@@ -3,6 +3,7 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "harness/core/input_error.hpp"
+#include "harness/core/registry.hpp"
 #include "harness/io/atomic_file.hpp"
 #include "harness/plan/plan.hpp"
 
@@ -28,7 +29,7 @@ int cmd_plan(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   const Args args = parse_args(plan_spec(), argv);
   const std::string target = args.value("--out");
   if (target.empty()) throw InputError("", 0, "--out", "required: where to write the plan");
-  const Plan plan = make_plan(load_sweep(args.positional[0]));
+  const Plan plan = make_plan(load_sweep(args.positional[0], known_engine_names()));
   write_file_atomic(target, plan_text(plan));
   out << "plan " << plan.hash << ": " << plan.cell_count() << " cells (" << plan.scenes.size()
       << " scenes x " << plan.engines.size() << " engines";

@@ -1,5 +1,6 @@
 #include "harness/plan/axes.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -98,8 +99,17 @@ void set_key(toml::table& root, const std::string& path, double value) {
   fail("the path ends on a table, not a number");
 }
 
+// An axis value as a number: the whole text, finite (a plan is data: "abc", "1e999" are refused).
+double number_of(const std::string& axis, const std::string& text) {
+  double v = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v))
+    throw InputError(axis + ": " + excerpt(text) + " is not a finite number");
+  return v;
+}
+
 double magnitude(const Axis& a, const std::string& value) {
-  const double v = std::stod(value);
+  const double v = number_of(a.name, value);
   if (!(v >= 0.0)) throw InputError(std::string(to_string(a.kind)) + " must be >= 0, got " + value);
   return v;
 }
@@ -157,6 +167,8 @@ void apply_named(const Axis& a, const std::string& value, CellSetup& c) {
       return;
     }
     case AxisKind::scalar:
+      if (value != "f32" && value != "f64")
+        throw InputError("scalar: " + excerpt(value) + " is neither f32 nor f64");
       c.scalar = value;
       if (c.engine == "ours" || c.engine == "ours-f64")
         c.engine = value == "f32" ? "ours" : "ours-f64";
@@ -172,7 +184,8 @@ CellSetup setup_cell(const std::string& text, const std::string& file, const std
                      std::span<const Axis> axes, std::span<const std::string> values) {
   toml::table root = parse_toml(text, file);
   for (std::size_t i = 0; i < axes.size(); ++i)
-    if (axes[i].kind == AxisKind::scene_key) set_key(root, axes[i].name, std::stod(values[i]));
+    if (axes[i].kind == AxisKind::scene_key)
+      set_key(root, axes[i].name, number_of(axes[i].name, values[i]));
   CellSetup c{scene_from_table(root, file), {}, engine, ""};
   c.h = c.scene.timestep;
   for (std::size_t i = 0; i < axes.size(); ++i) apply_named(axes[i], values[i], c);

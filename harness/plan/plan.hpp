@@ -55,6 +55,10 @@ std::string plan_text(const Plan& plan);
 // JSON, another format, a hash that does not match its content (an edited plan).
 Plan read_plan(const std::string& path);
 
+// The same from the plan's text; `path` names it in messages. With check_hash false a plan whose
+// hash does not match is taken as it is (the fuzz target: fuzz/plan_reader_fuzz.cpp).
+Plan parse_plan(const std::string& text, const std::string& path, bool check_hash = true);
+
 // The shard (0 .. n-1) of the cell with this key among n: FNV-1a of the key, modulo n.
 std::size_t shard_of(std::string_view key, std::size_t n);
 

@@ -7,7 +7,6 @@
 
 #include "harness/core/input_error.hpp"
 #include "harness/core/number_format.hpp"
-#include "harness/core/registry.hpp"
 #include "harness/io/bounded_read.hpp"
 #include "harness/scene/timestep.hpp"
 #include "harness/scene/toml_reader.hpp"
@@ -78,9 +77,8 @@ void add_scenes(const Reader& r, const std::string& entry, std::size_t i,
   out.push_back(p.lexically_normal().string());
 }
 
-std::vector<std::string> load_engines(const Reader& r) {
+std::vector<std::string> load_engines(const Reader& r, const std::vector<std::string>& known) {
   std::vector<std::string> engines = string_list(r, "engines");
-  const std::vector<std::string>& known = known_engine_names();
   std::set<std::string> seen;
   for (std::size_t i = 0; i < engines.size(); ++i) {
     const std::string key = "engines[" + std::to_string(i) + "]";
@@ -190,7 +188,7 @@ Axis load_axis(const Reader& r) {
 
 }  // namespace
 
-SweepSpec load_sweep(const std::string& path) {
+SweepSpec load_sweep(const std::string& path, const std::vector<std::string>& known_engines) {
   const toml::table root =
       parse_toml(read_regular_file(path, kMaxSweepBytes, "1 MiB, for a sweep"), path);
   const Reader r(path, root, "");
@@ -200,7 +198,7 @@ SweepSpec load_sweep(const std::string& path) {
   s.description = r.string("description", "");
   const std::vector<std::string> entries = string_list(r, "scenes");
   for (std::size_t i = 0; i < entries.size(); ++i) add_scenes(r, entries[i], i, s.scene_files);
-  s.engines = load_engines(r);
+  s.engines = load_engines(r, known_engines);
   s.measures = load_measures(r);
   if (const toml::array* axes = array_of_tables(r, "axis"))
     for (std::size_t i = 0; i < axes->size(); ++i) {

@@ -41,13 +41,14 @@ struct SweepSpec {
 };
 
 // Reads and validates a sweep file. Throws InputError naming the file, line, key and problem for
-// a syntax error, an unknown key, a scene path that is not a scene file or folder, an unknown
-// engine or axis, a range that is not one (count < 1, a log range through 0), an axis given twice,
+// a syntax error, an unknown key, a scene path that is not a scene file or folder, an engine not
+// in `known_engines` (the registry's names: an external engine is a program, and a sweep is data),
+// an unknown axis, a range that is not one (count < 1, a log range through 0), an axis given twice,
 // or more than kMaxCells cells.
-SweepSpec load_sweep(const std::string& path);
+SweepSpec load_sweep(const std::string& path, const std::vector<std::string>& known_engines);
 
-// Largest plan: 10^7 cells (a 10^5-cell sweep is a cluster's afternoon; 10^7 is a typo's).
-inline constexpr long long kMaxCells = 10'000'000;
+// Largest plan: 2*10^6 cells (a 10^5-cell sweep is a cluster's afternoon; 10^7 is a typo's).
+inline constexpr long long kMaxCells = 2'000'000;
 
 const char* to_string(AxisKind kind);
 const char* to_string(Measure m);

@@ -8,6 +8,7 @@
 #include <map>
 
 #include "harness/core/input_error.hpp"
+#include "harness/core/registry.hpp"
 #include "harness/plan/plan.hpp"
 #include "tests/harness/test_dirs.hpp"
 
@@ -17,6 +18,10 @@ using dropcheck::testing::ScratchDir;
 using dropcheck::testing::slurp;
 
 namespace {
+
+SweepSpec load_sweep_known(const std::string& path) {
+  return load_sweep(path, known_engine_names());
+}
 
 const std::string kSpring =
     std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/extreme/stiff_spring.toml";
@@ -29,7 +34,7 @@ std::string sweep_text(const std::string& scenes, const std::string& axes) {
 std::string refusal(const ScratchDir& d, const std::string& text) {
   const std::string path = d.write("s.toml", text);
   try {
-    make_plan(load_sweep(path));
+    make_plan(load_sweep(path, known_engine_names()));
   } catch (const InputError& e) {
     return e.what();
   }
@@ -82,14 +87,15 @@ TEST_CASE("a plan is the same bytes from the same inputs, and its hash follows t
   std::filesystem::copy_file(kSpring, d.file("spring.toml"));
   const std::string axes = "[[axis]]\nname = \"timestep\"\nvalues = [\"1/60\", \"1/30\"]\n";
   const std::string sweep = d.write("s.toml", sweep_text("\"spring.toml\"", axes));
-  const Plan a = make_plan(load_sweep(sweep)), b = make_plan(load_sweep(sweep));
+  const Plan a = make_plan(load_sweep(sweep, known_engine_names())),
+             b = make_plan(load_sweep(sweep, known_engine_names()));
   CHECK(plan_text(a) == plan_text(b));
   CHECK(a.cell_count() == 4);
   CHECK(a.cell(0).key == "spring|ours|timestep=1/60");  // named by its file
   CHECK(a.cell(3).key == "spring|ours-f64|timestep=1/30");
   // One byte more in the scene: another plan.
   d.write("spring.toml", slurp(kSpring) + "\n");
-  CHECK(make_plan(load_sweep(sweep)).hash != a.hash);
+  CHECK(make_plan(load_sweep(sweep, known_engine_names())).hash != a.hash);
   // Read back: the same plan; edited: refused.
   const std::string file = d.write("a.plan", plan_text(a));
   CHECK(plan_text(read_plan(file)) == plan_text(a));
@@ -104,10 +110,10 @@ TEST_CASE("a plan is the same bytes from the same inputs, and its hash follows t
 TEST_CASE("a cell's shard depends on its key alone: a larger sweep moves no cell", "[plan]") {
   ScratchDir d("plan-shards");
   const std::string spring = "\"" + kSpring + "\"";
-  const Plan small = make_plan(load_sweep(d.write(
+  const Plan small = make_plan(load_sweep_known(d.write(
       "a.toml",
       sweep_text(spring, "[[axis]]\nname = \"timestep\"\nvalues = [\"1/60\", \"1/30\"]\n"))));
-  const Plan large = make_plan(load_sweep(d.write(
+  const Plan large = make_plan(load_sweep_known(d.write(
       "b.toml",
       sweep_text(
           spring,
@@ -124,7 +130,7 @@ TEST_CASE("a cell's shard depends on its key alone: a larger sweep moves no cell
 
 TEST_CASE("a range's values end where they were asked, in the shortest text", "[plan]") {
   ScratchDir d("plan-range");
-  const SweepSpec s = load_sweep(d.write(
+  const SweepSpec s = load_sweep_known(d.write(
       "s.toml",
       sweep_text("\"" + kSpring + "\"",
                  "[[axis]]\nname = \"spring_stiffness\"\nfrom = 100.0\nto = 10000.0\ncount = 3\n"
