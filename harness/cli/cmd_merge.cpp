@@ -1,4 +1,6 @@
 // dropcheck merge PLAN DIR --out RESULTS: a plan's shard files into one result file.
+#include <filesystem>
+
 #include "args.hpp"
 #include "cli.hpp"
 #include "harness/core/input_error.hpp"
@@ -31,12 +33,17 @@ int cmd_merge(const std::vector<std::string>& argv, std::ostream& out, std::ostr
   if (target.empty()) throw InputError("", 0, "--out", "required: where to write the results");
   const Plan plan = read_plan(args.positional[0]);
   const MergeResult m = merge_shards(plan, args.positional[1], target);
+  const std::string missing = args.value("--missing", target + ".missing");
   if (m.missing.empty()) {
+    // A list of missing cells from an earlier merge of the same results is stale now.
+    std::error_code ec;
+    if (!args.has("--missing") &&
+        std::filesystem::is_regular_file(std::filesystem::symlink_status(missing, ec)))
+      std::filesystem::remove(missing, ec);
     out << "merge " << plan.hash << ": " << m.records << " records from " << m.files << " files -> "
         << target << "\n";
     return kExitOk;
   }
-  const std::string missing = args.value("--missing", target + ".missing");
   std::string list;
   for (const std::string& k : m.missing) list += k + "\n";
   write_file_atomic(missing, list);

@@ -5,6 +5,7 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "harness/core/input_error.hpp"
+#include "harness/io/atomic_file.hpp"
 #include "harness/plan/shard.hpp"
 
 namespace dropcheck {
@@ -45,9 +46,14 @@ int cmd_sweep(const std::vector<std::string>& argv, std::ostream& out, std::ostr
   } else {
     cells = cells_from(plan, args.value("--cells-from"), name);
   }
+  // Where the records go, settled before any cell runs: a folder (made when missing), and in it a
+  // shard file or nothing, never a link (output_target refuses one).
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
+  if (!std::filesystem::is_directory(dir, ec))
+    throw InputError("", 0, "--out", excerpt(dir) + " is not a folder and cannot be made one");
   const std::string target = (std::filesystem::path(dir) / name).string();
+  output_target(target, "--out", Links::refuse);
   std::ostream null_stream(nullptr);
   const ShardSummary s = run_cells(plan, cells, target, args.has("--quiet") ? null_stream : err,
                                    args.value("--cache"));

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "harness/core/input_error.hpp"
+#include "harness/core/number_format.hpp"
 #include "harness/scene/scene_loader.hpp"
 #include "harness/scene/toml_reader.hpp"
 
@@ -179,6 +180,22 @@ void apply_named(const Axis& a, const std::string& value, CellSetup& c) {
 }
 
 }  // namespace
+
+void check_canonical_value(const Axis& axis, const std::string& text) {
+  if (axis.kind == AxisKind::scalar) {
+    if (text != "f32" && text != "f64")
+      throw InputError(axis.name + ": " + excerpt(text) + " is neither f32 nor f64");
+    return;
+  }
+  if (axis.kind == AxisKind::timestep) {
+    std::string why;
+    const std::optional<Timestep> h = parse_timestep(text, why);
+    if (!h || h->text != text) throw InputError("timestep: " + excerpt(text) + " is not a step");
+    return;
+  }
+  if (shortest(number_of(axis.name, text)) != text)
+    throw InputError(axis.name + ": " + excerpt(text) + " is not written as the shortest number");
+}
 
 CellSetup setup_cell(const std::string& text, const std::string& file, const std::string& engine,
                      std::span<const Axis> axes, std::span<const std::string> values) {

@@ -4,7 +4,7 @@
 // the scene file could not hold is refused as the loader refuses it. The path names tables by key,
 // array elements by [index], and [[body]] tables also by their name:
 //   "duration", "world.linear_drag", "world.gravity[1]", "body.cube.mass", "body[0].velocity[2]",
-//   "force[0].stiffness"
+//   "force[0].spring.stiffness"
 // A key that does not exist yet is added to its table (body.cube.friction); a path through
 // something missing is refused. Named axes then act on the scene model (sweep_file.hpp says how).
 #pragma once
@@ -29,6 +29,11 @@ struct CellSetup {
 // Throws InputError (no file or line: the caller names the sweep and axis) when a value cannot
 // apply: a key path through nothing, a scene without springs for spring_stiffness, fewer than two
 // dynamic bodies for mass_ratio, a negative magnitude, or a scene the value makes invalid.
+// Throws InputError unless `text` is a value of `axis` written as the sweep file loader writes it
+// (a step's text, "f32"/"f64", or the shortest text of a finite number): a plan read back must not
+// name one cell by two keys (" 0.5" and "0.5").
+void check_canonical_value(const Axis& axis, const std::string& text);
+
 CellSetup setup_cell(const std::string& text, const std::string& file, const std::string& engine,
                      std::span<const Axis> axes, std::span<const std::string> values);
 

@@ -16,7 +16,7 @@ namespace dropcheck {
 inline constexpr const char* kRecordFormat = "dropcheck-record/1";
 
 struct CellRecord {
-  std::string status;  // "ok", a run status ("non_finite", "crashed", ...), "skipped", "invalid"
+  std::string status;  // "ok", a run status ("non-finite", "crashed", ...), "skipped", "invalid"
   std::string line;    // the record: one JSON object, no trailing newline
 };
 

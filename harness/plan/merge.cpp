@@ -33,7 +33,7 @@ std::vector<fs::path> shard_files(const std::string& dir) {
     const std::string name = e.path().filename().string();
     if (!is_shard_name(name)) continue;
     if (!fs::is_regular_file(e.symlink_status(ec)))
-      throw InputError(e.path().string(), 0, "",
+      throw InputError(escape_controls(e.path().string()), 0, "",
                        "not a regular file (a link or a folder): shard files are read only as "
                        "files of the folder itself");
     out.push_back(e.path());
@@ -45,23 +45,26 @@ std::vector<fs::path> shard_files(const std::string& dir) {
 
 // The key of one record line, after checking it belongs to `plan`.
 std::string record_key(const Plan& plan, const std::unordered_set<std::string>& keys,
-                       const std::string& file, int line, const std::string& text) {
+                       const std::string& file, long long line, const std::string& text) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
   } catch (const std::exception&) {
-    throw InputError(file, line, "", "not a JSON record: " + excerpt(text));
+    throw InputError(file + ":" + std::to_string(line), 0, "",
+                     "not a JSON record: " + excerpt(text));
   }
   if (!j.is_object() || !j.contains("format") || j["format"] != kRecordFormat ||
       !j.contains("key") || !j["key"].is_string() || !j.contains("plan"))
-    throw InputError(file, line, "", "not a " + std::string(kRecordFormat) + " record");
+    throw InputError(file + ":" + std::to_string(line), 0, "",
+                     "not a " + std::string(kRecordFormat) + " record");
   if (j["plan"] != plan.hash)
     throw InputError(
         file, line, "plan",
         "this record belongs to plan " + excerpt(j["plan"].dump()) + ", not " + plan.hash);
   std::string key = j["key"].get<std::string>();
   if (!keys.count(key))
-    throw InputError(file, line, "key", "cell " + excerpt(key) + " is not in the plan");
+    throw InputError(file + ":" + std::to_string(line), 0, "key",
+                     "cell " + excerpt(key) + " is not in the plan");
   return key;
 }
 
@@ -76,19 +79,20 @@ MergeResult merge_shards(const Plan& plan, const std::string& dir, const std::st
   std::map<std::string, Seen> records;
   MergeResult m;
   for (const fs::path& path : shard_files(dir)) {
-    const std::string file = path.string();
+    // Names in messages escaped: a planted file name could carry terminal controls.
+    const std::string file = escape_controls(path.string());
     const std::string text =
-        read_regular_file(file, kMaxShardBytes, "4 GiB, for a shard", Links::refuse);
+        read_regular_file(path.string(), kMaxShardBytes, "4 GiB, for a shard", Links::refuse);
     ++m.files;
     std::istringstream in(text);
-    int n = 0;
+    long long n = 0;
     for (std::string line; std::getline(in, line);) {
       ++n;
       if (line.empty()) continue;
       const std::string key = record_key(plan, keys, file, n, line);
       const auto [it, added] = records.try_emplace(key, Seen{line, file});
       if (!added && it->second.line != line)
-        throw InputError(file, n, "",
+        throw InputError(file + ":" + std::to_string(n), 0, "",
                          "cell " + excerpt(key) + " is also in " + it->second.file +
                              " with different bytes (a different build or library? rerun one)");
     }

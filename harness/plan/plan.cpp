@@ -34,10 +34,12 @@ void validate_axes(const SweepSpec& sweep, const Plan& plan) {
   }
 }
 
-Json content(const Plan& p) {
+// The plan as JSON. With `paths` false, without the sweep file's and the scenes' paths: what the
+// hash covers, so that the same sweep planned from another folder is the same plan.
+Json content(const Plan& p, bool paths = true) {
   Json j;
   j["format"] = kPlanFormat;
-  j["sweep"] = p.sweep;
+  if (paths) j["sweep"] = p.sweep;
   j["description"] = p.description;
   j["engines"] = p.engines;
   Json measures = Json::array();
@@ -49,14 +51,48 @@ Json content(const Plan& p) {
         {{a.kind == AxisKind::scene_key ? "key" : "name", a.name}, {"values", a.values}});
   j["axes"] = axes;
   Json scenes = Json::array();
-  for (const PlanScene& s : p.scenes)
-    scenes.push_back({{"name", s.name}, {"file", s.file}, {"text", s.text}});
+  for (const PlanScene& s : p.scenes) {
+    Json scene{{"name", s.name}};
+    if (paths) scene["file"] = s.file;
+    scene["text"] = s.text;
+    scenes.push_back(scene);
+  }
   j["scenes"] = scenes;
   return j;
 }
 
 std::string hash_of(const Plan& p) {
-  return fnv1a_hex(content(p).dump());
+  return fnv1a_hex(content(p, false).dump());
+}
+
+// What a plan read back must hold, however its hash was made: each scene a valid scene of its name,
+// names unique and printable, each axis value canonical and unique (so that a key names one cell
+// and one cell has one key).
+void validate(const Plan& p) {
+  std::set<std::string> names;
+  for (const PlanScene& s : p.scenes) {
+    if (find_unsafe_in_line(s.file) != std::string::npos)
+      throw std::invalid_argument("a control character in scene file " + excerpt(s.file));
+    const Scene scene = parse_scene(s.text, s.file);  // InputError: passed on
+    if (scene.name != s.name)
+      throw std::invalid_argument("scene " + excerpt(s.name) + " is named " + excerpt(scene.name) +
+                                  " by its text");
+    if (!names.insert(s.name).second)
+      throw std::invalid_argument("two scenes named " + excerpt(s.name));
+  }
+  const std::set<std::string> engines(p.engines.begin(), p.engines.end());
+  if (engines.size() != p.engines.size()) throw std::invalid_argument("an engine listed twice");
+  std::set<std::string> axes;
+  for (const Axis& a : p.axes) {
+    if (a.name.empty() || find_unsafe_in_line(a.name) != std::string::npos ||
+        a.name.find_first_of("|=") != std::string::npos || !axes.insert(a.name).second)
+      throw std::invalid_argument("axis name " + excerpt(a.name));
+    std::set<std::string> values;
+    for (const std::string& v : a.values) {
+      check_canonical_value(a, v);  // InputError: passed on
+      if (!values.insert(v).second) throw std::invalid_argument("value " + v + " twice");
+    }
+  }
 }
 
 AxisKind kind_named(const std::string& name) {
@@ -111,6 +147,7 @@ Plan from_json(const Json& j) {
   if (cells > static_cast<double>(kMaxCells))
     throw std::invalid_argument("more than " + std::to_string(kMaxCells) + " cells");
   p.hash = j.at("hash").get<std::string>();
+  validate(p);
   return p;
 }
 
@@ -176,6 +213,8 @@ Plan parse_plan(const std::string& text, const std::string& path, bool check_has
   Plan p;
   try {
     p = from_json(Json::parse(text));
+  } catch (const InputError& e) {
+    throw InputError(path, 0, "", std::string("not a valid plan: ") + e.what());
   } catch (const std::exception& e) {
     throw InputError(path, 0, "", std::string("not a dropcheck plan: ") + e.what());
   }
@@ -184,6 +223,10 @@ Plan parse_plan(const std::string& text, const std::string& path, bool check_has
                      "the plan's content does not match its hash " + excerpt(p.hash) +
                          " (edited after `dropcheck plan`? plan the sweep again)");
   return p;
+}
+
+std::string plan_hash(const Plan& plan) {
+  return hash_of(plan);
 }
 
 std::size_t shard_of(std::string_view key, std::size_t n) {

@@ -47,6 +47,9 @@ struct Plan {
 // before any cell runs. Two scenes of one name are refused.
 Plan make_plan(const SweepSpec& sweep);
 
+// The hash of a plan's content (FNV-1a over its JSON without the hash and the paths).
+std::string plan_hash(const Plan& plan);
+
 // The plan as JSON text (one object, keys in a fixed order, ending in a newline); the same plan
 // gives the same bytes.
 std::string plan_text(const Plan& plan);

@@ -22,7 +22,7 @@ struct ShardSpec {
 ShardSpec parse_shard(const std::string& text);
 inline constexpr std::size_t kMaxShards = 100'000;
 
-// "shard-003-of-007.jsonl": the digits of N, so that the files sort in shard order.
+// "shard-03-of-12.jsonl": I padded to the digits of N, so that the files sort in shard order.
 std::string shard_file_name(ShardSpec s);
 
 // The plan's cells (indices, plan order) in shard s.

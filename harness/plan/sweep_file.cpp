@@ -65,9 +65,15 @@ void add_scenes(const Reader& r, const std::string& entry, std::size_t i,
   const fs::file_status st = fs::status(p, ec);
   if (fs::is_directory(st)) {
     std::vector<std::string> files;
-    for (const fs::directory_entry& e : fs::directory_iterator(p, ec))
-      if (e.path().extension() == ".toml" && e.is_regular_file(ec))
-        files.push_back(e.path().lexically_normal().string());
+    for (const fs::directory_entry& e : fs::directory_iterator(p, ec)) {
+      if (e.path().extension() != ".toml") continue;
+      // An entry of a folder is data from whoever filled it: a link could lead the read out of it.
+      if (!fs::is_regular_file(e.symlink_status(ec)))
+        r.fail(key, excerpt(e.path().string()) +
+                        " is not a regular file (a link?): a scene "
+                        "folder's entries are read only as its own files");
+      files.push_back(e.path().lexically_normal().string());
+    }
     if (files.empty()) r.fail(key, "folder " + excerpt(p.string()) + " holds no .toml scene");
     std::sort(files.begin(), files.end());
     out.insert(out.end(), files.begin(), files.end());
@@ -126,7 +132,8 @@ std::vector<std::string> range_values(const Reader& r, const Axis& axis) {
   if (axis.kind == AxisKind::scalar) r.fail("from", "the scalar axis takes values, not a range");
   const double from = r.required_number("from"), to = r.required_number("to");
   const double count_d = r.required_number("count");
-  if (count_d != std::floor(count_d) || count_d < 1 || count_d > kMaxRangeCount)
+  if (count_d != std::floor(count_d) || count_d < 1 || count_d > kMaxRangeCount ||
+      count_d > kMaxCells)
     r.fail("count", "must be a whole number from 1 to " + std::to_string(kMaxRangeCount));
   const auto count = static_cast<long long>(count_d);
   const std::string scale = r.string("scale", "linear");
@@ -137,7 +144,7 @@ std::vector<std::string> range_values(const Reader& r, const Axis& axis) {
   for (long long i = 0; i < count; ++i) {
     const double t = count == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(count - 1);
     const double v = log ? from * std::pow(to / from, t) : from + t * (to - from);
-    const double exact = i == count - 1 ? to : v;  // the end lands where it was asked
+    const double exact = count > 1 && i == count - 1 ? to : v;  // the end lands where asked
     if (axis.kind == AxisKind::timestep) {
       std::string why;
       const std::optional<Timestep> h = parse_timestep(shortest(exact), why);
@@ -167,7 +174,8 @@ Axis load_axis(const Reader& r) {
   } else {
     a.kind = AxisKind::scene_key;
     a.name = r.string("key", "");
-    if (a.name.empty() || find_unsafe_in_line(a.name) != std::string::npos)
+    if (a.name.empty() || find_unsafe_in_line(a.name) != std::string::npos ||
+        a.name.find_first_of("|= ") != std::string::npos)
       r.fail("key", "expected a scene key path such as \"world.linear_drag\"");
   }
   if (r.has("values") == r.has("from")) r.fail("values", "give either values or from/to/count");
@@ -200,21 +208,22 @@ SweepSpec load_sweep(const std::string& path, const std::vector<std::string>& kn
   for (std::size_t i = 0; i < entries.size(); ++i) add_scenes(r, entries[i], i, s.scene_files);
   s.engines = load_engines(r, known_engines);
   s.measures = load_measures(r);
+  // Counted as the axes load, so that a sweep asking for more cells stops before it allocates them.
+  double cells = static_cast<double>(s.scene_files.size() * s.engines.size());
   if (const toml::array* axes = array_of_tables(r, "axis"))
     for (std::size_t i = 0; i < axes->size(); ++i) {
-      Axis a =
-          load_axis(Reader(path, *axes->get(i)->as_table(), "axis[" + std::to_string(i) + "]"));
+      const std::string key = "axis[" + std::to_string(i) + "]";
+      Axis a = load_axis(Reader(path, *axes->get(i)->as_table(), key));
       for (const Axis& b : s.axes)
         if (b.name == a.name)
-          throw InputError(path, a.line, "axis[" + std::to_string(i) + "]",
-                           "axis " + a.name + " given twice");
+          throw InputError(path, a.line, key, "axis " + a.name + " given twice");
+      cells *= static_cast<double>(a.values.size());
+      if (cells > static_cast<double>(kMaxCells))
+        throw InputError(path, a.line, key,
+                         "the sweep reaches " + sig(cells, 3) + " cells here, more than the " +
+                             sig(kMaxCells, 3) + " a plan may hold");
       s.axes.push_back(std::move(a));
     }
-  double cells = static_cast<double>(s.scene_files.size() * s.engines.size());
-  for (const Axis& a : s.axes) cells *= static_cast<double>(a.values.size());
-  if (cells > static_cast<double>(kMaxCells))
-    r.fail("axis",
-           sig(cells, 3) + " cells, more than the " + sig(kMaxCells, 3) + " a plan may hold");
   return s;
 }
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs a dropcheck plan on a Slurm cluster: one job-array task per shard, then a merge job that
-# starts when every task has succeeded (docs/sweeps.md, "On a cluster").
+# starts when every task has ended, however (docs/sweeps.md, "On a cluster"): when a task failed,
+# timed out or was preempted, the merge lists the cells it left missing.
 #
 #   scripts/slurm/submit.sh --plan PLAN --shards N --out DIR --results FILE \
 #                           [--dropcheck PATH] [--logs DIR] [--wait] [-- SBATCH_OPTIONS...]
@@ -14,15 +15,16 @@ set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 
 plan="" shards="" out="" results="" logs="" wait=0
+need() { [ $# -ge 2 ] || { echo "submit.sh: $1 needs a value" >&2; exit 2; }; }
 dropcheck=$(command -v dropcheck || true)
 while [ $# -gt 0 ]; do
   case $1 in
-    --plan) plan=$2; shift 2 ;;
-    --shards) shards=$2; shift 2 ;;
-    --out) out=$2; shift 2 ;;
-    --results) results=$2; shift 2 ;;
-    --dropcheck) dropcheck=$2; shift 2 ;;
-    --logs) logs=$2; shift 2 ;;
+    --plan) need "$@"; plan=$2; shift 2 ;;
+    --shards) need "$@"; shards=$2; shift 2 ;;
+    --out) need "$@"; out=$2; shift 2 ;;
+    --results) need "$@"; results=$2; shift 2 ;;
+    --dropcheck) need "$@"; dropcheck=$2; shift 2 ;;
+    --logs) need "$@"; logs=$2; shift 2 ;;
     --wait) wait=1; shift ;;
     --) shift; break ;;
     *) echo "submit.sh: unknown option $1" >&2; exit 2 ;;
@@ -36,7 +38,7 @@ die() { echo "submit.sh: $*" >&2; exit 2; }
 # One task per shard, at most 1000 (a common MaxArraySize; larger plans: more cells per shard).
 [[ "$shards" =~ ^[0-9]+$ ]] && [ "$shards" -ge 1 ] && [ "$shards" -le 1000 ] ||
   die "--shards N: 1 to 1000"
-abs() { echo "$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"; }
+abs() { echo "$(cd "$(dirname -- "$1")" && pwd)/$(basename -- "$1")"; }
 mkdir -p "$out" "$(dirname "$results")"
 plan=$(abs "$plan") out=$(abs "$out") results=$(abs "$results") dropcheck=$(abs "$dropcheck")
 logs=${logs:-$out/slurm-logs}
@@ -46,7 +48,7 @@ array=$(sbatch --parsable --array="1-$shards" --output="$logs/shard-%A_%a.out" "
   "$here/shard.sbatch" "$dropcheck" "$plan" "$shards" "$out")
 array=${array%%;*}
 echo "array $array"
-merge_args=(--parsable --dependency="afterok:$array" --kill-on-invalid-dep=yes
+merge_args=(--parsable --dependency="afterany:$array"
   --output="$logs/merge-%j.out" "$@")
 if [ "$wait" -eq 1 ]; then
   set +e

@@ -53,11 +53,12 @@ void run_shards(const std::string& plan, const std::string& dir, int n) {
 
 }  // namespace
 
-TEST_CASE("sweep: the merged result is the same bytes for 1, 7 and 20 shards", "[plan][cli]") {
+TEST_CASE("sweep: the merged result is the same bytes for 1, 7, 20 and 1000 shards",
+          "[plan][cli]") {
   ScratchDir d("sweep-shards");
   const std::string plan = make_plan_file(d);
   std::vector<std::string> results;
-  for (int n : {1, 7, 20}) {
+  for (int n : {1, 7, 20, 1000}) {
     const std::string dir = d.file("shards-" + std::to_string(n));
     run_shards(plan, dir, n);
     const std::string out = d.file("r" + std::to_string(n) + ".jsonl");
@@ -68,6 +69,7 @@ TEST_CASE("sweep: the merged result is the same bytes for 1, 7 and 20 shards", "
   }
   CHECK(results[0] == results[1]);
   CHECK(results[0] == results[2]);
+  CHECK(results[0] == results[3]);
   // Each record names its cell, plan and build; the blown-up cells are records.
   CHECK_THAT(
       results[0],
@@ -189,4 +191,20 @@ TEST_CASE(
       run({"sweep", d.file("t.plan"), "--shard", "1/1", "--out", d.file("e"), "--cache", cache});
   CHECK_THAT(third.out, Contains("19 from the cache"));
   CHECK(slurp(d.file("e/shard-1-of-1.jsonl")) == slurp(d.file("c/shard-1-of-1.jsonl")));
+}
+
+TEST_CASE("sweep refuses a bad --out before running any cell", "[plan][cli]") {
+  ScratchDir d("sweep-out");
+  const std::string plan = make_plan_file(d);
+  const std::string file = d.write("a-file", "x\n");
+  const Cli c = run({"sweep", plan, "--shard", "1/1", "--out", file});
+  CHECK(c.code == 2);
+  CHECK_THAT(c.err, Contains("is not a folder"));
+  CHECK_THAT(c.err, !Contains("cell 1 of"));
+  std::filesystem::create_directories(d.path / "out");
+  std::filesystem::create_symlink(file, d.path / "out" / "shard-1-of-1.jsonl");
+  const Cli l = run({"sweep", plan, "--shard", "1/1", "--out", d.file("out")});
+  CHECK(l.code == 2);
+  CHECK_THAT(l.err, !Contains("cell 1 of"));
+  CHECK(slurp(file) == "x\n");
 }

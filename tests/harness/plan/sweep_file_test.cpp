@@ -5,6 +5,7 @@
 
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <functional>
 #include <map>
 
 #include "harness/core/input_error.hpp"
@@ -138,4 +139,76 @@ TEST_CASE("a range's values end where they were asked, in the shortest text", "[
                  "count = 3\n")));
   CHECK(s.axes[0].values == std::vector<std::string>{"100", "1000", "10000"});
   CHECK(s.axes[1].values == std::vector<std::string>{"0", "0.5", "1"});
+}
+
+TEST_CASE("a plan read back is checked whatever its hash says", "[plan]") {
+  ScratchDir d("plan-crafted");
+  const Plan good = make_plan(load_sweep_known(
+      d.write("s.toml", sweep_text("\"" + kSpring + "\"",
+                                   "[[axis]]\nname = \"damping_rate\"\nvalues = [0.5, 1.0]\n"))));
+  // Each change below comes with its hash recomputed, as anyone can.
+  auto crafted = [&](const std::function<void(Plan&)>& change) {
+    Plan p = good;
+    change(p);
+    p.hash = plan_hash(p);
+    try {
+      read_plan(d.write("crafted.plan", plan_text(p)));
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  CHECK(crafted([](Plan&) {}).empty());  // the plan itself reads back
+  CHECK_THAT(crafted([](Plan& p) { p.axes[0].values[0] = " 0.5"; }), Contains("not a finite"));
+  CHECK_THAT(crafted([](Plan& p) { p.axes[0].values[0] = "0.50"; }), Contains("shortest"));
+  CHECK_THAT(crafted([](Plan& p) { p.axes[0].values[1] = "0.5"; }), Contains("twice"));
+  CHECK_THAT(crafted([](Plan& p) { p.scenes.push_back(p.scenes[0]); }), Contains("two scenes"));
+  CHECK_THAT(crafted([](Plan& p) { p.scenes[0].text = "duration = -1\n"; }),
+             Contains("not a valid plan"));
+  CHECK_THAT(crafted([](Plan& p) {
+               p.axes[0].kind = AxisKind::scene_key;
+               p.axes[0].name = "world.gravity[0]\x1b[2J";
+             }),
+             Contains("axis name") && !Contains("\x1b"));
+  CHECK_THAT(crafted([](Plan& p) { p.engines.push_back("exec:/bin/sh"); }),
+             Contains("unknown engine"));
+  CHECK_THAT(crafted([](Plan& p) {
+               p.axes.assign(64, p.axes[0]);
+               for (std::size_t i = 0; i < p.axes.size(); ++i) {
+                 p.axes[i].kind = AxisKind::scene_key;
+                 p.axes[i].name = "a" + std::to_string(i);
+               }
+             }),
+             Contains("cells"));
+}
+
+TEST_CASE("the same sweep planned from another folder is the same plan", "[plan]") {
+  ScratchDir d("plan-paths");
+  for (const char* sub : {"a", "b/c"}) {
+    std::filesystem::create_directories(d.path / sub);
+    std::filesystem::copy_file(kSpring, d.path / sub / "stiff_spring.toml");
+  }
+  const std::string axes = "[[axis]]\nname = \"timestep\"\nvalues = [\"1/60\"]\n";
+  const Plan a =
+      make_plan(load_sweep_known(d.write("a/s.toml", sweep_text("\"stiff_spring.toml\"", axes))));
+  const Plan b =
+      make_plan(load_sweep_known(d.write("b/c/s.toml", sweep_text("\"stiff_spring.toml\"", axes))));
+  CHECK(a.scenes[0].file != b.scenes[0].file);
+  CHECK(a.hash == b.hash);
+}
+
+TEST_CASE("a scene folder's link is refused, and a sweep past 2e6 cells stops at its axis",
+          "[plan]") {
+  ScratchDir d("plan-limits");
+  std::filesystem::create_directories(d.path / "scenes");
+  std::filesystem::copy_file(kSpring, d.path / "scenes" / "a.toml");
+  std::filesystem::create_symlink(kFall, d.path / "scenes" / "b.toml");
+  CHECK_THAT(refusal(d, sweep_text("\"scenes\"", "")), Contains("not a regular file"));
+  std::filesystem::remove(d.path / "scenes" / "b.toml");
+  std::string axes;
+  for (const char* key : {"world.gravity[0]", "world.gravity[1]", "world.gravity[2]", "duration"})
+    axes += std::string("[[axis]]\nkey = \"") + key + "\"\nfrom = 1.0\nto = 2.0\ncount = 100\n";
+  // 1 scene x 2 engines x 100^3 = 2e6 cells is allowed; the fourth axis takes it to 2e8.
+  CHECK_THAT(refusal(d, sweep_text("\"scenes\"", axes)),
+             Contains("axis[3]") && Contains("more than the 2e+06"));
 }
