@@ -19,6 +19,7 @@
 #include "harness/io/output_dir.hpp"
 #include "harness/io/output_plan.hpp"
 #include "harness/report/report.hpp"
+#include "harness/report/report_sweep.hpp"
 #include "harness/scene/scene_loader.hpp"
 #include "harness/stability/stability_report.hpp"
 #include "selection.hpp"
@@ -160,15 +161,39 @@ const CommandSpec& report_spec() {
         "the timings.json the slowdown alert compares with (default: the one in --out)"},
        {"--fail-on-slowdown", "",
         "exit 1 when the slowdown alert flags a cell (the report is written all the same)"},
+       {"--results", "FILE",
+        "instead of running scenes: a sweep's merged results (dropcheck merge), drawn as maps "
+        "over its first two axes per scene and engine, with the failed cells"},
        {"--timing-smoke", "",
         "time as little work as possible (2 rounds, no warm-up, the smallest runs): checks the "
         "timing and the alert in seconds; its figures mean nothing"}}};
   return spec;
 }
 
+namespace {
+
+// `report --results FILE`: the sweep report, built in a staging folder like the scene report.
+int sweep_report(const Args& args, const std::string& out_dir, std::ostream& out,
+                 std::ostream& err) {
+  if (!args.positional.empty() || args.has("--engine"))
+    throw InputError("", 0, "--results", "a sweep report takes no scene files or engines");
+  const std::vector<SweepCell> cells = read_sweep_results(args.value("--results"));
+  check_replaceable(out_dir);
+  StagingDir staging(out_dir);
+  write_sweep_report(cells, args.value("--results"), staging.path(),
+                     [&](const std::string& what) { err << "report: " << what << " ...\n"; });
+  staging.commit();
+  out << "wrote " << (fs::path(out_dir) / "README.md").generic_string() << " (" << cells.size()
+      << " cells)\n";
+  return kExitOk;
+}
+
+}  // namespace
+
 int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
   const Args args = parse_args(report_spec(), argv);
   const std::string out_dir = args.value("--out", "reports");
+  if (args.has("--results")) return sweep_report(args, out_dir, out, err);
   const SceneFiles files = scene_files(args.positional);
   OutputPlan plan;
   for (const std::string& f : files.scenes) plan.read(f);

@@ -208,3 +208,30 @@ TEST_CASE("sweep refuses a bad --out before running any cell", "[plan][cli]") {
   CHECK_THAT(l.err, !Contains("cell 1 of"));
   CHECK(slurp(file) == "x\n");
 }
+
+TEST_CASE("report --results draws a sweep's maps and lists its failed cells, the same bytes twice",
+          "[plan][cli][report]") {
+  ScratchDir d("sweep-report");
+  const std::string plan = make_plan_file(d);
+  run_shards(plan, d.file("shards"), 1);
+  REQUIRE(run({"merge", plan, d.file("shards"), "--out", d.file("r.jsonl")}).code == 0);
+  const Cli a = run({"report", "--results", d.file("r.jsonl"), "--out", d.file("maps")});
+  REQUIRE(a.code == 0);
+  const std::string readme = slurp(d.file("maps/README.md"));
+  CHECK_THAT(readme, Contains("# dropcheck sweep report"));
+  // ours (float) overflows at 1/25 and 3600 N/m: a failed cell with its cause and the theory's.
+  CHECK_THAT(readme, Contains("non-finite") && Contains("is unstable at h = 1/25"));
+  CHECK_THAT(readme, Contains("## stiff_spring / ours"));
+  CHECK(std::filesystem::exists(d.file("maps/stiff_spring-ours-stability.svg")));
+  CHECK(std::filesystem::exists(d.file("maps/stiff_spring-chipmunk-error.svg")));
+  const std::string svg = slurp(d.file("maps/stiff_spring-ours-stability.svg"));
+  REQUIRE(run({"report", "--results", d.file("r.jsonl"), "--out", d.file("maps")}).code == 0);
+  CHECK(slurp(d.file("maps/README.md")) == readme);
+  CHECK(slurp(d.file("maps/stiff_spring-ours-stability.svg")) == svg);
+  // Not a result file: exit 2 before anything is written.
+  const Cli bad =
+      run({"report", "--results", d.write("bad.jsonl", "{\"x\":1}\n"), "--out", d.file("m2")});
+  CHECK(bad.code == 2);
+  CHECK_THAT(bad.err, Contains("bad.jsonl:1"));
+  CHECK_FALSE(std::filesystem::exists(d.file("m2")));
+}
