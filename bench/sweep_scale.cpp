@@ -53,9 +53,10 @@ void sweep_against_loop(const std::string& source, const fs::path& tmp) {
     run_cells(plan, all, (tmp / "shard.jsonl").string(), quiet);
     const double sweep = seconds_since(t);
     const double n = static_cast<double>(all.size());
-    std::printf("round %d: %zu cells: one loop %.3f s (%.0f cells/s), sweep path %.3f s (%.0f "
-                "cells/s): %.0f %%\n",
-                round + 1, all.size(), loop, n / loop, sweep, n / sweep, 100.0 * loop / sweep);
+    std::printf(
+        "round %d: %zu cells: one loop %.3f s (%.0f cells/s), sweep path %.3f s (%.0f "
+        "cells/s): %.0f %%\n",
+        round + 1, all.size(), loop, n / loop, sweep, n / sweep, 100.0 * loop / sweep);
   }
 }
 
@@ -75,8 +76,8 @@ void merge_at_scale(const std::string& source, const fs::path& tmp) {
   for (std::size_t i = 0; i < plan.cell_count(); ++i) {
     const Cell c = plan.cell(i);
     files[shard_of(c.key, shards)] += "{\"format\":\"dropcheck-record/1\",\"key\":\"" + c.key +
-                                      "\",\"plan\":\"" + plan.hash + "\",\"padding\":\"" +
-                                      padding + "\"}\n";
+                                      "\",\"plan\":\"" + plan.hash + "\",\"padding\":\"" + padding +
+                                      "\"}\n";
   }
   fs::create_directories(tmp / "shards");
   for (const auto& [s, text] : files)
@@ -87,19 +88,21 @@ void merge_at_scale(const std::string& source, const fs::path& tmp) {
   t = Clock::now();
   const MergeResult m = merge_shards(plan, (tmp / "shards").string(), (tmp / "all.jsonl").string());
   const double merged = seconds_since(t);
-  std::printf("plan of %zu cells: planned in %.2f s; records split into %zu shard files in %.2f s; "
-              "merged (%zu records, %zu missing, %.0f MiB) in %.2f s; peak resident memory %.0f "
-              "MiB (%.0f MiB before the merge)\n",
-              plan.cell_count(), planned, m.files, split, m.records, m.missing.size(),
-              static_cast<double>(fs::file_size(tmp / "all.jsonl")) / 1048576.0, merged,
-              peak_mib(), before);
+  std::printf(
+      "plan of %zu cells: planned in %.2f s; records split into %zu shard files in %.2f s; "
+      "merged (%zu records, %zu missing, %.0f MiB) in %.2f s; peak resident memory %.0f "
+      "MiB (%.0f MiB before the merge)\n",
+      plan.cell_count(), planned, m.files, split, m.records, m.missing.size(),
+      static_cast<double>(fs::file_size(tmp / "all.jsonl")) / 1048576.0, merged, peak_mib(),
+      before);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   const std::string source = argc > 1 ? argv[1] : DROPCHECK_SOURCE_DIR;
-  const fs::path tmp = fs::temp_directory_path() / ("dropcheck-sweep-scale-" + std::to_string(getpid()));
+  const fs::path tmp =
+      fs::temp_directory_path() / ("dropcheck-sweep-scale-" + std::to_string(getpid()));
   fs::create_directories(tmp);
   sweep_against_loop(source, tmp);
   merge_at_scale(source, tmp);
