@@ -31,6 +31,13 @@ while [ $# -gt 0 ]; do
   esac
 done
 die() { echo "submit.sh: $*" >&2; exit 2; }
+# Options after -- go to both jobs; those that would change what the jobs are are refused.
+for o in "$@"; do
+  case $o in
+    -a|--array|--array=*|-d|--dependency|--dependency=*|-o|--output|--output=*|--wrap|--wrap=*|-W|--wait)
+      die "$o after --: submit.sh sets it itself" ;;
+  esac
+done
 [ -n "$plan" ] && [ -f "$plan" ] || die "--plan PLAN: a plan file (dropcheck plan SWEEP --out PLAN)"
 [ -n "$out" ] || die "--out DIR: the folder of shard files"
 [ -n "$results" ] || die "--results FILE: where the merge job writes the records"
