@@ -11,6 +11,7 @@
 #include "harness/io/atomic_file.hpp"
 #include "harness/io/bounded_read.hpp"
 #include "harness/plan/cell_record.hpp"
+#include "harness/plan/worker.hpp"
 
 namespace dropcheck {
 namespace {
@@ -102,25 +103,38 @@ std::string cache_entry(const std::string& cache, const Plan& plan, const Cell& 
 
 ShardSummary run_cells(const Plan& plan, const std::vector<std::size_t>& cells,
                        const std::string& out, std::ostream& progress, const std::string& cache) {
-  std::vector<std::pair<std::string, std::string>> records;  // key, record
   ShardSummary s;
-  for (std::size_t i : cells) {
-    const Cell c = plan.cell(i);
-    const std::string entry = cache.empty() ? "" : cache_entry(cache, plan, c);
-    CellRecord record = entry.empty() ? CellRecord{} : cached(plan, c, entry);
-    if (!record.line.empty()) {
-      ++s.cached;
-    } else {
-      record = run_cell(plan, c);
-      if (!entry.empty()) write_file_atomic(entry, record.line + "\n", Links::refuse);
-    }
-    const bool ok = record.status == "ok", skipped = record.status == "skipped";
+  std::vector<std::string> entries(cells.size());
+  std::vector<CellRecord> got(cells.size());
+  std::vector<std::size_t> todo_at, todo;  // positions in `cells` to run, and their cells
+  const auto report = [&](std::size_t at) {
+    const CellRecord& r = got[at];
     ++s.cells;
-    (ok ? s.ok : skipped ? s.skipped : s.failed) += 1;
-    progress << "cell " << s.cells << " of " << cells.size() << ": " << c.key << ": "
-             << record.status << "\n";
-    records.emplace_back(c.key, std::move(record.line));
+    (r.status == "ok" ? s.ok : r.status == "skipped" ? s.skipped : s.failed) += 1;
+    progress << "cell " << s.cells << " of " << cells.size() << ": " << plan.cell(cells[at]).key
+             << ": " << r.status << "\n";
+  };
+  for (std::size_t at = 0; at < cells.size(); ++at) {
+    const Cell c = plan.cell(cells[at]);
+    if (!cache.empty()) entries[at] = cache_entry(cache, plan, c);
+    if (!cache.empty()) got[at] = cached(plan, c, entries[at]);
+    if (got[at].line.empty()) {
+      todo_at.push_back(at);
+      todo.push_back(cells[at]);
+      continue;
+    }
+    ++s.cached;
+    report(at);
   }
+  run_cells_in_worker(plan, todo, [&](std::size_t k, const CellRecord& r) {
+    const std::size_t at = todo_at[k];
+    got[at] = r;
+    if (!entries[at].empty()) write_file_atomic(entries[at], r.line + "\n", Links::refuse);
+    report(at);
+  });
+  std::vector<std::pair<std::string, std::string>> records;  // key, record
+  for (std::size_t at = 0; at < cells.size(); ++at)
+    records.emplace_back(plan.cell(cells[at]).key, std::move(got[at].line));
   std::sort(records.begin(), records.end());
   write_file_atomic(
       out,

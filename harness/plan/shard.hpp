@@ -34,7 +34,8 @@ std::vector<std::size_t> cells_of_shard(const Plan& plan, ShardSpec s);
 std::vector<std::size_t> cells_from(const Plan& plan, const std::string& path,
                                     std::string& file_name);
 
-// Runs `cells` and writes their records, one line each, sorted by key, to `out` atomically (a
+// Runs `cells` (in one worker process: worker.hpp) and writes their records, one line each, sorted
+// by key, to `out` atomically (a
 // symbolic link at `out` is refused: the folder is shared by every shard). Prints one progress line
 // per cell to `progress`. With a `cache` folder, a cell whose record this build already made
 // (cell_identity: same key, scene text, measures and build, in any plan) is taken from it instead

@@ -10,7 +10,10 @@
 
 #include "harness/core/input_error.hpp"
 #include "harness/core/registry.hpp"
+#include "harness/plan/cell_record.hpp"
 #include "harness/plan/plan.hpp"
+#include "harness/plan/worker.hpp"
+#include "harness/process/isolated_run.hpp"
 #include "tests/harness/test_dirs.hpp"
 
 using namespace dropcheck;
@@ -211,4 +214,49 @@ TEST_CASE("a scene folder's link is refused, and a sweep past 2e6 cells stops at
   // 1 scene x 2 engines x 100^3 = 2e6 cells is allowed; the fourth axis takes it to 2e8.
   CHECK_THAT(refusal(d, sweep_text("\"scenes\"", axes)),
              Contains("axis[3]") && Contains("more than the 2e+06"));
+}
+
+TEST_CASE("a shard's worker writes the records the per-cell path writes, byte for byte",
+          "[plan][worker]") {
+  const Plan plan = make_plan(
+      load_sweep(std::string(DROPCHECK_SOURCE_DIR) + "/sweeps/small.toml", known_engine_names()));
+  std::vector<std::size_t> cells;
+  for (std::size_t i = 0; i < plan.cell_count(); i += 3) cells.push_back(i);  // 86 of 256
+  const std::vector<CellRecord> worker = run_cells_in_worker(plan, cells);
+  const Isolation before = default_isolation();
+  set_default_isolation(Isolation::child_process);  // each run forked, as `dropcheck sweep` did
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    const CellRecord alone = run_cell(plan, plan.cell(cells[k]));
+    INFO(plan.cell(cells[k]).key);
+    CHECK(worker[k].status == alone.status);
+    CHECK(worker[k].line == alone.line);
+  }
+  set_default_isolation(before);
+}
+
+TEST_CASE(
+    "an engine that aborts in a shard's worker is that cell's record, as the per-cell path "
+    "writes it, and the next cells run",
+    "[plan][worker]") {
+  ScratchDir d("plan-worker-crash");
+  // Chipmunk (built with its debug checks) aborts on an infinite velocity: measured SIGABRT at
+  // step 65 with a 1e12 N/m spring at 1/20 s (cpBody.c:107).
+  const Plan plan = make_plan(load_sweep_known(d.write(
+      "s.toml", "scenes = [\"" + kSpring +
+                    "\"]\nengines = [\"chipmunk\", \"ours-f64\"]\n[[axis]]\n"
+                    "key = \"force[0].spring.stiffness\"\nvalues = [3600.0, 1e12]\n[[axis]]\n"
+                    "name = \"timestep\"\nvalues = [\"1/20\"]\n")));
+  std::vector<std::size_t> cells(plan.cell_count());
+  for (std::size_t i = 0; i < cells.size(); ++i) cells[i] = i;
+  const std::vector<CellRecord> worker = run_cells_in_worker(plan, cells);
+  REQUIRE(worker.size() == 4);
+  CHECK(worker[1].status == "crashed");  // chipmunk at 1e12, the second cell: the worker died
+  CHECK_THAT(worker[1].line, Contains("SIGABRT"));
+  CHECK(worker[2].status == "ok");          // ours-f64 ran after it, in a new worker
+  CHECK(worker[3].status == "non-finite");  // (1e12 N/m: Inf by step 33)
+  const Isolation before = default_isolation();
+  set_default_isolation(Isolation::child_process);
+  for (std::size_t k = 0; k < cells.size(); ++k)
+    CHECK(worker[k].line == run_cell(plan, plan.cell(cells[k])).line);
+  set_default_isolation(before);
 }

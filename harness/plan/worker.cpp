@@ -1,0 +1,156 @@
+#include "harness/plan/worker.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstdint>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <system_error>
+
+#include "harness/process/isolated_run.hpp"
+#include "harness/process/signal_cleanup.hpp"
+
+namespace dropcheck {
+namespace {
+
+// How long the parent waits for one cell's record: the run's limit and a minute for the rest.
+constexpr int kCellWaitMs = static_cast<int>((kDefaultRunTimeLimitSeconds + 60.0) * 1000.0);
+
+bool write_all(int fd, const void* data, std::size_t n) {
+  const char* p = static_cast<const char*>(data);
+  while (n > 0) {
+    const ssize_t w = ::write(fd, p, n);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) return false;
+    p += w;
+    n -= static_cast<std::size_t>(w);
+  }
+  return true;
+}
+
+bool put_text(int fd, const std::string& s) {
+  const std::uint64_t n = s.size();
+  return write_all(fd, &n, sizeof n) && write_all(fd, s.data(), s.size());
+}
+
+// The worker: crash signals to their defaults (the parent reads a death, not a handler's report),
+// killed with its parent, each cell run in this process; one frame per record.
+[[noreturn]] void worker_main(const Plan& plan, const std::vector<std::size_t>& cells,
+                              std::size_t from, int fd) {
+  for (int sig : {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGPIPE, SIGTERM, SIGINT, SIGHUP})
+    std::signal(sig, SIG_DFL);
+  sigset_t deferred;
+  sigemptyset(&deferred);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&deferred, sig);
+  ::sigprocmask(SIG_UNBLOCK, &deferred, nullptr);
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  set_default_isolation(Isolation::in_process);
+  int code = 0;
+  try {
+    for (std::size_t i = from; i < cells.size() && code == 0; ++i) {
+      const CellRecord r = run_cell(plan, plan.cell(cells[i]));
+      if (!put_text(fd, r.status) || !put_text(fd, r.line)) code = 3;
+    }
+  } catch (...) {
+    code = 4;
+  }
+  std::fflush(nullptr);
+  ::_exit(code);
+}
+
+// Reads exactly n bytes, waiting at most kCellWaitMs for each chunk; false at the end of the pipe,
+// on an error or on the time limit.
+bool read_exact(int fd, void* data, std::size_t n) {
+  char* p = static_cast<char*>(data);
+  while (n > 0) {
+    pollfd pfd{fd, POLLIN, 0};
+    const int ready = ::poll(&pfd, 1, kCellWaitMs);
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready <= 0) return false;
+    const ssize_t r = ::read(fd, p, n);
+    if (r < 0 && errno == EINTR) continue;
+    if (r <= 0) return false;
+    p += r;
+    n -= static_cast<std::size_t>(r);
+  }
+  return true;
+}
+
+std::optional<std::string> get_text(int fd) {
+  std::uint64_t n = 0;
+  if (!read_exact(fd, &n, sizeof n) || n > (std::uint64_t{1} << 30)) return std::nullopt;
+  std::string s(n, '\0');
+  if (!read_exact(fd, s.data(), s.size())) return std::nullopt;
+  return s;
+}
+
+// Runs cells[from..] in one worker; returns how many records it sent before it ended.
+std::size_t one_worker(const Plan& plan, const std::vector<std::size_t>& cells, std::size_t from,
+                       std::vector<CellRecord>& out,
+                       const std::function<void(std::size_t, const CellRecord&)>& done) {
+  int pipe[2];
+  if (::pipe2(pipe, O_CLOEXEC) != 0)
+    throw std::system_error(errno, std::generic_category(), "pipe");
+  std::fflush(nullptr);
+  std::optional<KillOnSignal> kill_on_signal;
+  pid_t pid = -1;
+  {
+    SignalsDeferred deferred;
+    pid = ::fork();
+    if (pid == 0) {
+      ::close(pipe[0]);
+      worker_main(plan, cells, from, pipe[1]);
+    }
+    if (pid > 0) kill_on_signal.emplace(pid);
+  }
+  ::close(pipe[1]);
+  if (pid < 0) {
+    ::close(pipe[0]);
+    throw std::system_error(errno, std::generic_category(), "fork");
+  }
+  std::size_t sent = 0;
+  for (std::size_t i = from; i < cells.size(); ++i) {
+    std::optional<std::string> status = get_text(pipe[0]);
+    std::optional<std::string> line = status ? get_text(pipe[0]) : std::nullopt;
+    if (!line) break;
+    out[i] = {std::move(*status), std::move(*line)};
+    if (done) done(i, out[i]);
+    ++sent;
+  }
+  ::close(pipe[0]);
+  ::kill(pid, SIGKILL);  // ended, or silent past the limit: either way it goes
+  int wstatus = 0;
+  while (::waitpid(pid, &wstatus, 0) < 0 && errno == EINTR) {
+  }
+  return sent;
+}
+
+}  // namespace
+
+std::vector<CellRecord> run_cells_in_worker(
+    const Plan& plan, const std::vector<std::size_t>& cells,
+    const std::function<void(std::size_t, const CellRecord&)>& done) {
+  std::vector<CellRecord> out(cells.size());
+  std::size_t next = 0;
+  while (next < cells.size()) {
+    next += one_worker(plan, cells, next, out, done);
+    if (next >= cells.size()) break;
+    // The worker died in cells[next] or outlasted its limit there: that cell the per-cell way.
+    const Isolation before = default_isolation();
+    set_default_isolation(Isolation::child_process);
+    out[next] = run_cell(plan, plan.cell(cells[next]));
+    set_default_isolation(before);
+    if (done) done(next, out[next]);
+    ++next;
+  }
+  return out;
+}
+
+}  // namespace dropcheck
