@@ -1,7 +1,7 @@
 // The cost of the sweep path (docs/sweeps.md), printed as figures (README, "Sweeps"):
-//  1. cells per second of `dropcheck sweep` (run_cells: a child process per cell, records sorted
-//     and written whole) against the same cells run in one loop in one process (no isolation, no
-//     file), on sweeps/small.toml's 256 cells;
+//  1. cells per second of `dropcheck sweep` (run_cells: one worker process for the shard, a cell
+//     it dies in rerun alone, records sorted and written whole) against the same cells run in one
+//     loop in this process (no isolation, no file), on sweeps/small.toml's 256 cells;
 //  2. a plan of 10^5 cells: planned, its records (synthetic: right format, key and plan, 600 bytes
 //     each, no runs) split into 1000 shard files by their keys, then merged: the merge's wall time
 //     and the process's peak resident memory.
@@ -43,12 +43,10 @@ void sweep_against_loop(const std::string& source, const fs::path& tmp) {
   std::vector<std::size_t> all(plan.cell_count());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
   std::ostringstream quiet;
-  for (int round = 0; round < 3; ++round) {
-    set_default_isolation(Isolation::in_process);
+  for (int round = 0; round < 5; ++round) {
     auto t = Clock::now();
-    for (std::size_t i : all) (void)run_cell(plan, plan.cell(i));
+    for (std::size_t i : all) (void)run_cell(plan, plan.cell(i), Isolation::in_process);
     const double loop = seconds_since(t);
-    set_default_isolation(Isolation::child_process);
     t = Clock::now();
     run_cells(plan, all, (tmp / "shard.jsonl").string(), quiet);
     const double sweep = seconds_since(t);

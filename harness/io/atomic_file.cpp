@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "harness/core/input_error.hpp"
+#include "harness/io/fd_write.hpp"
 #include "harness/process/signal_cleanup.hpp"
 
 namespace fs = std::filesystem;
@@ -35,18 +36,6 @@ mode_t new_file_mode(const fs::path& target) {
   const mode_t mask = ::umask(0);
   ::umask(mask);
   return 0666 & ~mask;
-}
-
-// Writes all of `content` to `fd`; false with errno set on failure.
-bool write_all(int fd, std::string_view content) {
-  std::size_t done = 0;
-  while (done < content.size()) {
-    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    done += static_cast<std::size_t>(n);
-  }
-  return true;
 }
 
 // A stream buffer that writes to a file descriptor in blocks of kSize bytes. The first failed
@@ -73,7 +62,7 @@ class FdBuffer : public std::streambuf {
  private:
   bool flush() {
     const std::size_t n = static_cast<std::size_t>(pptr() - pbase());
-    if (error_ == 0 && n > 0 && !write_all(fd_, std::string_view(pbase(), n))) error_ = errno;
+    if (error_ == 0 && n > 0 && !write_all(fd_, pbase(), n)) error_ = errno;
     setp(buffer_.data(), buffer_.data() + kSize);
     return error_ == 0;
   }

@@ -123,7 +123,7 @@ CellRecord adopt_record(const Plan& plan, const Cell& cell, const std::string& l
   return {r["status"].get<std::string>(), r.dump()};
 }
 
-CellRecord run_cell(const Plan& plan, const Cell& cell) {
+CellRecord run_cell(const Plan& plan, const Cell& cell, Isolation isolation) {
   Json r;
   r["format"] = kRecordFormat;
   r["key"] = cell.key;
@@ -154,7 +154,9 @@ CellRecord run_cell(const Plan& plan, const Cell& cell) {
     return finish(r, "skipped", info.name + " runs in " + to_string(info.scalar) + " only");
   if (const std::string why = engine->cannot_run(c.scene); !why.empty())
     return finish(r, "skipped", why);
-  const Trajectory run = run_scene(*engine, c.scene, c.h.seconds);
+  RunOptions options;
+  options.isolation = isolation;
+  const Trajectory run = run_scene(*engine, c.scene, c.h.seconds, options);
   const std::string status = status_key(run.status);
   r["status"] = status;
   if (run.status != RunStatus::ok) {

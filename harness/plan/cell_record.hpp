@@ -9,6 +9,7 @@
 
 #include <string>
 
+#include "harness/core/runner.hpp"
 #include "harness/plan/plan.hpp"
 
 namespace dropcheck {
@@ -20,8 +21,10 @@ struct CellRecord {
   std::string line;    // the record: one JSON object, no trailing newline
 };
 
-// Runs cell `cell` of `plan` (in a child process where the runner isolates runs) and records it.
-CellRecord run_cell(const Plan& plan, const Cell& cell);
+// Runs cell `cell` of `plan` and records it; `isolation` says where its run happens (a shard's
+// worker runs it in its own process; a cell the worker died in, in a child of its own).
+CellRecord run_cell(const Plan& plan, const Cell& cell,
+                    Isolation isolation = Isolation::process_default);
 
 // What a cell's record depends on besides the plan's hash, as 16 hex digits: its key, its scene's
 // text, the measures, and this build (key, flags, commit). Two plans that share a cell share this.

@@ -95,21 +95,6 @@ void validate(const Plan& p) {
   }
 }
 
-AxisKind kind_named(const std::string& name) {
-  for (AxisKind k :
-       {AxisKind::timestep, AxisKind::damping_rate, AxisKind::gravity, AxisKind::spring_stiffness,
-        AxisKind::mass_ratio, AxisKind::initial_speed, AxisKind::scalar})
-    if (name == to_string(k)) return k;
-  throw std::invalid_argument("unknown axis " + excerpt(name));
-}
-
-Measure measure_named(const std::string& name) {
-  for (Measure m :
-       {Measure::error, Measure::own_law, Measure::stability, Measure::hash, Measure::timing})
-    if (name == to_string(m)) return m;
-  throw std::invalid_argument("unknown measure " + excerpt(name));
-}
-
 Plan from_json(const Json& j) {
   if (j.at("format").get<std::string>() != kPlanFormat)
     throw std::invalid_argument("format is not " + std::string(kPlanFormat));
@@ -123,7 +108,11 @@ Plan from_json(const Json& j) {
     if (e.empty() || e.size() > 32 ||
         e.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-") != std::string::npos)
       throw std::invalid_argument("unknown engine " + excerpt(e));
-  for (const Json& m : j.at("measure")) p.measures.push_back(measure_named(m.get<std::string>()));
+  for (const Json& m : j.at("measure")) {
+    const std::optional<Measure> measure = measure_named(m.get<std::string>());
+    if (!measure) throw std::invalid_argument("unknown measure " + excerpt(m.get<std::string>()));
+    p.measures.push_back(*measure);
+  }
   for (const Json& a : j.at("axes")) {
     Axis axis;
     if (a.contains("key")) {
@@ -131,7 +120,9 @@ Plan from_json(const Json& j) {
       axis.name = a.at("key").get<std::string>();
     } else {
       axis.name = a.at("name").get<std::string>();
-      axis.kind = kind_named(axis.name);
+      const std::optional<AxisKind> kind = named_axis(axis.name);
+      if (!kind) throw std::invalid_argument("unknown axis " + excerpt(axis.name));
+      axis.kind = *kind;
     }
     axis.values = a.at("values").get<std::vector<std::string>>();
     if (axis.values.empty()) throw std::invalid_argument("axis " + axis.name + " has no values");

@@ -104,20 +104,23 @@ std::string cache_entry(const std::string& cache, const Plan& plan, const Cell& 
 ShardSummary run_cells(const Plan& plan, const std::vector<std::size_t>& cells,
                        const std::string& out, std::ostream& progress, const std::string& cache) {
   ShardSummary s;
-  std::vector<std::string> entries(cells.size());
+  std::vector<std::string> keys, entries(cells.size());
   std::vector<CellRecord> got(cells.size());
   std::vector<std::size_t> todo_at, todo;  // positions in `cells` to run, and their cells
   const auto report = [&](std::size_t at) {
     const CellRecord& r = got[at];
     ++s.cells;
     (r.status == "ok" ? s.ok : r.status == "skipped" ? s.skipped : s.failed) += 1;
-    progress << "cell " << s.cells << " of " << cells.size() << ": " << plan.cell(cells[at]).key
-             << ": " << r.status << "\n";
+    progress << "cell " << s.cells << " of " << cells.size() << ": " << keys[at] << ": " << r.status
+             << "\n";
   };
   for (std::size_t at = 0; at < cells.size(); ++at) {
     const Cell c = plan.cell(cells[at]);
-    if (!cache.empty()) entries[at] = cache_entry(cache, plan, c);
-    if (!cache.empty()) got[at] = cached(plan, c, entries[at]);
+    keys.push_back(c.key);
+    if (!cache.empty()) {
+      entries[at] = cache_entry(cache, plan, c);
+      got[at] = cached(plan, c, entries[at]);
+    }
     if (got[at].line.empty()) {
       todo_at.push_back(at);
       todo.push_back(cells[at]);
@@ -134,7 +137,7 @@ ShardSummary run_cells(const Plan& plan, const std::vector<std::size_t>& cells,
   });
   std::vector<std::pair<std::string, std::string>> records;  // key, record
   for (std::size_t at = 0; at < cells.size(); ++at)
-    records.emplace_back(plan.cell(cells[at]).key, std::move(got[at].line));
+    records.emplace_back(std::move(keys[at]), std::move(got[at].line));
   std::sort(records.begin(), records.end());
   write_file_atomic(
       out,

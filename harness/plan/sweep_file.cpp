@@ -102,15 +102,14 @@ std::vector<Measure> load_measures(const Reader& r) {
   std::vector<Measure> out;
   const std::vector<std::string> names = string_list(r, "measure");
   for (std::size_t i = 0; i < names.size(); ++i) {
-    const auto it = std::find_if(std::begin(kMeasures), std::end(kMeasures),
-                                 [&](const auto& m) { return names[i] == m.first; });
-    if (it == std::end(kMeasures))
+    const std::optional<Measure> m = measure_named(names[i]);
+    if (!m)
       r.fail("measure[" + std::to_string(i) + "]",
              "unknown measure " + excerpt(names[i]) +
                  " (known: error, own_law, stability, hash, timing)");
-    if (std::find(out.begin(), out.end(), it->second) != out.end())
+    if (std::find(out.begin(), out.end(), *m) != out.end())
       r.fail("measure[" + std::to_string(i) + "]", "measure " + names[i] + " listed twice");
-    out.push_back(it->second);
+    out.push_back(*m);
   }
   return out;
 }
@@ -164,13 +163,12 @@ Axis load_axis(const Reader& r) {
   if (r.has("name") == r.has("key")) r.fail("name", "an axis has either name or key, not both");
   if (r.has("name")) {
     a.name = r.string("name", "");
-    const auto it = std::find_if(std::begin(kNamedAxes), std::end(kNamedAxes),
-                                 [&](const NamedAxis& n) { return a.name == n.name; });
-    if (it == std::end(kNamedAxes))
+    const std::optional<AxisKind> kind = named_axis(a.name);
+    if (!kind)
       r.fail("name", "unknown axis " + excerpt(a.name) +
                          " (known: timestep, damping_rate, gravity, spring_stiffness, "
                          "mass_ratio, initial_speed, scalar; or key = \"a.scene.key\")");
-    a.kind = it->kind;
+    a.kind = *kind;
   } else {
     a.kind = AxisKind::scene_key;
     a.name = r.string("key", "");
@@ -237,6 +235,18 @@ const char* to_string(Measure m) {
   for (const auto& [name, measure] : kMeasures)
     if (measure == m) return name;
   return "?";
+}
+
+std::optional<AxisKind> named_axis(std::string_view name) {
+  for (const NamedAxis& n : kNamedAxes)
+    if (name == n.name) return n.kind;
+  return std::nullopt;
+}
+
+std::optional<Measure> measure_named(std::string_view name) {
+  for (const auto& [n, m] : kMeasures)
+    if (name == n) return m;
+  return std::nullopt;
 }
 
 }  // namespace dropcheck

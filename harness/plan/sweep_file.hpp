@@ -2,7 +2,9 @@
 // their values, and what each cell measures. `dropcheck plan` turns one into a plan (plan.hpp).
 #pragma once
 
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace dropcheck {
@@ -52,5 +54,8 @@ inline constexpr long long kMaxCells = 2'000'000;
 
 const char* to_string(AxisKind kind);
 const char* to_string(Measure m);
+// The named axis or measure of that name (to_string's inverse; not scene_key): nullopt for others.
+std::optional<AxisKind> named_axis(std::string_view name);
+std::optional<Measure> measure_named(std::string_view name);
 
 }  // namespace dropcheck

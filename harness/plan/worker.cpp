@@ -14,6 +14,7 @@
 #include <string>
 #include <system_error>
 
+#include "harness/io/fd_write.hpp"
 #include "harness/process/isolated_run.hpp"
 #include "harness/process/signal_cleanup.hpp"
 
@@ -22,18 +23,6 @@ namespace {
 
 // How long the parent waits for one cell's record: the run's limit and a minute for the rest.
 constexpr int kCellWaitMs = static_cast<int>((kDefaultRunTimeLimitSeconds + 60.0) * 1000.0);
-
-bool write_all(int fd, const void* data, std::size_t n) {
-  const char* p = static_cast<const char*>(data);
-  while (n > 0) {
-    const ssize_t w = ::write(fd, p, n);
-    if (w < 0 && errno == EINTR) continue;
-    if (w <= 0) return false;
-    p += w;
-    n -= static_cast<std::size_t>(w);
-  }
-  return true;
-}
 
 bool put_text(int fd, const std::string& s) {
   const std::uint64_t n = s.size();
@@ -51,11 +40,10 @@ bool put_text(int fd, const std::string& s) {
   for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&deferred, sig);
   ::sigprocmask(SIG_UNBLOCK, &deferred, nullptr);
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
-  set_default_isolation(Isolation::in_process);
   int code = 0;
   try {
     for (std::size_t i = from; i < cells.size() && code == 0; ++i) {
-      const CellRecord r = run_cell(plan, plan.cell(cells[i]));
+      const CellRecord r = run_cell(plan, plan.cell(cells[i]), Isolation::in_process);
       if (!put_text(fd, r.status) || !put_text(fd, r.line)) code = 3;
     }
   } catch (...) {
@@ -143,10 +131,7 @@ std::vector<CellRecord> run_cells_in_worker(
     next += one_worker(plan, cells, next, out, done);
     if (next >= cells.size()) break;
     // The worker died in cells[next] or outlasted its limit there: that cell the per-cell way.
-    const Isolation before = default_isolation();
-    set_default_isolation(Isolation::child_process);
-    out[next] = run_cell(plan, plan.cell(cells[next]));
-    set_default_isolation(before);
+    out[next] = run_cell(plan, plan.cell(cells[next]), Isolation::child_process);
     if (done) done(next, out[next]);
     ++next;
   }

@@ -22,6 +22,7 @@
 #include "harness/core/input_error.hpp"
 #include "harness/core/number_format.hpp"
 #include "harness/core/run_limits.hpp"
+#include "harness/io/fd_write.hpp"
 #include "harness/io/trajectory_wire.hpp"
 #include "harness/process/signal_cleanup.hpp"
 
@@ -82,19 +83,6 @@ class ProgressEngine final : public ForwardingEngine {
  private:
   Progress& progress_;
 };
-
-// Writes all of `data` to `fd`, retrying after signals.
-bool write_all(int fd, const void* data, std::size_t bytes) {
-  const char* p = static_cast<const char*>(data);
-  while (bytes > 0) {
-    const ssize_t n = ::write(fd, p, bytes);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    p += n;
-    bytes -= static_cast<std::size_t>(n);
-  }
-  return true;
-}
 
 // The child: default signal actions (a test framework's or sanitizer's crash handlers must not run
 // here: the parent reports the crash), stderr into the pipe, the ordinary loop, the result out.

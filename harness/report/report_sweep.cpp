@@ -162,8 +162,10 @@ PlotSpec error_map(const Group& g, const std::vector<Placed>& placed) {
   return p;
 }
 
+// User text in a table or heading: controls escaped, cut to 160 bytes.
 std::string text_cell(const std::string& s) {
-  return excerpt(s, 160).substr(1, excerpt(s, 160).size() - 2);  // no quotes around it
+  const std::string t = escape_controls(s);
+  return t.size() > 160 ? t.substr(0, 157) + "..." : t;
 }
 
 void maps(const Group& g, const std::string& dir, std::ostringstream& md) {

@@ -223,15 +223,12 @@ TEST_CASE("a shard's worker writes the records the per-cell path writes, byte fo
   std::vector<std::size_t> cells;
   for (std::size_t i = 0; i < plan.cell_count(); i += 3) cells.push_back(i);  // 86 of 256
   const std::vector<CellRecord> worker = run_cells_in_worker(plan, cells);
-  const Isolation before = default_isolation();
-  set_default_isolation(Isolation::child_process);  // each run forked, as `dropcheck sweep` did
-  for (std::size_t k = 0; k < cells.size(); ++k) {
-    const CellRecord alone = run_cell(plan, plan.cell(cells[k]));
+  for (std::size_t k = 0; k < cells.size(); ++k) {  // each run forked, as `dropcheck sweep` did
+    const CellRecord alone = run_cell(plan, plan.cell(cells[k]), Isolation::child_process);
     INFO(plan.cell(cells[k]).key);
     CHECK(worker[k].status == alone.status);
     CHECK(worker[k].line == alone.line);
   }
-  set_default_isolation(before);
 }
 
 TEST_CASE(
@@ -254,9 +251,6 @@ TEST_CASE(
   CHECK_THAT(worker[1].line, Contains("SIGABRT"));
   CHECK(worker[2].status == "ok");          // ours-f64 ran after it, in a new worker
   CHECK(worker[3].status == "non-finite");  // (1e12 N/m: Inf by step 33)
-  const Isolation before = default_isolation();
-  set_default_isolation(Isolation::child_process);
   for (std::size_t k = 0; k < cells.size(); ++k)
-    CHECK(worker[k].line == run_cell(plan, plan.cell(cells[k])).line);
-  set_default_isolation(before);
+    CHECK(worker[k].line == run_cell(plan, plan.cell(cells[k]), Isolation::child_process).line);
 }
