@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <csignal>
 #include <cstdint>
@@ -21,8 +22,8 @@
 namespace dropcheck {
 namespace {
 
-// How long the parent waits for one cell's record: the run's limit and a minute for the rest.
-constexpr int kCellWaitMs = static_cast<int>((kDefaultRunTimeLimitSeconds + 60.0) * 1000.0);
+static_assert(kWorkerSilenceLimit.count() >= (kDefaultRunTimeLimitSeconds + 60.0) * 1000.0,
+              "a worker must be given at least as long as a cell run alone");
 
 bool put_text(int fd, const std::string& s) {
   const std::uint64_t n = s.size();
@@ -53,13 +54,13 @@ bool put_text(int fd, const std::string& s) {
   ::_exit(code);
 }
 
-// Reads exactly n bytes, waiting at most kCellWaitMs for each chunk; false at the end of the pipe,
+// Reads exactly n bytes, waiting at most `wait_ms` for each chunk; false at the end of the pipe,
 // on an error or on the time limit.
-bool read_exact(int fd, void* data, std::size_t n) {
+bool read_exact(int fd, void* data, std::size_t n, int wait_ms) {
   char* p = static_cast<char*>(data);
   while (n > 0) {
     pollfd pfd{fd, POLLIN, 0};
-    const int ready = ::poll(&pfd, 1, kCellWaitMs);
+    const int ready = ::poll(&pfd, 1, wait_ms);
     if (ready < 0 && errno == EINTR) continue;
     if (ready <= 0) return false;
     const ssize_t r = ::read(fd, p, n);
@@ -71,18 +72,19 @@ bool read_exact(int fd, void* data, std::size_t n) {
   return true;
 }
 
-std::optional<std::string> get_text(int fd) {
+std::optional<std::string> get_text(int fd, int wait_ms) {
   std::uint64_t n = 0;
-  if (!read_exact(fd, &n, sizeof n) || n > (std::uint64_t{1} << 30)) return std::nullopt;
+  if (!read_exact(fd, &n, sizeof n, wait_ms) || n > (std::uint64_t{1} << 30)) return std::nullopt;
   std::string s(n, '\0');
-  if (!read_exact(fd, s.data(), s.size())) return std::nullopt;
+  if (!read_exact(fd, s.data(), s.size(), wait_ms)) return std::nullopt;
   return s;
 }
 
 // Runs cells[from..] in one worker; returns how many records it sent before it ended.
 std::size_t one_worker(const Plan& plan, const std::vector<std::size_t>& cells, std::size_t from,
                        std::vector<CellRecord>& out,
-                       const std::function<void(std::size_t, const CellRecord&)>& done) {
+                       const std::function<void(std::size_t, const CellRecord&)>& done,
+                       int wait_ms) {
   int pipe[2];
   if (::pipe2(pipe, O_CLOEXEC) != 0)
     throw std::system_error(errno, std::generic_category(), "pipe");
@@ -105,8 +107,8 @@ std::size_t one_worker(const Plan& plan, const std::vector<std::size_t>& cells, 
   }
   std::size_t sent = 0;
   for (std::size_t i = from; i < cells.size(); ++i) {
-    std::optional<std::string> status = get_text(pipe[0]);
-    std::optional<std::string> line = status ? get_text(pipe[0]) : std::nullopt;
+    std::optional<std::string> status = get_text(pipe[0], wait_ms);
+    std::optional<std::string> line = status ? get_text(pipe[0], wait_ms) : std::nullopt;
     if (!line) break;
     out[i] = {std::move(*status), std::move(*line)};
     if (done) done(i, out[i]);
@@ -124,12 +126,18 @@ std::size_t one_worker(const Plan& plan, const std::vector<std::size_t>& cells, 
 
 std::vector<CellRecord> run_cells_in_worker(
     const Plan& plan, const std::vector<std::size_t>& cells,
-    const std::function<void(std::size_t, const CellRecord&)>& done) {
+    const std::function<void(std::size_t, const CellRecord&)>& done,
+    std::chrono::milliseconds silence, WorkerStats* stats) {
+  const int wait_ms = static_cast<int>(std::clamp<std::int64_t>(silence.count(), 1, INT32_MAX));
+  WorkerStats local;
+  WorkerStats& count = stats ? *stats : local;
   std::vector<CellRecord> out(cells.size());
   std::size_t next = 0;
   while (next < cells.size()) {
-    next += one_worker(plan, cells, next, out, done);
+    ++count.workers;
+    next += one_worker(plan, cells, next, out, done, wait_ms);
     if (next >= cells.size()) break;
+    ++count.rerun_alone;
     // The worker died in cells[next] or outlasted its limit there: that cell the per-cell way.
     out[next] = run_cell(plan, plan.cell(cells[next]), Isolation::child_process);
     if (done) done(next, out[next]);

@@ -7,6 +7,7 @@
 // cell: bench/sweep_scale.cpp).
 #pragma once
 
+#include <chrono>
 #include <functional>
 #include <vector>
 
@@ -14,10 +15,21 @@
 
 namespace dropcheck {
 
+// How long the parent waits for the worker's next record before it counts the worker as hung: the
+// run time limit of a cell run alone (kDefaultRunTimeLimitSeconds) and a minute for its measures.
+inline constexpr std::chrono::milliseconds kWorkerSilenceLimit{660'000};
+
+// What the worker path did, for progress lines and tests.
+struct WorkerStats {
+  std::size_t workers = 0;      // worker processes started
+  std::size_t rerun_alone = 0;  // cells the worker died in or was silent past the limit in
+};
+
 // The records of `cells` (indices into `plan`), in the order given; `done(i, record)` is called as
-// each arrives.
+// each arrives. A worker silent for `silence` is killed and its cell run alone.
 std::vector<CellRecord> run_cells_in_worker(
     const Plan& plan, const std::vector<std::size_t>& cells,
-    const std::function<void(std::size_t, const CellRecord&)>& done = {});
+    const std::function<void(std::size_t, const CellRecord&)>& done = {},
+    std::chrono::milliseconds silence = kWorkerSilenceLimit, WorkerStats* stats = nullptr);
 
 }  // namespace dropcheck

@@ -254,3 +254,60 @@ TEST_CASE(
   for (std::size_t k = 0; k < cells.size(); ++k)
     CHECK(worker[k].line == run_cell(plan, plan.cell(cells[k]), Isolation::child_process).line);
 }
+
+TEST_CASE(
+    "a worker silent past its limit is killed, its cell is run alone with the per-cell path's "
+    "bytes, and a new worker takes the next cell",
+    "[plan][worker]") {
+  ScratchDir d("plan-worker-silent");
+  // Simbody's error-controlled integrator at h = 2e-5 s: 5e4 steps of about 10 us (0.5 s in a
+  // release build, 5 s under the sanitizers), where the watchdog here waits 0.2 s; at 1/60 a cell
+  // takes milliseconds.
+  const Plan plan = make_plan(load_sweep_known(
+      d.write("s.toml", "scenes = [\"" + kFall +
+                            "\"]\nengines = [\"simbody-rkm\"]\n[[axis]]\n"
+                            "name = \"timestep\"\nvalues = [\"1/60\", \"1/50000\", \"1/30\"]\n")));
+  REQUIRE(plan.cell_count() == 3);
+  const std::vector<std::size_t> cells{0, 1, 2};
+  WorkerStats stats;
+  const std::vector<CellRecord> worker =
+      run_cells_in_worker(plan, cells, {}, std::chrono::milliseconds(200), &stats);
+  CHECK(stats.workers == 2);      // the second worker started after the silent one was killed
+  CHECK(stats.rerun_alone == 1);  // the 5e4-step cell
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    INFO(plan.cell(cells[k]).key);
+    CHECK(worker[k].status == "ok");
+    CHECK(worker[k].line == run_cell(plan, plan.cell(cells[k]), Isolation::child_process).line);
+  }
+}
+
+TEST_CASE("the worker writes the per-cell bytes for the engines small.toml leaves out",
+          "[plan][worker]") {
+  ScratchDir d("plan-worker-slow-engines");
+  // Simbody (both integrators) and DART take microseconds a body-step, too slow for small.toml's
+  // 256 cells; two steps on the drag scene and the spring show their records are the same too.
+  const Plan plan = make_plan(load_sweep_known(
+      d.write("s.toml", "scenes = [\"" + std::string(DROPCHECK_SOURCE_DIR) +
+                            "/scenarios/free_fall_drag.toml\", \"" + kSpring +
+                            "\"]\nengines = [\"simbody\", \"simbody-rkm\", \"dart\"]\n[[axis]]\n"
+                            "name = \"timestep\"\nvalues = [\"1/60\", \"1/30\"]\n")));
+  std::vector<std::size_t> cells(plan.cell_count());
+  for (std::size_t i = 0; i < cells.size(); ++i) cells[i] = i;
+  const std::vector<CellRecord> worker = run_cells_in_worker(plan, cells);
+  std::map<std::string, int> statuses;
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    INFO(plan.cell(cells[k]).key);
+    ++statuses[worker[k].status];
+    CHECK(worker[k].line == run_cell(plan, plan.cell(cells[k]), Isolation::child_process).line);
+  }
+  CHECK(statuses["ok"] >= 8);  // every cell but simbody-rkm's spring (refused: "skipped")
+}
+
+TEST_CASE("the shipped sweeps plan: small.toml a few hundred cells, large.toml over 1e5",
+          "[plan]") {
+  const std::string dir = std::string(DROPCHECK_SOURCE_DIR) + "/sweeps/";
+  CHECK(make_plan(load_sweep_known(dir + "small.toml")).cell_count() == 256);
+  const Plan large = make_plan(load_sweep_known(dir + "large.toml"));
+  CHECK(large.cell_count() == 440000);  // the figure its description states
+  CHECK(large.axes.size() == 4);
+}
