@@ -123,7 +123,8 @@ CellRecord adopt_record(const Plan& plan, const Cell& cell, const std::string& l
   return {r["status"].get<std::string>(), r.dump()};
 }
 
-CellRecord run_cell(const Plan& plan, const Cell& cell, Isolation isolation) {
+CellRecord run_cell(const Plan& plan, const Cell& cell, Isolation isolation,
+                    double time_limit_seconds) {
   Json r;
   r["format"] = kRecordFormat;
   r["key"] = cell.key;
@@ -156,10 +157,15 @@ CellRecord run_cell(const Plan& plan, const Cell& cell, Isolation isolation) {
     return finish(r, "skipped", why);
   RunOptions options;
   options.isolation = isolation;
+  options.time_limit_seconds = time_limit_seconds;
   const Trajectory run = run_scene(*engine, c.scene, c.h.seconds, options);
   const std::string status = status_key(run.status);
   r["status"] = status;
-  if (run.status != RunStatus::ok) {
+  if (run.status == RunStatus::timed_out) {
+    // How far a run got before its wall-clock limit depends on the machine: the record keeps the
+    // limit and leaves the step out, so it stays the same bytes on every run.
+    r["reason"] = run.failure.substr(0, run.failure.find(';'));
+  } else if (run.status != RunStatus::ok) {
     r["reason"] = run.failure;
     r["failed_step"] = run.failed_step;
   }

@@ -22,9 +22,11 @@ struct CellRecord {
 };
 
 // Runs cell `cell` of `plan` and records it; `isolation` says where its run happens (a shard's
-// worker runs it in its own process; a cell the worker died in, in a child of its own).
+// worker runs it in its own process; a cell the worker died in, in a child of its own), and a
+// child-process run ends at `time_limit_seconds` of wall time (<= 0: kDefaultRunTimeLimitSeconds).
 CellRecord run_cell(const Plan& plan, const Cell& cell,
-                    Isolation isolation = Isolation::process_default);
+                    Isolation isolation = Isolation::process_default,
+                    double time_limit_seconds = 0.0);
 
 // What a cell's record depends on besides the plan's hash, as 16 hex digits: its key, its scene's
 // text, the measures, and this build (key, flags, commit). Two plans that share a cell share this.

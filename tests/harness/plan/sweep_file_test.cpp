@@ -311,3 +311,21 @@ TEST_CASE("the shipped sweeps plan: small.toml a few hundred cells, large.toml o
   CHECK(large.cell_count() == 440000);  // the figure its description states
   CHECK(large.axes.size() == 4);
 }
+
+TEST_CASE(
+    "a timed-out cell's record names its limit, not the step it reached: the same bytes twice",
+    "[plan][worker]") {
+  ScratchDir d("plan-timed-out");
+  // 5e4 steps of Simbody's error-controlled integrator (0.5 s or more) against a 0.1 s limit: the
+  // step reached differs from run to run, the record does not.
+  const Plan plan = make_plan(
+      load_sweep_known(d.write("s.toml", "scenes = [\"" + kFall +
+                                             "\"]\nengines = [\"simbody-rkm\"]\n[[axis]]\n"
+                                             "name = \"timestep\"\nvalues = [\"1/50000\"]\n")));
+  const CellRecord first = run_cell(plan, plan.cell(0), Isolation::child_process, 0.1);
+  const CellRecord second = run_cell(plan, plan.cell(0), Isolation::child_process, 0.1);
+  CHECK(first.status == "timed-out");
+  CHECK_THAT(first.line, Contains("\"reason\":\"no result within the limit of 0.1 s\""));
+  CHECK_THAT(first.line, !Contains("failed_step") && !Contains("killed"));
+  CHECK(first.line == second.line);
+}
