@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "harness/core/bounce_law.hpp"
 #include "harness/core/friction_model.hpp"
 #include "harness/core/law.hpp"
 #include "harness/core/rotation_law.hpp"
@@ -68,6 +69,9 @@ struct EngineInfo {
   std::string contact_settings;  // contact model and parameters used when contacts = true
   // How its contact solver bounds friction (docs/contact.md), for an engine that maps materials.
   FrictionModel friction_model = FrictionModel::cone;
+  // How its contact turns a falling body around (harness/core/bounce_law.hpp), for an engine that
+  // maps restitution.
+  BounceLaw bounce_law = kIdealBounce;
   // Landing on a static floor: where the centre of a resting box sits relative to the geometric
   // rest height (floor top + half extent), in m, and how far from that still counts as expected.
   // Documented per engine in docs/engines.md section 5 (Box2D: +0.015 from skin and slop).

@@ -8,6 +8,7 @@
 #include "harness/core/number_format.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/measure/attribution.hpp"
+#include "harness/measure/bounce_verdict.hpp"
 #include "harness/measure/law_stability.hpp"
 #include "harness/measure/metrics.hpp"
 #include "harness/measure/own_law.hpp"
@@ -407,12 +408,29 @@ CheckResult check_slide(const Scene& scene, const EngineFactory& make, const Tim
   return r;
 }
 
+CheckResult check_bounce(const Scene& scene, const EngineFactory& make, const Timestep& h) {
+  ContactRun c = contact_run(scene, make, h, "bounce");
+  if (!c.run) return c.result;
+  CheckResult& r = c.result;
+  const Trajectory& run = *c.run;
+  for (const BounceSetup& s : bounce_setups(scene)) {
+    const BounceVerdict v = judge_bounce(run, s, c.info.bounce_law, h.seconds);
+    r.passed = r.passed && v.follows;
+    append(r.message, run.body_names[s.body] + ": " + v.sentence());
+  }
+  return r;
+}
+
 std::vector<CheckResult> check_scene(const Scene& scene, const EngineFactory& make,
                                      const EngineFactory& reference) {
   std::vector<CheckResult> out;
   if (!make()->cannot_run(scene).empty()) return out;
   if (scene.world.contacts && !slide_setups(scene).empty()) {
     out.push_back(check_slide(scene, make, scene.timestep));
+    return out;
+  }
+  if (scene.world.contacts && !bounce_setups(scene).empty()) {
+    out.push_back(check_bounce(scene, make, scene.timestep));
     return out;
   }
   if (scene.world.contacts) {

@@ -49,6 +49,11 @@ CheckResult check_landing(const Scene& scene, const EngineFactory& make, const T
 // tolerance::kSlideDistance). A body that stops as another model predicts is named with that model.
 CheckResult check_slide(const Scene& scene, const EngineFactory& make, const Timestep& h);
 
+// A dropped sphere's bounces (harness/oracles/contact_laws.hpp): each bouncing body's path, every
+// step, within tolerance::kBouncePath of the engine's declared bounce law (EngineInfo::bounce_law);
+// where that law departs from the ideal one, the members that move it are named with its figures.
+CheckResult check_bounce(const Scene& scene, const EngineFactory& make, const Timestep& h);
+
 // Every check that applies to `scene` on one engine (free flight: own law at three steps and
 // divergence; contacts: a slide, else landing). An engine that cannot run the scene gives no
 // results.

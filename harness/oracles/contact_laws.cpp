@@ -1,5 +1,6 @@
 #include "harness/oracles/contact_laws.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -23,6 +24,14 @@ AxisStop clamp_axis(double v0, double a, double h) {
   const auto n = static_cast<std::int64_t>(std::ceil(v0 / dv));
   const double moving = static_cast<double>(n - 1);  // steps that end with v > 0
   return {n, h * (moving * v0 - dv * moving * (moving + 1.0) / 2.0)};
+}
+
+// A force of the scene acts on body i.
+bool pushed(const Scene& scene, std::size_t i) {
+  for (const Force& f : scene.forces)
+    for (std::size_t k : f.bodies)
+      if (k == i) return true;
+  return false;
 }
 
 }  // namespace
@@ -70,10 +79,7 @@ std::vector<SlideSetup> slide_setups(const Scene& scene) {
     if (std::abs(b.position.y() - l.rest_height) > 1e-9) continue;  // not resting on it
     const double speed = std::hypot(b.velocity.x(), b.velocity.z());
     if (speed == 0.0) continue;
-    bool pushed = false;
-    for (const Force& f : scene.forces)
-      for (std::size_t k : f.bodies) pushed = pushed || k == i;
-    if (pushed) continue;
+    if (pushed(scene, i)) continue;
     double angle = std::atan2(std::abs(b.velocity.z()), std::abs(b.velocity.x()));
     if (angle > std::numbers::pi / 4.0) angle = std::numbers::pi / 2.0 - angle;
     out.push_back({i, speed, angle, *m.friction, -g.y()});
@@ -97,6 +103,46 @@ SlideObservation observe_slide(const Trajectory& run, const SlideSetup& setup,
   return o;
 }
 
+BouncePath bounce_path(const BounceLaw& law, double h0, double e, double g, double h,
+                       std::int64_t steps) {
+  BouncePath p;
+  p.gap.reserve(static_cast<std::size_t>(steps) + 1);
+  p.v.reserve(static_cast<std::size_t>(steps) + 1);
+  double gap = h0, v = 0.0;
+  p.gap.push_back(gap);
+  p.v.push_back(v);
+  for (std::int64_t n = 1; n <= steps; ++n) {
+    // The law of harness/core/bounce_law.hpp: contacts found where the last step ended.
+    const double v_free = v - g * h;
+    if (gap < 0.0) {
+      double target = std::min(law.erp * -gap / h, law.max_push);
+      if (-v > law.threshold) target = std::max(target, e * -v);
+      v = std::max(v_free, target);
+    } else {
+      v = v_free;
+    }
+    gap += h * v;
+    p.gap.push_back(gap);
+    p.v.push_back(v);
+  }
+  return p;
+}
+
+BounceObservation observe_bounce(const std::vector<double>& gap, const std::vector<double>& v,
+                                 int bounces) {
+  BounceObservation o;
+  const std::size_t n = std::min(gap.size(), v.size());
+  std::size_t i = 1;
+  while (i < n && !(gap[i] < 0.0)) ++i;
+  if (i >= n) return o;
+  o.contact_step = static_cast<std::int64_t>(i);
+  o.speed_in = -v[i];
+  if (i + 1 < n) o.speed_out = v[i + 1];
+  for (++i; i < n && static_cast<int>(o.apexes.size()) < bounces; ++i)
+    if (v[i - 1] > 0.0 && v[i] <= 0.0) o.apexes.push_back(gap[i - 1]);
+  return o;
+}
+
 Bounce bounce(double h0, double e, double g, double h, int bounces) {
   if (!(h0 > 0.0 && g > 0.0 && h > 0.0 && e >= 0.0 && e <= 1.0))
     throw std::invalid_argument("bounce: needs h0 > 0, g > 0, h > 0, 0 <= e <= 1");
@@ -108,29 +154,43 @@ Bounce bounce(double h0, double e, double g, double h, int bounces) {
     b.flights.push_back(2.0 * std::pow(e, n) * fall);
   }
   b.time_to_rest = e < 1.0 ? fall * (1.0 + e) / (1.0 - e) : INFINITY;
-  // Semi-implicit fall: after n steps the drop is g*h^2*n*(n + 1)/2; contact at the first n where
-  // that reaches h0.
-  double gap = h0, v = 0.0;
-  std::int64_t n = 0;
-  while (true) {
-    ++n;
-    v -= g * h;
-    if (gap + h * v <= 0.0) break;
-    gap += h * v;
-  }
-  b.contact_step = n;
-  b.step_speed_in = -v;
-  b.step_speed_out = e * b.step_speed_in;
-  // From the floor at e*v_in: x += h*v after v -= g*h, while the sphere rises.
-  double x = 0.0;
-  v = b.step_speed_out;
-  while (true) {
-    v -= g * h;
-    if (v <= 0.0) break;
-    x += h * v;
-  }
-  b.step_apex = x;
+  // The fall, the climb after the first impact and its top: three falls' time and a step or two.
+  const auto steps = static_cast<std::int64_t>(std::ceil(3.0 * fall / h)) + 4;
+  const BouncePath p = bounce_path(kIdealBounce, h0, e, g, h, steps);
+  const BounceObservation o = observe_bounce(p.gap, p.v, 1);
+  b.contact_step = o.contact_step;
+  b.step_speed_in = o.speed_in;
+  b.step_speed_out = o.speed_out;
+  b.step_apex = o.apexes.empty() ? 0.0 : o.apexes.front();
   return b;
+}
+
+std::vector<BounceSetup> bounce_setups(const Scene& scene) {
+  std::vector<BounceSetup> out;
+  const Material m = scene_material(scene);
+  const Vec3& g = scene.world.gravity;
+  if (!scene.world.contacts || !m.restitution || g.x() != 0.0 || g.z() != 0.0 || g.y() >= 0.0 ||
+      scene.world.damping_rate != 0.0 || needs_rotation(scene))
+    return out;
+  for (const LandingSetup& l : landing_setups(scene)) {
+    const Body& b = scene.bodies[l.body];
+    if (b.shape != Shape::sphere || b.velocity != Vec3::Zero()) continue;
+    const double h0 = b.position.y() - b.radius - l.floor_top;
+    if (!(h0 > 0.0)) continue;
+    if (pushed(scene, l.body)) continue;
+    out.push_back({l.body, h0, *m.restitution, -g.y(), b.radius, l.floor_top});
+  }
+  return out;
+}
+
+BouncePath observed_path(const Trajectory& run, const BounceSetup& setup) {
+  BouncePath p;
+  for (std::size_t s = 0; s < run.samples(); ++s) {
+    const BodyState& b = run.at(s, setup.body);
+    p.gap.push_back(b.position.y() - setup.radius - setup.floor_top);
+    p.v.push_back(b.velocity.y());
+  }
+  return p;
 }
 
 }  // namespace dropcheck

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/core/bounce_law.hpp"
 #include "harness/core/friction_model.hpp"
 #include "harness/core/trajectory.hpp"
 #include "harness/scene/scene.hpp"
@@ -57,6 +58,27 @@ struct SlideObservation {
 SlideObservation observe_slide(const Trajectory& run, const SlideSetup& setup,
                                double stopped_speed);
 
+// A sphere's fall and bounces on a level floor under a bounce law (harness/core/bounce_law.hpp),
+// from rest with its lowest point h0 above the floor: after step n = 0..steps, gap[n] (m, the
+// lowest point above the floor; negative while it penetrates) and v[n] (m/s, up positive).
+struct BouncePath {
+  std::vector<double> gap, v;
+};
+BouncePath bounce_path(const BounceLaw& law, double h0, double e, double g, double h,
+                       std::int64_t steps);
+
+// What a path shows (a law's or a run's): its first impact and the apexes after it.
+struct BounceObservation {
+  std::int64_t contact_step = -1;  // the first step that ends with the sphere in the floor
+  double speed_in = 0.0;           // m/s: its downward speed then
+  double speed_out = 0.0;          // m/s: its upward speed one step later
+  std::vector<double> apexes;      // m: the highest gap of each flight after an impact
+};
+// gap[i] and v[i] are those after step i; at most `bounces` apexes. An apex is the last gap before
+// the velocity turns from up to down.
+BounceObservation observe_bounce(const std::vector<double>& gap, const std::vector<double>& v,
+                                 int bounces = 3);
+
 // A sphere dropped from rest with its lowest point h0 above a level floor, restitution e.
 struct Bounce {
   // Continuous: each impact returns e times the impact speed.
@@ -64,9 +86,9 @@ struct Bounce {
   std::vector<double> apexes;   // m above the floor after bounce n = 1, 2, ...: e^(2n)*h0
   std::vector<double> flights;  // s, the flight after bounce n: 2*e^n*sqrt(2*h0/g)
   double time_to_rest = 0.0;    // s: sqrt(2*h0/g)*(1 + e)/(1 - e) (infinite for e = 1)
-  // The ideal discrete law at step h: semi-implicit free fall until the step whose position update
-  // would take the sphere through the floor; there its velocity (after gravity) v_in becomes
-  // -e*v_in and it is placed on the floor; then free flight again.
+  // The ideal discrete law at step h (kIdealBounce): semi-implicit free fall until the step that
+  // ends in the floor, the contact step; the next step leaves at e times the speed it ended with,
+  // from where the sphere is; then free flight again.
   std::int64_t contact_step = 0;  // the step of the first impact
   double step_speed_in = 0.0;     // m/s: g*h*contact_step
   double step_speed_out = 0.0;    // m/s: e*step_speed_in
@@ -76,5 +98,23 @@ struct Bounce {
 // `bounces` continuous apexes and flights. Throws std::invalid_argument for h0 <= 0, g <= 0,
 // h <= 0, or e outside [0, 1].
 Bounce bounce(double h0, double e, double g, double h, int bounces = 3);
+
+// A sphere resting in the air over a static floor box, dropped: the bounce `bounce` predicts.
+struct BounceSetup {
+  std::size_t body = 0;    // index into Scene::bodies
+  double h0 = 0.0;         // m: its lowest point above the floor's top
+  double e = 0.0;          // the scene's restitution
+  double g = 0.0;          // m/s^2, gravity straight down
+  double radius = 0.0;     // m
+  double floor_top = 0.0;  // m
+};
+
+// The bounces of `scene`: dynamic spheres at rest above a static box that holds them, no force on
+// them, gravity straight down (-y), no damping, contacts on and the scene's restitution set.
+std::vector<BounceSetup> bounce_setups(const Scene& scene);
+
+// A run's path of one bounce: the gaps and vertical velocities of its samples (a run that keeps
+// every step, as the checks' runs do).
+BouncePath observed_path(const Trajectory& run, const BounceSetup& setup);
 
 }  // namespace dropcheck

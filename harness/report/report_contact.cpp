@@ -1,6 +1,7 @@
 #include "harness/report/report_contact.hpp"
 
 #include "harness/core/number_format.hpp"
+#include "harness/measure/bounce_verdict.hpp"
 #include "harness/measure/slide_verdict.hpp"
 #include "harness/measure/tolerances.hpp"
 #include "harness/report/report_format.hpp"
@@ -50,6 +51,56 @@ std::string slide_section(const SceneEvaluation& se) {
          "engine's friction model (a cone decelerates the slip by mu*g, a box pyramid each tangent "
          "axis by mu*g, a sum pyramid shares mu*g between them: docs/contact.md).\n\n" +
          t.str() + "\n";
+}
+
+bool off_bounce_law(const SceneEvaluation& se, const EngineEvaluation& ev) {
+  if (!ev.ran() || ev.at_default().run.status != RunStatus::ok) return false;
+  for (const BounceSetup& s : bounce_setups(se.scene))
+    if (!judge_bounce(ev.at_default().run, s, ev.info.bounce_law, se.scene.timestep.seconds)
+             .follows)
+      return true;
+  return false;
+}
+
+std::string bounce_section(const SceneEvaluation& se) {
+  const std::vector<BounceSetup> bounces = bounce_setups(se.scene);
+  if (bounces.empty()) return {};
+  const double h = se.scene.timestep.seconds;
+  MarkdownTable t(
+      {"engine", "body", "contact step", "in (m/s)", "out (m/s)", "apexes", "its law: apexes",
+       "ideal law: apexes", "off its law (m)", "why its law is off the ideal", "follows its law"},
+      "ll");
+  std::string closed;
+  for (const EngineEvaluation& ev : se.engines) {
+    if (!ev.ran() || ev.at_default().run.status != RunStatus::ok) continue;
+    for (const BounceSetup& s : bounces) {
+      const BounceVerdict v = judge_bounce(ev.at_default().run, s, ev.info.bounce_law, h);
+      closed = "continuous apexes " + apex_text(v.closed.apexes) +
+               printf_string(", at rest after %.5g s", v.closed.time_to_rest);
+      std::string why = v.law_to_ideal > tolerance::kBouncePath ? "" : kNone;
+      for (std::size_t i = 0; i < v.causes.size(); ++i) why += (i ? " and " : "") + v.causes[i];
+      t.add({ev.name, se.scene.bodies[s.body].name,
+             v.seen.contact_step < 0 ? "never" : std::to_string(v.seen.contact_step),
+             printf_string("%.4g", v.seen.speed_in), printf_string("%.4g", v.seen.speed_out),
+             apex_text(v.seen.apexes), apex_text(v.predicted.apexes), apex_text(v.ideal.apexes),
+             printf_string("%.2g", v.worst_gap), why,
+             v.follows ? "yes"
+             : v.follows_ideal
+                 ? std::string("**NO**: the ideal law's path")
+                 : printf_string("**NO**: step %lld", static_cast<long long>(v.worst_step))});
+    }
+  }
+  return "#### Bounces at h = " + se.scene.timestep.text +
+         "\n\nThe contact step is the first step that ends with the sphere in the floor; out is "
+         "its "
+         "upward speed one step later; an apex is the highest point of the sphere's lowest point "
+         "over the floor in a flight. Each engine is judged step by step against its own bounce "
+         "law, within " +
+         printf_string("%.0e", tolerance::kBouncePath) +
+         " m: the ideal law (restitution of the speed the contact step ended with) and the members "
+         "its contact adds, named where they move its path off the ideal one (docs/contact.md). "
+         "The closed form: " +
+         closed + ".\n\n" + t.str() + "\n";
 }
 
 }  // namespace dropcheck

@@ -1,5 +1,6 @@
-// The contact part of a scene's section of the report for a slide to a stop (report_contact.cpp):
-// each engine's stop against its friction model's clamp law and the closed form (docs/contact.md).
+// The contact part of a scene's section of the report (report_contact.cpp): a slide to a stop
+// against its friction model's clamp law, a bounce against its bounce law, each with the closed
+// form (docs/contact.md).
 #pragma once
 
 #include <string>
@@ -14,5 +15,12 @@ std::string slide_section(const SceneEvaluation& se);
 // True when the engine's default-step run departs from its friction model's clamp law on a slide
 // that law answers exactly (as `dropcheck check` judges it).
 bool off_slide_law(const SceneEvaluation& se, const EngineEvaluation& ev);
+
+// The bounce table at the default step ("" when the scene has no bouncing sphere).
+std::string bounce_section(const SceneEvaluation& se);
+
+// True when the engine's default-step run departs from its bounce law (as `dropcheck check`
+// judges it).
+bool off_bounce_law(const SceneEvaluation& se, const EngineEvaluation& ev);
 
 }  // namespace dropcheck

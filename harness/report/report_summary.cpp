@@ -85,7 +85,7 @@ bool clamped(const EngineEvaluation& ev) {
 
 // "FAILED: box2d; UNEXPLAINED: ode", or "ok". Each flag names the engines it concerns.
 std::string verdict(const SceneEvaluation& se) {
-  std::string failed, clamps, unexp, offlaw, rest, moving, tunnels, slides;
+  std::string failed, clamps, unexp, offlaw, rest, moving, tunnels, slides, bounces;
   auto add = [](std::string& list, const std::string& name) {
     list += (list.empty() ? "" : ", ") + name;
   };
@@ -99,6 +99,7 @@ std::string verdict(const SceneEvaluation& se) {
     if (restless(se, ev)) add(moving, ev.name);
     if (tunnelled(se, ev)) add(tunnels, ev.name);
     if (off_slide_law(se, ev)) add(slides, ev.name);
+    if (off_bounce_law(se, ev)) add(bounces, ev.name);
   }
   std::string v;
   auto flag = [&v](const char* what, const std::string& list) {
@@ -111,6 +112,7 @@ std::string verdict(const SceneEvaluation& se) {
   flag("**REST OFFSET**", rest);
   flag("**NOT STILL**", moving);
   flag("**OFF SLIDE LAW**", slides);
+  flag("**OFF BOUNCE LAW**", bounces);
   flag("tunnelled, no continuous collision (a limit)", tunnels);
   if (se.reference.empty()) flag("**NOT RUN**", "every engine");
   return v.empty() ? "ok" : v;

@@ -210,6 +210,16 @@ std::vector<double> per_slide(const Scene& s, dropcheck::FrictionModel model,
   return out;
 }
 
+// `field` of the bounce (closed form and ideal discrete law) of each bouncing sphere of the scene,
+// at the scene's step.
+std::vector<double> per_bounce(const Scene& s,
+                               const std::function<double(const dropcheck::Bounce&)>& field) {
+  std::vector<double> out;
+  for (const dropcheck::BounceSetup& b : dropcheck::bounce_setups(s))
+    out.push_back(field(dropcheck::bounce(b.h0, b.e, b.g, s.timestep.seconds)));
+  return out;
+}
+
 dropcheck::FrictionModel model_named(const std::string& name) {
   if (name == "box pyramid") return dropcheck::FrictionModel::box_pyramid;
   if (name == "sum pyramid") return dropcheck::FrictionModel::sum_pyramid;
@@ -258,6 +268,53 @@ const std::vector<Phrase>& phrases() {
          return n.empty()
                     ? agrees(m[2], per_slide(s, cone, [](const auto& l) { return l.step_distance; }))
                     : n;
+       }},
+      // A dropped sphere's bounces (harness/oracles/contact_laws.hpp, docs/contact.md).
+      {"continuous apexes are " + N + ", " + N + " and " + N + " m",
+       [](const Scene& s, const std::smatch& m) {
+         for (int k = 0; k < 3; ++k) {
+           const std::string p = agrees(m[k + 1], per_bounce(s, [k](const auto& b) {
+                                          return b.apexes[static_cast<std::size_t>(k)];
+                                        }));
+           if (!p.empty()) return p;
+         }
+         return std::string();
+       }},
+      {"comes to rest after " + N + " s",
+       [](const Scene& s, const std::smatch& m) {
+         return agrees(m[1], per_bounce(s, [](const auto& b) { return b.time_to_rest; }));
+       }},
+      {"hits at step " + N + " at " + N + " m/s, leaves at " + N + " m/s and climbs to (-?)" + N +
+           " m",
+       [](const Scene& s, const std::smatch& m) {
+         const std::string step =
+             agrees(m[1], per_bounce(s, [](const auto& b) { return double(b.contact_step); }));
+         if (!step.empty()) return step;
+         const std::string in =
+             agrees(m[2], per_bounce(s, [](const auto& b) { return b.step_speed_in; }));
+         if (!in.empty()) return in;
+         const std::string out =
+             agrees(m[3], per_bounce(s, [](const auto& b) { return b.step_speed_out; }));
+         if (!out.empty()) return out;
+         const double sign = m[4].length() > 0 ? -1.0 : 1.0;
+         return agrees(m[5], per_bounce(s, [sign](const auto& b) { return sign * b.step_apex; }));
+       }},
+      {"lowest point " + N + " m above the floor",
+       [](const Scene& s, const std::smatch& m) {
+         std::vector<double> v;
+         for (const auto& b : dropcheck::bounce_setups(s)) v.push_back(b.h0);
+         return agrees(m[1], v);
+       }},
+      {"sphere of radius " + N + " m",
+       [](const Scene& s, const std::smatch& m) {
+         std::vector<double> v;
+         for (const auto& b : dropcheck::bounce_setups(s)) v.push_back(b.radius);
+         return agrees(m[1], v);
+       }},
+      {"restitution e = " + N,
+       [](const Scene& s, const std::smatch& m) {
+         const auto e = dropcheck::scene_material(s).restitution;
+         return agrees(m[1], e ? std::vector<double>{*e} : std::vector<double>{});
        }},
       {"launched at " + N + " m/s",
        [](const Scene& s, const std::smatch& m) {

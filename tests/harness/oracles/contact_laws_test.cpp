@@ -8,7 +8,11 @@
 #include <stdexcept>
 
 using dropcheck::bounce;
+using dropcheck::bounce_path;
+using dropcheck::BouncePath;
 using dropcheck::FrictionModel;
+using dropcheck::kIdealBounce;
+using dropcheck::observe_bounce;
 using dropcheck::slide_to_stop;
 
 namespace {
@@ -79,8 +83,50 @@ TEST_CASE(
   CHECK(b.contact_step == 27);
   CHECK(b.step_speed_in == Approx(4.41).epsilon(1e-14));
   CHECK(b.step_speed_out == Approx(2.205).epsilon(1e-14));
-  // From the floor at 2.205 m/s the semi-implicit climb lasts 13 steps:
-  // h*(13*2.205 - g*h*91) = 0.230028 m (the continuous 2.205^2/(2*g) is 0.248).
-  CHECK(b.step_apex == Approx((13 * 2.205 - kG * kH * 91) * kH).epsilon(1e-12));
-  CHECK(b.step_apex == Approx(0.2300277777777777).epsilon(1e-12));
+  // It left from where step 27 ended, 0.029 m in the floor (1 - g*h^2*27*28/2 = -0.0290), and
+  // climbs 14 steps: -0.0290 + h*(14*2.205 - g*h*91) = 0.23778 m, the 0.2378 (the
+  // continuous climb from 2.205 m/s is 2.205^2/(2*g) = 0.248).
+  const double ended = 1.0 - kG * kH * kH * 27 * 28 / 2;
+  CHECK(ended == Approx(-0.029).epsilon(1e-12));
+  CHECK(b.step_apex == Approx(ended + (14 * 2.205 - kG * kH * 91) * kH).epsilon(1e-12));
+  CHECK(b.step_apex == Approx(0.23777777777777).epsilon(1e-10));
+}
+
+TEST_CASE("bounce paths: the push-out and threshold members change what the ideal law predicts",
+          "[contact][reference]") {
+  const std::int64_t steps = 180;
+  // e = 0.1: the rebound at 0.441 m/s leaves the sphere in the floor, 0.029 m deep after step 27.
+  const BouncePath ideal = bounce_path(kIdealBounce, 1.0, 0.1, kG, kH, steps);
+  const BouncePath ode = bounce_path({.erp = 0.2, .max_push = 0.3}, 1.0, 0.1, kG, kH, steps);
+  const auto oi = observe_bounce(ideal.gap, ideal.v);
+  const auto oo = observe_bounce(ode.gap, ode.v);
+  CHECK(oi.contact_step == 27);
+  CHECK(oo.contact_step == 27);
+  CHECK(oi.speed_out == Approx(0.441).epsilon(1e-12));
+  CHECK(oo.speed_out == Approx(0.441).epsilon(1e-12));  // e*v beats 0.2*0.029*60 = 0.348
+  // The ideal law climbs three steps (0.441, 0.441 - g*h, 0.441 - 2*g*h) and stops in the floor,
+  // the contact holding it at v = 0: its apex is -0.0151 m.
+  const double ended = 1.0 - kG * kH * kH * 27 * 28 / 2;
+  REQUIRE(oi.apexes.size() == 1);
+  CHECK(oi.apexes.front() == Approx(ended + kH * (3 * 0.441 - 3 * kG * kH)).epsilon(1e-12));
+  CHECK(ideal.gap[steps] == oi.apexes.front());
+  // With the push-out, step 29 (from -0.021650 m) keeps v_free = 0.27767 over 0.2*0.021650*60 =
+  // 0.25980; step 30 (from -0.017022 m) takes the push-out 0.20427 over v_free = 0.11433, and from
+  // there each step pushes out a fifth of the depth: the sphere returns to the surface, no apex.
+  CHECK(ode.v[29] == Approx(0.441 - kG * kH).epsilon(1e-12));
+  CHECK(ode.v[30] == Approx(0.2 * -ode.gap[29] / kH).epsilon(1e-12));
+  CHECK(oo.apexes.empty());
+  CHECK(ode.gap[steps] < 0.0);
+  CHECK(ode.gap[steps] > -1e-9);
+  // A threshold above the impact speed: no restitution, the sphere stays in the floor (v >= 0).
+  const BouncePath dead = bounce_path({.threshold = 5.0}, 1.0, 0.5, kG, kH, steps);
+  CHECK(observe_bounce(dead.gap, dead.v).apexes.empty());
+  CHECK(dead.v[28] == 0.0);
+  // Energy never rises in the ideal law: each apex below the one before.
+  const BouncePath half = bounce_path(kIdealBounce, 1.0, 0.5, kG, kH, 600);
+  const auto oh = observe_bounce(half.gap, half.v, 3);
+  REQUIRE(oh.apexes.size() == 3);
+  CHECK(oh.apexes[0] < 1.0);
+  CHECK(oh.apexes[1] < oh.apexes[0]);
+  CHECK(oh.apexes[2] < oh.apexes[1]);
 }

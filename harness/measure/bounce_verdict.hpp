@@ -1,0 +1,43 @@
+// A bounce judged (harness/oracles/contact_laws.hpp): one run's path of a dropped sphere against
+// its engine's bounce law, step by step, and that law against the ideal one and the closed form,
+// computed in one place for `check` and `report`.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "harness/core/bounce_law.hpp"
+#include "harness/core/trajectory.hpp"
+#include "harness/oracles/contact_laws.hpp"
+
+namespace dropcheck {
+
+struct BounceVerdict {
+  BounceLaw law;                // the engine's declared member
+  BounceObservation seen;       // the run's
+  BounceObservation predicted;  // its law's
+  BounceObservation ideal;      // the ideal law's (kIdealBounce)
+  Bounce closed;                // the continuous closed form
+  double worst_gap = 0.0;       // m: the largest |gap - its law's gap| over the run
+  std::int64_t worst_step = 0;  // where
+  bool follows = false;         // worst_gap <= tolerance::kBouncePath
+  bool follows_ideal = false;   // the run is within that tolerance of the ideal law too
+  bool energy_rises = false;    // an apex above the height before it (h0 for the first)
+  double law_to_ideal = 0.0;    // m: the largest gap difference between its law and the ideal's
+  // The members of its law that move its path off the ideal one (each alone, the other removed):
+  // "push-out 0.2*depth/h capped at 0.3 m/s", "restitution threshold 1 m/s".
+  std::vector<std::string> causes;
+  // "hits at step 27 at 4.41 m/s, leaves at 2.205 m/s, apexes 0.2378, 0.05942, 0.01482 m; its law
+  // (restitution of ...): the same to 2e-08 m; the ideal law's apexes ...; continuous ...", with
+  // " DEPARTS from its law at step N by X m" when it does not follow.
+  std::string sentence() const;
+};
+
+BounceVerdict judge_bounce(const Trajectory& run, const BounceSetup& setup, const BounceLaw& law,
+                           double h);
+
+// "0.2378, 0.05942, 0.01482 m" or "none".
+std::string apex_text(const std::vector<double>& apexes);
+
+}  // namespace dropcheck
