@@ -42,13 +42,16 @@
 //   sleeping            -> setActivationState(DISABLE_DEACTIVATION) on every body.
 // Contacts (scene.world.contacts):
 //   true  -> a btBoxShape per body with the scene's half extents (Bullet keeps its 0.04 m margin
-//            inside them), restitution 0, friction sqrt(0.5) per body: Bullet combines friction as
-//            the product, so every pair gets mu = 0.5. Solver: sequential impulse, 10 iterations
-//            (defaults), split impulse for every penetration: m_splitImpulsePenetrationThreshold
-//            0 instead of -0.04 m. Bullet's default pushes penetrations shallower than 4 cm out
-//            with a Baumgarte velocity (ERP 0.2 * depth / h) that stays in the body: the cube
-//            landing from 10 m rebounded 4 mm at 1/120 and 2.3 cm at 1/240. Split impulse moves
-//            the body out without adding velocity: no rebound at any step (bullet_test.cpp).
+//            inside them), or a btSphereShape of a sphere's radius; restitution sqrt(e) per body
+//            for the scene's restitution e (0 when unset), friction sqrt(0.5) per body: Bullet
+//            combines both as the product (btManifoldResult::calculateCombinedRestitution and
+//            ::calculateCombinedFriction), so every pair gets e and mu = 0.5. Solver: sequential
+//            impulse, 10 iterations (defaults), split impulse for every penetration:
+//            m_splitImpulsePenetrationThreshold 0 instead of -0.04 m. Bullet's default pushes
+//            penetrations shallower than 4 cm out with a Baumgarte velocity (ERP 0.2 * depth / h)
+//            that stays in the body: the cube landing from 10 m rebounded 4 mm at 1/120 and 2.3 cm
+//            at 1/240. Split impulse moves the body out without adding velocity: no rebound at any
+//            step (bullet_test.cpp).
 //   false -> one shared btEmptyShape (a btRigidBody needs some shape) and collision filter group
 //            and mask 0, so the broadphase never pairs anything: no contact shapes, no contacts.
 #include <btBulletDynamicsCommon.h>
@@ -94,8 +97,8 @@ struct BulletWorld {
   btDbvtBroadphase broadphase;
   btSequentialImpulseConstraintSolver solver;
   btEmptyShape empty_shape;
-  std::vector<std::unique_ptr<btBoxShape>> box_shapes;
-  std::vector<std::unique_ptr<btRigidBody>> bodies;  // indexed like Scene::bodies
+  std::vector<std::unique_ptr<btConvexInternalShape>> shapes;  // boxes and spheres
+  std::vector<std::unique_ptr<btRigidBody>> bodies;            // indexed like Scene::bodies
   btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
 
   ~BulletWorld() {
@@ -152,18 +155,32 @@ class BulletEngine final : public Engine {
     i.name = "bullet";
     i.version = std::string(DROPCHECK_BULLET_VERSION) + " " + kPrecision;
     i.scalar = kScalar;
-    i.capabilities = {.contacts = true, .planar_only = false, .rotation = Rotation::full};
+    i.capabilities = {.contacts = true,
+                      .planar_only = false,
+                      .rotation = Rotation::full,
+                      .restitution = true,
+                      .spheres = true};
     i.law = DampingOrder::BeforeForces;
     i.rotation_law = {Gyroscopic::implicit_body, OrientationUpdate::exponential_map};
     i.arithmetic =
         DampingForm::per_second_power;  // its d = 1 - exp(-k), copied by own_arithmetic.cpp
     i.damping_mapping = "setDamping(d = 1 - exp(-k), d_a = 1 - exp(-k_a)); v *= (1-d)^h";
     i.contact_settings =
-        "btBoxShape per body (margin 0.04 inside), restitution 0, friction sqrt(0.5) each "
-        "(product: mu = 0.5), sequential impulse 10 iterations, split impulse for every "
+        "btBoxShape (margin 0.04 inside) or btSphereShape per body, restitution sqrt(e) each "
+        "(product: e, 0 unset), friction sqrt(0.5) each (product: mu = 0.5), sequential impulse 10 "
+        "iterations, split impulse for every "
         "penetration (threshold 0)";
     // Measured on drop_on_floor(_undamped): final y - 0.5 = -3.2e-7 / -3.5e-7 m at 1/60, from
     // -1.3e-6 m (1/30) to -2e-8 m (1/240) over the sweep (bullet_test.cpp).
+    // Its bounce, read in btSequentialImpulseConstraintSolver.cpp (setupContactConstraint,
+    // restitutionCurve) and btCollisionDispatcher.cpp (getNewManifold): restitution of the
+    // step-start approach above m_restitutionVelocityThreshold 0.2 m/s; a penetration pushed out
+    // by split impulse at m_erp2 0.2 (position only, threshold 0 above); a contact found while the
+    // gap is below gContactBreakingThreshold 0.02 times the smaller shape's bounding-sphere radius
+    // (CD_USE_RELATIVE_CONTACT_BREAKING_THRESHOLD, on by default), where the velocity target is
+    // rest - gap/h. Measured on bounce_e01/05/09: within 2e-15 m over each run (bullet_test.cpp).
+    i.bounce_law = {
+        .erp = 0.2, .push_in_position = true, .threshold = 0.2, .contact_distance_per_size = 0.02};
     i.rest_offset = -3e-7;
     i.rest_tolerance = 2e-6;
     // Bullet has CCD (btCollisionObject::setCcdMotionThreshold / setCcdSweptSphereRadius), but the
@@ -186,6 +203,7 @@ class BulletEngine final : public Engine {
     w_->world.setGravity(to_bt(scene.world.gravity));
     // Position recovery by split impulse for any penetration depth (see the mapping at the top).
     w_->world.getSolverInfo().m_splitImpulsePenetrationThreshold = 0;
+    restitution_ = scene_material(scene).restitution.value_or(0.0);
     for (const Body& b : scene.bodies) add_body(scene, b);
   }
 
@@ -247,8 +265,11 @@ class BulletEngine final : public Engine {
  private:
   btCollisionShape* shape_for(const Scene& scene, const Body& b) {
     if (!scene.world.contacts) return &w_->empty_shape;
-    w_->box_shapes.push_back(std::make_unique<btBoxShape>(to_bt(b.half_extents)));
-    return w_->box_shapes.back().get();
+    if (b.shape == Shape::sphere)
+      w_->shapes.push_back(std::make_unique<btSphereShape>(btScalar(b.radius)));
+    else
+      w_->shapes.push_back(std::make_unique<btBoxShape>(to_bt(b.half_extents)));
+    return w_->shapes.back().get();
   }
 
   void add_body(const Scene& scene, const Body& b) {
@@ -262,7 +283,7 @@ class BulletEngine final : public Engine {
     btRigidBody::btRigidBodyConstructionInfo ci(mass, nullptr, shape_for(scene, b),
                                                 local_inertia(b));
     ci.m_startWorldTransform = start;
-    ci.m_restitution = 0;
+    ci.m_restitution = btScalar(std::sqrt(restitution_));
     ci.m_friction = btScalar(std::sqrt(kFriction));
     auto body = std::make_unique<btRigidBody>(ci);
     // dv/dt = -k*v over 1 s: v *= exp(-k), so d = 1 - exp(-k) is the fraction lost per second;
@@ -280,6 +301,7 @@ class BulletEngine final : public Engine {
   }
 
   btScalar h_ = btScalar(1.0 / 60.0);
+  double restitution_ = 0.0;  // the scene's e; each body gets sqrt(e) (Bullet multiplies the two)
   std::unique_ptr<BulletWorld> w_;
 };
 

@@ -27,22 +27,27 @@ PathGap path_gap(const BouncePath& run, const BouncePath& law) {
   return p;
 }
 
-// The members of `law` that move its path off the ideal one by more than the path tolerance.
+// The members of `law` that move its path off the ideal one by more than the path tolerance, each
+// tried alone.
 std::vector<std::string> departing_members(const BounceLaw& law, const BounceSetup& s, double h,
                                            const BouncePath& ideal) {
   std::vector<std::string> out;
   const auto steps = static_cast<std::int64_t>(ideal.gap.size()) - 1;
   const auto moves = [&](const BounceLaw& alone) {
-    return path_gap(bounce_path(alone, s.h0, s.e, s.g, h, steps), ideal).worst >
+    return path_gap(bounce_path(alone, s.h0, s.e, s.g, h, steps, s.size), ideal).worst >
            tolerance::kBouncePath;
   };
-  if (law.erp > 0.0 && moves({.erp = law.erp, .max_push = law.max_push})) {
-    std::string push = printf_string("push-out %.6g*depth/h", law.erp);
-    if (std::isfinite(law.max_push)) push += printf_string(" capped at %.6g m/s", law.max_push);
-    out.push_back(push);
-  }
+  if (law.erp > 0.0 &&
+      moves({.erp = law.erp, .max_push = law.max_push, .push_in_position = law.push_in_position}))
+    out.push_back(push_text(law));
   if (law.threshold > 0.0 && moves({.threshold = law.threshold}))
     out.push_back(printf_string("restitution threshold %.6g m/s", law.threshold));
+  if ((law.contact_distance > 0.0 || law.contact_distance_per_size > 0.0) &&
+      moves({.contact_distance = law.contact_distance,
+             .contact_distance_per_size = law.contact_distance_per_size}))
+    out.push_back(contact_distance_text(law) +
+                  printf_string(" (%.4g m here)",
+                                law.contact_distance + law.contact_distance_per_size * s.size));
   return out;
 }
 
@@ -61,7 +66,7 @@ BounceVerdict judge_bounce(const Trajectory& run, const BounceSetup& s, const Bo
   v.law = law;
   const BouncePath seen = observed_path(run, s);
   const auto steps = static_cast<std::int64_t>(seen.gap.size()) - 1;
-  const BouncePath predicted = bounce_path(law, s.h0, s.e, s.g, h, steps);
+  const BouncePath predicted = bounce_path(law, s.h0, s.e, s.g, h, steps, s.size);
   const BouncePath ideal = bounce_path(kIdealBounce, s.h0, s.e, s.g, h, steps);
   v.seen = observe_bounce(seen.gap, seen.v);
   v.predicted = observe_bounce(predicted.gap, predicted.v);

@@ -104,24 +104,31 @@ SlideObservation observe_slide(const Trajectory& run, const SlideSetup& setup,
 }
 
 BouncePath bounce_path(const BounceLaw& law, double h0, double e, double g, double h,
-                       std::int64_t steps) {
+                       std::int64_t steps, double size) {
   BouncePath p;
   p.gap.reserve(static_cast<std::size_t>(steps) + 1);
   p.v.reserve(static_cast<std::size_t>(steps) + 1);
+  const double reach = law.contact_distance + law.contact_distance_per_size * size;
   double gap = h0, v = 0.0;
   p.gap.push_back(gap);
   p.v.push_back(v);
   for (std::int64_t n = 1; n <= steps; ++n) {
     // The law of harness/core/bounce_law.hpp: contacts found where the last step ended.
     const double v_free = v - g * h;
-    if (gap < 0.0) {
-      double target = std::min(law.erp * -gap / h, law.max_push);
-      if (-v > law.threshold) target = std::max(target, e * -v);
+    double moved = 0.0;  // a push in position
+    if (gap < reach || gap < 0.0) {
+      const double rest = -v > law.threshold ? e * -v : 0.0;
+      double target = rest - gap / h;  // speculative: the gap may close this step
+      if (gap < 0.0) {
+        const double push = std::min(law.erp * -gap / h, law.max_push);
+        target = law.push_in_position ? rest : std::max(push, rest);
+        if (law.push_in_position) moved = h * push;
+      }
       v = std::max(v_free, target);
     } else {
       v = v_free;
     }
-    gap += h * v;
+    gap += h * v + moved;
     p.gap.push_back(gap);
     p.v.push_back(v);
   }
@@ -178,7 +185,8 @@ std::vector<BounceSetup> bounce_setups(const Scene& scene) {
     const double h0 = b.position.y() - b.radius - l.floor_top;
     if (!(h0 > 0.0)) continue;
     if (pushed(scene, l.body)) continue;
-    out.push_back({l.body, h0, *m.restitution, -g.y(), b.radius, l.floor_top});
+    const double size = std::min(b.half_extents.norm(), scene.bodies[l.floor].half_extents.norm());
+    out.push_back({l.body, h0, *m.restitution, -g.y(), b.radius, l.floor_top, size});
   }
   return out;
 }

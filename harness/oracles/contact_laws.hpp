@@ -64,8 +64,10 @@ SlideObservation observe_slide(const Trajectory& run, const SlideSetup& setup,
 struct BouncePath {
   std::vector<double> gap, v;
 };
+// `size` is the smaller bounding-box half diagonal of the sphere and its floor (m), which scales
+// the law's contact_distance_per_size.
 BouncePath bounce_path(const BounceLaw& law, double h0, double e, double g, double h,
-                       std::int64_t steps);
+                       std::int64_t steps, double size = 0.0);
 
 // What a path shows (a law's or a run's): its first impact and the apexes after it.
 struct BounceObservation {
@@ -107,6 +109,7 @@ struct BounceSetup {
   double g = 0.0;          // m/s^2, gravity straight down
   double radius = 0.0;     // m
   double floor_top = 0.0;  // m
+  double size = 0.0;       // m: the smaller bounding-box half diagonal of the sphere and its floor
 };
 
 // The bounces of `scene`: dynamic spheres at rest above a static box that holds them, no force on

@@ -16,6 +16,7 @@
 #include "harness/core/registry.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/core/trajectory.hpp"
+#include "harness/measure/bounce_verdict.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/scene/scene_loader.hpp"
 
@@ -180,6 +181,35 @@ inline DropLanding land_drop_on_floor(Engine& engine, double departs) {
   REQUIRE(run.status == RunStatus::ok);
   d.l = measure_landing(run, predict_discrete(d.info.law, scene, d.h), 1, departs);
   return d;
+}
+
+// One shipped bounce scene as an engine runs it: the figures its test pins.
+struct BounceCase {
+  const char* scene;
+  double worst;      // m: the measured largest departure from the engine's bounce law
+  double speed_out;  // m/s: the rebound after the contact step
+  double apex;       // m: the first apex (ignored when <= -1)
+};
+
+// Runs each case on `engine` and checks that it follows its declared bounce law
+// (harness/measure/bounce_verdict.hpp): within tolerance and within 1.5x the measured departure,
+// contact at step 27 at 4.41 m/s (every shipped bounce falls 1 m at 1/60), the rebound and apex.
+inline void check_bounces(Engine& engine, std::initializer_list<BounceCase> cases) {
+  for (const BounceCase& c : cases) {
+    INFO(c.scene);
+    const Scene scene = scenario(c.scene);
+    const BounceSetup s = bounce_setups(scene).at(0);
+    const Trajectory run = run_scene(engine, scene, scene.timestep.seconds);
+    REQUIRE(run.status == RunStatus::ok);
+    const BounceVerdict v = judge_bounce(run, s, engine.info().bounce_law, scene.timestep.seconds);
+    INFO(v.sentence());
+    CHECK(v.follows);
+    CHECK(v.worst_gap <= 1.5 * c.worst);
+    CHECK(v.seen.contact_step == 27);
+    CHECK(v.seen.speed_in == Approx(4.41).epsilon(1e-12));
+    CHECK(v.seen.speed_out == Approx(c.speed_out).epsilon(1e-7));
+    if (c.apex > -1.0) CHECK(v.seen.apexes.at(0) == Approx(c.apex).epsilon(1e-6));
+  }
 }
 
 }  // namespace dropcheck::testing

@@ -130,3 +130,25 @@ TEST_CASE("bounce paths: the push-out and threshold members change what the idea
   CHECK(oh.apexes[1] < oh.apexes[0]);
   CHECK(oh.apexes[2] < oh.apexes[1]);
 }
+
+TEST_CASE(
+    "bounce paths: a speculative contact turns the sphere before it touches; a split "
+    "impulse pushes in position only",
+    "[contact][reference]") {
+  // Dropped 0.01 m inside a 0.02 m contact distance: step 1 (v = 0, nothing to restitute) lets
+  // gravity act, step 2 allows closing the gap (target 0.5*g*h - gap/h < v_free), step 3 turns it:
+  // v = e*2*g*h - gap/h, and the gap never closes.
+  const BouncePath p = bounce_path({.contact_distance = 0.02}, 0.01, 0.5, kG, kH, 3);
+  CHECK(p.v[1] == Approx(-kG * kH).epsilon(1e-14));
+  CHECK(p.v[2] == Approx(-2 * kG * kH).epsilon(1e-14));
+  CHECK(p.v[3] == Approx(0.5 * 2 * kG * kH - p.gap[2] / kH).epsilon(1e-12));
+  CHECK(p.v[3] > 0.0);
+  CHECK(p.gap[3] > 0.0);
+  // The same drop with the distance given per size: 0.02 x a half diagonal of 1 m.
+  const BouncePath q = bounce_path({.contact_distance_per_size = 0.02}, 0.01, 0.5, kG, kH, 3, 1.0);
+  CHECK(q.gap == p.gap);
+  // Split impulse after the 1 m fall: step 28 leaves at e*4.41 and moves 0.2*0.029 m more.
+  const BouncePath s = bounce_path({.erp = 0.2, .push_in_position = true}, 1.0, 0.5, kG, kH, 28);
+  CHECK(s.v[28] == Approx(2.205).epsilon(1e-12));
+  CHECK(s.gap[28] == Approx(s.gap[27] + kH * 2.205 + 0.2 * -s.gap[27]).epsilon(1e-12));
+}
