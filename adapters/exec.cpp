@@ -14,6 +14,7 @@
 #include <toml++/toml.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -86,7 +87,17 @@ class ExecEngine final : public Engine {
     if (rotating_)
       send("angular-damping " + exact(scene.world.angular_damping_rate) + " " +
            exact(angular_decay_per_step(scene, h)));
-    for (const Body& b : scene.bodies) send(body_line(b, rotating_));
+    // Only a scene that sets them sends materials and shapes (an engine that announced friction,
+    // restitution or spheres; the others never get such a scene: Engine::cannot_run).
+    const Material m = scene_material(scene);
+    if (m.friction || m.restitution)
+      send("material " + (m.friction ? exact(*m.friction) : "-") + " " +
+           (m.restitution ? exact(*m.restitution) : "-"));
+    const bool shapes = std::any_of(scene.bodies.begin(), scene.bodies.end(),
+                                    [](const Body& b) { return b.shape == Shape::sphere; });
+    for (const Body& b : scene.bodies)
+      send(body_line(b, rotating_) +
+           (shapes ? (b.shape == Shape::sphere ? " sphere" : " box") : ""));
     send("end");
     read_state(0);
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cmath>
 
 #include "harness/core/input_error.hpp"
 
@@ -64,6 +65,27 @@ bool valid_name(const std::string& name) {
 
 [[noreturn]] void garbage(const std::string& expected, const std::string& got) {
   throw ProtocolError("garbage from the engine: expected " + expected + ", got " + excerpt(got));
+}
+
+// "bounce-law ERP MAX_PUSH velocity|position THRESHOLD DISTANCE DISTANCE_PER_SIZE"
+// (harness/core/bounce_law.hpp): ERP in [0, 1], MAX_PUSH > 0 or "inf", the rest finite and >= 0.
+BounceLaw parse_bounce_law(const std::vector<std::string>& k, const std::string& line) {
+  const char* form =
+      "'bounce-law ERP MAX_PUSH velocity|position THRESHOLD DISTANCE DISTANCE_PER_SIZE' (ERP in "
+      "[0, 1], MAX_PUSH > 0 or inf, the others >= 0)";
+  if (k.size() != 7 || (k[3] != "velocity" && k[3] != "position")) garbage(form, line);
+  BounceLaw law;
+  law.push_in_position = k[3] == "position";
+  double* numbers[] = {&law.erp, &law.max_push, &law.threshold, &law.contact_distance,
+                       &law.contact_distance_per_size};
+  const std::size_t at[] = {1, 2, 4, 5, 6};
+  for (std::size_t i = 0; i < 5; ++i) {
+    if (i == 1 && k[at[i]] == "inf") continue;  // max_push stays infinite
+    if (!parse_number(k[at[i]], *numbers[i]) || !std::isfinite(*numbers[i]) || *numbers[i] < 0.0)
+      garbage(form, line);
+  }
+  if (law.erp > 1.0 || !(law.max_push > 0.0)) garbage(form, line);
+  return law;
 }
 
 }  // namespace
@@ -139,12 +161,22 @@ void HandshakeReader::key(const std::vector<std::string>& k, const std::string& 
         info_.capabilities.rotation = Rotation::full;
       else if (k[i] == "rotation-z")
         info_.capabilities.rotation = Rotation::spin_z;
+      else if (k[i] == "friction")
+        info_.capabilities.friction = true;
+      else if (k[i] == "restitution")
+        info_.capabilities.restitution = true;
+      else if (k[i] == "spheres")
+        info_.capabilities.spheres = true;
       else
         garbage(
-            "capabilities 'contacts', 'planar-only', 'continuous-collision', 'rotation' or "
-            "'rotation-z'",
+            "capabilities 'contacts', 'planar-only', 'continuous-collision', 'rotation', "
+            "'rotation-z', 'friction', 'restitution' or 'spheres'",
             line);
     }
+  } else if (k[0] == "friction-model" && k.size() == 2 &&
+             parse_friction_model_key(k[1], info_.friction_model)) {
+  } else if (k[0] == "bounce-law") {
+    info_.bounce_law = parse_bounce_law(k, line);
   } else if (k[0] == "rotation-law" && k.size() == 2 && parse_rotation_law_key(k[1])) {
     info_.rotation_law = *parse_rotation_law_key(k[1]);
     rotation_law_ = true;
@@ -153,7 +185,8 @@ void HandshakeReader::key(const std::vector<std::string>& k, const std::string& 
   } else {
     garbage(
         "name, version, scalar f32|f64, law KEY, capabilities, rotation-law KEY, "
-        "damping-mapping or ready (law keys: after-forces, before-forces, after-position, "
+        "friction-model cone|box-pyramid|sum-pyramid, bounce-law, damping-mapping or ready "
+        "(law keys: after-forces, before-forces, after-position, "
         "after-forces/explicit, before-forces/explicit; rotation-law keys: "
         "GYRO/UPDATE with GYRO no-gyro, explicit, implicit-body, linearly-implicit and UPDATE "
         "first-order, exp-map)",

@@ -14,4 +14,26 @@ const char* to_string(FrictionModel model) {
   return "?";
 }
 
+const char* friction_model_key(FrictionModel model) {
+  switch (model) {
+    case FrictionModel::cone:
+      return "cone";
+    case FrictionModel::box_pyramid:
+      return "box-pyramid";
+    case FrictionModel::sum_pyramid:
+      return "sum-pyramid";
+  }
+  return "?";
+}
+
+bool parse_friction_model_key(const std::string& key, FrictionModel& out) {
+  for (FrictionModel m :
+       {FrictionModel::cone, FrictionModel::box_pyramid, FrictionModel::sum_pyramid})
+    if (key == friction_model_key(m)) {
+      out = m;
+      return true;
+    }
+  return false;
+}
+
 }  // namespace dropcheck

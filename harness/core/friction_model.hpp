@@ -3,6 +3,8 @@
 // (harness/oracles/contact_laws.hpp, docs/contact.md).
 #pragma once
 
+#include <string>
+
 namespace dropcheck {
 
 enum class FrictionModel {
@@ -13,5 +15,9 @@ enum class FrictionModel {
 
 // "cone", "box pyramid", "sum pyramid".
 const char* to_string(FrictionModel model);
+
+// The protocol's keys (docs/protocol.md): "cone", "box-pyramid", "sum-pyramid"; false for another.
+const char* friction_model_key(FrictionModel model);
+bool parse_friction_model_key(const std::string& key, FrictionModel& out);
 
 }  // namespace dropcheck

@@ -122,3 +122,34 @@ TEST_CASE("a rotating scene's state line carries 13 numbers per body", "[exec][r
     CHECK_THAT(e.what(), Contains("13 per body in a rotating scene"));
   }
 }
+
+TEST_CASE("an engine that collides materials and spheres announces them with its contact laws",
+          "[exec][contact]") {
+  const auto handshake = [](const std::vector<std::string>& extra) {
+    std::vector<std::string> lines(kHandshake.begin(), kHandshake.end() - 1);
+    lines.insert(lines.end(), extra.begin(), extra.end());
+    lines.push_back("ready");
+    return lines;
+  };
+  EngineInfo info;
+  HandshakeReader reader(info, false, {"ours"});
+  for (const std::string& line :
+       handshake({"capabilities contacts friction restitution spheres",
+                  "friction-model box-pyramid", "bounce-law 0.2 0.3 velocity 0.5 0 0.02"}))
+    reader.take(line);
+  CHECK(info.capabilities.friction);
+  CHECK(info.capabilities.restitution);
+  CHECK(info.capabilities.spheres);
+  CHECK(info.friction_model == FrictionModel::box_pyramid);
+  CHECK(info.bounce_law.erp == 0.2);
+  CHECK(info.bounce_law.max_push == 0.3);
+  CHECK_FALSE(info.bounce_law.push_in_position);
+  CHECK(info.bounce_law.threshold == 0.5);
+  CHECK(info.bounce_law.contact_distance_per_size == 0.02);
+  CHECK(refusal(handshake({"bounce-law 0 inf position 0 0 0"})) == "(accepted)");
+  for (const char* bad : {"bounce-law 1.5 inf velocity 0 0 0", "bounce-law 0.2 0 velocity 0 0 0",
+                          "bounce-law 0.2 inf sideways 0 0 0", "bounce-law 0.2 inf velocity -1 0 0",
+                          "bounce-law 0.2 inf velocity nan 0 0", "bounce-law 0.2 inf velocity 0 0",
+                          "friction-model pyramid"})
+    CHECK_THAT(refusal(handshake({bad})), Contains("garbage from the engine"));
+}

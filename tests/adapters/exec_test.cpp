@@ -257,9 +257,10 @@ TEST_CASE("The handshake declares continuous collision with the capability conti
   const Seen plain = shake("plain", "capabilities contacts", false);
   CHECK_FALSE(plain.info.continuous_collision);  // not declared: overlap tested at step ends only
   const Seen bad = shake("bad", "capabilities contacts ccd", true);
-  CHECK_THAT(bad.failure, Contains("at start") &&
-                              Contains("capabilities 'contacts', 'planar-only', "
-                                       "'continuous-collision', 'rotation' or 'rotation-z'"));
+  CHECK_THAT(bad.failure,
+             Contains("at start") && Contains("capabilities 'contacts', 'planar-only', "
+                                              "'continuous-collision', 'rotation', 'rotation-z', "
+                                              "'friction', 'restitution' or 'spheres'"));
   CHECK(no_children());
 }
 
@@ -344,4 +345,41 @@ TEST_CASE("Two engines that announce the same name are refused as the clash", "[
     CHECK_FALSE(fs::exists(dir / ("out-" + command)));
   }
   fs::remove_all(dir);
+}
+
+namespace {
+
+// The bounce check of scenarios/bounce_e05 on tests/adapters/bounce_engine.py MODE ANNOUNCE.
+CheckResult bounce_check(const std::string& mode, const std::string& announce) {
+  ExecSpec spec;
+  spec.command = {"python3", kSource + "/tests/adapters/bounce_engine.py", mode, announce};
+  const Scene s = scene("bounce_e05");
+  return check_bounce(
+      s, [&] { return make_exec_engine(spec); }, s.timestep);
+}
+
+}  // namespace
+
+TEST_CASE(
+    "An external engine that announces restitution and spheres gets the material and the shapes, "
+    "and is judged against the bounce law it announces",
+    "[exec][contact]") {
+  // It follows the ideal law it announces: the issue's figures, to rounding.
+  const CheckResult ideal = bounce_check("ideal", "own");
+  CHECK(ideal.passed);
+  CHECK_THAT(ideal.message, Contains("hits at step 27 at 4.41 m/s, leaves at 2.205 m/s, apexes "
+                                     "0.2378") &&
+                                Contains("the same path to"));
+  // A split-impulse push announced as such passes, with the push named as what moves it.
+  const CheckResult split = bounce_check("split", "own");
+  CHECK(split.passed);
+  CHECK_THAT(split.message, Contains("off the ideal law") && Contains("in position"));
+  // The same engine announcing the ideal law is caught at the step after the first contact.
+  const CheckResult liar = bounce_check("split", "ideal");
+  CHECK_FALSE(liar.passed);
+  CHECK_THAT(liar.message, Contains("DEPARTS at step"));
+  // An engine without the capabilities never gets the scene.
+  ExecSpec plain;
+  plain.command = {"python3", kSource + "/examples/python/seed_engine.py"};
+  CHECK_THAT(make_exec_engine(plain)->cannot_run(scene("bounce_e05")), Contains("contacts"));
 }
