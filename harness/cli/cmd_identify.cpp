@@ -1,10 +1,11 @@
 // dropcheck identify SCENE (--engine E | --trajectory CSV) [--dt H]
-// Names the discrete law behind a free-flight trajectory (harness/oracles/identify.hpp): fits every
-// member of the family with its own phi and g, prints each member's residual, and the best fit, or
-// that none fits within 2 cm, or that two fit equally. With --engine, the engine's run at the
-// scene's step (or --dt) is used and compared with the law it declares.
-// Exit 0: one member named (and, with --engine, it is the declared one); 1: no member fits, two fit
-// equally, the declared law is not the one found, or the engine's run failed; 2: bad input.
+// On a slide to a stop: the engine's friction model (harness/oracles/identify_friction.hpp).
+// Otherwise names the discrete law behind a free-flight trajectory (harness/oracles/identify.hpp):
+// fits every member of the family with its own phi and g, prints each member's residual, and the
+// best fit, or that none fits within 2 cm, or that two fit equally. With --engine, the engine's run
+// at the scene's step (or --dt) is used and compared with the law it declares. Exit 0: one member
+// named (and, with --engine, it is the declared one); 1: no member fits, two fit equally, the
+// declared law is not the one found, or the engine's run failed; 2: bad input.
 //
 // Argument parsing (IdentifyRequest, parse_identify_request) is kept apart from the work
 // (run_identify) so that the CLI front end can change without touching the analysis.
@@ -19,7 +20,10 @@
 #include "harness/io/trajectory_csv.hpp"
 #include "harness/measure/accuracy_response.hpp"
 #include "harness/measure/closed_form_order.hpp"
+#include "harness/measure/tolerances.hpp"
+#include "harness/oracles/contact_laws.hpp"
 #include "harness/oracles/identify.hpp"
+#include "harness/oracles/identify_friction.hpp"
 #include "harness/oracles/identify_rotation.hpp"
 #include "harness/scene/scene_loader.hpp"
 #include "selection.hpp"
@@ -35,7 +39,9 @@ const CommandSpec& identify_spec() {
       "residual and the best fit; with --engine, also the order of convergence measured at 2h, "
       "h and h/2 against the closed form. An error-controlled engine (simbody-rkm) has no "
       "fixed-step member: with --engine it gets its error against the closed form at accuracies "
-      "1e-3 to 1e-12 instead, each against that accuracy's budget.",
+      "1e-3 to 1e-12 instead, each against that accuracy's budget. On a slide to a stop (with "
+      "--engine): the engine's friction model (cone, box pyramid or sum pyramid) from the ratio "
+      "of its stop distances at 45 and at 0 degrees.",
       "scene FILE",
       "the scene file (.toml) the trajectory comes from",
       1,
@@ -240,8 +246,43 @@ bool print_accuracy_response(const AccuracyResponse& a, const EngineInfo& info, 
   return a.within();
 }
 
+// A slide to a stop: the engine's friction model from its stop distances at 0 and 45 degrees
+// (harness/oracles/identify_friction.hpp), against the model it declares.
+int identify_friction_model(const Scene& scene, const IdentifyRequest& r, std::ostream& out) {
+  if (r.engine.empty())
+    throw InputError("", 0, "--trajectory",
+                     "a slide is identified from two runs, at 0 and 45 degrees: use --engine E");
+  const SlidePair pair = slide_pair(scene);
+  double distance[2] = {0.0, 0.0};
+  std::string name;
+  FrictionModel declared = FrictionModel::cone;
+  for (int k = 0; k < 2; ++k) {
+    const Scene& s = k == 0 ? pair.along_axis : pair.diagonal;
+    std::vector<SelectedEngine> engines = select_engines({r.engine}, s);
+    if (!engines[0].engine)
+      throw InputError("", 0, "--engine " + r.engine, engines[0].skipped_because);
+    name = engines[0].engine->info().name;
+    declared = engines[0].engine->info().friction_model;
+    const Trajectory run = run_scene(*engines[0].engine, s, step_from_flag(r.dt, s).seconds);
+    if (run.status != RunStatus::ok) {
+      out << "identify " << scene.name << ": the run of " << run.engine << " failed at step "
+          << run.failed_step << " (" << to_string(run.status) << "): " << run.failure << "\n";
+      return kExitCheckFailed;
+    }
+    distance[k] = observe_slide(run, slide_setups(s).at(0), tolerance::kStoppedSpeed).distance;
+  }
+  const FrictionIdentification id = identify_friction(scene, distance[0], distance[1]);
+  out << "identify " << scene.name << ": " << name << "'s friction from its slides at 0 and 45 "
+      << "degrees\n"
+      << "friction model: " << id.sentence() << "\n"
+      << "declared " << to_string(declared) << ": "
+      << (id.named == declared ? "matches" : "MISMATCH") << "\n";
+  return id.named == declared ? kExitOk : kExitCheckFailed;
+}
+
 int run_identify(const IdentifyRequest& r, std::ostream& out) {
   const Scene scene = load_scene(r.scene_file);
+  if (!slide_setups(scene).empty()) return identify_friction_model(scene, r, out);
   Trajectory run;
   std::optional<Law> declared;
   std::optional<EngineInfo> declared_info;

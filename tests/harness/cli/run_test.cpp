@@ -246,3 +246,23 @@ TEST_CASE("identify --trajectory reads a Gazebo benchmark log and names its rota
   CHECK_THAT(id.out, Contains("reading model_0 as body 'box'") &&
                          Contains("best fit: implicit-body/exp-map"));
 }
+
+TEST_CASE(
+    "identify on a slide names the engine's friction model from its slides at 0 and 45 "
+    "degrees",
+    "[cli][identify][contact]") {
+  const std::string scene = DROPCHECK_SOURCE_DIR "/scenarios/slide_stop.toml";
+  // ODE (dContactApprox1): 2.509472 m straight, 1.762376 m at 45 degrees: ratio 0.70229.
+  const Result r = cli({"identify", scene, "--engine", "ode"});
+  CHECK(r.code == 0);
+  CHECK_THAT(r.out, Contains("ratio 0.70229") && Contains("): box pyramid;") &&
+                        Contains("declared box pyramid: matches"));
+  // A trajectory is one run: the ratio needs two.
+  const Result t = cli({"identify", scene, "--trajectory", "x.csv"});
+  CHECK(t.code == 2);
+  CHECK_THAT(t.err, Contains("use --engine E"));
+  // An engine whose adapter does not map friction is refused with its reason.
+  const Result b = cli({"identify", scene, "--engine", "box2d"});
+  CHECK(b.code == 2);
+  CHECK_THAT(b.err, Contains("friction"));
+}

@@ -1,0 +1,56 @@
+// Tests harness/oracles/identify_friction.cpp: the stop distances of each model's clamp law at 0
+// and 45 degrees name that model; distances that fit no model, or a slide-less scene, are said.
+#include "harness/oracles/identify_friction.hpp"
+
+#include <catch2/catch.hpp>
+#include <numbers>
+
+#include "harness/core/input_error.hpp"
+#include "harness/oracles/contact_laws.hpp"
+#include "harness/scene/scene_loader.hpp"
+
+using namespace dropcheck;
+using Catch::Matchers::Contains;
+
+namespace {
+
+Scene shipped(const std::string& stem) {
+  return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + stem + ".toml");
+}
+
+}  // namespace
+
+TEST_CASE("each friction model's slides at 0 and 45 degrees name it", "[contact][identify]") {
+  const Scene scene = shipped("slide_diagonal");
+  const double h = scene.timestep.seconds;
+  for (FrictionModel m :
+       {FrictionModel::cone, FrictionModel::box_pyramid, FrictionModel::sum_pyramid}) {
+    const double d0 = slide_to_stop(5.0, 0.5, 9.8, h, m, 0.0).step_distance;
+    const double d45 = slide_to_stop(5.0, 0.5, 9.8, h, m, std::numbers::pi / 4.0).step_distance;
+    const FrictionIdentification id = identify_friction(scene, d0, d45);
+    INFO(id.sentence());
+    REQUIRE(id.named);
+    CHECK(*id.named == m);
+  }
+  // The shipped slides' ratios: 1.762376/2.509472 and 3.566138/2.509472.
+  const FrictionIdentification box = identify_friction(scene, 2.509472, 1.762376);
+  CHECK(box.fits[1].ratio == Approx(0.70229).epsilon(1e-4));
+  CHECK(box.fits[2].ratio == Approx(1.4211).epsilon(1e-4));
+  // Both slides 8 mm short (a solver that stops early) still name the model: the ratio divides
+  // it out to 0.3 %.
+  CHECK(identify_friction(scene, 2.501472, 1.754376).named == FrictionModel::box_pyramid);
+  // Between two models: none named.
+  const FrictionIdentification between = identify_friction(scene, 2.509472, 2.1);
+  CHECK_FALSE(between.named);
+  CHECK_THAT(between.sentence(), Contains("NO MODEL"));
+}
+
+TEST_CASE(
+    "the slide pair turns the scene's slide to 0 and 45 degrees; a scene without one is refused",
+    "[contact][identify]") {
+  const SlidePair pair = slide_pair(shipped("slide_stop"));
+  CHECK(slide_setups(pair.along_axis).at(0).angle == 0.0);
+  CHECK(slide_setups(pair.diagonal).at(0).angle == Approx(std::numbers::pi / 4.0).epsilon(1e-15));
+  CHECK(slide_setups(pair.diagonal).at(0).v0 == Approx(5.0).epsilon(1e-15));
+  CHECK_THROWS_AS(slide_pair(shipped("free_fall")), InputError);
+}
