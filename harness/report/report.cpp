@@ -58,7 +58,9 @@ std::string summary(const ReportInput& in) {
          "sits or in which velocity moves the position), precision (float vs double rounding), "
          "identical, landing (the "
          "largest gap opens at first contact; the fall before it is attributed in the scene's "
-         "section), UNEXPLAINED (a residual beyond rounding: look at it). Error: max "
+         "section), bounce law (the same at a bounce: the engines' bounce laws differ, as the "
+         "scene's "
+         "bounce table says), UNEXPLAINED (a residual beyond rounding: look at it). Error: max "
          "|dx| against the closed form, or (*) against the same engine at a fine step where "
          "there is no closed form.\n\n" +
          t.str() + "\n";

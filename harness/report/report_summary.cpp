@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "harness/oracles/contact_laws.hpp"
 #include "harness/report/report_contact.hpp"
 #include "harness/report/report_format.hpp"
 #include "harness/report/report_landing.hpp"
@@ -133,8 +134,9 @@ std::string divergence_cause(const SceneEvaluation& se, const EngineEvaluation& 
   // than the fall's by over 10%, it opened at the landing.
   // A turning body: whether the two rotational members differ is a cause of its own.
   const std::string turn = a.rotation_laws_differ() ? " + rotational law" : "";
+  // A bounce that opens the gap is the two engines' bounce laws (their members: the bounce table).
   if (st.attributed_until >= 0.0 && st.vs_reference->max_dx > 1.1 * a.total + a.budget)
-    return "landing" + turn;
+    return (bounce_setups(se.scene).empty() ? "landing" : "bounce law") + turn;
   if (a.total == 0.0) return turn.empty() ? "identical" : "rotational law";
   // Explained: the laws' difference beyond rounding is what their members differ in (the damping
   // order, the position update); the rest is precision.
