@@ -77,6 +77,7 @@ class Box2dEngine final : public Engine {
   void read(std::span<BodyState> out) const override;
   void read_rotation(std::span<RotationState> out) const override;
   bool speed_clamped() const override { return clamped_; }
+  bool use_body_materials() override { return body_materials_ = true; }
 
   // Seconds of `steps` calls of b2World::Step alone (bare_step_loop in adapters.hpp).
   double bare_seconds(std::int64_t steps);
@@ -97,6 +98,7 @@ class Box2dEngine final : public Engine {
   bool rotating_ = false;  // the scene needs rotation: the scene's inertia is set over a fixture's
   float h_ = 1.0f / 60.0f;
   bool contacts_ = false;
+  bool body_materials_ = false;  // Engine::use_body_materials
   bool clamped_ = false;
 };
 
@@ -174,7 +176,9 @@ b2Body* Box2dEngine::create_body(const Body& body, float damping, float angular_
     // Mass per unit depth m over the square's area 4*hx*hy.
     fixture.density =
         static_cast<float>(body.mass / (4.0 * body.half_extents.x() * body.half_extents.y()));
-    fixture.friction = kFriction;
+    // identify --combine: the body's own coefficient, Box2D's sqrt(f1*f2) makes the pair's.
+    fixture.friction =
+        body_materials_ && body.friction ? static_cast<float>(*body.friction) : kFriction;
     fixture.restitution = 0.0f;
     b->CreateFixture(&fixture);
   }

@@ -190,6 +190,8 @@ class BulletEngine final : public Engine {
     return i;
   }
 
+  bool use_body_materials() override { return body_materials_ = true; }
+
   std::string cannot_run(const Scene& scene) const override {
     const std::string why = Engine::cannot_run(scene);
     return why.empty() ? dampings_problem(scene) : why;
@@ -284,7 +286,9 @@ class BulletEngine final : public Engine {
                                                 local_inertia(b));
     ci.m_startWorldTransform = start;
     ci.m_restitution = btScalar(std::sqrt(restitution_));
-    ci.m_friction = btScalar(std::sqrt(kFriction));
+    // identify --combine: the body's own coefficient, Bullet's product makes the pair's.
+    ci.m_friction =
+        body_materials_ && b.friction ? btScalar(*b.friction) : btScalar(std::sqrt(kFriction));
     auto body = std::make_unique<btRigidBody>(ci);
     // dv/dt = -k*v over 1 s: v *= exp(-k), so d = 1 - exp(-k) is the fraction lost per second;
     // Bullet applies v *= (1 - d)^h per step = exp(-k*h).
@@ -302,6 +306,7 @@ class BulletEngine final : public Engine {
 
   btScalar h_ = btScalar(1.0 / 60.0);
   double restitution_ = 0.0;  // the scene's e; each body gets sqrt(e) (Bullet multiplies the two)
+  bool body_materials_ = false;  // Engine::use_body_materials
   std::unique_ptr<BulletWorld> w_;
 };
 

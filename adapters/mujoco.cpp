@@ -137,26 +137,31 @@ std::string xml_escaped(const std::string& text) {
 
 // A static body is a box geom of the worldbody; a dynamic one a body with a free joint, its exact
 // inertial and a box geom. Both are named after the scene's body (MuJoCo's messages name them).
-std::string body_xml(const Body& b, double damping) {
+// With `own_friction` (identify --combine) the geom carries the body's own sliding friction, and
+// MuJoCo's max of the two makes the pair's; otherwise the defaults' 0.5.
+std::string body_xml(const Body& b, double damping, bool own_friction) {
   const std::string name = R"( name=")" + xml_escaped(b.name) + R"(")";
+  const std::string friction = own_friction && b.friction
+                                   ? R"( friction=")" + num(*b.friction) + R"( 0.005 0.0001")"
+                                   : std::string();
   if (b.is_static)
-    return "<geom" + name + R"( type="box" pos=")" + vec(b.position) + R"(" size=")" +
+    return "<geom" + name + friction + R"( type="box" pos=")" + vec(b.position) + R"(" size=")" +
            vec(b.half_extents) + R"("/>)";
   // b = m*(exp(k*h) - 1)/h on the free joint (all six dofs; load() zeroes the rotational three).
   return "<body" + name + R"( pos=")" + vec(b.position) + R"(">)" +
          R"(<joint type="free" damping=")" + num(b.mass * damping) + R"("/>)" +
          R"(<inertial pos="0 0 0" mass=")" + num(b.mass) + R"(" diaginertia=")" +
-         vec(inertia_of(b)) + R"("/>)" + R"(<geom type="box" size=")" + vec(b.half_extents) +
-         R"("/></body>)";
+         vec(inertia_of(b)) + R"("/>)" + "<geom" + friction + R"( type="box" size=")" +
+         vec(b.half_extents) + R"("/></body>)";
 }
 
 // The scene as MJCF. damping is (exp(k*h) - 1)/h per unit mass.
-std::string model_xml(const Scene& scene, double h) {
+std::string model_xml(const Scene& scene, double h, bool own_friction) {
   const double damping = std::expm1(scene.world.damping_rate * h) / h;
   std::string xml = R"(<mujoco model="dropcheck"><option timestep=")" + num(h) + R"(" gravity=")" +
                     vec(scene.world.gravity) + R"(" integrator="Euler"/>)" +
                     geom_defaults(scene, h) + "<worldbody>";
-  for (const Body& b : scene.bodies) xml += body_xml(b, damping);
+  for (const Body& b : scene.bodies) xml += body_xml(b, damping, own_friction);
   return xml + "</worldbody></mujoco>";
 }
 
@@ -198,6 +203,7 @@ class MujocoEngine final : public Engine {
   void step() override;
   void read(std::span<BodyState> out) const override;
   void read_rotation(std::span<RotationState> out) const override;
+  bool use_body_materials() override { return body_materials_ = true; }
 
   // Seconds of `steps` calls of mj_step alone (bare_step_loop in adapters.hpp).
   double bare_seconds(std::int64_t steps) {
@@ -218,6 +224,7 @@ class MujocoEngine final : public Engine {
   std::vector<int> joint_;        // free joint of each scene body; -1 for static bodies
   std::vector<Vec3> static_pos_;  // static bodies do not move
   std::array<int, mjNWARNING> warnings_{};
+  bool body_materials_ = false;  // Engine::use_body_materials
 };
 
 EngineInfo MujocoEngine::info() const {
@@ -244,7 +251,7 @@ void MujocoEngine::load(const Scene& scene, double h) {
   d_.reset();  // a failed load leaves no engine behind, not a half-built one
   m_.reset();
   t_last_warning.clear();
-  ModelPtr m = load_xml(model_xml(scene, h));
+  ModelPtr m = load_xml(model_xml(scene, h, body_materials_));
   joint_ = free_joints(*m, scene, h);
   DataPtr d(mj_makeData(m.get()), mj_deleteData);
   if (!d) throw EngineError("MuJoCo: mj_makeData failed");

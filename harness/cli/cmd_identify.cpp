@@ -48,7 +48,10 @@ const CommandSpec& identify_spec() {
       1,
       {{"--engine", "E", "run engine E on the scene and identify its law"},
        {"--trajectory", "CSV", "identify the one run in CSV (dropcheck's trajectory CSV format)"},
-       {"--dt", "H", "with --engine: the step (default: the scene's)"}}};
+       {"--dt", "H", "with --engine: the step (default: the scene's)"},
+       {"--combine", "",
+        "on a slide, with --engine: also the rule the engine combines two bodies' friction by "
+        "(the cube 0.2, the floor 0.8, each passed to the engine verbatim)"}}};
   return spec;
 }
 
@@ -59,12 +62,15 @@ struct IdentifyRequest {
   std::string engine;      // --engine E, or empty
   std::string trajectory;  // --trajectory CSV, or empty
   std::string dt;          // --dt H (with --engine), or empty for the scene's step
+  bool combine = false;    // --combine
 };
 
 IdentifyRequest parse_identify_request(const std::vector<std::string>& argv) {
   const Args args = parse_args(identify_spec(), argv);
   IdentifyRequest r{args.positional[0], args.value("--engine"), args.value("--trajectory"),
-                    args.value("--dt")};
+                    args.value("--dt"), args.has("--combine")};
+  if (r.combine && r.engine.empty())
+    throw InputError("", 0, "--combine", "applies to --engine only");
   if (r.engine.empty() == r.trajectory.empty())
     throw InputError("", 0, "identify", "expects exactly one of --engine E and --trajectory CSV");
   if (!r.dt.empty() && r.engine.empty())
@@ -246,42 +252,104 @@ bool print_accuracy_response(const AccuracyResponse& a, const EngineInfo& info, 
   return a.within();
 }
 
+// An engine for identifying friction on `s`: the one `dropcheck check` would run, or, when its
+// adapter does not map the scene's friction, the engine with each body's own coefficient passed
+// verbatim (Engine::use_body_materials: its combine rule makes the pair's; `raw` says so). Throws
+// InputError, with the reason, when neither can run the scene.
+std::unique_ptr<Engine> friction_engine(const std::string& name, const Scene& s, bool& raw) {
+  std::vector<SelectedEngine> engines = select_engines({name}, s);
+  raw = false;
+  if (engines[0].engine) return std::move(engines[0].engine);
+  Scene plain = s;  // the scene as the engine would take it without the friction it cannot map
+  for (Body& b : plain.bodies) b.friction.reset();
+  std::unique_ptr<Engine> e = make_engine(name);
+  if (!e || !e->cannot_run(plain).empty() || !e->use_body_materials())
+    throw InputError("", 0, "--engine " + name, engines[0].skipped_because);
+  raw = true;
+  return e;
+}
+
 // A slide to a stop: the engine's friction model from its stop distances at 0 and 45 degrees
-// (harness/oracles/identify_friction.hpp), against the model it declares.
+// (harness/oracles/identify_friction.hpp), against the model it declares when its adapter maps
+// friction.
 int identify_friction_model(const Scene& scene, const IdentifyRequest& r, std::ostream& out) {
   if (r.engine.empty())
     throw InputError("", 0, "--trajectory",
                      "a slide is identified from two runs, at 0 and 45 degrees: use --engine E");
   const SlidePair pair = slide_pair(scene);
+  if (const std::unique_ptr<Engine> e = make_engine(r.engine);
+      e && e->info().capabilities.planar_only) {
+    out << "friction model: not applicable: " << e->info().name
+        << " is a 2-D engine, with one tangent direction (a cone and the pyramids coincide)\n";
+    return kExitOk;
+  }
   double distance[2] = {0.0, 0.0};
+  std::optional<double> mu;
   std::string name;
+  bool raw = false;
   FrictionModel declared = FrictionModel::cone;
   for (int k = 0; k < 2; ++k) {
     const Scene& s = k == 0 ? pair.along_axis : pair.diagonal;
-    std::vector<SelectedEngine> engines = select_engines({r.engine}, s);
-    if (!engines[0].engine)
-      throw InputError("", 0, "--engine " + r.engine, engines[0].skipped_because);
-    name = engines[0].engine->info().name;
-    declared = engines[0].engine->info().friction_model;
-    const Trajectory run = run_scene(*engines[0].engine, s, step_from_flag(r.dt, s).seconds);
+    std::unique_ptr<Engine> engine = friction_engine(r.engine, s, raw);
+    name = engine->info().name;
+    declared = engine->info().friction_model;
+    const Trajectory run = run_scene(*engine, s, step_from_flag(r.dt, s).seconds);
     if (run.status != RunStatus::ok) {
       out << "identify " << scene.name << ": the run of " << run.engine << " failed at step "
           << run.failed_step << " (" << to_string(run.status) << "): " << run.failure << "\n";
       return kExitCheckFailed;
     }
     distance[k] = observe_slide(run, slide_setups(s).at(0), tolerance::kStoppedSpeed).distance;
+    if (raw && k == 0) mu = pair_friction(s, run);
   }
-  const FrictionIdentification id = identify_friction(scene, distance[0], distance[1]);
+  const FrictionIdentification id = identify_friction(scene, distance[0], distance[1], mu);
   out << "identify " << scene.name << ": " << name << "'s friction from its slides at 0 and 45 "
-      << "degrees\n"
-      << "friction model: " << id.sentence() << "\n"
-      << "declared " << to_string(declared) << ": "
+      << "degrees"
+      << (raw ? printf_string(" (each body's own coefficient: the pair's %.5g)", *mu)
+              : std::string())
+      << "\nfriction model: " << id.sentence() << "\n";
+  if (raw) {
+    out << "declared: none (its adapter does not map friction)\n";
+    return id.named ? kExitOk : kExitCheckFailed;
+  }
+  out << "declared " << to_string(declared) << ": "
       << (id.named == declared ? "matches" : "MISMATCH") << "\n";
   return id.named == declared ? kExitOk : kExitCheckFailed;
 }
 
+// The engine's combine rule for friction (harness/oracles/identify_friction.hpp): the slide with
+// each body's coefficient passed verbatim. It runs outside the capability check on purpose: what
+// is asked is the engine's own rule, which an adapter that maps the scene's value hides.
+int identify_combine_rule(const Scene& scene, const IdentifyRequest& r, std::ostream& out) {
+  std::unique_ptr<Engine> engine = make_engine(r.engine);
+  if (!engine) throw InputError("", 0, "--engine " + r.engine, engine_unavailable_reason(r.engine));
+  const std::string name = engine->info().name;
+  if (!engine->use_body_materials()) {
+    out << "combine rule: not identified: " << name
+        << "'s adapter sets each pair's friction itself (the engine has no per-body material)\n";
+    return kExitOk;
+  }
+  const Scene combined = combine_scene(scene);
+  const Trajectory run = run_scene(*engine, combined, step_from_flag(r.dt, combined).seconds);
+  if (run.status != RunStatus::ok) {
+    out << "combine rule: the run of " << name << " failed at step " << run.failed_step << " ("
+        << to_string(run.status) << "): " << run.failure << "\n";
+    return kExitCheckFailed;
+  }
+  const CombineIdentification id = identify_combine(combined, run);
+  out << "combine rule: " << id.sentence() << "\n";
+  return id.named ? kExitOk : kExitCheckFailed;
+}
+
 int run_identify(const IdentifyRequest& r, std::ostream& out) {
   const Scene scene = load_scene(r.scene_file);
+  if (r.combine && slide_setups(scene).empty())
+    throw InputError(r.scene_file, 0, "--combine",
+                     "applies to a slide to a stop (docs/contact.md)");
+  if (r.combine) {
+    const int rule = identify_combine_rule(scene, r, out);
+    return std::max(rule, identify_friction_model(scene, r, out));
+  }
   if (!slide_setups(scene).empty()) return identify_friction_model(scene, r, out);
   Trajectory run;
   std::optional<Law> declared;

@@ -195,6 +195,12 @@ class Engine {
   // per step of h); 0 for a fixed-step engine.
   virtual std::int64_t engine_steps() const { return 0; }
 
+  // For `identify --combine` only: from the next load() on, pass each body's own friction
+  // coefficient to the engine verbatim, so that the engine's combine rule, not the adapter's
+  // mapping, makes each pair's value (harness/oracles/identify_friction.hpp). False when the
+  // adapter cannot: the engine has no per-body material (ODE's near callback sets each pair).
+  virtual bool use_body_materials() { return false; }
+
   // This step's external force on each body (N), indexed like Scene::bodies; applied once, by the
   // next step() only. Entries of static bodies are zero and ignored.
   virtual void set_forces(std::span<const Vec3> forces) = 0;
@@ -246,6 +252,7 @@ class ForwardingEngine : public Engine {
   void load(const Scene& scene, double h) override { inner_.load(scene, h); }
   bool set_accuracy(double a) override { return inner_.set_accuracy(a); }
   std::int64_t engine_steps() const override { return inner_.engine_steps(); }
+  bool use_body_materials() override { return inner_.use_body_materials(); }
   void set_forces(std::span<const Vec3> forces) override { inner_.set_forces(forces); }
   void set_torques(std::span<const Vec3> torques) override { inner_.set_torques(torques); }
   void step() override { inner_.step(); }

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "harness/core/friction_model.hpp"
+#include "harness/core/trajectory.hpp"
 #include "harness/scene/scene.hpp"
 
 namespace dropcheck {
@@ -48,6 +49,45 @@ struct SlidePair {
 SlidePair slide_pair(const Scene& scene);
 
 // From the two stop distances (observe_slide) at the scene's step.
-FrictionIdentification identify_friction(const Scene& scene, double distance_0, double distance_45);
+// `mu`: the pair's coefficient when it is not the scene's (an engine run with each body's own
+// coefficient, whose combine rule makes the pair's: identify measures it, pair_friction).
+FrictionIdentification identify_friction(const Scene& scene, double distance_0, double distance_45,
+                                         std::optional<double> mu = std::nullopt);
+
+// The pair's friction coefficient a slide along x shows: the friction impulse over the normal
+// impulse of its first kCombineSteps steps (below).
+double pair_friction(const Scene& scene, const Trajectory& run);
+
+// Which rule an engine combines two bodies' friction coefficients by. The slide is run with
+// each body's own coefficient passed verbatim (Engine::use_body_materials): the cube mu_a = 0.2 on
+// a floor of mu_b = 0.8, where the rules' pair values are all apart: product 0.16, minimum 0.2,
+// geometric mean 0.4, arithmetic mean 0.5, maximum 0.8. The pair's coefficient is the friction
+// impulse over the normal impulse of the cube's first steps, mu = (vx_0 - vx_n)/(vy_n - vy_0 +
+// n*g*h): along an axis every model bounds the friction by mu times the normal impulse, and the
+// ratio holds whatever the normal impulse is (MuJoCo's pyramid lifts a box launched at 5 m/s
+// off its soft floor: a 2.1 m/s normal kick in step 2, and 0.49998 still comes out).
+inline constexpr double kCombineBody = 0.2, kCombineFloor = 0.8;
+inline constexpr int kCombineSteps = 5;
+
+struct CombineRuleFit {
+  const char* rule;  // "product", "minimum", "geometric mean", "arithmetic mean", "maximum"
+  double mu = 0.0;   // its pair coefficient
+};
+
+struct CombineIdentification {
+  double mu_seen = 0.0;              // the pair's coefficient the slide shows
+  std::vector<CombineRuleFit> fits;  // every rule
+  std::optional<std::string> named;  // the one rule within kFrictionRatioTolerance, if any
+  // "mu 0.16 from the first 5 steps (cube 0.2, floor 0.8): product; minimum 0.2, ..."
+  std::string sentence() const;
+};
+
+// The scene's slide along x with the sliding body's friction kCombineBody and its floor's
+// kCombineFloor (the loader refuses two values; only identification builds such a scene). Throws
+// InputError when the scene has no slide.
+Scene combine_scene(const Scene& scene);
+
+// From a run of combine_scene (every step recorded).
+CombineIdentification identify_combine(const Scene& combined, const Trajectory& run);
 
 }  // namespace dropcheck

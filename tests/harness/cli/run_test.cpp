@@ -261,8 +261,39 @@ TEST_CASE(
   const Result t = cli({"identify", scene, "--trajectory", "x.csv"});
   CHECK(t.code == 2);
   CHECK_THAT(t.err, Contains("use --engine E"));
-  // An engine whose adapter does not map friction is refused with its reason.
+  // An engine without contacts is refused with its reason; a 2-D engine has one tangent direction.
+  const Result c = cli({"identify", scene, "--engine", "wildmagic"});
+  CHECK(c.code == 2);
+  CHECK_THAT(c.err, Contains("contacts"));
   const Result b = cli({"identify", scene, "--engine", "box2d"});
-  CHECK(b.code == 2);
-  CHECK_THAT(b.err, Contains("friction"));
+  CHECK(b.code == 0);
+  CHECK_THAT(b.out, Contains("friction model: not applicable: box2d is a 2-D engine"));
+}
+
+TEST_CASE(
+    "identify --combine names each engine's rule for two bodies' friction, and the model of "
+    "an engine whose adapter does not map friction",
+    "[cli][identify][contact]") {
+  const std::string scene = DROPCHECK_SOURCE_DIR "/scenarios/slide_stop.toml";
+  // The cube 0.2 on a floor of 0.8, each passed verbatim: measured 0.16, 0.4 and 0.8.
+  const Result bullet = cli({"identify", scene, "--engine", "bullet", "--combine"});
+  CHECK(bullet.code == 0);
+  CHECK_THAT(bullet.out, Contains("combine rule: mu 0.16 ") && Contains("0.8): product;"));
+  // Its model, from slides with each body's own coefficient (the cube 0.5 on the adapter's
+  // sqrt(0.5)): ratio 0.99988, a cone.
+  CHECK_THAT(bullet.out, Contains("the pair's 0.35355") && Contains("): cone;") &&
+                             Contains("declared: none (its adapter does not map friction)"));
+  const Result box2d = cli({"identify", scene, "--engine", "box2d", "--combine"});
+  CHECK_THAT(box2d.out, Contains("combine rule: mu 0.4 ") && Contains("): geometric mean;"));
+  // MuJoCo's default pyramidal cone: the sum pyramid, ratio 1.421.
+  const Result mujoco = cli({"identify", scene, "--engine", "mujoco", "--combine"});
+  CHECK(mujoco.code == 0);
+  CHECK_THAT(mujoco.out, Contains("combine rule: mu 0.8 ") && Contains("): maximum;") &&
+                             Contains("ratio 1.421") && Contains("): sum pyramid;"));
+  // ODE's near callback sets each pair: no rule to identify; its model as before.
+  const Result ode = cli({"identify", scene, "--engine", "ode", "--combine"});
+  CHECK(ode.code == 0);
+  CHECK_THAT(ode.out, Contains("combine rule: not identified: ode's adapter sets each pair") &&
+                          Contains("declared box pyramid: matches"));
+  CHECK(cli({"identify", scene, "--trajectory", "x.csv", "--combine"}).code == 2);
 }
