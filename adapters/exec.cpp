@@ -93,8 +93,7 @@ class ExecEngine final : public Engine {
     if (m.friction || m.restitution)
       send("material " + (m.friction ? exact(*m.friction) : "-") + " " +
            (m.restitution ? exact(*m.restitution) : "-"));
-    const bool shapes = std::any_of(scene.bodies.begin(), scene.bodies.end(),
-                                    [](const Body& b) { return b.shape == Shape::sphere; });
+    const bool shapes = has_spheres(scene);
     for (const Body& b : scene.bodies)
       send(body_line(b, rotating_) +
            (shapes ? (b.shape == Shape::sphere ? " sphere" : " box") : ""));

@@ -114,6 +114,10 @@ bool HandshakeReader::take(const std::string& line) {
                                                                : !version_ ? "version"
                                                                : !scalar_  ? "scalar"
                                                                            : "law"));
+    const Capabilities& c = info_.capabilities;
+    if ((c.friction || c.restitution || c.spheres) && !c.contacts)
+      throw ProtocolError(
+          "the handshake announces friction, restitution or spheres without 'contacts'");
     if (info_.capabilities.rotation != Rotation::none && !rotation_law_)
       throw ProtocolError(
           "the handshake announces rotation but lacks 'rotation-law KEY' (the engine's "

@@ -50,8 +50,8 @@
 //            raised to e*(-v_n) when the approach speed -v_n, taken from the velocity at the
 //            start of the step (before this step's gravity), exceeds bounce_vel; the solver
 //            leaves the normal velocity at that target. So the rebound leaves at e times the
-//            speed of the step before contact, from where the body penetrated
-//            (BounceLaw::step_start_speed, docs/contact.md).
+//            speed of the step before contact, from where the body penetrated (EngineInfo::
+//            bounce_law below, docs/contact.md).
 //            World ERP 0.2 and CFM 1e-10 (ODE's double defaults), surface layer 0.
 //            dWorldSetContactMaxCorrectingVel 0.3 m/s: ODE pushes a penetrating body out with the
 //            velocity ERP*depth/h, capped by this value, and that velocity stays in the body.

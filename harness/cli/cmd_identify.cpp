@@ -284,6 +284,7 @@ int identify_friction_model(const Scene& scene, const IdentifyRequest& r, std::o
     return kExitOk;
   }
   double distance[2] = {0.0, 0.0};
+  double h = 0.0;
   std::optional<double> mu;
   std::string name;
   bool raw = false;
@@ -293,16 +294,27 @@ int identify_friction_model(const Scene& scene, const IdentifyRequest& r, std::o
     std::unique_ptr<Engine> engine = friction_engine(r.engine, s, raw);
     name = engine->info().name;
     declared = engine->info().friction_model;
-    const Trajectory run = run_scene(*engine, s, step_from_flag(r.dt, s).seconds);
+    h = step_from_flag(r.dt, s).seconds;
+    const Trajectory run = run_scene(*engine, s, h);
     if (run.status != RunStatus::ok) {
       out << "identify " << scene.name << ": the run of " << run.engine << " failed at step "
           << run.failed_step << " (" << to_string(run.status) << "): " << run.failure << "\n";
       return kExitCheckFailed;
     }
-    distance[k] = observe_slide(run, slide_setups(s).at(0), tolerance::kStoppedSpeed).distance;
+    // The distance to the stop, or to the run's end for an engine that creeps on (Bullet ends at
+    // 9e-5 m/s); a slide still above 1 % of its launch speed at the end has no distance yet.
+    const SlideSetup slide = slide_setups(s).at(0);
+    const SlideObservation seen = observe_slide(run, slide, tolerance::kStoppedSpeed);
+    if (observe_slide(run, slide, 0.01 * slide.v0).stop_step < 0) {
+      out << "identify " << scene.name << ": " << run.engine << "'s slide at "
+          << (k == 0 ? "0" : "45") << " degrees still slides at the run's end ("
+          << printf_string("%.7g m", seen.distance) << "): no ratio; lengthen the scene\n";
+      return kExitCheckFailed;
+    }
+    distance[k] = seen.distance;
     if (raw && k == 0) mu = pair_friction(s, run);
   }
-  const FrictionIdentification id = identify_friction(scene, distance[0], distance[1], mu);
+  const FrictionIdentification id = identify_friction(scene, h, distance[0], distance[1], mu);
   out << "identify " << scene.name << ": " << name << "'s friction from its slides at 0 and 45 "
       << "degrees"
       << (raw ? printf_string(" (each body's own coefficient: the pair's %.5g)", *mu)

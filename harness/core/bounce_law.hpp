@@ -25,7 +25,9 @@ struct BounceLaw {
   double erp = 0.0;  // error reduction: the fraction of the penetration pushed out in one step
   double max_push = std::numeric_limits<double>::infinity();  // m/s: the push-out's cap
   bool push_in_position = false;  // the push moves the body and leaves its velocity (split impulse)
-  double threshold = 0.0;         // m/s: an approach at or below this speed gets no restitution
+  // m/s: an approach at or below this speed gets no restitution (ODE's rule; Bullet restitutes an
+  // approach of exactly the threshold, an edge no shipped scene meets).
+  double threshold = 0.0;
   double contact_distance = 0.0;  // m: a contact is found while the gap is below this
   // ... plus this times the smaller bounding-box half diagonal of the pair (Bullet's relative
   // contact breaking threshold).

@@ -27,8 +27,7 @@ const char* friction_model_key(FrictionModel model) {
 }
 
 bool parse_friction_model_key(const std::string& key, FrictionModel& out) {
-  for (FrictionModel m :
-       {FrictionModel::cone, FrictionModel::box_pyramid, FrictionModel::sum_pyramid})
+  for (FrictionModel m : kFrictionModels)
     if (key == friction_model_key(m)) {
       out = m;
       return true;

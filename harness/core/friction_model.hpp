@@ -13,6 +13,10 @@ enum class FrictionModel {
   sum_pyramid,  // |f_1| + |f_2| <= mu*N: the pyramid whose edges are n +- mu*t_i
 };
 
+// Every model, in the order above.
+inline constexpr FrictionModel kFrictionModels[] = {FrictionModel::cone, FrictionModel::box_pyramid,
+                                                    FrictionModel::sum_pyramid};
+
 // "cone", "box pyramid", "sum pyramid".
 const char* to_string(FrictionModel model);
 

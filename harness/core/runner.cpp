@@ -204,6 +204,8 @@ Trajectory run_scene(Engine& engine, const Scene& scene, double h, const RunOpti
     return *refused;
   if (engine.info().own_process) return run_own_process(engine, scene, h, options);
   if (runs_isolated(options)) return run_isolated(engine, scene, h, options);
+  // A limit in this process: checked after every step (run_own_process's deadline).
+  if (options.time_limit_seconds > 0) return run_own_process(engine, scene, h, options);
   return run_scene_in_process(engine, scene, h, options);
 }
 

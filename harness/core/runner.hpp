@@ -19,7 +19,9 @@ enum class Isolation {
 struct RunOptions {
   std::int64_t record_every = 1;  // keep every Nth step (and always step 0 and the last step)
   Isolation isolation = Isolation::process_default;
-  double time_limit_seconds = 0.0;  // child_process only: wall-clock limit; <= 0 means the default
+  // Wall-clock limit: a child process is killed at it (<= 0: the default, 600 s); a run in this
+  // process with a limit > 0 checks it after every step (a step that never returns is not caught).
+  double time_limit_seconds = 0.0;
 };
 
 // Runs `scene` on `engine` at step h for step_count(scene, h) steps. Each step: forces from the

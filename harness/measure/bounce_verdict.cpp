@@ -19,10 +19,8 @@ PathGap path_gap(const BouncePath& run, const BouncePath& law) {
   const std::size_t n = std::min(run.gap.size(), law.gap.size());
   for (std::size_t i = 0; i < n; ++i) {
     const double d = std::abs(run.gap[i] - law.gap[i]);
-    if (!(d <= p.worst)) {
-      p.worst = d;
-      p.step = static_cast<std::int64_t>(i);
-    }
+    if (std::isnan(d)) return {d, static_cast<std::int64_t>(i)};  // never "within" anything
+    if (d > p.worst) p = {d, static_cast<std::int64_t>(i)};
   }
   return p;
 }
@@ -68,9 +66,9 @@ BounceVerdict judge_bounce(const Trajectory& run, const BounceSetup& s, const Bo
   const auto steps = static_cast<std::int64_t>(seen.gap.size()) - 1;
   const BouncePath predicted = bounce_path(law, s.h0, s.e, s.g, h, steps, s.size);
   const BouncePath ideal = bounce_path(kIdealBounce, s.h0, s.e, s.g, h, steps);
-  v.seen = observe_bounce(seen.gap, seen.v);
-  v.predicted = observe_bounce(predicted.gap, predicted.v);
-  v.ideal = observe_bounce(ideal.gap, ideal.v);
+  v.seen = observe_bounce(seen.gap, seen.v, s.g, h);
+  v.predicted = observe_bounce(predicted.gap, predicted.v, s.g, h);
+  v.ideal = observe_bounce(ideal.gap, ideal.v, s.g, h);
   v.closed = bounce(s.h0, s.e, s.g, h);
   const PathGap to_law = path_gap(seen, predicted);
   v.worst_gap = to_law.worst;
@@ -78,7 +76,10 @@ BounceVerdict judge_bounce(const Trajectory& run, const BounceSetup& s, const Bo
   v.follows = to_law.worst <= tolerance::kBouncePath;
   v.follows_ideal = path_gap(seen, ideal).worst <= tolerance::kBouncePath;
   v.law_to_ideal = path_gap(predicted, ideal).worst;
-  if (v.law_to_ideal > tolerance::kBouncePath) v.causes = departing_members(law, s, h, ideal);
+  if (v.law_to_ideal > tolerance::kBouncePath) {
+    v.causes = departing_members(law, s, h, ideal);
+    if (v.causes.empty()) v.causes.push_back("its members together (none alone)");
+  }
   double before = s.h0;
   for (double a : v.seen.apexes) {
     v.energy_rises = v.energy_rises || a > before + tolerance::kBouncePath;

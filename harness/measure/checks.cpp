@@ -431,6 +431,9 @@ std::vector<CheckResult> check_scene(const Scene& scene, const EngineFactory& ma
   }
   if (scene.world.contacts && !bounce_setups(scene).empty()) {
     out.push_back(check_bounce(scene, make, scene.timestep));
+    // The scene's other bodies over a floor land as before.
+    if (!engine_landing_setups(scene, make()->info()).empty())
+      out.push_back(check_landing(scene, make, scene.timestep));
     return out;
   }
   if (scene.world.contacts) {

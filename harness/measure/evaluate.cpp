@@ -11,7 +11,6 @@
 #include "harness/measure/own_law.hpp"
 #include "harness/measure/sweep.hpp"
 #include "harness/oracles/analytic.hpp"
-#include "harness/oracles/contact_laws.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
 #include "harness/scene/timestep.hpp"
@@ -123,17 +122,10 @@ void run_fine(EngineEvaluation& ev, const EngineSlot& slot, const SceneEvaluatio
 // Landing figures of every run of a contact scene (harness/oracles/landing.hpp). An engine whose
 // resting surface sits above the geometry (Box2D's 0.01 m skin) touches the floor there: contact
 // means reaching floor top + rest_offset (+ its tolerance), as `dropcheck check` counts it.
-// A bouncing sphere is judged by its bounce law instead (report_contact.cpp), not as a landing.
 void measure_landings(EngineEvaluation& ev, const SceneEvaluation& se) {
   const std::vector<LandingSetup> setups = engine_landing_setups(se.scene, ev.info);
-  const std::vector<BounceSetup> bounces = bounce_setups(se.scene);
-  const auto bounces_body = [&](std::size_t body) {
-    return std::any_of(bounces.begin(), bounces.end(),
-                       [body](const BounceSetup& b) { return b.body == body; });
-  };
   for (StepEvaluation& s : ev.sweep) {
     for (const LandingSetup& setup : setups) {
-      if (bounces_body(setup.body)) continue;
       LandingResult r{setup, observe_landing(s.run, setup), kNaN};
       const std::int64_t n = discrete_contact_step(ev.info.law, se.scene, s.h.seconds, setup);
       if (n >= 0) r.law_contact_time = static_cast<double>(n) * s.h.seconds;

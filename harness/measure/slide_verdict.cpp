@@ -32,8 +32,7 @@ SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& s, FrictionMod
   v.law = slide_to_stop(s.v0, s.mu, s.g, h, model, s.angle);
   v.follows = follows_law(v.seen, v.law);
   if (v.follows) return v;
-  for (FrictionModel other :
-       {FrictionModel::cone, FrictionModel::box_pyramid, FrictionModel::sum_pyramid})
+  for (FrictionModel other : kFrictionModels)
     if (other != model && follows_law(v.seen, slide_to_stop(s.v0, s.mu, s.g, h, other, s.angle)))
       v.instead = other;
   return v;

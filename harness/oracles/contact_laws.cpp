@@ -26,6 +26,30 @@ AxisStop clamp_axis(double v0, double a, double h) {
   return {n, h * (moving * v0 - dv * moving * (moving + 1.0) / 2.0)};
 }
 
+// What every contact law here assumes: contacts on, gravity straight down (-y), nothing turning.
+bool level_contact(const Scene& scene) {
+  const Vec3& g = scene.world.gravity;
+  return scene.world.contacts && g.x() == 0.0 && g.z() == 0.0 && g.y() < 0.0 &&
+         !needs_rotation(scene);
+}
+
+// A static body other than the floor between body l.body and its floor, in its x-z footprint (a
+// static sphere is no floor, but it is in the way).
+bool static_in_the_way(const Scene& scene, const LandingSetup& l) {
+  const Body& b = scene.bodies[l.body];
+  for (std::size_t k = 0; k < scene.bodies.size(); ++k) {
+    const Body& o = scene.bodies[k];
+    if (!o.is_static || k == l.floor) continue;
+    const bool above_floor = o.position.y() + o.half_extents.y() > l.floor_top;
+    const bool below_body = o.position.y() - o.half_extents.y() < b.position.y();
+    const bool overlaps =
+        std::abs(o.position.x() - b.position.x()) < o.half_extents.x() + b.half_extents.x() &&
+        std::abs(o.position.z() - b.position.z()) < o.half_extents.z() + b.half_extents.z();
+    if (above_floor && below_body && overlaps) return true;
+  }
+  return false;
+}
+
 // A force of the scene acts on body i.
 bool pushed(const Scene& scene, std::size_t i) {
   for (const Force& f : scene.forces)
@@ -68,9 +92,7 @@ std::vector<SlideSetup> slide_setups(const Scene& scene) {
   std::vector<SlideSetup> out;
   const Material m = scene_material(scene);
   const Vec3& g = scene.world.gravity;
-  if (!scene.world.contacts || !m.friction || *m.friction <= 0.0 || g.x() != 0.0 || g.z() != 0.0 ||
-      g.y() >= 0.0 || needs_rotation(scene))
-    return out;
+  if (!level_contact(scene) || !m.friction || *m.friction <= 0.0) return out;
   // The floor under each body is the landing oracle's (the highest static box holding it).
   for (const LandingSetup& l : landing_setups(scene)) {
     const std::size_t i = l.body;
@@ -103,51 +125,100 @@ SlideObservation observe_slide(const Trajectory& run, const SlideSetup& setup,
   return o;
 }
 
+namespace {
+
+// One sphere over a floor under a bounce law (harness/core/bounce_law.hpp), a step at a time:
+// contacts found where the last step ended.
+class BounceStepper {
+ public:
+  BounceStepper(const BounceLaw& law, double h0, double e, double g, double h, double size)
+      : law_(law),
+        e_(e),
+        g_(g),
+        h_(h),
+        reach_(law.contact_distance + law.contact_distance_per_size * size),
+        gap_(h0) {}
+
+  void step() {
+    const double v_free = v_ - g_ * h_;
+    double moved = 0.0;  // a push in position
+    if (gap_ < reach_ || gap_ < 0.0) {
+      const double rest = -v_ > law_.threshold ? e_ * -v_ : 0.0;
+      double target = rest - gap_ / h_;  // speculative: the gap may close this step
+      if (gap_ < 0.0) {
+        const double push = std::min(law_.erp * -gap_ / h_, law_.max_push);
+        target = law_.push_in_position ? rest : std::max(push, rest);
+        if (law_.push_in_position) moved = h_ * push;
+      }
+      v_ = std::max(v_free, target);
+    } else {
+      v_ = v_free;
+    }
+    gap_ += h_ * v_ + moved;
+  }
+  double gap() const { return gap_; }
+  double v() const { return v_; }
+
+ private:
+  BounceLaw law_;
+  double e_, g_, h_, reach_;
+  double gap_, v_ = 0.0;
+};
+
+// What a path shows, read a step at a time (observe_bounce).
+class BounceWatch {
+ public:
+  BounceWatch(double g, double h, int bounces) : gh_(g * h), bounces_(bounces) {}
+
+  // The state after step n (n = 0, 1, ... in order); true once `bounces` apexes are seen.
+  bool add(std::int64_t n, double gap, double v) {
+    if (n > 0 && o_.contact_step < 0 && v > v_ - gh_ + 1e-3 * gh_) {
+      // The floor pushed in step n: the impact is the step before (it ended in, or speculatively
+      // near, the floor).
+      o_.contact_step = n - 1;
+      o_.speed_in = -v_;
+      o_.speed_out = v;
+    } else if (o_.contact_step >= 0 && v_ > 0.0 && v <= 0.0) {
+      o_.apexes.push_back(gap_);
+    }
+    gap_ = gap;
+    v_ = v;
+    return static_cast<int>(o_.apexes.size()) >= bounces_;
+  }
+  const BounceObservation& result() const { return o_; }
+
+ private:
+  double gh_;
+  int bounces_;
+  double gap_ = 0.0, v_ = 0.0;
+  BounceObservation o_;
+};
+
+}  // namespace
+
 BouncePath bounce_path(const BounceLaw& law, double h0, double e, double g, double h,
                        std::int64_t steps, double size) {
   BouncePath p;
   p.gap.reserve(static_cast<std::size_t>(steps) + 1);
   p.v.reserve(static_cast<std::size_t>(steps) + 1);
-  const double reach = law.contact_distance + law.contact_distance_per_size * size;
-  double gap = h0, v = 0.0;
-  p.gap.push_back(gap);
-  p.v.push_back(v);
+  BounceStepper sphere(law, h0, e, g, h, size);
+  p.gap.push_back(sphere.gap());
+  p.v.push_back(sphere.v());
   for (std::int64_t n = 1; n <= steps; ++n) {
-    // The law of harness/core/bounce_law.hpp: contacts found where the last step ended.
-    const double v_free = v - g * h;
-    double moved = 0.0;  // a push in position
-    if (gap < reach || gap < 0.0) {
-      const double rest = -v > law.threshold ? e * -v : 0.0;
-      double target = rest - gap / h;  // speculative: the gap may close this step
-      if (gap < 0.0) {
-        const double push = std::min(law.erp * -gap / h, law.max_push);
-        target = law.push_in_position ? rest : std::max(push, rest);
-        if (law.push_in_position) moved = h * push;
-      }
-      v = std::max(v_free, target);
-    } else {
-      v = v_free;
-    }
-    gap += h * v + moved;
-    p.gap.push_back(gap);
-    p.v.push_back(v);
+    sphere.step();
+    p.gap.push_back(sphere.gap());
+    p.v.push_back(sphere.v());
   }
   return p;
 }
 
 BounceObservation observe_bounce(const std::vector<double>& gap, const std::vector<double>& v,
-                                 int bounces) {
-  BounceObservation o;
+                                 double g, double h, int bounces) {
+  BounceWatch watch(g, h, bounces);
   const std::size_t n = std::min(gap.size(), v.size());
-  std::size_t i = 1;
-  while (i < n && !(gap[i] < 0.0)) ++i;
-  if (i >= n) return o;
-  o.contact_step = static_cast<std::int64_t>(i);
-  o.speed_in = -v[i];
-  if (i + 1 < n) o.speed_out = v[i + 1];
-  for (++i; i < n && static_cast<int>(o.apexes.size()) < bounces; ++i)
-    if (v[i - 1] > 0.0 && v[i] <= 0.0) o.apexes.push_back(gap[i - 1]);
-  return o;
+  for (std::size_t i = 0; i < n; ++i)
+    if (watch.add(static_cast<std::int64_t>(i), gap[i], v[i])) break;
+  return watch.result();
 }
 
 Bounce bounce(double h0, double e, double g, double h, int bounces) {
@@ -161,10 +232,18 @@ Bounce bounce(double h0, double e, double g, double h, int bounces) {
     b.flights.push_back(2.0 * std::pow(e, n) * fall);
   }
   b.time_to_rest = e < 1.0 ? fall * (1.0 + e) / (1.0 - e) : INFINITY;
-  // The fall, the climb after the first impact and its top: three falls' time and a step or two.
-  const auto steps = static_cast<std::int64_t>(std::ceil(3.0 * fall / h)) + 4;
-  const BouncePath p = bounce_path(kIdealBounce, h0, e, g, h, steps);
-  const BounceObservation o = observe_bounce(p.gap, p.v, 1);
+  // The ideal law, streamed until the apex after the first impact. The fall takes about fall/h
+  // steps and the climb no more than the fall, so three falls and a few steps bound it.
+  const double bound = 3.0 * fall / h + 8.0;
+  if (!(bound < 1e10)) throw std::invalid_argument("bounce: over 1e10 steps to its first apex");
+  BounceStepper sphere(kIdealBounce, h0, e, g, h, 0.0);
+  BounceWatch watch(g, h, 1);
+  watch.add(0, sphere.gap(), sphere.v());
+  for (std::int64_t n = 1; n <= static_cast<std::int64_t>(bound); ++n) {
+    sphere.step();
+    if (watch.add(n, sphere.gap(), sphere.v())) break;
+  }
+  const BounceObservation& o = watch.result();
   b.contact_step = o.contact_step;
   b.step_speed_in = o.speed_in;
   b.step_speed_out = o.speed_out;
@@ -176,15 +255,17 @@ std::vector<BounceSetup> bounce_setups(const Scene& scene) {
   std::vector<BounceSetup> out;
   const Material m = scene_material(scene);
   const Vec3& g = scene.world.gravity;
-  if (!scene.world.contacts || !m.restitution || g.x() != 0.0 || g.z() != 0.0 || g.y() >= 0.0 ||
-      scene.world.damping_rate != 0.0 || needs_rotation(scene))
-    return out;
+  if (!level_contact(scene) || !m.restitution || scene.world.damping_rate != 0.0) return out;
+  const std::vector<LandingExclusion> stacked = landing_exclusions(scene);
   for (const LandingSetup& l : landing_setups(scene)) {
     const Body& b = scene.bodies[l.body];
+    if (std::any_of(stacked.begin(), stacked.end(),
+                    [&](const LandingExclusion& x) { return x.body == l.body; }))
+      continue;  // on, or under, another dynamic body: no floor bounce
     if (b.shape != Shape::sphere || b.velocity != Vec3::Zero()) continue;
     const double h0 = b.position.y() - b.radius - l.floor_top;
     if (!(h0 > 0.0)) continue;
-    if (pushed(scene, l.body)) continue;
+    if (pushed(scene, l.body) || static_in_the_way(scene, l)) continue;
     const double size = std::min(b.half_extents.norm(), scene.bodies[l.floor].half_extents.norm());
     out.push_back({l.body, h0, *m.restitution, -g.y(), b.radius, l.floor_top, size});
   }

@@ -71,15 +71,18 @@ BouncePath bounce_path(const BounceLaw& law, double h0, double e, double g, doub
 
 // What a path shows (a law's or a run's): its first impact and the apexes after it.
 struct BounceObservation {
-  std::int64_t contact_step = -1;  // the first step that ends with the sphere in the floor
-  double speed_in = 0.0;           // m/s: its downward speed then
-  double speed_out = 0.0;          // m/s: its upward speed one step later
-  std::vector<double> apexes;      // m: the highest gap of each flight after an impact
+  // The step before the first step in which the floor pushed (the velocity rose above what that
+  // step's gravity leaves, by over 0.1 % of g*h): the step that ended in the floor, or near it
+  // with a speculative contact.
+  std::int64_t contact_step = -1;
+  double speed_in = 0.0;       // m/s: its downward speed then
+  double speed_out = 0.0;      // m/s: its upward speed one step later
+  std::vector<double> apexes;  // m: the highest gap of each flight after an impact
 };
-// gap[i] and v[i] are those after step i; at most `bounces` apexes. An apex is the last gap before
-// the velocity turns from up to down.
+// gap[i] and v[i] are those after step i, under gravity g at step h; at most `bounces` apexes. An
+// apex is the last gap before the velocity turns from up to down.
 BounceObservation observe_bounce(const std::vector<double>& gap, const std::vector<double>& v,
-                                 int bounces = 3);
+                                 double g, double h, int bounces = 3);
 
 // A sphere dropped from rest with its lowest point h0 above a level floor, restitution e.
 struct Bounce {
@@ -112,8 +115,9 @@ struct BounceSetup {
   double size = 0.0;       // m: the smaller bounding-box half diagonal of the sphere and its floor
 };
 
-// The bounces of `scene`: dynamic spheres at rest above a static box that holds them, no force on
-// them, gravity straight down (-y), no damping, contacts on and the scene's restitution set.
+// The bounces of `scene`: dynamic spheres at rest above a static box that holds them, neither on
+// nor under another dynamic body (landing_exclusions), no force on them, gravity straight down
+// (-y), no damping, contacts on and the scene's restitution set.
 std::vector<BounceSetup> bounce_setups(const Scene& scene);
 
 // A run's path of one bounce: the gaps and vertical velocities of its samples (a run that keeps

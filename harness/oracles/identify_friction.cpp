@@ -31,18 +31,16 @@ SlidePair slide_pair(const Scene& scene) {
   return {turned(scene, slides[0], 0.0), turned(scene, slides[0], std::numbers::pi / 4.0)};
 }
 
-FrictionIdentification identify_friction(const Scene& scene, double distance_0, double distance_45,
-                                         std::optional<double> mu) {
+FrictionIdentification identify_friction(const Scene& scene, double h, double distance_0,
+                                         double distance_45, std::optional<double> mu) {
   SlideSetup s = slide_setups(slide_pair(scene).along_axis).at(0);
   if (mu) s.mu = *mu;
-  const double h = scene.timestep.seconds;
   FrictionIdentification id;
   id.distance_0 = distance_0;
   id.distance_45 = distance_45;
   id.ratio = distance_0 > 0.0 ? distance_45 / distance_0 : NAN;
   int within = 0;
-  for (FrictionModel m :
-       {FrictionModel::cone, FrictionModel::box_pyramid, FrictionModel::sum_pyramid}) {
+  for (FrictionModel m : kFrictionModels) {
     const double d0 = slide_to_stop(s.v0, s.mu, s.g, h, m, 0.0).step_distance;
     const double d45 = slide_to_stop(s.v0, s.mu, s.g, h, m, std::numbers::pi / 4.0).step_distance;
     id.fits.push_back({m, d45 / d0});

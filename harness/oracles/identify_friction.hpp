@@ -51,7 +51,9 @@ SlidePair slide_pair(const Scene& scene);
 // From the two stop distances (observe_slide) at the scene's step.
 // `mu`: the pair's coefficient when it is not the scene's (an engine run with each body's own
 // coefficient, whose combine rule makes the pair's: identify measures it, pair_friction).
-FrictionIdentification identify_friction(const Scene& scene, double distance_0, double distance_45,
+// At step h (the runs').
+FrictionIdentification identify_friction(const Scene& scene, double h, double distance_0,
+                                         double distance_45,
                                          std::optional<double> mu = std::nullopt);
 
 // The pair's friction coefficient a slide along x shows: the friction impulse over the normal

@@ -6,6 +6,7 @@
 #include <limits>
 #include <variant>
 
+#include "harness/oracles/contact_laws.hpp"
 #include "harness/oracles/discrete_law.hpp"
 
 namespace dropcheck {
@@ -20,10 +21,10 @@ double bottom(const Body& b) {
   return b.position.y() - b.half_extents.y();
 }
 
-// Static box `f` holds body `b`: f's top is at or below b's bottom and b's centre lies over f's
-// footprint in the x-z plane.
+// Static box `f` (a box: a sphere is no floor) holds body `b`: f's top is at or below b's bottom
+// and b's centre lies over f's footprint in the x-z plane.
 bool holds(const Body& f, const Body& b) {
-  return f.is_static && top(f) <= bottom(b) &&
+  return f.is_static && f.shape == Shape::box && top(f) <= bottom(b) &&
          std::abs(b.position.x() - f.position.x()) <= f.half_extents.x() &&
          std::abs(b.position.z() - f.position.z()) <= f.half_extents.z();
 }
@@ -190,10 +191,13 @@ std::vector<LandingExclusion> landing_exclusions(const Scene& scene) {
 
 std::vector<LandingSetup> engine_landing_setups(const Scene& scene, const EngineInfo& info) {
   const std::vector<LandingExclusion> excluded = landing_exclusions(scene);
+  const std::vector<BounceSetup> bounces = bounce_setups(scene);  // judged by their bounce law
   std::vector<LandingSetup> setups;
   for (LandingSetup setup : landing_setups(scene)) {
     if (std::any_of(excluded.begin(), excluded.end(),
-                    [&](const LandingExclusion& e) { return e.body == setup.body; }))
+                    [&](const LandingExclusion& e) { return e.body == setup.body; }) ||
+        std::any_of(bounces.begin(), bounces.end(),
+                    [&](const BounceSetup& b) { return b.body == setup.body; }))
       continue;
     setup.floor_top += std::max(0.0, info.rest_offset + info.rest_tolerance);
     setups.push_back(setup);

@@ -70,7 +70,8 @@ std::vector<LandingSetup> landing_setups(const Scene& scene);
 // floor top, in body order (the nearest body below it is named, else the nearest above).
 std::vector<LandingExclusion> landing_exclusions(const Scene& scene);
 
-// landing_setups without landing_exclusions, as one engine meets the floor: an engine whose
+// landing_setups without landing_exclusions and without the bouncing spheres (bounce_setups,
+// judged by their bounce law), as one engine meets the floor: an engine whose
 // resting surface sits above the geometry (Box2D's 0.01 m skin) touches it there, so contact means
 // reaching the floor top plus max(0, rest_offset + rest_tolerance). The one place the bodies to
 // judge are chosen and that shift is made (check and report).

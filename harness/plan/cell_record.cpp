@@ -163,9 +163,12 @@ CellRecord run_cell(const Plan& plan, const Cell& cell, Isolation isolation,
   r["status"] = status;
   if (run.status == RunStatus::timed_out) {
     // How far a run got before its wall-clock limit depends on the machine: the record keeps the
-    // limit and leaves the step out, so it stays the same bytes on every run.
+    // limit and leaves out the step and every measure of the samples it reached, so it stays the
+    // same bytes on every run.
     r["reason"] = run.failure.substr(0, run.failure.find(';'));
-  } else if (run.status != RunStatus::ok) {
+    return {status, r.dump()};
+  }
+  if (run.status != RunStatus::ok) {
     r["reason"] = run.failure;
     r["failed_step"] = run.failed_step;
   }

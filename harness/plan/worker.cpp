@@ -44,7 +44,11 @@ bool put_text(int fd, const std::string& s) {
   int code = 0;
   try {
     for (std::size_t i = from; i < cells.size() && code == 0; ++i) {
-      const CellRecord r = run_cell(plan, plan.cell(cells[i]), Isolation::in_process);
+      // The run limit of a cell run alone, checked after every step: a slow cell times out here
+      // as it would there (its record names the limit, not the step); a step that never returns
+      // is the parent's watchdog's.
+      const CellRecord r =
+          run_cell(plan, plan.cell(cells[i]), Isolation::in_process, kDefaultRunTimeLimitSeconds);
       if (!put_text(fd, r.status) || !put_text(fd, r.line)) code = 3;
     }
   } catch (...) {

@@ -22,9 +22,11 @@ Isolation default_isolation();
 // True when `options` ask for (or default to) a child process.
 bool runs_isolated(const RunOptions& options);
 
-// Runs an engine that is a process of its own (EngineInfo::own_process) in this process, which is
-// its parent, with the wall-clock limit of options (default kDefaultRunTimeLimitSeconds) checked
-// after every step: past it the run ends as timed out (no pre-checks: run_scene makes them).
+// Runs the scene in this process with the wall-clock limit of options (default
+// kDefaultRunTimeLimitSeconds) checked after every step: past it the run ends as timed out (no
+// pre-checks: run_scene makes them). For an engine that is a process of its own
+// (EngineInfo::own_process), whose parent this process is, and for an in-process run given a limit
+// (a sweep's worker).
 Trajectory run_own_process(Engine& engine, const Scene& scene, double h, const RunOptions& options);
 
 // Runs the scene in a child process (no pre-checks: run_scene makes them). Never throws for what

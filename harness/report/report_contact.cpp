@@ -71,12 +71,15 @@ std::string bounce_section(const SceneEvaluation& se) {
        "ideal law: apexes", "off its law (m)", "why its law is off the ideal", "follows its law"},
       "ll");
   std::string closed;
+  for (const BounceSetup& s : bounces) {
+    const Bounce b = bounce(s.h0, s.e, s.g, h);
+    closed += (closed.empty() ? "" : "; ") + se.scene.bodies[s.body].name + ": continuous apexes " +
+              apex_text(b.apexes) + printf_string(", at rest after %.5g s", b.time_to_rest);
+  }
   for (const EngineEvaluation& ev : se.engines) {
     if (!ev.ran() || ev.at_default().run.status != RunStatus::ok) continue;
     for (const BounceSetup& s : bounces) {
       const BounceVerdict v = judge_bounce(ev.at_default().run, s, ev.info.bounce_law, h);
-      closed = "continuous apexes " + apex_text(v.closed.apexes) +
-               printf_string(", at rest after %.5g s", v.closed.time_to_rest);
       std::string why = v.law_to_ideal > tolerance::kBouncePath ? "" : kNone;
       for (std::size_t i = 0; i < v.causes.size(); ++i) why += (i ? " and " : "") + v.causes[i];
       t.add({ev.name, se.scene.bodies[s.body].name,

@@ -152,4 +152,6 @@ TEST_CASE("an engine that collides materials and spheres announces them with its
                           "bounce-law 0.2 inf velocity nan 0 0", "bounce-law 0.2 inf velocity 0 0",
                           "friction-model pyramid"})
     CHECK_THAT(refusal(handshake({bad})), Contains("garbage from the engine"));
+  CHECK_THAT(refusal(handshake({"capabilities restitution spheres"})),
+             Contains("without 'contacts'"));
 }

@@ -7,6 +7,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "harness/scene/scene_loader.hpp"
+
 using dropcheck::bounce;
 using dropcheck::bounce_path;
 using dropcheck::BouncePath;
@@ -98,8 +100,8 @@ TEST_CASE("bounce paths: the push-out and threshold members change what the idea
   // e = 0.1: the rebound at 0.441 m/s leaves the sphere in the floor, 0.029 m deep after step 27.
   const BouncePath ideal = bounce_path(kIdealBounce, 1.0, 0.1, kG, kH, steps);
   const BouncePath ode = bounce_path({.erp = 0.2, .max_push = 0.3}, 1.0, 0.1, kG, kH, steps);
-  const auto oi = observe_bounce(ideal.gap, ideal.v);
-  const auto oo = observe_bounce(ode.gap, ode.v);
+  const auto oi = observe_bounce(ideal.gap, ideal.v, kG, kH);
+  const auto oo = observe_bounce(ode.gap, ode.v, kG, kH);
   CHECK(oi.contact_step == 27);
   CHECK(oo.contact_step == 27);
   CHECK(oi.speed_out == Approx(0.441).epsilon(1e-12));
@@ -120,11 +122,11 @@ TEST_CASE("bounce paths: the push-out and threshold members change what the idea
   CHECK(ode.gap[steps] > -1e-9);
   // A threshold above the impact speed: no restitution, the sphere stays in the floor (v >= 0).
   const BouncePath dead = bounce_path({.threshold = 5.0}, 1.0, 0.5, kG, kH, steps);
-  CHECK(observe_bounce(dead.gap, dead.v).apexes.empty());
+  CHECK(observe_bounce(dead.gap, dead.v, kG, kH).apexes.empty());
   CHECK(dead.v[28] == 0.0);
   // Energy never rises in the ideal law: each apex below the one before.
   const BouncePath half = bounce_path(kIdealBounce, 1.0, 0.5, kG, kH, 600);
-  const auto oh = observe_bounce(half.gap, half.v, 3);
+  const auto oh = observe_bounce(half.gap, half.v, kG, kH, 3);
   REQUIRE(oh.apexes.size() == 3);
   CHECK(oh.apexes[0] < 1.0);
   CHECK(oh.apexes[1] < oh.apexes[0]);
@@ -151,4 +153,70 @@ TEST_CASE(
   const BouncePath s = bounce_path({.erp = 0.2, .push_in_position = true}, 1.0, 0.5, kG, kH, 28);
   CHECK(s.v[28] == Approx(2.205).epsilon(1e-12));
   CHECK(s.gap[28] == Approx(s.gap[27] + kH * 2.205 + 0.2 * -s.gap[27]).epsilon(1e-12));
+}
+
+TEST_CASE("a bounce turned by a speculative contact is observed at the step before the push",
+          "[contact][reference]") {
+  // Dropped 0.96 m with Bullet's members (r = 0.5 m: contact within 0.0173 m): step 26 ends
+  // 0.0045 m above the floor at 4.2467 m/s, and step 27 leaves at e*4.2467 - 0.0045/h = 1.8533
+  // m/s without the sphere ever entering the floor.
+  const dropcheck::BounceLaw bullet{
+      .erp = 0.2, .push_in_position = true, .threshold = 0.2, .contact_distance_per_size = 0.02};
+  const BouncePath p = bounce_path(bullet, 0.96, 0.5, kG, kH, 60, 0.5 * std::sqrt(3.0));
+  const auto o = observe_bounce(p.gap, p.v, kG, kH, 1);
+  CHECK(o.contact_step == 26);
+  CHECK(p.gap[26] > 0.0);
+  CHECK(o.speed_in == Approx(26 * kG * kH).epsilon(1e-12));
+  CHECK(o.speed_out == Approx(0.5 * 26 * kG * kH - p.gap[26] / kH).epsilon(1e-12));
+  REQUIRE(o.apexes.size() == 1);
+  CHECK(o.apexes[0] > 0.0);
+}
+
+TEST_CASE("a sphere on or under another body, or over a static sphere, is no floor bounce",
+          "[contact][reference]") {
+  const std::string text = R"(duration = 1.0
+timestep = "1/60"
+[world]
+gravity = [0.0, -9.8, 0.0]
+contacts = true
+[[body]]
+name = "floor"
+static = true
+half_extents = [5.0, 0.5, 5.0]
+position = [0.0, -0.5, 0.0]
+[[body]]
+name = "low"
+shape = "sphere"
+radius = 0.5
+position = [0.0, 1.5, 0.0]
+restitution = 0.5
+[[body]]
+name = "high"
+shape = "sphere"
+radius = 0.5
+position = [0.0, 3.0, 0.0]
+restitution = 0.5
+[[body]]
+name = "alone"
+shape = "sphere"
+radius = 0.5
+position = [3.0, 1.5, 0.0]
+restitution = 0.5
+[[body]]
+name = "ball_floor"
+static = true
+shape = "sphere"
+radius = 0.5
+position = [-3.0, 0.5, 0.0]
+[[body]]
+name = "on_ball"
+shape = "sphere"
+radius = 0.5
+position = [-3.0, 2.0, 0.0]
+restitution = 0.5
+)";
+  const dropcheck::Scene scene = dropcheck::parse_scene(text, "stack.toml");
+  const auto setups = dropcheck::bounce_setups(scene);
+  REQUIRE(setups.size() == 1);
+  CHECK(scene.bodies[setups[0].body].name == "alone");
 }

@@ -27,20 +27,20 @@ TEST_CASE("each friction model's slides at 0 and 45 degrees name it", "[contact]
        {FrictionModel::cone, FrictionModel::box_pyramid, FrictionModel::sum_pyramid}) {
     const double d0 = slide_to_stop(5.0, 0.5, 9.8, h, m, 0.0).step_distance;
     const double d45 = slide_to_stop(5.0, 0.5, 9.8, h, m, std::numbers::pi / 4.0).step_distance;
-    const FrictionIdentification id = identify_friction(scene, d0, d45);
+    const FrictionIdentification id = identify_friction(scene, h, d0, d45);
     INFO(id.sentence());
     REQUIRE(id.named);
     CHECK(*id.named == m);
   }
   // The shipped slides' ratios: 1.762376/2.509472 and 3.566138/2.509472.
-  const FrictionIdentification box = identify_friction(scene, 2.509472, 1.762376);
+  const FrictionIdentification box = identify_friction(scene, h, 2.509472, 1.762376);
   CHECK(box.fits[1].ratio == Approx(0.70229).epsilon(1e-4));
   CHECK(box.fits[2].ratio == Approx(1.4211).epsilon(1e-4));
   // Both slides 8 mm short (a solver that stops early) still name the model: the ratio divides
   // it out to 0.3 %.
-  CHECK(identify_friction(scene, 2.501472, 1.754376).named == FrictionModel::box_pyramid);
+  CHECK(identify_friction(scene, h, 2.501472, 1.754376).named == FrictionModel::box_pyramid);
   // Between two models: none named.
-  const FrictionIdentification between = identify_friction(scene, 2.509472, 2.1);
+  const FrictionIdentification between = identify_friction(scene, h, 2.509472, 2.1);
   CHECK_FALSE(between.named);
   CHECK_THAT(between.sentence(), Contains("NO MODEL"));
 }

@@ -328,4 +328,8 @@ TEST_CASE(
   CHECK_THAT(first.line, Contains("\"reason\":\"no result within the limit of 0.1 s\""));
   CHECK_THAT(first.line, !Contains("failed_step") && !Contains("killed"));
   CHECK(first.line == second.line);
+  // In this process with the same limit (a shard's worker): checked after every step, the same
+  // record.
+  const CellRecord here = run_cell(plan, plan.cell(0), Isolation::in_process, 0.1);
+  CHECK(here.line == first.line);
 }
