@@ -395,30 +395,43 @@ CheckResult check_landing(const Scene& scene, const EngineFactory& make, const T
   return r;
 }
 
-CheckResult check_slide(const Scene& scene, const EngineFactory& make, const Timestep& h) {
-  ContactRun c = contact_run(scene, make, h, "slide");
+namespace {
+
+// A contact check named `what` over the scene's `setups`: judge(run, setup, info) gives whether the
+// body passes and the sentence that says why, one line per judged body.
+template <typename Setup, typename Judge>
+CheckResult check_contact_law(const Scene& scene, const EngineFactory& make, const Timestep& h,
+                              const std::string& what, const std::vector<Setup>& setups,
+                              Judge&& judge) {
+  ContactRun c = contact_run(scene, make, h, what);
   if (!c.run) return c.result;
   CheckResult& r = c.result;
   const Trajectory& run = *c.run;
-  for (const SlideSetup& s : slide_setups(scene)) {
-    const SlideVerdict v = judge_slide(run, s, c.info.friction_model, h.seconds);
-    r.passed = r.passed && (v.follows || !v.exact);
-    append(r.message, run.body_names[s.body] + ": " + v.sentence());
+  for (const Setup& s : setups) {
+    const auto [passes, sentence] = judge(run, s, c.info);
+    r.passed = r.passed && passes;
+    append(r.message, run.body_names[s.body] + ": " + sentence);
   }
   return r;
 }
 
+}  // namespace
+
+CheckResult check_slide(const Scene& scene, const EngineFactory& make, const Timestep& h) {
+  return check_contact_law(scene, make, h, "slide", slide_setups(scene),
+                           [&](const Trajectory& run, const SlideSetup& s, const EngineInfo& i) {
+                             const SlideVerdict v =
+                                 judge_slide(run, s, i.friction_model, h.seconds);
+                             return std::pair(v.follows || !v.exact, v.sentence());
+                           });
+}
+
 CheckResult check_bounce(const Scene& scene, const EngineFactory& make, const Timestep& h) {
-  ContactRun c = contact_run(scene, make, h, "bounce");
-  if (!c.run) return c.result;
-  CheckResult& r = c.result;
-  const Trajectory& run = *c.run;
-  for (const BounceSetup& s : bounce_setups(scene)) {
-    const BounceVerdict v = judge_bounce(run, s, c.info.bounce_law, h.seconds);
-    r.passed = r.passed && v.follows;
-    append(r.message, run.body_names[s.body] + ": " + v.sentence());
-  }
-  return r;
+  return check_contact_law(scene, make, h, "bounce", bounce_setups(scene),
+                           [&](const Trajectory& run, const BounceSetup& s, const EngineInfo& i) {
+                             const BounceVerdict v = judge_bounce(run, s, i.bounce_law, h.seconds);
+                             return std::pair(v.follows, v.sentence());
+                           });
 }
 
 std::vector<CheckResult> check_scene(const Scene& scene, const EngineFactory& make,

@@ -34,6 +34,14 @@ std::string refusal(const std::vector<std::string>& lines, std::size_t bodies = 
 const std::vector<std::string> kHandshake = {"dropcheck-engine 1", "name e",           "version 1",
                                              "scalar f64",         "law after-forces", "ready"};
 
+// kHandshake with `extra` lines before its "ready".
+std::vector<std::string> handshake(const std::vector<std::string>& extra) {
+  std::vector<std::string> lines(kHandshake.begin(), kHandshake.end() - 1);
+  lines.insert(lines.end(), extra.begin(), extra.end());
+  lines.push_back("ready");
+  return lines;
+}
+
 }  // namespace
 
 TEST_CASE("a complete handshake and state lines are accepted", "[exec]") {
@@ -84,12 +92,6 @@ TEST_CASE("a refusal quotes at most a short, escaped excerpt of the engine's lin
 
 TEST_CASE("an engine that turns bodies announces it with its rotational member",
           "[exec][rotation]") {
-  const auto handshake = [](const std::vector<std::string>& extra) {
-    std::vector<std::string> lines(kHandshake.begin(), kHandshake.end() - 1);
-    lines.insert(lines.end(), extra.begin(), extra.end());
-    lines.push_back("ready");
-    return lines;
-  };
   EngineInfo info;
   HandshakeReader reader(info, false, {"ours"});
   for (const std::string& line :
@@ -125,12 +127,6 @@ TEST_CASE("a rotating scene's state line carries 13 numbers per body", "[exec][r
 
 TEST_CASE("an engine that collides materials and spheres announces them with its contact laws",
           "[exec][contact]") {
-  const auto handshake = [](const std::vector<std::string>& extra) {
-    std::vector<std::string> lines(kHandshake.begin(), kHandshake.end() - 1);
-    lines.insert(lines.end(), extra.begin(), extra.end());
-    lines.push_back("ready");
-    return lines;
-  };
   EngineInfo info;
   HandshakeReader reader(info, false, {"ours"});
   for (const std::string& line :
