@@ -33,23 +33,6 @@ bool level_contact(const Scene& scene) {
          !needs_rotation(scene);
 }
 
-// A static body other than the floor between body l.body and its floor, in its x-z footprint (a
-// static sphere is no floor, but it is in the way).
-bool static_in_the_way(const Scene& scene, const LandingSetup& l) {
-  const Body& b = scene.bodies[l.body];
-  for (std::size_t k = 0; k < scene.bodies.size(); ++k) {
-    const Body& o = scene.bodies[k];
-    if (!o.is_static || k == l.floor) continue;
-    const bool above_floor = o.position.y() + o.half_extents.y() > l.floor_top;
-    const bool below_body = o.position.y() - o.half_extents.y() < b.position.y();
-    const bool overlaps =
-        std::abs(o.position.x() - b.position.x()) < o.half_extents.x() + b.half_extents.x() &&
-        std::abs(o.position.z() - b.position.z()) < o.half_extents.z() + b.half_extents.z();
-    if (above_floor && below_body && overlaps) return true;
-  }
-  return false;
-}
-
 // A force of the scene acts on body i.
 bool pushed(const Scene& scene, std::size_t i) {
   for (const Force& f : scene.forces)
@@ -261,11 +244,11 @@ std::vector<BounceSetup> bounce_setups(const Scene& scene) {
     const Body& b = scene.bodies[l.body];
     if (std::any_of(stacked.begin(), stacked.end(),
                     [&](const LandingExclusion& x) { return x.body == l.body; }))
-      continue;  // on, or under, another dynamic body: no floor bounce
+      continue;  // on or under another body, or over a static one: no floor bounce
     if (b.shape != Shape::sphere || b.velocity != Vec3::Zero()) continue;
     const double h0 = b.position.y() - b.radius - l.floor_top;
     if (!(h0 > 0.0)) continue;
-    if (pushed(scene, l.body) || static_in_the_way(scene, l)) continue;
+    if (pushed(scene, l.body)) continue;
     const double size = std::min(b.half_extents.norm(), scene.bodies[l.floor].half_extents.norm());
     out.push_back({l.body, h0, *m.restitution, -g.y(), b.radius, l.floor_top, size});
   }

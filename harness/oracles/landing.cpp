@@ -40,10 +40,11 @@ long floor_under(const Scene& scene, std::size_t i) {
   return best;
 }
 
-// Dynamic body `o` shares dynamic body `b`'s x-z footprint (open rectangles overlap: boxes that
-// only touch at an edge do not stack) and reaches above the floor top `floor_top`.
+// Body `o` shares dynamic body `b`'s x-z footprint (open rectangles overlap: boxes that only
+// touch at an edge do not stack) and reaches above the floor top `floor_top`: a dynamic body
+// stacked with b, or a static one (not b's floor) in its way.
 bool stacked_with(const Body& b, const Body& o, double floor_top) {
-  return !o.is_static && top(o) > floor_top &&
+  return top(o) > floor_top &&
          std::abs(b.position.x() - o.position.x()) < b.half_extents.x() + o.half_extents.x() &&
          std::abs(b.position.z() - o.position.z()) < b.half_extents.z() + o.half_extents.z();
 }
@@ -162,8 +163,8 @@ std::vector<LandingSetup> landing_setups(const Scene& scene) {
 std::string LandingExclusion::sentence(const Scene& scene) const {
   const std::string name = "'" + scene.bodies[body].name + "'";
   const std::string o = "'" + scene.bodies[other].name + "'";
-  return name + " not judged: " +
-         (on_other ? "lands on dynamic body " + o : "dynamic body " + o + " lands on it") +
+  const std::string kind = scene.bodies[other].is_static ? "static body " : "dynamic body ";
+  return name + " not judged: " + (on_other ? "lands on " + kind + o : kind + o + " lands on it") +
          " (the landing oracle covers one body over a static floor)";
 }
 
@@ -174,7 +175,8 @@ std::vector<LandingExclusion> landing_exclusions(const Scene& scene) {
     long below = -1, above = -1;  // nearest stacked body under / over b
     for (std::size_t j = 0; j < scene.bodies.size(); ++j) {
       const Body& o = scene.bodies[j];
-      if (j == s.body || !stacked_with(b, o, s.floor_top)) continue;
+      if (j == s.body || j == s.floor || !stacked_with(b, o, s.floor_top)) continue;
+      if (o.is_static && o.position.y() >= b.position.y()) continue;  // only what b falls onto
       long& slot = o.position.y() < b.position.y() ? below : above;
       const auto nearer = [&](long k) {
         return k < 0 || std::abs(o.position.y() - b.position.y()) <

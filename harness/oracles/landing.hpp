@@ -54,7 +54,7 @@ struct LandingObservation {
 // body lands on it.
 struct LandingExclusion {
   std::size_t body = 0;   // index into Scene::bodies
-  std::size_t other = 0;  // the dynamic body below or above it
+  std::size_t other = 0;  // the dynamic body below or above it, or a static one below it
   bool on_other = false;  // true: it lands on `other` (other is below); false: other lands on it
   // "'heavy' not judged: lands on dynamic body 'light' (the landing oracle covers one body over
   // a static floor)".
@@ -67,7 +67,8 @@ struct LandingExclusion {
 std::vector<LandingSetup> landing_setups(const Scene& scene);
 
 // The bodies of landing_setups that share their x-z footprint with another dynamic body above the
-// floor top, in body order (the nearest body below it is named, else the nearest above).
+// floor top, or with a static body other than their floor below them (a static sphere is no floor
+// but is in the way), in body order (the nearest body below it is named, else the nearest above).
 std::vector<LandingExclusion> landing_exclusions(const Scene& scene);
 
 // landing_setups without landing_exclusions and without the bouncing spheres (bounce_setups,

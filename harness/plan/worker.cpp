@@ -34,12 +34,7 @@ bool put_text(int fd, const std::string& s) {
 // killed with its parent, each cell run in this process; one frame per record.
 [[noreturn]] void worker_main(const Plan& plan, const std::vector<std::size_t>& cells,
                               std::size_t from, int fd) {
-  for (int sig : {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGPIPE, SIGTERM, SIGINT, SIGHUP})
-    std::signal(sig, SIG_DFL);
-  sigset_t deferred;
-  sigemptyset(&deferred);
-  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&deferred, sig);
-  ::sigprocmask(SIG_UNBLOCK, &deferred, nullptr);
+  child_signals_to_defaults();
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
   int code = 0;
   try {

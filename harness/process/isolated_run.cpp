@@ -91,12 +91,7 @@ class ProgressEngine final : public ForwardingEngine {
                              int err_fd) {
   // SIGINT and SIGHUP too: dropcheck's own handler (signal_cleanup.hpp) acts on the parent's
   // files and children, never from here.
-  for (int sig : {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGPIPE, SIGTERM, SIGINT, SIGHUP})
-    std::signal(sig, SIG_DFL);
-  sigset_t deferred;  // the parent held these back around fork() (run_isolated)
-  sigemptyset(&deferred);
-  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&deferred, sig);
-  ::sigprocmask(SIG_UNBLOCK, &deferred, nullptr);
+  child_signals_to_defaults();  // the parent held SIGINT, SIGTERM, SIGHUP back around fork()
   ::dup2(err_fd, STDERR_FILENO);
   int code = 0;
   try {

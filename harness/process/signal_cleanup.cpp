@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <csignal>
 #include <cstring>
 
 namespace dropcheck {
@@ -141,6 +142,15 @@ SignalsDeferred::SignalsDeferred() {
 
 SignalsDeferred::~SignalsDeferred() {
   ::sigprocmask(SIG_SETMASK, &previous_, nullptr);
+}
+
+void child_signals_to_defaults() {
+  for (int sig : {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGPIPE, SIGTERM, SIGINT, SIGHUP})
+    std::signal(sig, SIG_DFL);
+  sigset_t deferred;
+  sigemptyset(&deferred);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&deferred, sig);
+  ::sigprocmask(SIG_UNBLOCK, &deferred, nullptr);
 }
 
 }  // namespace dropcheck

@@ -58,4 +58,10 @@ class SignalsDeferred {
   sigset_t previous_;
 };
 
+// In a child forked under SignalsDeferred (an isolated run, a shard's worker): the crash and stop
+// signals back to their defaults, so the parent reads a death rather than a handler's report, and
+// dropcheck's own handler never acts on the parent's files from here; then the deferred signals
+// unblocked.
+void child_signals_to_defaults();
+
 }  // namespace dropcheck

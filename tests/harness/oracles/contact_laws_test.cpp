@@ -7,6 +7,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "harness/oracles/landing.hpp"
 #include "harness/scene/scene_loader.hpp"
 
 using dropcheck::bounce;
@@ -219,4 +220,9 @@ restitution = 0.5
   const auto setups = dropcheck::bounce_setups(scene);
   REQUIRE(setups.size() == 1);
   CHECK(scene.bodies[setups[0].body].name == "alone");
+  // The landing oracle leaves out the same bodies, each with its reason.
+  std::string reasons;
+  for (const auto& e : dropcheck::landing_exclusions(scene)) reasons += e.sentence(scene) + "\n";
+  CHECK_THAT(reasons, Catch::Contains("'on_ball' not judged: lands on static body 'ball_floor'") &&
+                          Catch::Contains("'high' not judged: lands on dynamic body 'low'"));
 }

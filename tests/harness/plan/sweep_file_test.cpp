@@ -260,9 +260,9 @@ TEST_CASE(
     "bytes, and a new worker takes the next cell",
     "[plan][worker]") {
   ScratchDir d("plan-worker-silent");
-  // Simbody's error-controlled integrator at h = 2e-5 s: 5e4 steps of about 10 us (0.5 s in a
-  // release build, 5 s under the sanitizers), where the watchdog here waits 0.2 s; at 1/60 a cell
-  // takes milliseconds.
+  // Simbody's error-controlled integrator at h = 2e-5 s: 5e4 steps, 1.74-1.78 s in a release build
+  // (three runs of `dropcheck run`), longer under the sanitizers, where the watchdog here waits
+  // 0.2 s; at 1/60 a cell takes milliseconds.
   const Plan plan = make_plan(load_sweep_known(
       d.write("s.toml", "scenes = [\"" + kFall +
                             "\"]\nengines = [\"simbody-rkm\"]\n[[axis]]\n"
@@ -316,7 +316,7 @@ TEST_CASE(
     "a timed-out cell's record names its limit, not the step it reached: the same bytes twice",
     "[plan][worker]") {
   ScratchDir d("plan-timed-out");
-  // 5e4 steps of Simbody's error-controlled integrator (0.5 s or more) against a 0.1 s limit: the
+  // 5e4 steps of Simbody's error-controlled integrator (1.7 s or more) against a 0.1 s limit: the
   // step reached differs from run to run, the record does not.
   const Plan plan = make_plan(
       load_sweep_known(d.write("s.toml", "scenes = [\"" + kFall +
