@@ -304,8 +304,9 @@ int identify_friction_model(const Scene& scene, const IdentifyRequest& r, std::o
     // The distance to the stop, or to the run's end for an engine that creeps on (Bullet ends at
     // 9e-5 m/s); a slide still above 1 % of its launch speed at the end has no distance yet.
     const SlideSetup slide = slide_setups(s).at(0);
-    const SlideObservation seen = observe_slide(run, slide, tolerance::kStoppedSpeed);
-    if (observe_slide(run, slide, 0.01 * slide.v0).stop_step < 0) {
+    const SlidePath path = observed_slide_path(run, slide);
+    const SlideObservation seen = observe_slide(path, tolerance::kStoppedSpeed);
+    if (observe_slide(path, 0.01 * slide.v0).stop_step < 0) {
       out << "identify " << scene.name << ": " << run.engine << "'s slide at "
           << (k == 0 ? "0" : "45") << " degrees still slides at the run's end ("
           << printf_string("%.7g m", seen.distance) << "): no ratio; lengthen the scene\n";

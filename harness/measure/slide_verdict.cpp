@@ -1,5 +1,6 @@
 #include "harness/measure/slide_verdict.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -9,14 +10,42 @@
 namespace dropcheck {
 namespace {
 
-// "step 62, 2.509472 m": a stop and the distance by then.
-std::string stop_text(std::int64_t step, double distance) {
-  return printf_string("step %lld, %.7g m", static_cast<long long>(step), distance);
+// "stops at step 62, 2.509472 m", "never moves" or "slides on (2.970552 m by the end)".
+std::string stop_text(const SlideObservation& o) {
+  if (o.stop_step < 0) return printf_string("slides on (%.7g m by the end)", o.distance);
+  if (o.stop_step == 0) return "never moves";
+  return printf_string("stops at step %lld, %.7g m", static_cast<long long>(o.stop_step),
+                       o.distance);
 }
 
-bool follows_law(const SlideObservation& o, const SlideStop& law) {
-  return o.stop_step == law.stop_step &&
-         std::abs(o.distance - law.step_distance) <= tolerance::kSlideDistance;
+bool exact_angle(const SlideSetup& s, FrictionModel model) {
+  return model == FrictionModel::cone || s.angle == 0.0 ||
+         std::abs(s.angle - std::numbers::pi / 4.0) < 1e-12;
+}
+
+// The largest distance between the run's path and the law's over the steps both have (a
+// non-finite run is infinitely far). The law's path is as long as the run's.
+double path_distance(const SlidePath& run, const SlidePath& law) {
+  double worst = 0.0;
+  for (std::size_t n = 0; n < std::min(run.s.size(), law.s.size()); ++n) {
+    const double d = std::hypot(run.s[n] - law.s[n], run.off[n]);
+    worst = std::isfinite(d) ? std::max(worst, d) : INFINITY;
+  }
+  return worst;
+}
+
+struct LawFit {
+  SlideObservation seen;
+  double off = 0.0;
+  bool follows = false;
+};
+
+LawFit fit(const SlidePath& run, const SlideObservation& seen, const SlideSetup& s,
+           FrictionModel model, double h) {
+  const SlidePath law = slide_path(s, model, h, static_cast<std::int64_t>(run.s.size()) - 1);
+  LawFit f{observe_slide(law, tolerance::kStoppedSpeed), path_distance(run, law), false};
+  f.follows = f.seen.stop_step == seen.stop_step && f.off <= tolerance::kSlideDistance;
+  return f;
 }
 
 }  // namespace
@@ -25,29 +54,34 @@ SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& s, FrictionMod
                          double h) {
   SlideVerdict v;
   v.model = model;
-  v.seen = observe_slide(run, s, tolerance::kStoppedSpeed);
-  v.exact = model == FrictionModel::cone || s.angle == 0.0 ||
-            std::abs(s.angle - std::numbers::pi / 4.0) < 1e-12;
-  if (!v.exact) return v;
-  v.law = slide_to_stop(s.v0, s.mu, s.g, h, model, s.angle);
-  v.follows = follows_law(v.seen, v.law);
+  const SlidePath path = observed_slide_path(run, s);
+  v.seen = observe_slide(path, tolerance::kStoppedSpeed);
+  v.exact = exact_angle(s, model);
+  if (!v.exact || path.s.empty()) return v;
+  v.law = slide_to_stop(s.v0, s.mu, s.g, h, model, s.angle, s.pull);
+  v.end_continuous = slide_distance_continuous(s.v0, s.pull, slide_grip(s.mu, s.g, model, s.angle),
+                                               h * static_cast<double>(path.s.size() - 1));
+  const LawFit own = fit(path, v.seen, s, model, h);
+  v.law_seen = own.seen;
+  v.off_law = own.off;
+  v.follows = own.follows;
   if (v.follows) return v;
   for (FrictionModel other : kFrictionModels)
-    if (other != model && follows_law(v.seen, slide_to_stop(s.v0, s.mu, s.g, h, other, s.angle)))
+    if (other != model && exact_angle(s, other) && fit(path, v.seen, s, other, h).follows)
       v.instead = other;
   return v;
 }
 
 std::string SlideVerdict::sentence() const {
-  std::string text = seen.stop_step < 0
-                         ? printf_string("does not stop (%.7g m by the end)", seen.distance)
-                         : "stops at " + stop_text(seen.stop_step, seen.distance);
+  std::string text = stop_text(seen);
   if (!exact)
     return text + "; not judged: the " + to_string(model) +
            "'s slide is exact at 0 and 45 degrees only";
-  text += std::string("; its ") + to_string(model) +
-          "'s clamp law: " + stop_text(law.stop_step, law.step_distance) +
-          printf_string(" (continuous: %.5g s, %.5g m)", law.stop_time, law.distance);
+  text += std::string("; its ") + to_string(model) + "'s clamp law: " + stop_text(law_seen);
+  text += law.stops && law.stop_step > 0
+              ? printf_string(" (continuous: %.5g s, %.5g m)", law.stop_time, law.distance)
+              : printf_string(" (continuous: %.7g m by the end)", end_continuous);
+  text += printf_string(", %.2g m off it", off_law);
   if (follows) return text;
   text += " DEPARTS";
   if (instead) text += std::string(": it follows the ") + to_string(*instead) + "'s law instead";

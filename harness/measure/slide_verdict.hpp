@@ -1,5 +1,5 @@
-// A slide to a stop judged (harness/oracles/contact_laws.hpp): one run's stop against the ideal
-// clamp law of the engine's friction model, computed in one place for `check` and `report`.
+// A slide judged (harness/oracles/contact_laws.hpp): one run against the ideal clamp law of the
+// engine's friction model, step by step, computed in one place for `check` and `report`.
 #pragma once
 
 #include <optional>
@@ -13,12 +13,16 @@ namespace dropcheck {
 struct SlideVerdict {
   SlideObservation seen;
   FrictionModel model = FrictionModel::cone;  // the engine's declared model
-  bool exact = false;    // the model's slide has an exact answer at this angle (0, 45 degrees)
-  SlideStop law;         // its clamp law and continuous closed form (when exact)
-  bool follows = false;  // stop step equal, distance within tolerance::kSlideDistance
+  bool exact = false;         // the model's slide has an exact answer at this angle (0, 45 degrees)
+  SlideStop law;              // its clamp law and continuous closed form (when exact)
+  SlideObservation law_seen;  // the law's path read as the run's is
+  double end_continuous = 0.0;  // m along the slip at the run's end, continuous (exact only)
+  double off_law = 0.0;         // m: the largest distance between the run and its law over the run
+  bool follows = false;         // stop step equal, off_law within tolerance::kSlideDistance
   std::optional<FrictionModel> instead;  // another model whose law the run follows, if any
-  // "stops at step 62, 2.509472 m; its box pyramid's clamp law: step 62, 2.509472 m (continuous:
-  // 1.0204 s, 2.551 m)", with " DEPARTS: it follows the cone's law instead" when it does not.
+  // "stops at step 62, 2.509472 m; its box pyramid's clamp law: stops at step 62, 2.509472 m
+  // (continuous: 1.0204 s, 2.551 m), 9.1e-12 m off it", with " DEPARTS: it follows the cone's law
+  // instead" when it does not.
   std::string sentence() const;
 };
 

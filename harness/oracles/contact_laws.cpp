@@ -10,27 +10,13 @@
 namespace dropcheck {
 namespace {
 
-// One axis of the discrete clamp law: v <- max(v - a*h, 0), x += h*v from v0. The velocity is 0
-// after step N = ceil(v0/(a*h)); the distance is h*sum_{n=1}^{N} (v0 - n*a*h), the last term
-// clamped at 0: h*((N - 1)*v0 - a*h*(N - 1)*N/2).
-struct AxisStop {
-  std::int64_t steps = 0;
-  double distance = 0.0;
-};
-
-AxisStop clamp_axis(double v0, double a, double h) {
-  if (v0 <= 0.0) return {};
-  const double dv = a * h;
-  const auto n = static_cast<std::int64_t>(std::ceil(v0 / dv));
-  const double moving = static_cast<double>(n - 1);  // steps that end with v > 0
-  return {n, h * (moving * v0 - dv * moving * (moving + 1.0) / 2.0)};
+// What every contact law here assumes: contacts on, gravity with a part into a level floor (-y),
+// nothing turning. A bounce also needs gravity straight down (level_gravity).
+bool floor_contact(const Scene& scene) {
+  return scene.world.contacts && scene.world.gravity.y() < 0.0 && !needs_rotation(scene);
 }
-
-// What every contact law here assumes: contacts on, gravity straight down (-y), nothing turning.
-bool level_contact(const Scene& scene) {
-  const Vec3& g = scene.world.gravity;
-  return scene.world.contacts && g.x() == 0.0 && g.z() == 0.0 && g.y() < 0.0 &&
-         !needs_rotation(scene);
+bool level_gravity(const Scene& scene) {
+  return scene.world.gravity.x() == 0.0 && scene.world.gravity.z() == 0.0;
 }
 
 // A force of the scene acts on body i.
@@ -43,68 +29,118 @@ bool pushed(const Scene& scene, std::size_t i) {
 
 }  // namespace
 
-SlideStop slide_to_stop(double v0, double mu, double g, double h, FrictionModel model,
-                        double angle) {
+double slide_grip(double mu, double g, FrictionModel model, double angle) {
+  const bool along_axis = angle == 0.0;
+  const bool at_diagonal = std::abs(angle - std::numbers::pi / 4.0) < 1e-12;
+  if (model != FrictionModel::cone && !along_axis && !at_diagonal)
+    throw std::invalid_argument("slide: a pyramid is exact at angles 0 and pi/4 only");
+  if (model == FrictionModel::cone || along_axis) return mu * g;
+  return model == FrictionModel::box_pyramid ? std::sqrt(2.0) * mu * g : mu * g / std::sqrt(2.0);
+}
+
+SlideStop slide_to_stop(double v0, double mu, double g, double h, FrictionModel model, double angle,
+                        double pull) {
   if (!(v0 >= 0.0 && mu > 0.0 && g > 0.0 && h > 0.0))
     throw std::invalid_argument("slide_to_stop: needs v0 >= 0, mu > 0, g > 0, h > 0");
-  const double diagonal = std::numbers::pi / 4.0;
-  const bool along_axis = angle == 0.0, at_diagonal = std::abs(angle - diagonal) < 1e-12;
-  if (model != FrictionModel::cone && !along_axis && !at_diagonal)
-    throw std::invalid_argument("slide_to_stop: a pyramid is exact at angles 0 and pi/4 only");
-  // Per-axis deceleration: the cone and every model along an axis decelerate the slip by mu*g.
-  // At pi/4 each axis slides at v0/sqrt(2); the box pyramid stops each at mu*g (sqrt(2)*mu*g
-  // along the slip), the sum pyramid shares mu*N between them (mu*g/2 each, mu*g/sqrt(2)).
-  double axis_v = v0, axis_a = mu * g;
-  int axes = 1;
-  if (model != FrictionModel::cone && at_diagonal) {
-    axis_v = v0 / std::sqrt(2.0);
-    axis_a = model == FrictionModel::box_pyramid ? mu * g : mu * g / 2.0;
-    axes = 2;
-  }
+  const double grip = slide_grip(mu, g, model, angle);
   SlideStop s;
-  s.deceleration = axes == 2 ? std::sqrt(2.0) * axis_a : axis_a;
+  s.deceleration = grip - pull;
+  s.stops = std::abs(pull) <= grip && (v0 == 0.0 || s.deceleration > 0.0);
+  if (!s.stops || v0 == 0.0) {
+    s.stop_step = s.stops ? 0 : -1;
+    return s;
+  }
   s.stop_time = v0 / s.deceleration;
   s.distance = v0 * v0 / (2.0 * s.deceleration);
-  const AxisStop a = clamp_axis(axis_v, axis_a, h);
-  s.stop_step = a.steps;
-  s.step_distance = axes == 2 ? std::sqrt(2.0) * a.distance : a.distance;
+  // v_n = v0 - n*a*h while positive: zero after N = ceil(v0/(a*h)) steps; the distance is
+  // h*sum_{n=1}^{N-1} (v0 - n*a*h) = h*((N - 1)*v0 - a*h*(N - 1)*N/2).
+  const double dv = s.deceleration * h;
+  s.stop_step = static_cast<std::int64_t>(std::ceil(v0 / dv));
+  const double moving = static_cast<double>(s.stop_step - 1);  // steps that end with v > 0
+  s.step_distance = h * (moving * v0 - dv * moving * (moving + 1.0) / 2.0);
   return s;
+}
+
+double slide_distance_continuous(double v0, double pull, double grip, double t) {
+  double d = 0.0;
+  if (v0 > 0.0) {
+    const double a = grip - pull;
+    if (a <= 0.0 || t <= v0 / a) return v0 * t - 0.5 * a * t * t;
+    d = v0 * v0 / (2.0 * a);
+    t -= v0 / a;
+  }
+  if (std::abs(pull) <= grip) return d;
+  return d + std::copysign(0.5 * (std::abs(pull) - grip) * t * t, pull);
 }
 
 std::vector<SlideSetup> slide_setups(const Scene& scene) {
   std::vector<SlideSetup> out;
   const Material m = scene_material(scene);
   const Vec3& g = scene.world.gravity;
-  if (!level_contact(scene) || !m.friction || *m.friction <= 0.0) return out;
+  if (!floor_contact(scene) || !m.friction || *m.friction <= 0.0) return out;
+  const Vec3 pull(g.x(), 0.0, g.z());
   // The floor under each body is the landing oracle's (the highest static box holding it).
   for (const LandingSetup& l : landing_setups(scene)) {
     const std::size_t i = l.body;
     const Body& b = scene.bodies[i];
     if (b.shape != Shape::box || b.velocity.y() != 0.0) continue;
     if (std::abs(b.position.y() - l.rest_height) > 1e-9) continue;  // not resting on it
-    const double speed = std::hypot(b.velocity.x(), b.velocity.z());
-    if (speed == 0.0) continue;
     if (pushed(scene, i)) continue;
-    double angle = std::atan2(std::abs(b.velocity.z()), std::abs(b.velocity.x()));
+    const Vec3 launch(b.velocity.x(), 0.0, b.velocity.z());
+    if (launch == Vec3::Zero() && pull == Vec3::Zero()) continue;  // at rest: nothing slides
+    const Vec3 u = launch != Vec3::Zero() ? launch.normalized() : pull.normalized();
+    if (pull.cross(u).norm() > 1e-12 * pull.norm()) continue;  // pulled across the slip
+    double angle = std::atan2(std::abs(u.z()), std::abs(u.x()));
     if (angle > std::numbers::pi / 4.0) angle = std::numbers::pi / 2.0 - angle;
-    out.push_back({i, speed, angle, *m.friction, -g.y()});
+    out.push_back({i, launch.norm(), u, angle, *m.friction, -g.y(), pull.dot(u)});
   }
   return out;
 }
 
-SlideObservation observe_slide(const Trajectory& run, const SlideSetup& setup,
-                               double stopped_speed) {
-  SlideObservation o;
-  if (run.samples() == 0) return o;
-  const Vec3 start = run.at(0, setup.body).position;
-  for (std::size_t s = 0; s < run.samples(); ++s) {
-    const BodyState& b = run.at(s, setup.body);
-    o.distance = std::hypot(b.position.x() - start.x(), b.position.z() - start.z());
-    if (std::hypot(b.velocity.x(), b.velocity.z()) <= stopped_speed) {
-      o.stop_step = run.recorded[s];
-      return o;
+SlidePath slide_path(const SlideSetup& setup, FrictionModel model, double h, std::int64_t steps) {
+  const double grip_h = slide_grip(setup.mu, setup.g, model, setup.angle) * h;
+  SlidePath p;
+  double s = 0.0, v = setup.v0;
+  for (std::int64_t n = 0; n <= steps; ++n) {
+    if (n > 0) {
+      const double v_free = v + setup.pull * h;
+      v = std::abs(v_free) <= grip_h ? 0.0 : v_free - std::copysign(grip_h, v_free);
+      s += h * v;
     }
+    p.s.push_back(s);
+    p.v.push_back(v);
+    p.off.push_back(0.0);
   }
+  return p;
+}
+
+SlidePath observed_slide_path(const Trajectory& run, const SlideSetup& setup) {
+  SlidePath p;
+  if (run.samples() == 0) return p;
+  const Vec3 start = run.at(0, setup.body).position;
+  for (std::size_t k = 0; k < run.samples(); ++k) {
+    const BodyState& b = run.at(k, setup.body);
+    const Vec3 moved(b.position.x() - start.x(), 0.0, b.position.z() - start.z());
+    const Vec3 v(b.velocity.x(), 0.0, b.velocity.z());
+    const double along = moved.dot(setup.direction);
+    p.s.push_back(along);
+    p.v.push_back(std::copysign(v.norm(), v.dot(setup.direction)));  // across counts too
+    p.off.push_back((moved - along * setup.direction).norm());
+  }
+  return p;
+}
+
+SlideObservation observe_slide(const SlidePath& path, double stopped_speed) {
+  SlideObservation o;
+  if (path.s.empty()) return o;
+  std::size_t n = path.s.size();  // the first index from which the speed stays at most stopped
+  while (n > 0 && std::abs(path.v[n - 1]) <= stopped_speed) --n;
+  if (n == path.s.size()) {
+    o.distance = path.s.back();
+    return o;
+  }
+  o.stop_step = static_cast<std::int64_t>(n);
+  o.distance = path.s[n];
   return o;
 }
 
@@ -238,7 +274,9 @@ std::vector<BounceSetup> bounce_setups(const Scene& scene) {
   std::vector<BounceSetup> out;
   const Material m = scene_material(scene);
   const Vec3& g = scene.world.gravity;
-  if (!level_contact(scene) || !m.restitution || scene.world.damping_rate != 0.0) return out;
+  if (!floor_contact(scene) || !level_gravity(scene) || !m.restitution ||
+      scene.world.damping_rate != 0.0)
+    return out;
   const std::vector<LandingExclusion> stacked = landing_exclusions(scene);
   for (const LandingSetup& l : landing_setups(scene)) {
     const Body& b = scene.bodies[l.body];

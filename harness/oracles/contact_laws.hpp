@@ -15,48 +15,77 @@
 
 namespace dropcheck {
 
-// A slide to a stop on a level floor under gravity g, friction mu, from speed v0 along a direction
-// at `angle` (rad) from the first tangent axis; only angle 0 and pi/4 are exact for the pyramids
-// (at 0 every model is the cone; at pi/4 each axis carries half the slip).
+// A slide on a floor under friction mu, with gravity g into the floor and `pull` (m/s^2) along it:
+// a level floor has no pull, an incline of angle theta is a floor under gravity tilted by theta
+// (g = g0*cos(theta) into it, pull = g0*sin(theta) down the slope). The slip and the pull are
+// collinear, along a direction at `angle` (rad) from the first tangent axis; only angle 0 and pi/4
+// are exact for the pyramids (at 0 every model is the cone; at pi/4 each axis carries half).
+//
+// Along the slip the friction model grips at most grip = mu_eff*g per unit mass: mu*g for the cone
+// and along an axis; at pi/4 the box pyramid bounds each axis by mu*g (sqrt(2)*mu*g along the
+// slip) and the sum pyramid shares mu*g between them (mu*g/sqrt(2)).
+double slide_grip(double mu, double g, FrictionModel model, double angle);
+
 struct SlideStop {
-  // Continuous: the deceleration is constant while the body slides.
-  double deceleration = 0.0;  // m/s^2 along the slip: mu*g (cone), sqrt(2)*mu*g or mu*g/sqrt(2)
-  double stop_time = 0.0;     // s: v0 / deceleration
-  double distance = 0.0;      // m: v0^2 / (2*deceleration)
-  // The ideal discrete law at step h: per axis v <- max(v - a_i*h, 0), then x += h*v
-  // (semi-implicit Euler with the friction impulse clamped at the velocity it cancels).
-  std::int64_t stop_step = 0;  // the first step after which the velocity is 0
-  double step_distance = 0.0;  // m: the distance travelled by then
+  // Continuous, while the body slides on from v0 >= 0 (along the slip, pull signed along it).
+  double deceleration = 0.0;  // m/s^2: grip - pull (negative: the pull wins and it speeds up)
+  bool stops = false;         // it comes to rest and stays: |pull| <= grip and v0 stops
+  double stop_time = 0.0;     // s: v0/deceleration (0 for a body that never moves)
+  double distance = 0.0;      // m: v0^2/(2*deceleration)
+  // The ideal discrete law at step h (slide_path): the stop step N = ceil(v0/(deceleration*h))
+  // and the distance h*((N - 1)*v0 - deceleration*h*(N - 1)*N/2) by then; -1 when it never stops.
+  std::int64_t stop_step = -1;
+  double step_distance = 0.0;
 };
 
 // Throws std::invalid_argument for v0 < 0, mu <= 0, g <= 0, h <= 0, or a pyramid at an angle other
 // than 0 and pi/4.
-SlideStop slide_to_stop(double v0, double mu, double g, double h, FrictionModel model,
-                        double angle);
+SlideStop slide_to_stop(double v0, double mu, double g, double h, FrictionModel model, double angle,
+                        double pull = 0.0);
 
-// A box resting on a static floor box and launched along it: the slide slide_to_stop predicts.
+// The continuous distance along the slip after t seconds of a slide from v0 >= 0 with `grip` and
+// `pull` (as above): it decelerates at grip - pull to a stop, then stays while |pull| <= grip or
+// slides toward the pull at |pull| - grip. Negative once it has slid back past its start.
+double slide_distance_continuous(double v0, double pull, double grip, double t);
+
+// A box resting on a static floor box and sliding along it: the slide slide_to_stop predicts.
 struct SlideSetup {
   std::size_t body = 0;  // index into Scene::bodies
-  double v0 = 0.0;       // m/s, the launch speed (horizontal)
-  double angle = 0.0;    // rad from the x axis toward z, folded into [0, pi/4] (x and z symmetric)
-  double mu = 0.0;       // the scene's friction
-  double g = 0.0;        // m/s^2, gravity straight down
+  double v0 = 0.0;       // m/s, the launch speed along the floor
+  Vec3 direction;      // the slip's unit direction in the x-z plane (the launch's, else the pull's)
+  double angle = 0.0;  // rad from the x axis toward z, folded into [0, pi/4] (x and z symmetric)
+  double mu = 0.0;     // the scene's friction
+  double g = 0.0;      // m/s^2, gravity into the floor (-y)
+  double pull = 0.0;   // m/s^2, gravity along the floor, signed along `direction`
 };
 
 // The slides of `scene`: dynamic, unturned boxes whose bottom rests on the top of a static box
-// (within 1e-9 m) that spans them, launched with a horizontal velocity, no force or torque on them,
-// gravity straight down (-y), contacts on and the scene's friction set. Empty when none.
+// (within 1e-9 m) that spans them, launched along the floor or pulled along it by a gravity with an
+// x-z part collinear with the launch, no force or torque on them, contacts on and the scene's
+// friction set. Empty when none.
 std::vector<SlideSetup> slide_setups(const Scene& scene);
 
-// What a run shows of a slide: the first recorded step whose horizontal speed is at most
-// `stopped_speed`, and the horizontal distance from the start by then (-1 and the last distance
-// when it never stops).
+// A slide's path a step at a time: after step n = 0..steps, s[n] (m, along the slip from the
+// start), v[n] (m/s along it) and off[n] (m, the distance across it: 0 for a law).
+struct SlidePath {
+  std::vector<double> s, v, off;
+};
+
+// The ideal discrete law of `model`: per step v_free = v + pull*h; the friction impulse cancels the
+// slip when it can (|v_free| <= grip*h gives v = 0) and otherwise takes grip*h off it; x += h*v.
+SlidePath slide_path(const SlideSetup& setup, FrictionModel model, double h, std::int64_t steps);
+
+// A run's path of one slide (a run that keeps every step, as the checks' runs do).
+SlidePath observed_slide_path(const Trajectory& run, const SlideSetup& setup);
+
+// What a path shows: the first step from which its speed stays at most `stopped_speed` (0 for a
+// body that never moves; -1 when it is still moving at the end), and the distance along the slip
+// by then (by the end when it never stops).
 struct SlideObservation {
   std::int64_t stop_step = -1;
   double distance = 0.0;  // m
 };
-SlideObservation observe_slide(const Trajectory& run, const SlideSetup& setup,
-                               double stopped_speed);
+SlideObservation observe_slide(const SlidePath& path, double stopped_speed);
 
 // A sphere's fall and bounces on a level floor under a bounce law (harness/core/bounce_law.hpp),
 // from rest with its lowest point h0 above the floor: after step n = 0..steps, gap[n] (m, the

@@ -24,11 +24,17 @@ Scene turned(const Scene& scene, const SlideSetup& s, double angle) {
 
 SlidePair slide_pair(const Scene& scene) {
   const std::vector<SlideSetup> slides = slide_setups(scene);
-  if (slides.empty())
+  const auto launched =
+      std::find_if(slides.begin(), slides.end(), [](const SlideSetup& s) { return s.v0 > 0.0; });
+  if (launched == slides.end())
     throw InputError(scene.name, 0, "",
                      "has no slide to a stop (a box resting on a static box, launched "
                      "horizontally, with a friction set: docs/contact.md)");
-  return {turned(scene, slides[0], 0.0), turned(scene, slides[0], std::numbers::pi / 4.0)};
+  if (launched->pull != 0.0)
+    throw InputError(scene.name, 0, "world.gravity",
+                     "pulls the slide along its floor (an incline): the friction model is "
+                     "identified from a slide on a level floor, where gravity is straight down");
+  return {turned(scene, *launched, 0.0), turned(scene, *launched, std::numbers::pi / 4.0)};
 }
 
 FrictionIdentification identify_friction(const Scene& scene, double h, double distance_0,

@@ -205,8 +205,8 @@ std::vector<double> per_slide(const Scene& s, dropcheck::FrictionModel model,
                               const std::function<double(const dropcheck::SlideStop&)>& field) {
   std::vector<double> out;
   for (const dropcheck::SlideSetup& l : dropcheck::slide_setups(s))
-    out.push_back(
-        field(dropcheck::slide_to_stop(l.v0, l.mu, l.g, s.timestep.seconds, model, l.angle)));
+    out.push_back(field(
+        dropcheck::slide_to_stop(l.v0, l.mu, l.g, s.timestep.seconds, model, l.angle, l.pull)));
   return out;
 }
 
@@ -315,6 +315,50 @@ const std::vector<Phrase>& phrases() {
        [](const Scene& s, const std::smatch& m) {
          const auto e = dropcheck::scene_material(s).restitution;
          return agrees(m[1], e ? std::vector<double>{*e} : std::vector<double>{});
+       }},
+      // A slide on an incline: gravity tilted by theta (harness/oracles/contact_laws.hpp).
+      {"(?:incline of|tilted by) " + N + " degrees",
+       [](const Scene& s, const std::smatch& m) {
+         const Vec3& g = s.world.gravity;
+         return agrees(m[1], {std::atan2(std::hypot(g.x(), g.z()), -g.y()) * 180.0 / M_PI});
+       }},
+      {"tan\\(" + N + " degrees\\) = " + N,
+       [](const Scene&, const std::smatch& m) {
+         return agrees(m[2], {std::tan(std::stod(m[1]) * M_PI / 180.0)});
+       }},
+      {"needs " + N + " m/s\\^2 of friction where " + N + " m/s\\^2 is available",
+       [](const Scene& s, const std::smatch& m) {
+         std::vector<double> pull, grip;
+         for (const auto& l : dropcheck::slide_setups(s)) {
+           pull.push_back(std::abs(l.pull));
+           grip.push_back(l.mu * l.g);
+         }
+         const std::string p = agrees(m[1], pull);
+         return p.empty() ? agrees(m[2], grip) : p;
+       }},
+      {"accelerates at g\\*\\(sin - mu\\*cos\\) = " + N + " m/s\\^2",
+       [](const Scene& s, const std::smatch& m) {
+         std::vector<double> a;
+         for (const auto& l : dropcheck::slide_setups(s)) a.push_back(l.pull - l.mu * l.g);
+         return agrees(m[1], a);
+       }},
+      {"slides " + N + " m in " + N + " s\\b",
+       [](const Scene& s, const std::smatch& m) {
+         const double t = std::stod(m[2]);
+         std::vector<double> d;
+         for (const auto& l : dropcheck::slide_setups(s))
+           d.push_back(dropcheck::slide_distance_continuous(l.v0, l.pull, l.mu * l.g, t));
+         return agrees(m[1], d);
+       }},
+      {"slides " + N + " m in " + N + " steps",
+       [](const Scene& s, const std::smatch& m) {
+         const auto steps = static_cast<std::int64_t>(std::stod(m[2]));
+         std::vector<double> d;
+         for (const auto& l : dropcheck::slide_setups(s))
+           d.push_back(dropcheck::slide_path(l, dropcheck::FrictionModel::cone, s.timestep.seconds,
+                                             steps)
+                           .s.back());
+         return agrees(m[1], d);
        }},
       {"launched at " + N + " m/s",
        [](const Scene& s, const std::smatch& m) {

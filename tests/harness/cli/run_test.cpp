@@ -268,6 +268,12 @@ TEST_CASE(
   const Result b = cli({"identify", scene, "--engine", "box2d"});
   CHECK(b.code == 0);
   CHECK_THAT(b.out, Contains("friction model: not applicable: box2d is a 2-D engine"));
+  // An incline pulls the slide along its floor: the ratio needs a level one.
+  const Result i =
+      cli({"identify", DROPCHECK_SOURCE_DIR "/scenarios/incline_hold.toml", "--engine", "ode"});
+  CHECK(i.code == 2);
+  CHECK_THAT(i.err, Contains("incline_hold") && Contains("world.gravity") &&
+                        Contains("pulls the slide along its floor"));
 }
 
 TEST_CASE(

@@ -76,6 +76,89 @@ TEST_CASE("a slide following its model's clamp law passes; another model's is na
   CHECK(sum.seen.stop_step == 87);
 }
 
+namespace {
+
+// A run whose sliding bodies move along their slips by `paths` (one per setup), the others still.
+Trajectory path_run(const Scene& scene, const std::vector<SlideSetup>& setups,
+                    const std::vector<SlidePath>& paths) {
+  Trajectory t;
+  t.h = scene.timestep.seconds;
+  t.steps = static_cast<std::int64_t>(paths.front().s.size()) - 1;
+  for (const Body& body : scene.bodies) t.body_names.push_back(body.name);
+  for (std::int64_t n = 0; n <= t.steps; ++n) {
+    t.recorded.push_back(n);
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      BodyState b{scene.bodies[i].position, {}};
+      for (std::size_t k = 0; k < setups.size(); ++k)
+        if (setups[k].body == i) {
+          const auto m = static_cast<std::size_t>(n);
+          b.position += paths[k].s[m] * setups[k].direction;
+          b.velocity = paths[k].v[m] * setups[k].direction;
+        }
+      t.states.push_back(b);
+    }
+  }
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("an incline: the held block must not creep, the launched one stops at its step",
+          "[contact][slide]") {
+  const Scene scene = shipped("incline_hold");
+  const std::vector<SlideSetup> slides = slide_setups(scene);
+  REQUIRE(slides.size() == 2);
+  CHECK(slides[0].v0 == 0.0);
+  CHECK(slides[0].pull == Approx(9.8 * std::sin(20.0 * std::numbers::pi / 180.0)).epsilon(1e-15));
+  const double h = scene.timestep.seconds;
+  const std::int64_t steps = step_count(scene, h);
+  std::vector<SlidePath> law;
+  for (const SlideSetup& s : slides) law.push_back(slide_path(s, FrictionModel::cone, h, steps));
+  const Trajectory exact = path_run(scene, slides, law);
+  const SlideVerdict held = judge_slide(exact, slides[0], FrictionModel::cone, h);
+  CHECK(held.follows);
+  CHECK(held.seen.stop_step == 0);
+  const SlideVerdict stopped = judge_slide(exact, slides[1], FrictionModel::box_pyramid, h);
+  CHECK(stopped.follows);
+  CHECK(stopped.seen.stop_step == 120);
+  // A solver that lets the held block creep at 1e-5 m/s departs, naming where it ended.
+  std::vector<SlidePath> creep = law;
+  for (std::size_t n = 1; n < creep[0].s.size(); ++n) {
+    creep[0].v[n] = 1e-5;
+    creep[0].s[n] = creep[0].s[n - 1] + h * 1e-5;
+  }
+  const SlideVerdict crept =
+      judge_slide(path_run(scene, slides, creep), slides[0], FrictionModel::cone, h);
+  CHECK_FALSE(crept.follows);
+  CHECK_THAT(crept.sentence(), Catch::Contains("slides on (3e-05 m by the end)") &&
+                                   Catch::Contains("its cone's clamp law: never moves") &&
+                                   Catch::Contains("DEPARTS"));
+}
+
+TEST_CASE("an incline steeper than the friction: the block slides at g*(sin - mu*cos)",
+          "[contact][slide]") {
+  const Scene scene = shipped("incline_slide");
+  const std::vector<SlideSetup> slides = slide_setups(scene);
+  REQUIRE(slides.size() == 1);
+  const double h = scene.timestep.seconds;
+  const std::int64_t steps = step_count(scene, h);
+  const SlidePath law = slide_path(slides[0], FrictionModel::cone, h, steps);
+  const SlideVerdict v =
+      judge_slide(path_run(scene, slides, {law}), slides[0], FrictionModel::sum_pyramid, h);
+  CHECK(v.follows);
+  CHECK(v.seen.stop_step == -1);
+  CHECK(v.end_continuous == Approx(0.5 * 0.6564755214562492 * 9.0).epsilon(1e-12));
+  // A solver whose friction grips 1 % less slides 0.19 m farther in 3 s (h^2*0.0424*180*181/2)
+  // and departs.
+  SlideSetup weaker = slides[0];
+  weaker.mu *= 0.99;
+  const SlideVerdict slipped =
+      judge_slide(path_run(scene, slides, {slide_path(weaker, FrictionModel::cone, h, steps)}),
+                  slides[0], FrictionModel::cone, h);
+  CHECK_FALSE(slipped.follows);
+  CHECK(slipped.off_law > 0.01);
+}
+
 TEST_CASE("only a box launched along a floor it rests on is a slide", "[contact][slide]") {
   Scene scene = shipped("slide_stop");
   CHECK(slide_setups(scene).size() == 1);

@@ -58,6 +58,63 @@ TEST_CASE(
   CHECK_THROWS_AS(slide_to_stop(5.0, 0.0, kG, kH, FrictionModel::cone, 0.0), std::invalid_argument);
 }
 
+TEST_CASE("incline: a block holds when tan(theta) <= mu, and slides at g*(sin - mu*cos) otherwise",
+          "[contact][reference]") {
+  using dropcheck::observe_slide;
+  using dropcheck::slide_distance_continuous;
+  using dropcheck::slide_path;
+  using dropcheck::SlideSetup;
+  const auto cone = FrictionModel::cone;
+  const double t20 = 20.0 * std::numbers::pi / 180.0, t30 = 30.0 * std::numbers::pi / 180.0;
+  // 20 degrees: the pull 9.8*sin 20 = 3.3518 is within mu*9.8*cos 20 = 4.6045; a block at rest
+  // never moves.
+  const double g20 = kG * std::cos(t20), pull20 = kG * std::sin(t20);
+  const auto hold = slide_to_stop(0.0, 0.5, g20, kH, cone, 0.0, pull20);
+  CHECK(hold.stops);
+  CHECK(hold.stop_step == 0);
+  // Launched down the slope at 2.5 m/s it decelerates at mu*g*cos - g*sin = 1.2527 m/s^2: stops
+  // after 1.9957 s and 2.4946 m; the discrete law after ceil(2.5/(1.2527*h)) = ceil(119.74) = 120
+  // steps, h*(119*2.5 - 1.2527*h*119*120/2) = 2.473819 m.
+  const auto down = slide_to_stop(2.5, 0.5, g20, kH, cone, 0.0, pull20);
+  const double a = 0.5 * g20 - pull20;
+  CHECK(down.deceleration == Approx(1.2526964372593978).epsilon(1e-14));
+  CHECK(down.stop_time == Approx(2.5 / a).epsilon(1e-14));
+  CHECK(down.distance == Approx(2.5 * 2.5 / (2.0 * a)).epsilon(1e-14));
+  CHECK(down.stop_step == 120);
+  CHECK(down.step_distance == Approx(kH * (119 * 2.5 - a * kH * 119 * 120 / 2.0)).epsilon(1e-13));
+  // The stepped law agrees with the closed-form step count, and holds the block after its stop.
+  const SlideSetup launched{0, 2.5, {1.0, 0.0, 0.0}, 0.0, 0.5, g20, pull20};
+  const auto path = slide_path(launched, cone, kH, 180);
+  const auto seen = observe_slide(path, 1e-6);
+  CHECK(seen.stop_step == 120);
+  CHECK(seen.distance == Approx(down.step_distance).epsilon(1e-13));
+  CHECK(path.s[180] == path.s[120]);
+  // 30 degrees: tan 30 = 0.577 > mu: from rest it accelerates at 9.8*(sin 30 - 0.5*cos 30) =
+  // 0.65648 m/s^2; continuous a*t^2/2 = 2.9541 m in 3 s; discrete h*sum(n*a*h) =
+  // h^2*a*180*181/2 = 2.970552 m in 180 steps.
+  const double g30 = kG * std::cos(t30), pull30 = kG * std::sin(t30), a30 = pull30 - 0.5 * g30;
+  CHECK(a30 == Approx(0.6564755214562492).epsilon(1e-14));
+  const auto slides = slide_to_stop(0.0, 0.5, g30, kH, cone, 0.0, pull30);
+  CHECK_FALSE(slides.stops);
+  CHECK(slides.stop_step == -1);
+  CHECK(slide_distance_continuous(0.0, pull30, 0.5 * g30, 3.0) == Approx(a30 * 4.5).epsilon(1e-14));
+  const SlideSetup released{0, 0.0, {1.0, 0.0, 0.0}, 0.0, 0.5, g30, pull30};
+  const auto free_path = slide_path(released, cone, kH, 180);
+  CHECK(free_path.s[180] == Approx(kH * kH * a30 * 180 * 181 / 2.0).epsilon(1e-12));
+  CHECK(free_path.s[180] == Approx(2.970551734589528).epsilon(1e-12));
+  CHECK(observe_slide(free_path, 1e-6).stop_step == -1);
+  // Launched up the 30 degree slope at 2 m/s: it climbs at grip + pull = 9.1435 m/s^2 of
+  // deceleration to v0^2/(2*9.1435), then slides back at pull - grip = 0.65648 m/s^2.
+  const double up = 0.5 * g30 + pull30, t_up = 2.0 / up;
+  CHECK(slide_distance_continuous(2.0, -pull30, 0.5 * g30, t_up + 1.0) ==
+        Approx(2.0 * 2.0 / (2.0 * up) - 0.5 * a30).epsilon(1e-14));
+  const SlideSetup uphill{0, 2.0, {1.0, 0.0, 0.0}, 0.0, 0.5, g30, -pull30};
+  const auto back = slide_path(uphill, cone, kH, 180);
+  CHECK(back.v[180] < 0.0);  // sliding back down
+  CHECK(back.s[180] ==
+        Approx(slide_distance_continuous(2.0, -pull30, 0.5 * g30, 3.0)).epsilon(0.02));
+}
+
 TEST_CASE("bounce: apexes e^(2n)*h0, flights 2*e^n*sqrt(2*h0/g), rest after 1.3553 s at e = 0.5",
           "[contact][reference]") {
   for (const double e : {0.1, 0.5, 0.9}) {
