@@ -122,6 +122,8 @@ EngineInfo Box2dEngine::info() const {
       "8 velocity / 3 position iterations, continuous collision on";
   i.rest_offset = kRestOffset;
   i.rest_tolerance = kRestTolerance;
+  // A stack: 8 velocity iterations of sequential impulse (b2World::Step's velocityIterations).
+  i.stack_law = {.iterations = 8};
   // Continuous collision: b2World's constructor sets m_continuousPhysics = true (b2_world.cpp) and
   // the adapter keeps it; b2World::SolveTOI sweeps every contact with a non-dynamic body
   // (collideA = bA->IsBullet() || typeA != b2_dynamicBody), so a dynamic body against the static

@@ -16,6 +16,7 @@
 #include "harness/core/friction_model.hpp"
 #include "harness/core/law.hpp"
 #include "harness/core/rotation_law.hpp"
+#include "harness/core/stack_law.hpp"
 #include "harness/scene/scene.hpp"
 
 namespace dropcheck {
@@ -72,6 +73,8 @@ struct EngineInfo {
   // How its contact turns a falling body around (harness/core/bounce_law.hpp), for an engine that
   // maps restitution.
   BounceLaw bounce_law = kIdealBounce;
+  // How its contacts hold a resting stack of boxes (harness/core/stack_law.hpp).
+  StackLaw stack_law;
   // Landing on a static floor: where the centre of a resting box sits relative to the geometric
   // rest height (floor top + half extent), in m, and how far from that still counts as expected.
   // Documented per engine in docs/engines.md section 5 (Box2D: +0.015 from skin and slop).

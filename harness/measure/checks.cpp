@@ -14,6 +14,7 @@
 #include "harness/measure/own_law.hpp"
 #include "harness/measure/phase_drift.hpp"
 #include "harness/measure/slide_verdict.hpp"
+#include "harness/measure/stack_verdict.hpp"
 #include "harness/measure/sweep.hpp"
 #include "harness/measure/tolerances.hpp"
 #include "harness/oracles/analytic.hpp"
@@ -389,8 +390,7 @@ CheckResult check_landing(const Scene& scene, const EngineFactory& make, const T
   for (const LandingExclusion& e : landing_exclusions(scene)) append(r.message, e.sentence(scene));
   if (setups.empty())
     append(r.message,
-           "no body is judged here: the stacks are covered by `dropcheck stability` (a body "
-           "ending below one it started above is reported as tunnelled)");
+           "no body is judged here: the stacks are judged by the stack check (docs/contact.md)");
   for (const std::string& l : limits) append(r.limit, l);
   return r;
 }
@@ -434,6 +434,28 @@ CheckResult check_bounce(const Scene& scene, const EngineFactory& make, const Ti
                            });
 }
 
+CheckResult check_stack(const Scene& scene, const EngineFactory& make, const Timestep& h) {
+  ContactRun c = contact_run(scene, make, h, "stack");
+  if (!c.run) return c.result;
+  CheckResult& r = c.result;
+  const Trajectory& run = *c.run;
+  for (const StackSetup& s : stack_setups(scene)) {
+    std::string text;
+    const std::vector<StackBodyVerdict> verdicts = judge_stack(run, s, c.info, h.seconds);
+    for (const StackBodyVerdict& v : verdicts) {
+      r.passed = r.passed && v.passes();
+      text += (text.empty() ? "" : "; ") + run.body_names[v.body] + " " + v.sentence();
+    }
+    append(r.message, "stack from '" + run.body_names[s.body] + "' up: " + text);
+    const bool squeezed = std::any_of(verdicts.begin(), verdicts.end(),
+                                      [](const auto& v) { return v.unheld && !v.holds(); });
+    if (squeezed)
+      append(r.limit, "the stack from '" + run.body_names[s.body] + "' up is " +
+                          verdicts.front().limit_text());
+  }
+  return r;
+}
+
 std::vector<CheckResult> check_scene(const Scene& scene, const EngineFactory& make,
                                      const EngineFactory& reference) {
   std::vector<CheckResult> out;
@@ -445,6 +467,13 @@ std::vector<CheckResult> check_scene(const Scene& scene, const EngineFactory& ma
   if (scene.world.contacts && !bounce_setups(scene).empty()) {
     out.push_back(check_bounce(scene, make, scene.timestep));
     // The scene's other bodies over a floor land as before.
+    if (!engine_landing_setups(scene, make()->info()).empty())
+      out.push_back(check_landing(scene, make, scene.timestep));
+    return out;
+  }
+  if (scene.world.contacts && !stack_setups(scene).empty()) {
+    out.push_back(check_stack(scene, make, scene.timestep));
+    // The scene's bodies outside its stacks land as before.
     if (!engine_landing_setups(scene, make()->info()).empty())
       out.push_back(check_landing(scene, make, scene.timestep));
     return out;

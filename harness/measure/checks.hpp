@@ -54,6 +54,11 @@ CheckResult check_slide(const Scene& scene, const EngineFactory& make, const Tim
 // where that law departs from the ideal one, the members that move it are named with its figures.
 CheckResult check_bounce(const Scene& scene, const EngineFactory& make, const Timestep& h);
 
+// The resting stacks of the scene (harness/oracles/stack.hpp) at step h: every body's sink within
+// its engine's stack law, its drift and its stillness within the engine's stated bounds
+// (harness/core/stack_law.hpp); a stack its solver's sweeps cannot hold is a named limit.
+CheckResult check_stack(const Scene& scene, const EngineFactory& make, const Timestep& h);
+
 // Every check that applies to `scene` on one engine (free flight: own law at three steps and
 // divergence; contacts: a slide, else landing). An engine that cannot run the scene gives no
 // results.

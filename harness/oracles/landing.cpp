@@ -99,22 +99,21 @@ double bracket_end(double y0, double v0, double a, double k, double target) {
   return kNaN;
 }
 
-// Largest |v| and largest position range of `body` over the samples from step `from` on.
-void still_figures(const Trajectory& run, std::size_t body, std::int64_t from,
-                   LandingObservation& o) {
+}  // namespace
+
+StillFigures still_figures(const Trajectory& run, std::size_t body, std::int64_t from) {
   Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
-  o.still_speed = 0.0;
+  StillFigures f;
   for (std::size_t s = 0; s < run.samples(); ++s) {
     if (run.recorded[s] < from) continue;
     const BodyState& b = run.at(s, body);
-    o.still_speed = std::max(o.still_speed, b.velocity.norm());
+    f.speed = std::max(f.speed, b.velocity.norm());
     lo = lo.cwiseMin(b.position);
     hi = hi.cwiseMax(b.position);
   }
-  o.still_range = (hi - lo).maxCoeff();
+  f.range = (hi - lo).maxCoeff();
+  return f;
 }
-
-}  // namespace
 
 // Model: dv/dt = a - k*v, v(0) = v0, y(0) = y0.
 // Solution (k > 0): v(t) = a/k + (v0 - a/k)*exp(-k*t)
@@ -281,7 +280,9 @@ LandingObservation observe_landing(const Trajectory& run, const LandingSetup& se
   o.deepest = lowest - setup.rest_height;
   o.rest_offset = run.final_state(setup.body).position.y() - setup.rest_height;
   const std::int64_t window_start = run.recorded.back() - std::llround(still.seconds / run.h);
-  still_figures(run, setup.body, window_start, o);
+  const StillFigures still_then = still_figures(run, setup.body, window_start);
+  o.still_speed = still_then.speed;
+  o.still_range = still_then.range;
   if (o.first_contact_step < 0) return o;
   o.first_contact_time = static_cast<double>(o.first_contact_step) * run.h;
   o.rebound = highest_after - setup.rest_height;

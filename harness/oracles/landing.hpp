@@ -35,6 +35,14 @@ struct StillCriteria {
   double max_range = 1e-3;  // m: largest (max - min) of any position component in the window
 };
 
+// The largest |v| and the largest range of any position component (max - min) of `body` over the
+// samples from step `from` on.
+struct StillFigures {
+  double speed = 0.0;  // m/s
+  double range = 0.0;  // m
+};
+StillFigures still_figures(const Trajectory& run, std::size_t body, std::int64_t from);
+
 // What one run shows of a LandingSetup.
 struct LandingObservation {
   std::int64_t first_contact_step = -1;  // first recorded step with bottom <= floor top; -1 never

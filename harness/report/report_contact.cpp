@@ -3,6 +3,7 @@
 #include "harness/core/number_format.hpp"
 #include "harness/measure/bounce_verdict.hpp"
 #include "harness/measure/slide_verdict.hpp"
+#include "harness/measure/stack_verdict.hpp"
 #include "harness/measure/tolerances.hpp"
 #include "harness/report/report_format.hpp"
 
@@ -120,6 +121,52 @@ std::string bounce_section(const SceneEvaluation& se) {
          "its contact adds, named where they move its path off the ideal one (docs/contact.md). "
          "The closed form: " +
          closed + ".\n\n" + t.str() + "\n";
+}
+
+bool off_stack_law(const SceneEvaluation& se, const EngineEvaluation& ev) {
+  if (!ev.ran() || ev.at_default().run.status != RunStatus::ok) return false;
+  for (const StackSetup& s : stack_setups(se.scene))
+    for (const StackBodyVerdict& v :
+         judge_stack(ev.at_default().run, s, ev.info, se.scene.timestep.seconds))
+      if (!v.passes()) return true;
+  return false;
+}
+
+std::string stack_section(const SceneEvaluation& se) {
+  const std::vector<StackSetup> stacks = stack_setups(se.scene);
+  if (stacks.empty()) return {};
+  const double h = se.scene.timestep.seconds;
+  MarkdownTable t(
+      {"engine", "body", "level", "sink (m)", "its law: sink (m)", "rest offset (m)", "drift (m)",
+       "last 2 s: speed (m/s)", "last 2 s: range (m)", "its stack law", "holds"},
+      "ll");
+  for (const EngineEvaluation& ev : se.engines) {
+    if (!ev.ran() || ev.at_default().run.status != RunStatus::ok) continue;
+    for (const StackSetup& s : stacks)
+      for (const StackBodyVerdict& v : judge_stack(ev.at_default().run, s, ev.info, h)) {
+        const auto mark = [](bool ok, const std::string& text) {
+          return ok ? text : "**" + text + "**";
+        };
+        t.add({ev.name, se.scene.bodies[v.body].name, std::to_string(v.level),
+               mark(v.sink_ok, printf_string("%.4g", v.sink)),
+               printf_string("%.4g", v.predicted.sink), printf_string("%.4g", v.predicted.offset),
+               mark(v.drift_ok, printf_string("%.2g", v.drift)),
+               mark(v.still_ok, printf_string("%.2g", v.still.speed)),
+               mark(v.still_ok, printf_string("%.2g", v.still.range)), describe(ev.info.stack_law),
+               v.holds()  ? "yes"
+               : v.unheld ? "no: " + v.limit_text() + " (a limit)"
+                          : std::string("**NO**")});
+      }
+  }
+  return "#### Stacks at h = " + se.scene.timestep.text +
+         "\n\nThe ideal stack does not move: every body stays at its geometric rest height. Each "
+         "engine is held to its stack law: the steady-state sink of the contacts under a body "
+         "(a compliant or soft contact sinks under the weight it carries), its surfaces' rest "
+         "offset, and the drift and stillness its solver is stated to leave; a load its solver's "
+         "sweeps cannot hold is a named limit (docs/contact.md). Sink is the rest height plus the "
+         "offset minus the final height; drift the largest horizontal distance from the "
+         "start.\n\n" +
+         t.str() + "\n";
 }
 
 }  // namespace dropcheck

@@ -23,4 +23,11 @@ std::string bounce_section(const SceneEvaluation& se);
 // judges it).
 bool off_bounce_law(const SceneEvaluation& se, const EngineEvaluation& ev);
 
+// The stack table at the default step ("" when the scene has no resting stack).
+std::string stack_section(const SceneEvaluation& se);
+
+// True when a body of the engine's default-step run leaves its stack law's bounds without the
+// named limit of an iterative solver (as `dropcheck check` judges it).
+bool off_stack_law(const SceneEvaluation& se, const EngineEvaluation& ev);
+
 }  // namespace dropcheck

@@ -318,8 +318,8 @@ std::string scene_section(const SceneEvaluation& se, const std::vector<ReportPlo
   std::string md = "### " + se.scene.name + "\n\n" + intro(se);
   for (const ReportPlot& p : plots)
     if (p.file.find("-trajectory.svg") != std::string::npos) md += plot_md(p, outcomes);
-  // A slide or a bounce replaces the landing table.
-  const std::string contact = slide_section(se) + bounce_section(se);
+  // A slide, a bounce or a stack replaces the landing table.
+  const std::string contact = slide_section(se) + bounce_section(se) + stack_section(se);
   md += failures(se) + (contact.empty() ? landing_section(se) : contact) + rotation_section(se) +
         divergence(se, plots, outcomes) + oracles(se) + run_time(se, plots, outcomes, timing);
   return md + orders_table(se);

@@ -86,7 +86,7 @@ bool clamped(const EngineEvaluation& ev) {
 
 // "FAILED: box2d; UNEXPLAINED: ode", or "ok". Each flag names the engines it concerns.
 std::string verdict(const SceneEvaluation& se) {
-  std::string failed, clamps, unexp, offlaw, rest, moving, tunnels, slides, bounces;
+  std::string failed, clamps, unexp, offlaw, rest, moving, tunnels, slides, bounces, stacks;
   auto add = [](std::string& list, const std::string& name) {
     list += (list.empty() ? "" : ", ") + name;
   };
@@ -101,6 +101,7 @@ std::string verdict(const SceneEvaluation& se) {
     if (tunnelled(se, ev)) add(tunnels, ev.name);
     if (off_slide_law(se, ev)) add(slides, ev.name);
     if (off_bounce_law(se, ev)) add(bounces, ev.name);
+    if (off_stack_law(se, ev)) add(stacks, ev.name);
   }
   std::string v;
   auto flag = [&v](const char* what, const std::string& list) {
@@ -114,6 +115,7 @@ std::string verdict(const SceneEvaluation& se) {
   flag("**NOT STILL**", moving);
   flag("**OFF SLIDE LAW**", slides);
   flag("**OFF BOUNCE LAW**", bounces);
+  flag("**OFF STACK LAW**", stacks);
   flag("tunnelled, no continuous collision (a limit)", tunnels);
   if (se.reference.empty()) flag("**NOT RUN**", "every engine");
   return v.empty() ? "ok" : v;

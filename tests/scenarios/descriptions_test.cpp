@@ -24,6 +24,7 @@
 #include "harness/oracles/contact_laws.hpp"
 #include "harness/oracles/free_rotation.hpp"
 #include "harness/oracles/landing.hpp"
+#include "harness/oracles/stack.hpp"
 #include "harness/scene/scene_loader.hpp"
 #include "harness/stability/stability.hpp"
 #include "harness/stability/stability_theory.hpp"
@@ -315,6 +316,15 @@ const std::vector<Phrase>& phrases() {
        [](const Scene& s, const std::smatch& m) {
          const auto e = dropcheck::scene_material(s).restitution;
          return agrees(m[1], e ? std::vector<double>{*e} : std::vector<double>{});
+       }},
+      // A resting stack (harness/oracles/stack.hpp).
+      {"rest heights, " + N + " and " + N + " m",
+       [](const Scene& s, const std::smatch& m) {
+         std::vector<double> h;
+         for (const auto& st : dropcheck::stack_setups(s))
+           for (const auto& l : st.levels) h.push_back(l.rest_height);
+         const std::string p = agrees(m[1], h);
+         return p.empty() ? agrees(m[2], h) : p;
        }},
       // A slide on an incline: gravity tilted by theta (harness/oracles/contact_laws.hpp).
       {"(?:incline of|tilted by) " + N + " degrees",

@@ -1,0 +1,42 @@
+// A resting stack judged (harness/oracles/stack.hpp): each body's sink, drift and stillness against
+// its engine's stack law, computed in one place for `check` and `report`.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "harness/core/trajectory.hpp"
+#include "harness/oracles/landing.hpp"
+#include "harness/oracles/stack.hpp"
+
+namespace dropcheck {
+
+struct StackBodyVerdict {
+  std::size_t body = 0;
+  int level = 1;
+  StackPrediction predicted;
+  double sink = 0.0;      // m: rest height + rest offsets - the final centre height
+  double drift = 0.0;     // m: the largest horizontal distance from its start
+  StillFigures still;     // over the last StillCriteria::seconds
+  bool sink_ok = false;   // -tol <= sink <= kStackSink*predicted.sink + tol, tol the rest
+                          // tolerances and StackLaw::sink_bound
+  bool drift_ok = false;  // drift <= StackLaw::drift_bound
+  bool still_ok = false;  // speed and range <= StackLaw::still_bound
+  // Some contact of the column has a residual over kUnheldResidual (`limiting`): the solver is not
+  // expected to hold the load, a named limit for every body of the column.
+  bool unheld = false;
+  StackPrediction limiting;
+  bool holds() const { return sink_ok && drift_ok && still_ok; }
+  bool passes() const { return holds() || unheld; }
+  // "(level 2) sinks 4.083e-06 m (its law: 4.083e-06 m), drift 4.2e-07 m, still: 8.1e-06 m/s,
+  // 6.4e-07 m", with what is out of bounds in capitals.
+  std::string sentence() const;
+  // "not held, as its solver's sweeps predict: each sweep leaves 0.999 of the error between 1 kg
+  // and the 1000 kg on it, 0.99 after a step's sweeps" (when unheld).
+  std::string limit_text() const;
+};
+
+std::vector<StackBodyVerdict> judge_stack(const Trajectory& run, const StackSetup& setup,
+                                          const EngineInfo& info, double h);
+
+}  // namespace dropcheck

@@ -1,0 +1,93 @@
+#include "harness/oracles/stack.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "harness/oracles/landing.hpp"
+
+namespace dropcheck {
+namespace {
+
+double top(const Body& b) {
+  return b.position.y() + b.half_extents.y();
+}
+
+// `upper`'s centre lies over `lower`'s top face (x-z).
+bool over(const Body& upper, const Body& lower) {
+  return std::abs(upper.position.x() - lower.position.x()) <= lower.half_extents.x() &&
+         std::abs(upper.position.z() - lower.position.z()) <= lower.half_extents.z();
+}
+
+// A force of the scene acts on body i.
+bool pushed(const Scene& scene, std::size_t i) {
+  for (const Force& f : scene.forces)
+    if (std::find(f.bodies.begin(), f.bodies.end(), i) != f.bodies.end()) return true;
+  return false;
+}
+
+// A body a stack may hold: a dynamic box at rest, pushed by nothing.
+bool stackable(const Scene& scene, std::size_t i) {
+  const Body& b = scene.bodies[i];
+  return !b.is_static && b.shape == Shape::box && b.velocity == Vec3::Zero() && !pushed(scene, i);
+}
+
+}  // namespace
+
+std::vector<StackSetup> stack_setups(const Scene& scene) {
+  std::vector<StackSetup> out;
+  const Vec3& g = scene.world.gravity;
+  if (!scene.world.contacts || g.x() != 0.0 || g.z() != 0.0 || !(g.y() < 0.0) ||
+      needs_rotation(scene))
+    return out;
+  // A column starts with a body resting on its floor (the landing oracle's floor); the next level
+  // is the lowest stackable body over the level under it, with its bottom at or above that top.
+  for (const LandingSetup& l : landing_setups(scene)) {
+    const Body& first = scene.bodies[l.body];
+    if (!stackable(scene, l.body) || std::abs(first.position.y() - l.rest_height) > 1e-9) continue;
+    StackSetup s{l.body, l.floor, -g.y(), {{l.body, 1, l.rest_height, first.mass, 0.0, 0.0}}};
+    for (;;) {
+      const StackLevel& under_level = s.levels.back();
+      const Body& under = scene.bodies[under_level.body];
+      long next = -1;
+      for (std::size_t j = 0; j < scene.bodies.size(); ++j) {
+        const Body& b = scene.bodies[j];
+        if (!stackable(scene, j) || !over(b, under) ||
+            b.position.y() - b.half_extents.y() < top(under))
+          continue;
+        if (next < 0 || b.position.y() < scene.bodies[static_cast<std::size_t>(next)].position.y())
+          next = static_cast<long>(j);
+      }
+      if (next < 0) break;
+      const Body& b = scene.bodies[static_cast<std::size_t>(next)];
+      s.levels.push_back({static_cast<std::size_t>(next), under_level.level + 1,
+                          under_level.rest_height + under.half_extents.y() + b.half_extents.y(),
+                          b.mass, 0.0, under.mass});
+    }
+    if (s.levels.size() < 2) continue;
+    double load = 0.0;  // top down: each body and everything above it
+    for (auto it = s.levels.rbegin(); it != s.levels.rend(); ++it) it->load = load += it->mass;
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+StackPrediction predict_stack(const StackSetup& setup, std::size_t level, const EngineInfo& info,
+                              double h) {
+  StackPrediction p;
+  for (std::size_t k = 0; k <= level && k < setup.levels.size(); ++k) {
+    const StackLevel& l = setup.levels[k];
+    p.sink += contact_sink(info.stack_law, setup.g * l.load, l.mass, l.mass_below, h);
+    p.offset += info.rest_offset;
+    p.tolerance += info.rest_tolerance;
+    if (l.mass_below <= 0.0) continue;  // on the static floor: nothing to sweep against
+    const double r = sweep_residual(info.stack_law, l.load, l.mass_below);
+    if (r > p.residual) {
+      p.residual = r;
+      p.load = l.load;
+      p.mass = l.mass_below;
+    }
+  }
+  return p;
+}
+
+}  // namespace dropcheck

@@ -1,0 +1,83 @@
+// Tests harness/measure/stack_verdict.cpp: a stack is held to its engine's stack law; a sink beyond
+// it, a drift or a jitter fails, naming the body and the quantity; a load the solver's sweeps
+// cannot hold is a named limit. The runs are written here, so no engine is needed.
+#include "harness/measure/stack_verdict.hpp"
+
+#include <catch2/catch.hpp>
+
+#include "harness/scene/scene_loader.hpp"
+
+using namespace dropcheck;
+using Catch::Contains;
+
+namespace {
+
+Scene scenario(const std::string& name) {
+  return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + name + ".toml");
+}
+
+// Every body of `scene` still at its start, except `moved` displaced by `by` from step `from` on.
+Trajectory still_run(const Scene& scene, std::int64_t steps, std::size_t moved = 0,
+                     Vec3 by = Vec3::Zero(), std::int64_t from = 0) {
+  Trajectory t;
+  t.h = scene.timestep.seconds;
+  t.steps = steps;
+  for (const Body& b : scene.bodies) t.body_names.push_back(b.name);
+  for (std::int64_t n = 0; n <= steps; ++n) {
+    t.recorded.push_back(n);
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+      t.states.push_back(
+          {scene.bodies[i].position + (i == moved && n >= from ? by : Vec3::Zero()), Vec3::Zero()});
+  }
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("a stack that sinks as its law says holds; more, a drift or a jitter fails",
+          "[contact][stack]") {
+  const Scene scene = scenario("stack_rest");
+  const StackSetup s = stack_setups(scene).at(0);
+  const double h = scene.timestep.seconds;
+  const std::int64_t steps = 300;
+  EngineInfo ode;
+  ode.stack_law = {.compliance = 1e-10 / 0.2, .points = 4};
+  ode.rest_tolerance = 1e-8;
+  // The ideal stack: nothing moves, and the law predicts 4.1e-11 m of sink (within the tolerance).
+  for (const StackBodyVerdict& v : judge_stack(still_run(scene, steps), s, ode, h)) {
+    CHECK(v.holds());
+    CHECK_FALSE(v.unheld);
+  }
+  // The small cube (body 2) 1e-6 m lower: beyond its law's 6.1e-11 m and the 2e-8 m tolerance.
+  const auto sunk = judge_stack(still_run(scene, steps, 2, {0.0, -1e-6, 0.0}), s, ode, h);
+  CHECK(sunk[0].holds());
+  CHECK_FALSE(sunk[1].holds());
+  CHECK_THAT(sunk[1].sentence(), Contains("(level 2) sinks 1e-06 m") && Contains("OUT OF BOUNDS"));
+  // Slid 2 mm aside: beyond the 1 mm drift bound; and the jump at step 250 is in the still window.
+  const auto slid = judge_stack(still_run(scene, steps, 1, {0.002, 0.0, 0.0}, 250), s, ode, h);
+  CHECK_FALSE(slid[0].holds());
+  CHECK_THAT(slid[0].sentence(), Contains("drift 0.002 m TOO FAR") && Contains("NOT STILL"));
+}
+
+TEST_CASE("a load an iterative solver cannot hold is a limit for the whole column",
+          "[contact][stack]") {
+  const Scene scene = scenario("extreme/mass_ratio");
+  const StackSetup s = stack_setups(scene).at(0);  // 1000 kg on 1 kg
+  EngineInfo gs;
+  gs.stack_law = {.iterations = 10};
+  // The light cube (body 1) squeezed 1 m aside: the limit covers it, though its own contact
+  // (with the floor) has nothing to sweep against.
+  const auto v =
+      judge_stack(still_run(scene, 300, 1, {1.0, 0.0, 0.0}, 1), s, gs, scene.timestep.seconds);
+  CHECK_FALSE(v[0].holds());
+  CHECK(v[0].unheld);
+  CHECK(v[0].passes());
+  CHECK_THAT(v[0].limit_text(),
+             Contains("each sweep leaves 0.999 of the error between 1 kg and the "
+                      "1000 kg on it, 0.99 after a step's sweeps"));
+  // A converging solver gets no limit: the same run fails.
+  EngineInfo direct;
+  const auto w =
+      judge_stack(still_run(scene, 300, 1, {1.0, 0.0, 0.0}, 1), s, direct, scene.timestep.seconds);
+  CHECK_FALSE(w[0].passes());
+}

@@ -1,0 +1,83 @@
+// Tests harness/oracles/stack.cpp and harness/core/stack_law.cpp: the columns a scene holds, and
+// what each engine's stack law predicts, against the closed forms docs/contact.md derives (each
+// recomputed here from its parameters).
+#include "harness/oracles/stack.hpp"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "harness/scene/scene_loader.hpp"
+
+using namespace dropcheck;
+
+namespace {
+
+Scene scenario(const std::string& name) {
+  return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + name + ".toml");
+}
+
+constexpr double kG = 9.8, kH = 1.0 / 60.0;
+const StackLaw kOde{.compliance = 1e-10 / 0.2, .points = 4};
+const StackLaw kMujoco{.soft = 1e-4 * 1.25 / 16.0, .tau_steps = 2.0};
+
+}  // namespace
+
+TEST_CASE("a stack is a column of resting boxes over a floor, bottom up", "[contact][stack]") {
+  const std::vector<StackSetup> seed = stack_setups(scenario("stack_rest"));
+  REQUIRE(seed.size() == 1);
+  REQUIRE(seed[0].levels.size() == 2);
+  // The medium cube (1.5 m) on the floor, the small one (1 m) on it: centres at 0.75 and 2 m.
+  CHECK(seed[0].levels[0].rest_height == 0.75);
+  CHECK(seed[0].levels[1].rest_height == 2.0);
+  CHECK(seed[0].levels[0].load == 2.0);  // kg: itself and the small cube
+  CHECK(seed[0].levels[1].mass_below == 1.0);
+  // mass_ratio: each heavy cube is dropped from 1 m above its light one: two columns.
+  const std::vector<StackSetup> ratio = stack_setups(scenario("extreme/mass_ratio"));
+  REQUIRE(ratio.size() == 2);
+  CHECK(ratio[1].levels[0].load == 100001.0);
+  CHECK(ratio[1].levels[1].rest_height == 1.5);
+  // One body alone is a landing; a slide is not at rest.
+  CHECK(stack_setups(scenario("drop_on_floor")).empty());
+  CHECK(stack_setups(scenario("slide_stop")).empty());
+}
+
+TEST_CASE("stack laws: ODE's constraint force mixing and MuJoCo's soft sag", "[contact][stack]") {
+  // ODE: CFM/h*f = ERP/h^2*depth per point, depth = CFM/ERP*h*W/4: 1 kg on the floor at 1/60 is
+  // 5e-10/60*9.8/4 = 2.0417e-11 m, the rest offset its landings measure (-2.04e-11 m).
+  CHECK(contact_sink(kOde, kG, 1.0, 0.0, kH) == Approx(5e-10 / 60.0 * 9.8 / 4.0).epsilon(1e-15));
+  CHECK(contact_sink(kOde, kG, 1.0, 0.0, kH) == Approx(2.0417e-11).epsilon(1e-4));
+  // MuJoCo: (1 - d)*(1 + mu^2)/16*(2h)^2*W*(1/m_a + 1/m_b): 1 kg under 1e5 kg at 1/240 is
+  // 1e-4*1.25/16*(1/120)^2*100001*9.8 = 5.3169e-4 m.
+  CHECK(contact_sink(kMujoco, 100001.0 * kG, 1.0, 0.0, 1.0 / 240.0) ==
+        Approx(1e-4 * 1.25 / 16.0 / 14400.0 * 100001.0 * kG).epsilon(1e-15));
+  // The upper contact of a stack acts on both bodies: the small cube on the medium one sinks as
+  // the medium one on the floor carrying twice the weight.
+  CHECK(contact_sink(kMujoco, kG, 1.0, 1.0, kH) ==
+        Approx(contact_sink(kMujoco, 2 * kG, 1.0, 0.0, kH)));
+  // Predicted per level: the sinks of every contact under it, summed.
+  const StackSetup s = stack_setups(scenario("extreme/mass_ratio"))[1];
+  EngineInfo ode;
+  ode.stack_law = kOde;
+  const double bottom = contact_sink(kOde, 100001.0 * kG, 1.0, 0.0, kH);
+  CHECK(predict_stack(s, 0, ode, kH).sink == bottom);
+  CHECK(predict_stack(s, 1, ode, kH).sink ==
+        Approx(bottom + contact_sink(kOde, 1e5 * kG, 1e5, 1.0, kH)).epsilon(1e-15));
+  CHECK(predict_stack(s, 1, ode, kH).residual == 0.0);  // a direct solver converges
+}
+
+TEST_CASE("an iterative solver's sweeps: the residual L/(L + m) per sweep", "[contact][stack]") {
+  // Two contacts, floor-light (1/m) and light-heavy (1/m + 1/M): the Gauss-Seidel iteration matrix
+  // of their 2x2 system has spectral radius (1/m^2)/((1/m)*(1/m + 1/M)) = M/(M + m).
+  const StackLaw bullet{.iterations = 10};
+  CHECK(sweep_residual(bullet, 1000.0, 1.0) == Approx(std::pow(1000.0 / 1001.0, 10)));
+  CHECK(sweep_residual(bullet, 1000.0, 1.0) > kUnheldResidual);          // 0.990: cannot hold
+  CHECK(sweep_residual(bullet, 1.0, 1.0) == Approx(std::pow(0.5, 10)));  // the seed's: holds
+  CHECK(sweep_residual(StackLaw{}, 1000.0, 1.0) == 0.0);
+  const StackSetup s = stack_setups(scenario("extreme/mass_ratio"))[0];
+  EngineInfo box2d;
+  box2d.stack_law = {.iterations = 8};
+  const StackPrediction p = predict_stack(s, 1, box2d, kH);
+  CHECK(p.residual == Approx(std::pow(1000.0 / 1001.0, 8)));
+  CHECK(p.load == 1000.0);
+  CHECK(p.mass == 1.0);
+}
