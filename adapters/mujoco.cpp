@@ -243,9 +243,12 @@ EngineInfo MujocoEngine::info() const {
   i.rest_offset = kRestOffset;
   i.rest_tolerance = kRestTolerance;
   // A stack: the soft contact's steady sag (1 - d)*tau^2*A*f per pyramid edge, with d = 0.9999,
-  // tau = 2h, A = (1 + mu^2)*(1/m_a + 1/m_b) (efc_diagApprox) and 4 edges at each of 4 points
-  // sharing the weight. Measured on mass_ratio at 1/240: 5.317e-4 m under 1e5 kg, 1.000 of it; at
-  // 1/60 its heaviest stacks settle slowly (0.84-1.000 of it after 5 s).
+  // tau = 2h, A = (1 + mu^2)*(1/m_a + 1/m_b) and 4 edges at each of 4 points sharing the weight.
+  // Read in engine_core_constraint.c (2.2.1): mj_diagApprox gives a pyramid edge tran + fri^2*tran
+  // (tran the bodies' body_invweight0), mj_makeImpedance R = (1 - imp)/imp*diagApprox and
+  // K = 1/(dmax^2*timeconst^2*dampratio^2); at rest R*f = K*imp*depth. Measured on mass_ratio at
+  // 1/240: 5.317e-4 m under 1e5 kg, 1.000 of it; at 1/60 its heaviest stacks settle slowly
+  // (0.84-1.000 of it after 5 s).
   i.stack_law = {.soft = 1e-4 * (1.0 + 0.5 * 0.5) / 16.0, .tau_steps = 2.0};
   // mj_collision tests geoms at the current positions only (no sweep): no continuous collision.
   i.continuous_collision = false;
