@@ -118,6 +118,8 @@ const char* to_string(FailureMode mode) {
       return "frozen";
     case FailureMode::clamped:
       return "speed clamped";
+    case FailureMode::off_contact_law:
+      return "off contact law";
   }
   return "?";
 }

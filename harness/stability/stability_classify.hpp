@@ -21,6 +21,8 @@ enum class FailureMode {
   frozen,            // a coordinate constant over many steps while the physics says it moves
                      // by more than half a float spacing and the scene's tolerance
   clamped,           // the engine clamped a speed (Trajectory::clamped_steps > 0)
+  off_contact_law,   // a slide, bounce or stack left its engine's contact law (docs/contact.md):
+                     // the step no longer gives the physics the engine is judged by
 };
 
 // Short name of a failure mode ("NaN/Inf", "frozen", ...), as tables print it.
@@ -47,6 +49,9 @@ struct ClassifyOptions {
   double speed_slack = 0.01;       // relative slack on the free-flight speed bound
   std::int64_t frozen_steps = 20;  // fewest steps of a constant coordinate that count as frozen
   double contact_gain = 0.5;       // energy gained in a contact scene vs its peak kinetic energy
+  // m: how far the engine's contacts may lift a resting body per contact level (its rest offset
+  // and stated stillness, classify_engine_run): the energy of that lift is not growth.
+  double resting_lift = 0.0;
 };
 
 // Classifies `run` of `scene` on an engine computing in `scalar`. Never throws for a failed run.

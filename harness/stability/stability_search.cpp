@@ -19,6 +19,7 @@
 #include "harness/core/runner.hpp"
 #include "harness/io/trajectory_io.hpp"
 #include "harness/stability/stability.hpp"
+#include "harness/stability/stability_contact.hpp"
 
 namespace dropcheck {
 namespace {
@@ -26,7 +27,6 @@ namespace {
 // Runs and classifies one candidate step; remembers the severest failure of the last probe.
 struct Prober {
   const EngineFactory& make;
-  Scalar scalar;
   const Scene& scene;
   double horizon;
   const ClassifyOptions& classify;
@@ -39,7 +39,8 @@ struct Prober {
     std::unique_ptr<Engine> engine = make();
     RunOptions options;
     options.record_every = stability_record_every(step_count(s, h));
-    const Verdict v = classify_run(s, run_scene(*engine, s, h, options), scalar, classify);
+    const Verdict v =
+        classify_engine_run(s, run_scene(*engine, s, h, options), engine->info(), classify);
     ++probes;
     failure.reset();
     only_frozen = !v.stable();
@@ -141,14 +142,13 @@ Scene scene_for_step(const Scene& scene, double h, double horizon) {
   return s;
 }
 
-StepSearch search_max_stable_dt(const EngineFactory& make, Scalar scalar, const Scene& scene,
-                                double h0, const SearchOptions& o,
-                                const ClassifyOptions& classify) {
+StepSearch search_max_stable_dt(const EngineFactory& make, const Scene& scene, double h0,
+                                const SearchOptions& o, const ClassifyOptions& classify) {
   StepSearch r;
   r.start = h0;
   r.horizon = std::min(scene.duration, static_cast<double>(o.horizon_steps) * h0);
   r.cap = std::max(h0, std::min(o.max_h, scene.duration / 8.0));
-  Prober p{make, scalar, scene, r.horizon, classify, 0, std::nullopt, false};
+  Prober p{make, scene, r.horizon, classify, 0, std::nullopt, false};
   if (p.stable(h0))
     climb(p, h0, o, r);
   else if (p.only_frozen)

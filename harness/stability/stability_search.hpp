@@ -34,12 +34,13 @@ struct StepSearch {
   int probes = 0;        // runs made
 };
 
-// Searches the largest stable h for engines made by `make` on `scene`, starting at h0 (stable:
+// Searches the largest stable h for engines made by `make` on `scene` (each probe classified by
+// classify_engine_run, with the engine's scalar and contact laws), starting at h0 (stable:
 // double up to the cap, then bisect; unstable: halve down within the step budget, then bisect;
 // frozen only: double up to the first stable h, then as if stable). Each probe runs the scene
 // for duration' = ceil(horizon/h)*h, horizon = min(duration, horizon_steps*h0).
-StepSearch search_max_stable_dt(const EngineFactory& make, Scalar scalar, const Scene& scene,
-                                double h0, const SearchOptions& options = {},
+StepSearch search_max_stable_dt(const EngineFactory& make, const Scene& scene, double h0,
+                                const SearchOptions& options = {},
                                 const ClassifyOptions& classify = {});
 
 // The record_every that keeps a run of `steps` steps at most 20000 samples (frozen and growth

@@ -7,6 +7,7 @@
 #include "harness/core/number_format.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/oracles/analytic.hpp"
+#include "harness/stability/stability_contact.hpp"
 #include "harness/stability/stability_theory.hpp"
 
 namespace dropcheck {
@@ -21,7 +22,7 @@ void study_default_step(Engine& engine, const Scene& scene, const StudyOptions& 
   const Trajectory run = run_scene(engine, scene, h, run_options);
   r.status = run.status;
   r.steps_run = run.recorded.empty() ? 0 : run.recorded.back();
-  r.verdict = classify_run(scene, run, r.scalar, o.classify);
+  r.verdict = classify_engine_run(scene, run, engine.info(), o.classify);
   if (std::optional<Trajectory> exact = analytic_trajectory(scene, h, run_options))
     r.vs_analytic = compare_worst(run, *exact, scene.tolerance);
 }
@@ -45,8 +46,8 @@ EngineStability study_engine(const EngineSlot& slot, const Scene& scene, const S
   study_default_step(*engine, scene, o, r);
   r.theory_max_dt = theory_max_dt(scene, r.law);
   if (o.search) {
-    r.search = search_max_stable_dt(slot.make, r.scalar, scene, scene.timestep.seconds,
-                                    o.search_options, o.classify);
+    r.search = search_max_stable_dt(slot.make, scene, scene.timestep.seconds, o.search_options,
+                                    o.classify);
   }
   return r;
 }

@@ -155,8 +155,8 @@ TEST_CASE("Wild Magic's damping edge on heavy drag is RK4's k*h = 2.785, found b
   const double theory = theory_max_dt(scene, kRungeKutta4).value();
   CHECK(theory == Approx(kRk4DampingEdge / 60.0).epsilon(1e-12));
   CHECK_FALSE(theory_max_dt(scene, DampingOrder::AfterForces).has_value());
-  const StepSearch s = search_max_stable_dt([] { return make_engine("wildmagic"); }, Scalar::f64,
-                                            scene, scene.timestep.seconds);
+  const StepSearch s =
+      search_max_stable_dt([] { return make_engine("wildmagic"); }, scene, scene.timestep.seconds);
   CHECK(std::abs(s.max_stable_dt / theory - 1.0) < 0.01);
   CHECK(s.min_unstable_dt >= theory);
 }

@@ -97,8 +97,7 @@ TEST_CASE(
     "Stability: bisection finds the drag-free spring's edge h = 2/omega for ours-f64 within 1%",
     "[stability][theory]") {
   const Scene scene = extreme("stiff_spring");
-  const StepSearch s =
-      search_max_stable_dt(factory("ours-f64"), Scalar::f64, scene, scene.timestep.seconds);
+  const StepSearch s = search_max_stable_dt(factory("ours-f64"), scene, scene.timestep.seconds);
   const double edge = 2.0 / kOmega;
   // Measured: max_stable_dt 0.033303 (-0.09%), first unstable 0.0333481 (+0.05%), 11 probes.
   CHECK(std::abs(s.max_stable_dt / edge - 1.0) < 0.01);
@@ -125,8 +124,7 @@ TEST_CASE(
   for (const std::string& name : available_engine_names()) {
     if (!make_engine(name)->cannot_run(scene).empty()) continue;  // simbody-rkm: springs
     const EngineInfo info = make_engine(name)->info();
-    const StepSearch s =
-        search_max_stable_dt(factory(name), info.scalar, scene, scene.timestep.seconds);
+    const StepSearch s = search_max_stable_dt(factory(name), scene, scene.timestep.seconds);
     INFO(name << ": max_stable_dt " << s.max_stable_dt << ", first unstable " << s.min_unstable_dt);
     if (info.law.scheme == Scheme::RK4) {  // RK4's edge on the imaginary axis: w*h = 2*sqrt(2)
       CHECK(std::abs(s.max_stable_dt / (std::sqrt(2.0) * edge) - 1.0) < 0.01);
@@ -210,8 +208,7 @@ TEST_CASE(
       {"ours-f64", after_forces}, {"ode", after_position}, {"bullet", after_position}};
   for (const auto& [name, edge] : expected) {
     if (!available(name)) continue;
-    const StepSearch s =
-        search_max_stable_dt(factory(name), Scalar::f64, scene, scene.timestep.seconds);
+    const StepSearch s = search_max_stable_dt(factory(name), scene, scene.timestep.seconds);
     INFO(name << ": max_stable_dt " << s.max_stable_dt << " vs theory " << edge);
     CHECK(std::abs(s.max_stable_dt / edge - 1.0) < 0.01);
   }
