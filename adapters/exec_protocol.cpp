@@ -88,6 +88,30 @@ BounceLaw parse_bounce_law(const std::vector<std::string>& k, const std::string&
   return law;
 }
 
+// "stack-law COMPLIANCE POINTS SOFT TAU_STEPS ITERATIONS SINK DRIFT STILL"
+// (harness/core/stack_law.hpp): POINTS an integer >= 1, ITERATIONS an integer >= 0, the rest finite
+// and >= 0.
+StackLaw parse_stack_law(const std::vector<std::string>& k, const std::string& line) {
+  const char* form =
+      "'stack-law COMPLIANCE POINTS SOFT TAU_STEPS ITERATIONS SINK DRIFT STILL' (POINTS an "
+      "integer >= 1, ITERATIONS an integer >= 0, the others >= 0)";
+  if (k.size() != 9) garbage(form, line);
+  double v[8];
+  for (std::size_t i = 0; i < 8; ++i)
+    if (!parse_number(k[i + 1], v[i]) || !std::isfinite(v[i]) || v[i] < 0.0) garbage(form, line);
+  if (v[1] < 1.0 || v[1] > 64.0 || v[1] != std::floor(v[1]) || v[4] > 1e6 ||
+      v[4] != std::floor(v[4]))
+    garbage(form, line);
+  return {.compliance = v[0],
+          .points = static_cast<int>(v[1]),
+          .soft = v[2],
+          .tau_steps = v[3],
+          .iterations = static_cast<int>(v[4]),
+          .sink_bound = v[5],
+          .drift_bound = v[6],
+          .still_bound = v[7]};
+}
+
 }  // namespace
 
 std::string engine_name_problem(const std::string& name, const std::vector<std::string>& reserved) {
@@ -181,6 +205,8 @@ void HandshakeReader::key(const std::vector<std::string>& k, const std::string& 
              parse_friction_model_key(k[1], info_.friction_model)) {
   } else if (k[0] == "bounce-law") {
     info_.bounce_law = parse_bounce_law(k, line);
+  } else if (k[0] == "stack-law") {
+    info_.stack_law = parse_stack_law(k, line);
   } else if (k[0] == "rotation-law" && k.size() == 2 && parse_rotation_law_key(k[1])) {
     info_.rotation_law = *parse_rotation_law_key(k[1]);
     rotation_law_ = true;
@@ -189,7 +215,8 @@ void HandshakeReader::key(const std::vector<std::string>& k, const std::string& 
   } else {
     garbage(
         "name, version, scalar f32|f64, law KEY, capabilities, rotation-law KEY, "
-        "friction-model cone|box-pyramid|sum-pyramid, bounce-law, damping-mapping or ready "
+        "friction-model cone|box-pyramid|sum-pyramid, bounce-law, stack-law, damping-mapping or "
+        "ready "
         "(law keys: after-forces, before-forces, after-position, "
         "after-forces/explicit, before-forces/explicit; rotation-law keys: "
         "GYRO/UPDATE with GYRO no-gyro, explicit, implicit-body, linearly-implicit and UPDATE "

@@ -151,3 +151,22 @@ TEST_CASE("an engine that collides materials and spheres announces them with its
   CHECK_THAT(refusal(handshake({"capabilities restitution spheres"})),
              Contains("without 'contacts'"));
 }
+
+TEST_CASE("an engine announces its stack law", "[exec][contact][stack]") {
+  EngineInfo info;
+  HandshakeReader reader(info, false, {"ours"});
+  for (const std::string& line :
+       handshake({"capabilities contacts", "stack-law 5e-10 4 0 0 10 5e-5 0.01 0.003"}))
+    reader.take(line);
+  CHECK(info.stack_law.compliance == 5e-10);
+  CHECK(info.stack_law.points == 4);
+  CHECK(info.stack_law.iterations == 10);
+  CHECK(info.stack_law.sink_bound == 5e-5);
+  CHECK(info.stack_law.drift_bound == 0.01);
+  CHECK(info.stack_law.still_bound == 0.003);
+  for (const char* bad :
+       {"stack-law 0 0 0 0 0 0 0.001 0.001", "stack-law 0 4.5 0 0 0 0 0.001 0.001",
+        "stack-law 0 4 0 0 2.5 0 0.001 0.001", "stack-law -1 4 0 0 0 0 0.001 0.001",
+        "stack-law 0 4 0 0 0 0 inf 0.001", "stack-law 0 4 0 0 0 0 0.001"})
+    CHECK_THAT(refusal(handshake({bad})), Contains("garbage from the engine"));
+}
