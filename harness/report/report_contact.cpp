@@ -2,21 +2,28 @@
 
 #include "harness/core/number_format.hpp"
 #include "harness/measure/bounce_verdict.hpp"
+#include "harness/measure/contact_departures.hpp"
 #include "harness/measure/slide_verdict.hpp"
 #include "harness/measure/stack_verdict.hpp"
 #include "harness/measure/tolerances.hpp"
 #include "harness/report/report_format.hpp"
 
 namespace dropcheck {
+namespace {
+
+// The engine's default-step run leaves a contact law of kind `law` (contact_departures).
+bool departs(const SceneEvaluation& se, const EngineEvaluation& ev, ContactLaw law) {
+  if (!ev.ran() || ev.at_default().run.status != RunStatus::ok) return false;
+  for (const ContactDeparture& d :
+       contact_departures(se.scene, ev.at_default().run, ev.info, se.scene.timestep.seconds))
+    if (d.law == law) return true;
+  return false;
+}
+
+}  // namespace
 
 bool off_slide_law(const SceneEvaluation& se, const EngineEvaluation& ev) {
-  if (!ev.ran() || ev.at_default().run.status != RunStatus::ok) return false;
-  for (const SlideSetup& s : slide_setups(se.scene)) {
-    const SlideVerdict v =
-        judge_slide(ev.at_default().run, s, ev.info.friction_model, se.scene.timestep.seconds);
-    if (v.exact && !v.follows) return true;
-  }
-  return false;
+  return departs(se, ev, ContactLaw::slide);
 }
 
 namespace {
@@ -71,12 +78,7 @@ std::string slide_section(const SceneEvaluation& se) {
 }
 
 bool off_bounce_law(const SceneEvaluation& se, const EngineEvaluation& ev) {
-  if (!ev.ran() || ev.at_default().run.status != RunStatus::ok) return false;
-  for (const BounceSetup& s : bounce_setups(se.scene))
-    if (!judge_bounce(ev.at_default().run, s, ev.info.bounce_law, se.scene.timestep.seconds)
-             .follows)
-      return true;
-  return false;
+  return departs(se, ev, ContactLaw::bounce);
 }
 
 std::string bounce_section(const SceneEvaluation& se) {
@@ -124,12 +126,7 @@ std::string bounce_section(const SceneEvaluation& se) {
 }
 
 bool off_stack_law(const SceneEvaluation& se, const EngineEvaluation& ev) {
-  if (!ev.ran() || ev.at_default().run.status != RunStatus::ok) return false;
-  for (const StackSetup& s : stack_setups(se.scene))
-    for (const StackBodyVerdict& v :
-         judge_stack(ev.at_default().run, s, ev.info, se.scene.timestep.seconds))
-      if (!v.passes()) return true;
-  return false;
+  return departs(se, ev, ContactLaw::stack);
 }
 
 std::string stack_section(const SceneEvaluation& se) {

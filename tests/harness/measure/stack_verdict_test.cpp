@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include "harness/scene/scene_loader.hpp"
+#include "tests/displaced_run.hpp"
 
 using namespace dropcheck;
 using Catch::Contains;
@@ -16,20 +17,12 @@ Scene scenario(const std::string& name) {
   return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + name + ".toml");
 }
 
-// Every body of `scene` still at its start, except `moved` displaced by `by` from step `from` on.
+// Every body still, body `moved` displaced by `by` from step `from` on.
 Trajectory still_run(const Scene& scene, std::int64_t steps, std::size_t moved = 0,
                      Vec3 by = Vec3::Zero(), std::int64_t from = 0) {
-  Trajectory t;
-  t.h = scene.timestep.seconds;
-  t.steps = steps;
-  for (const Body& b : scene.bodies) t.body_names.push_back(b.name);
-  for (std::int64_t n = 0; n <= steps; ++n) {
-    t.recorded.push_back(n);
-    for (std::size_t i = 0; i < scene.bodies.size(); ++i)
-      t.states.push_back(
-          {scene.bodies[i].position + (i == moved && n >= from ? by : Vec3::Zero()), Vec3::Zero()});
-  }
-  return t;
+  std::vector<Vec3> each(scene.bodies.size(), Vec3::Zero());
+  each[moved] = by;
+  return testing::displaced_run(scene, steps, each, from);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include "harness/core/registry.hpp"
 #include "harness/scene/scene_loader.hpp"
 #include "harness/stability/stability_search.hpp"
+#include "tests/displaced_run.hpp"
 
 using Catch::Matchers::Contains;
 using namespace dropcheck;
@@ -19,19 +20,11 @@ Scene shipped(const std::string& stem) {
   return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + stem + ".toml");
 }
 
-// Every body still, the dynamic ones raised by `lift[i]` from step 1 on.
+// Every body still, body i raised by lift[i] from step 1 on.
 Trajectory lifted_run(const Scene& scene, std::int64_t steps, const std::vector<double>& lift) {
-  Trajectory t;
-  t.h = scene.timestep.seconds;
-  t.steps = steps;
-  for (const Body& b : scene.bodies) t.body_names.push_back(b.name);
-  for (std::int64_t n = 0; n <= steps; ++n) {
-    t.recorded.push_back(n);
-    for (std::size_t i = 0; i < scene.bodies.size(); ++i)
-      t.states.push_back(
-          {scene.bodies[i].position + Vec3(0.0, n > 0 ? lift[i] : 0.0, 0.0), Vec3::Zero()});
-  }
-  return t;
+  std::vector<Vec3> by;
+  for (double y : lift) by.emplace_back(0.0, y, 0.0);
+  return testing::displaced_run(scene, steps, by);
 }
 
 }  // namespace
