@@ -460,26 +460,14 @@ std::vector<CheckResult> check_scene(const Scene& scene, const EngineFactory& ma
                                      const EngineFactory& reference) {
   std::vector<CheckResult> out;
   if (!make()->cannot_run(scene).empty()) return out;
-  if (scene.world.contacts && !slide_setups(scene).empty()) {
-    out.push_back(check_slide(scene, make, scene.timestep));
-    return out;
-  }
-  if (scene.world.contacts && !bounce_setups(scene).empty()) {
-    out.push_back(check_bounce(scene, make, scene.timestep));
-    // The scene's other bodies over a floor land as before.
-    if (!engine_landing_setups(scene, make()->info()).empty())
-      out.push_back(check_landing(scene, make, scene.timestep));
-    return out;
-  }
-  if (scene.world.contacts && !stack_setups(scene).empty()) {
-    out.push_back(check_stack(scene, make, scene.timestep));
-    // The scene's bodies outside its stacks land as before.
-    if (!engine_landing_setups(scene, make()->info()).empty())
-      out.push_back(check_landing(scene, make, scene.timestep));
-    return out;
-  }
   if (scene.world.contacts) {
-    out.push_back(check_landing(scene, make, scene.timestep));
+    // Each contact law the scene holds, then the landing of every other body over a floor (or
+    // the landing check alone, which names what it leaves out).
+    if (!slide_setups(scene).empty()) out.push_back(check_slide(scene, make, scene.timestep));
+    if (!bounce_setups(scene).empty()) out.push_back(check_bounce(scene, make, scene.timestep));
+    if (!stack_setups(scene).empty()) out.push_back(check_stack(scene, make, scene.timestep));
+    if (out.empty() || !engine_landing_setups(scene, make()->info()).empty())
+      out.push_back(check_landing(scene, make, scene.timestep));
     return out;
   }
   for (const Timestep& h : own_law_steps(scene)) out.push_back(check_own_law(scene, make, h));

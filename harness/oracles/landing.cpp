@@ -192,13 +192,15 @@ std::vector<LandingExclusion> landing_exclusions(const Scene& scene) {
 
 std::vector<LandingSetup> engine_landing_setups(const Scene& scene, const EngineInfo& info) {
   const std::vector<LandingExclusion> excluded = landing_exclusions(scene);
-  const std::vector<BounceSetup> bounces = bounce_setups(scene);  // judged by their bounce law
+  // Bodies with a contact law of their own: bounces and slides.
+  std::vector<std::size_t> own_law;
+  for (const BounceSetup& b : bounce_setups(scene)) own_law.push_back(b.body);
+  for (const SlideSetup& s : slide_setups(scene)) own_law.push_back(s.body);
   std::vector<LandingSetup> setups;
   for (LandingSetup setup : landing_setups(scene)) {
     if (std::any_of(excluded.begin(), excluded.end(),
                     [&](const LandingExclusion& e) { return e.body == setup.body; }) ||
-        std::any_of(bounces.begin(), bounces.end(),
-                    [&](const BounceSetup& b) { return b.body == setup.body; }))
+        std::find(own_law.begin(), own_law.end(), setup.body) != own_law.end())
       continue;
     setup.floor_top += std::max(0.0, info.rest_offset + info.rest_tolerance);
     setups.push_back(setup);

@@ -79,11 +79,11 @@ std::vector<LandingSetup> landing_setups(const Scene& scene);
 // but is in the way), in body order (the nearest body below it is named, else the nearest above).
 std::vector<LandingExclusion> landing_exclusions(const Scene& scene);
 
-// landing_setups without landing_exclusions and without the bouncing spheres (bounce_setups,
-// judged by their bounce law), as one engine meets the floor: an engine whose
-// resting surface sits above the geometry (Box2D's 0.01 m skin) touches it there, so contact means
-// reaching the floor top plus max(0, rest_offset + rest_tolerance). The one place the bodies to
-// judge are chosen and that shift is made (check and report).
+// landing_setups without landing_exclusions and without the bouncing spheres and the slides
+// (bounce_setups, slide_setups: judged by their own contact laws), as one engine meets the floor:
+// an engine whose resting surface sits above the geometry (Box2D's 0.01 m skin) touches it there,
+// so contact means reaching the floor top plus max(0, rest_offset + rest_tolerance). The one place
+// the bodies to judge are chosen and that shift is made (check and report).
 std::vector<LandingSetup> engine_landing_setups(const Scene& scene, const EngineInfo& info);
 
 // Tunnelling of the engine's own discrete law (contacts ignored): at the first step whose centre

@@ -223,6 +223,11 @@ TEST_CASE("A stacked body is not judged by the landing oracle, and the reason na
   REQUIRE(drop.size() == 1);
   CHECK(drop[0].floor_top == Approx(0.0151).epsilon(0).margin(1e-15));
   CHECK(landing_exclusions(scenario("drop_on_floor")).empty());
+  // A slide or a bounce is judged by its own contact law, not as a landing: a cube sliding on at
+  // the end of incline_slide is not "not still".
+  CHECK(landing_setups(scenario("incline_slide")).size() == 1);
+  CHECK(engine_landing_setups(scenario("incline_slide"), EngineInfo{}).empty());
+  CHECK(engine_landing_setups(scenario("bounce_e05"), EngineInfo{}).empty());
 }
 
 TEST_CASE("Stillness is judged only over a window that lies wholly after first contact",
