@@ -128,8 +128,9 @@ std::string stability_report_section(const std::vector<std::string>& extreme_sce
   out += printf_string(
       "Each engine runs each scene at the scene's own step h and is classified as stable or by its "
       "severest failure (NaN/Inf, engine error, unbounded growth, tunnelled, frozen, speed "
-      "clamped; "
-      "harness/stability/stability.hpp). Then its largest stable step is searched by bisection on "
+      "clamped, or off contact law: a slide, bounce or stack that leaves its engine's contact law "
+      "as `dropcheck check` judges it; harness/stability/stability.hpp). Then its largest stable "
+      "step is searched by bisection on "
       "h: each "
       "probe "
       "runs min(duration, %lld h) rounded up to whole steps of the probe's h, and the bisection "
