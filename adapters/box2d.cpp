@@ -123,7 +123,8 @@ EngineInfo Box2dEngine::info() const {
   i.rest_offset = kRestOffset;
   i.rest_tolerance = kRestTolerance;
   // A stack: 8 velocity iterations of sequential impulse (b2World::Step's velocityIterations).
-  i.stack_law = {.iterations = 8};
+  // Measured on stack_rest at 1/60: 1.6e-6 and 3.6e-6 m below its skins (f32), drift 1.4e-5 m.
+  i.stack_law = {.iterations = 8, .sink_bound = 1e-5};
   // Continuous collision: b2World's constructor sets m_continuousPhysics = true (b2_world.cpp) and
   // the adapter keeps it; b2World::SolveTOI sweeps every contact with a non-dynamic body
   // (collideA = bA->IsBullet() || typeA != b2_dynamicBody), so a dynamic body against the static

@@ -94,7 +94,7 @@ BounceLaw parse_bounce_law(const std::vector<std::string>& k, const std::string&
 StackLaw parse_stack_law(const std::vector<std::string>& k, const std::string& line) {
   const char* form =
       "'stack-law COMPLIANCE POINTS SOFT TAU_STEPS ITERATIONS SINK DRIFT STILL' (POINTS an "
-      "integer >= 1, ITERATIONS an integer >= 0, the others >= 0)";
+      "integer 1-64, ITERATIONS an integer 0-1000000, the others finite and >= 0)";
   if (k.size() != 9) garbage(form, line);
   double v[8];
   for (std::size_t i = 0; i < 8; ++i)

@@ -249,7 +249,9 @@ EngineInfo MujocoEngine::info() const {
   // K = 1/(dmax^2*timeconst^2*dampratio^2); at rest R*f = K*imp*depth. Measured on mass_ratio at
   // 1/240: 5.317e-4 m under 1e5 kg, 1.000 of it; at 1/60 its heaviest stacks settle slowly
   // (0.84-1.000 of it after 5 s).
-  i.stack_law = {.soft = 1e-4 * (1.0 + 0.5 * 0.5) / 16.0, .tau_steps = 2.0};
+  // mu is the adapter's 0.5: stacks are judged only with the adapter's own friction (identify
+  // --combine, which writes each body's, judges no stack).
+  i.stack_law = {.soft = 1e-4 * (1.0 + 0.5 * 0.5) / 16.0, .tau_steps = 2.0, .sink_bound = 1e-12};
   // mj_collision tests geoms at the current positions only (no sweep): no continuous collision.
   i.continuous_collision = false;
   return i;

@@ -242,7 +242,7 @@ class OdeEngine final : public Engine {
     // the right (joints/contact.cpp getInfo2: rhs ERP*depth/h; step.cpp scales rhs and cfm by 1/h)
     // leaves each of the 4 contact points under a box face CFM/ERP*h*f deep. Measured on
     // stack_rest and mass_ratio at 1/60 and 1/240: 1.000 of it (4.083e-6 m under 1e5 kg at 1/60).
-    i.stack_law = {.compliance = 1e-10 / 0.2, .points = 4};
+    i.stack_law = {.compliance = 1e-10 / 0.2, .points = 4, .sink_bound = 1e-12};
     // dWorldStep collides the geoms where they are at the end of the step (dSpaceCollide): ODE has
     // no continuous collision.
     i.continuous_collision = false;

@@ -51,6 +51,10 @@ struct Trajectory {
   double wall_seconds = 0.0;  // stepping loop (forces, step, read, sampling), not load
 
   std::size_t samples() const { return recorded.size(); }
+  // Every step from 0 was kept (sample k is step k), as the contact laws' step-by-step checks need.
+  bool keeps_every_step() const {
+    return !recorded.empty() && recorded.back() + 1 == static_cast<std::int64_t>(recorded.size());
+  }
   std::size_t bodies() const { return body_names.size(); }
   const BodyState& at(std::size_t sample, std::size_t body) const {
     return states[sample * bodies() + body];

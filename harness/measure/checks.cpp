@@ -390,7 +390,11 @@ CheckResult check_landing(const Scene& scene, const EngineFactory& make, const T
   for (const LandingExclusion& e : landing_exclusions(scene)) append(r.message, e.sentence(scene));
   if (setups.empty())
     append(r.message,
-           "no body is judged here: the stacks are judged by the stack check (docs/contact.md)");
+           scene.world.gravity.x() != 0.0 || scene.world.gravity.z() != 0.0
+               ? "no body is judged here: gravity has a part along the floor, so a landing body "
+                 "slides on (only slides are judged there: docs/contact.md)"
+               : "no body is judged here: a stack, a slide or a bounce is judged by its own "
+                 "contact law where the scene holds one (docs/contact.md)");
   for (const std::string& l : limits) append(r.limit, l);
   return r;
 }

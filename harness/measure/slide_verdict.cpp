@@ -18,11 +18,6 @@ std::string stop_text(const SlideObservation& o) {
                        o.distance);
 }
 
-bool exact_angle(const SlideSetup& s, FrictionModel model) {
-  return model == FrictionModel::cone || s.angle == 0.0 ||
-         std::abs(s.angle - std::numbers::pi / 4.0) < 1e-12;
-}
-
 // The largest distance between the run's path and the law's over the steps both have (a
 // non-finite run is infinitely far). The law's path is as long as the run's.
 double path_distance(const SlidePath& run, const SlidePath& law) {
@@ -56,8 +51,17 @@ SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& s, FrictionMod
   v.model = model;
   const SlidePath path = observed_slide_path(run, s);
   v.seen = observe_slide(path, tolerance::kStoppedSpeed);
-  v.exact = exact_angle(s, model);
-  if (!v.exact || path.s.empty()) return v;
+  v.exact = exact_slide_angle(model, s.angle);
+  if (!v.exact) {
+    v.not_judged =
+        "the " + std::string(to_string(model)) + "'s slide is exact at 0 and 45 degrees only";
+    return v;
+  }
+  if (!run.keeps_every_step()) {
+    v.exact = false;
+    v.not_judged = "the run did not keep every step";
+    return v;
+  }
   v.law = slide_to_stop(s.v0, s.mu, s.g, h, model, s.angle, s.pull);
   v.end_continuous = slide_distance_continuous(s.v0, s.pull, slide_grip(s.mu, s.g, model, s.angle),
                                                h * static_cast<double>(path.s.size() - 1));
@@ -67,16 +71,15 @@ SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& s, FrictionMod
   v.follows = own.follows;
   if (v.follows) return v;
   for (FrictionModel other : kFrictionModels)
-    if (other != model && exact_angle(s, other) && fit(path, v.seen, s, other, h).follows)
+    if (other != model && exact_slide_angle(other, s.angle) &&
+        fit(path, v.seen, s, other, h).follows)
       v.instead = other;
   return v;
 }
 
 std::string SlideVerdict::sentence() const {
   std::string text = stop_text(seen);
-  if (!exact)
-    return text + "; not judged: the " + to_string(model) +
-           "'s slide is exact at 0 and 45 degrees only";
+  if (!exact) return text + "; not judged: " + not_judged;
   text += std::string("; its ") + to_string(model) + "'s clamp law: " + stop_text(law_seen);
   text += law.stops && law.stop_step > 0
               ? printf_string(" (continuous: %.5g s, %.5g m)", law.stop_time, law.distance)

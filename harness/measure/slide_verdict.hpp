@@ -13,9 +13,12 @@ namespace dropcheck {
 struct SlideVerdict {
   SlideObservation seen;
   FrictionModel model = FrictionModel::cone;  // the engine's declared model
-  bool exact = false;         // the model's slide has an exact answer at this angle (0, 45 degrees)
-  SlideStop law;              // its clamp law and continuous closed form (when exact)
-  SlideObservation law_seen;  // the law's path read as the run's is
+  // Judged: the model's slide has an exact answer at this angle (0, 45 degrees) and the run kept
+  // every step; not_judged says why not.
+  bool exact = false;
+  std::string not_judged;
+  SlideStop law;                // its clamp law and continuous closed form (when exact)
+  SlideObservation law_seen;    // the law's path read as the run's is
   double end_continuous = 0.0;  // m along the slip at the run's end, continuous (exact only)
   double off_law = 0.0;         // m: the largest distance between the run and its law over the run
   bool follows = false;         // stop step equal, off_law within tolerance::kSlideDistance

@@ -26,10 +26,15 @@ std::vector<StackBodyVerdict> judge_stack(const Trajectory& run, const StackSetu
       const double d = std::hypot(p.x() - start.x(), p.z() - start.z());
       v.drift = std::isfinite(d) ? std::max(v.drift, d) : INFINITY;
     }
-    v.sink = l.rest_height + v.predicted.offset - run.final_state(l.body).position.y();
+    const BodyState& last = run.final_state(l.body);
+    v.sink = l.rest_height + v.predicted.offset - last.position.y();
     v.still = still_figures(run, l.body, from);
-    const double tol = v.predicted.tolerance + info.stack_law.sink_bound;
-    v.sink_ok = v.sink >= -tol && v.sink <= tolerance::kStackSink * v.predicted.sink + tol;
+    const double floor_bound = info.stack_law.sink_bound;
+    v.sink_ok = v.sink >= tolerance::kStackSinkLow * v.predicted.sink - floor_bound &&
+                v.sink <= tolerance::kStackSink * v.predicted.sink + floor_bound;
+    // Not through the floor: its centre ends above the floor's top (its bottom no deeper in the
+    // floor than its half height).
+    v.above_floor = std::isfinite(last.position.y()) && last.position.y() >= setup.floor_top;
     v.drift_ok = v.drift <= info.stack_law.drift_bound;
     v.still_ok =
         v.still.speed <= info.stack_law.still_bound && v.still.range <= info.stack_law.still_bound;

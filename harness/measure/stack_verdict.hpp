@@ -15,19 +15,21 @@ struct StackBodyVerdict {
   std::size_t body = 0;
   int level = 1;
   StackPrediction predicted;
-  double sink = 0.0;      // m: rest height + rest offsets - the final centre height
-  double drift = 0.0;     // m: the largest horizontal distance from its start
-  StillFigures still;     // over the last StillCriteria::seconds
-  bool sink_ok = false;   // -tol <= sink <= kStackSink*predicted.sink + tol, tol the rest
-                          // tolerances and StackLaw::sink_bound
-  bool drift_ok = false;  // drift <= StackLaw::drift_bound
-  bool still_ok = false;  // speed and range <= StackLaw::still_bound
+  double sink = 0.0;   // m: rest height + rest offsets - the final centre height
+  double drift = 0.0;  // m: the largest horizontal distance from its start
+  StillFigures still;  // over the last StillCriteria::seconds
+  // kStackSinkLow*law - bound <= sink <= kStackSink*law + bound, bound StackLaw::sink_bound.
+  bool sink_ok = false;
+  bool drift_ok = false;     // drift <= StackLaw::drift_bound
+  bool still_ok = false;     // speed and range <= StackLaw::still_bound
+  bool above_floor = false;  // its centre ends above the floor's top (finite)
   // Some contact of the column has a residual over kUnheldResidual (`limiting`): the solver is not
-  // expected to hold the load, a named limit for every body of the column.
+  // expected to hold the load, a named limit for every body of the column. It waives the sink,
+  // drift and stillness bounds, not the floor: a squeezed-out body must still end above it.
   bool unheld = false;
   StackPrediction limiting;
   bool holds() const { return sink_ok && drift_ok && still_ok; }
-  bool passes() const { return holds() || unheld; }
+  bool passes() const { return holds() || (unheld && above_floor); }
   // "(level 2) sinks 4.083e-06 m (its law: 4.083e-06 m), drift 4.2e-07 m, still: 8.1e-06 m/s,
   // 6.4e-07 m", with what is out of bounds in capitals.
   std::string sentence() const;

@@ -19,22 +19,17 @@ bool level_gravity(const Scene& scene) {
   return scene.world.gravity.x() == 0.0 && scene.world.gravity.z() == 0.0;
 }
 
-// A force of the scene acts on body i.
-bool pushed(const Scene& scene, std::size_t i) {
-  for (const Force& f : scene.forces)
-    for (std::size_t k : f.bodies)
-      if (k == i) return true;
-  return false;
-}
-
 }  // namespace
 
+bool exact_slide_angle(FrictionModel model, double angle) {
+  return model == FrictionModel::cone || angle == 0.0 ||
+         std::abs(angle - std::numbers::pi / 4.0) < 1e-12;
+}
+
 double slide_grip(double mu, double g, FrictionModel model, double angle) {
-  const bool along_axis = angle == 0.0;
-  const bool at_diagonal = std::abs(angle - std::numbers::pi / 4.0) < 1e-12;
-  if (model != FrictionModel::cone && !along_axis && !at_diagonal)
+  if (!exact_slide_angle(model, angle))
     throw std::invalid_argument("slide: a pyramid is exact at angles 0 and pi/4 only");
-  if (model == FrictionModel::cone || along_axis) return mu * g;
+  if (model == FrictionModel::cone || angle == 0.0) return mu * g;
   return model == FrictionModel::box_pyramid ? std::sqrt(2.0) * mu * g : mu * g / std::sqrt(2.0);
 }
 
@@ -73,17 +68,39 @@ double slide_distance_continuous(double v0, double pull, double grip, double t) 
   return d + std::copysign(0.5 * (std::abs(pull) - grip) * t * t, pull);
 }
 
+namespace {
+
+// The farthest the slide goes from its start over `duration` (m along the slip, either way): the
+// continuous slide of the model that grips least, which goes farthest.
+double slide_reach(const SlideSetup& s, double duration) {
+  double grip = INFINITY;
+  for (FrictionModel m : kFrictionModels)
+    if (exact_slide_angle(m, s.angle)) grip = std::min(grip, slide_grip(s.mu, s.g, m, s.angle));
+  double reach = std::abs(slide_distance_continuous(s.v0, s.pull, grip, duration));
+  const double a = grip - s.pull;
+  if (s.v0 > 0.0 && a > 0.0 && s.v0 / a < duration)  // the forward stop, before any slide back
+    reach = std::max(reach, s.v0 * s.v0 / (2.0 * a));
+  return reach;
+}
+
+}  // namespace
+
 std::vector<SlideSetup> slide_setups(const Scene& scene) {
   std::vector<SlideSetup> out;
   const Material m = scene_material(scene);
   const Vec3& g = scene.world.gravity;
-  if (!floor_contact(scene) || !m.friction || *m.friction <= 0.0) return out;
+  if (!floor_contact(scene) || !m.friction || *m.friction <= 0.0 || scene.world.damping_rate != 0.0)
+    return out;
   const Vec3 pull(g.x(), 0.0, g.z());
+  const std::vector<LandingExclusion> stacked = landing_exclusions(scene);
   // The floor under each body is the landing oracle's (the highest static box holding it).
   for (const LandingSetup& l : landing_setups(scene)) {
     const std::size_t i = l.body;
     const Body& b = scene.bodies[i];
     if (b.shape != Shape::box || b.velocity.y() != 0.0) continue;
+    if (std::any_of(stacked.begin(), stacked.end(),
+                    [&](const LandingExclusion& x) { return x.body == i; }))
+      continue;  // another body on or under it: its normal force is not m*g
     if (std::abs(b.position.y() - l.rest_height) > 1e-9) continue;  // not resting on it
     if (pushed(scene, i)) continue;
     const Vec3 launch(b.velocity.x(), 0.0, b.velocity.z());
@@ -92,7 +109,17 @@ std::vector<SlideSetup> slide_setups(const Scene& scene) {
     if (pull.cross(u).norm() > 1e-12 * pull.norm()) continue;  // pulled across the slip
     double angle = std::atan2(std::abs(u.z()), std::abs(u.x()));
     if (angle > std::numbers::pi / 4.0) angle = std::numbers::pi / 2.0 - angle;
-    out.push_back({i, launch.norm(), u, angle, *m.friction, -g.y(), pull.dot(u)});
+    const SlideSetup setup{i, launch.norm(), u, angle, *m.friction, -g.y(), pull.dot(u)};
+    // It must stay over its floor: the end of its reach, either way, within the floor's top face.
+    const Body& f = scene.bodies[l.floor];
+    const double reach = 1.01 * slide_reach(setup, scene.duration);
+    bool on_floor = true;
+    for (const double sign : {1.0, -1.0}) {
+      const Vec3 end = b.position + sign * reach * u;
+      on_floor = on_floor && std::abs(end.x() - f.position.x()) <= f.half_extents.x() &&
+                 std::abs(end.z() - f.position.z()) <= f.half_extents.z();
+    }
+    if (on_floor) out.push_back(setup);
   }
   return out;
 }
@@ -125,7 +152,9 @@ SlidePath observed_slide_path(const Trajectory& run, const SlideSetup& setup) {
     const double along = moved.dot(setup.direction);
     p.s.push_back(along);
     p.v.push_back(std::copysign(v.norm(), v.dot(setup.direction)));  // across counts too
-    p.off.push_back((moved - along * setup.direction).norm());
+    // Across the slip, and up or down: a slide that sinks, hops or tips is off its law too.
+    p.off.push_back(
+        std::hypot((moved - along * setup.direction).norm(), b.position.y() - start.y()));
   }
   return p;
 }

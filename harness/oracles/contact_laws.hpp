@@ -26,6 +26,10 @@ namespace dropcheck {
 // slip) and the sum pyramid shares mu*g between them (mu*g/sqrt(2)).
 double slide_grip(double mu, double g, FrictionModel model, double angle);
 
+// The model's slide has an exact answer at `angle` (folded into [0, pi/4]): the cone at any angle,
+// the pyramids at 0 and pi/4 only.
+bool exact_slide_angle(FrictionModel model, double angle);
+
 struct SlideStop {
   // Continuous, while the body slides on from v0 >= 0 (along the slip, pull signed along it).
   double deceleration = 0.0;  // m/s^2: grip - pull (negative: the pull wins and it speeds up)
@@ -61,12 +65,15 @@ struct SlideSetup {
 
 // The slides of `scene`: dynamic, unturned boxes whose bottom rests on the top of a static box
 // (within 1e-9 m) that spans them, launched along the floor or pulled along it by a gravity with an
-// x-z part collinear with the launch, no force or torque on them, contacts on and the scene's
-// friction set. Empty when none.
+// x-z part collinear with the launch, no force or torque on them, no other body on or under them
+// (landing_exclusions: the normal force would not be m*g), no damping, contacts on and the scene's
+// friction set, and the slide stays over its floor for the scene's duration (the continuous slide
+// of the model that grips least, 1 % longer). Empty when none.
 std::vector<SlideSetup> slide_setups(const Scene& scene);
 
 // A slide's path a step at a time: after step n = 0..steps, s[n] (m, along the slip from the
-// start), v[n] (m/s along it) and off[n] (m, the distance across it: 0 for a law).
+// start), v[n] (m/s along it) and off[n] (m, the distance across it and up or down from the start:
+// 0 for a law).
 struct SlidePath {
   std::vector<double> s, v, off;
 };

@@ -191,6 +191,9 @@ std::vector<LandingExclusion> landing_exclusions(const Scene& scene) {
 }
 
 std::vector<LandingSetup> engine_landing_setups(const Scene& scene, const EngineInfo& info) {
+  // Gravity with a part along the floor (an incline): a body that lands slides on, as no landing
+  // closed form says; only the slides are judged (slide_setups).
+  if (scene.world.gravity.x() != 0.0 || scene.world.gravity.z() != 0.0) return {};
   const std::vector<LandingExclusion> excluded = landing_exclusions(scene);
   // Bodies with a contact law of their own: bounces and slides.
   std::vector<std::size_t> own_law;

@@ -80,7 +80,8 @@ std::vector<LandingSetup> landing_setups(const Scene& scene);
 std::vector<LandingExclusion> landing_exclusions(const Scene& scene);
 
 // landing_setups without landing_exclusions and without the bouncing spheres and the slides
-// (bounce_setups, slide_setups: judged by their own contact laws), as one engine meets the floor:
+// (bounce_setups, slide_setups: judged by their own contact laws), none at all under gravity with
+// a part along the floor (a landing body slides on), as one engine meets the floor:
 // an engine whose resting surface sits above the geometry (Box2D's 0.01 m skin) touches it there,
 // so contact means reaching the floor top plus max(0, rest_offset + rest_tolerance). The one place
 // the bodies to judge are chosen and that shift is made (check and report).

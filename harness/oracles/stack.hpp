@@ -24,12 +24,14 @@ struct StackLevel {
 };
 
 // A column of dynamic, unturned boxes over one static floor box, each over the top face of the
-// one under it (its centre within that face), at rest (or dropped from rest onto the body under
-// it), no force on them, gravity straight down, contacts on. Two or more bodies: one body alone is
-// a landing (harness/oracles/landing.hpp).
+// one under it (its centre strictly inside that face), at rest (or dropped from rest onto the body
+// under it), no force on them, gravity straight down, contacts on, and no other body sharing a
+// member's footprint above the floor (its load or its obstruction would go uncounted). Two or more
+// bodies: one body alone is a landing (harness/oracles/landing.hpp).
 struct StackSetup {
   std::size_t body = 0;  // its bottom body, which names the column
   std::size_t floor = 0;
+  double floor_top = 0.0;          // m
   double g = 0.0;                  // m/s^2, straight down
   std::vector<StackLevel> levels;  // bottom up
 };
@@ -38,9 +40,8 @@ std::vector<StackSetup> stack_setups(const Scene& scene);
 
 // What the engine's stack law predicts for one level at step h.
 struct StackPrediction {
-  double sink = 0.0;       // m: the steady-state sink of the contacts under it, summed
-  double offset = 0.0;     // m: its rest offsets (EngineInfo::rest_offset per contact)
-  double tolerance = 0.0;  // m: EngineInfo::rest_tolerance per contact
+  double sink = 0.0;    // m: the steady-state sink of the contacts under it, summed
+  double offset = 0.0;  // m: its rest offsets (EngineInfo::rest_offset per contact)
   // The largest sweep residual of the contacts under it (StackLaw::sweep_residual): over 1/2, the
   // solver cannot hold the load, a named limit.
   double residual = 0.0;

@@ -60,7 +60,7 @@ std::string slide_section(const SceneEvaluation& se) {
              v.exact ? printf_string("%.7g", v.law_seen.distance) : kNone,
              v.exact ? closed_form_cell(v) : kNone,
              v.exact ? printf_string("%.2g", v.off_law) : kNone,
-             !v.exact    ? "not judged (angle)"
+             !v.exact    ? "not judged: " + v.not_judged
              : v.follows ? "yes"
              : v.instead ? std::string("**NO**: the ") + to_string(*v.instead) + "'s law"
                          : std::string("**NO**")});

@@ -318,10 +318,15 @@ std::string scene_section(const SceneEvaluation& se, const std::vector<ReportPlo
   std::string md = "### " + se.scene.name + "\n\n" + intro(se);
   for (const ReportPlot& p : plots)
     if (p.file.find("-trajectory.svg") != std::string::npos) md += plot_md(p, outcomes);
-  // A slide, a bounce or a stack replaces the landing table.
+  // A slide, a bounce or a stack has its own table; the landing table follows where other bodies
+  // land (as `dropcheck check` judges them).
   const std::string contact = slide_section(se) + bounce_section(se) + stack_section(se);
-  md += failures(se) + (contact.empty() ? landing_section(se) : contact) + rotation_section(se) +
-        divergence(se, plots, outcomes) + oracles(se) + run_time(se, plots, outcomes, timing);
+  bool lands = false;
+  for (const EngineEvaluation& ev : se.engines)
+    lands = lands || (ev.ran() && !ev.at_default().landings.empty());
+  md += failures(se) + contact + (contact.empty() || lands ? landing_section(se) : "") +
+        rotation_section(se) + divergence(se, plots, outcomes) + oracles(se) +
+        run_time(se, plots, outcomes, timing);
   return md + orders_table(se);
 }
 

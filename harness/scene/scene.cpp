@@ -1,5 +1,6 @@
 #include "harness/scene/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace dropcheck {
@@ -44,6 +45,12 @@ Material scene_material(const Scene& scene) {
 bool has_spheres(const Scene& scene) {
   for (const Body& b : scene.bodies)
     if (b.shape == Shape::sphere) return true;
+  return false;
+}
+
+bool pushed(const Scene& scene, std::size_t body) {
+  for (const Force& f : scene.forces)
+    if (std::find(f.bodies.begin(), f.bodies.end(), body) != f.bodies.end()) return true;
   return false;
 }
 

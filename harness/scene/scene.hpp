@@ -135,6 +135,9 @@ bool is_planar(const Scene& scene);
 // on rotation, and an engine that does not rotate bodies cannot run it.
 bool needs_rotation(const Scene& scene);
 
+// True when a force of the scene (constant or spring) acts on body `body`.
+bool pushed(const Scene& scene, std::size_t body);
+
 // A scene's contact material: one friction and one restitution for every contact (the loader
 // refuses two bodies that set different values; docs/contact.md). Unset: the engines' defaults.
 struct Material {

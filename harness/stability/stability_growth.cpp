@@ -8,6 +8,7 @@
 #include "harness/core/forces.hpp"
 #include "harness/core/number_format.hpp"
 #include "harness/measure/rotation_metrics.hpp"
+#include "harness/oracles/stack.hpp"
 
 namespace dropcheck::stability_detail {
 namespace {
@@ -105,9 +106,9 @@ double spring_energy(const Spring& s, const Vec3& x) {
 // first-order steps and penetration recovery add a little. Growth: E(t) - E(0) above contact_gain
 // times the peak total kinetic energy, i.e. most of the motion is energy the physics never
 // supplied; and above the lift an engine's contacts may give resting bodies: resting_lift per
-// level, every dynamic body stacked at worst (sum of m*|a|*resting_lift*n). Without that floor a
-// resting stack, whose kinetic energy is ~0, fails on Box2D's 0.015 m skin (0.073 J by step 1)
-// or Bullet's 2.2e-5 J of solver residual.
+// contact level under each (sum of m*|a|*resting_lift*level). Without that floor a resting stack,
+// whose kinetic energy is ~0, fails on Box2D's 0.015 m skins (0.073 J by step 1, 0.44 J once
+// rested) or Bullet's 2.2e-5 J of solver residual.
 void contact_growth(const Scene& scene, const Trajectory& run, const ClassifyOptions& o,
                     std::vector<Failure>& out) {
   std::vector<BodyLaw> laws;
@@ -127,14 +128,14 @@ void contact_growth(const Scene& scene, const Trajectory& run, const ClassifyOpt
         for (std::size_t i : f.bodies) total += spring_energy(*sp, run.at(s, i).position);
     return total;
   };
+  // Each body may rise resting_lift per contact level under it (1 off a stack).
+  std::vector<int> level(scene.bodies.size(), 1);
+  for (const StackSetup& st : stack_setups(scene))
+    for (const StackLevel& l : st.levels) level[l.body] = l.level;
   double ke = 0.0, peak_ke = 0.0, lift = 0.0;
-  std::size_t dynamic = 0;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i)
-    if (!scene.bodies[i].is_static) {
-      ++dynamic;
-      lift += scene.bodies[i].mass * laws[i].accel.norm() * o.resting_lift;
-    }
-  lift *= static_cast<double>(dynamic);
+    if (!scene.bodies[i].is_static)
+      lift += scene.bodies[i].mass * laws[i].accel.norm() * o.resting_lift * level[i];
   const double e0 = energies(0, ke);
   for (std::size_t s = 0; s < run.samples(); ++s) energies(s, ke), peak_ke = std::max(peak_ke, ke);
   for (std::size_t s = 0; s < run.samples(); ++s) {

@@ -38,7 +38,7 @@ struct Prober {
     const Scene s = scene_for_step(scene, h, horizon);
     std::unique_ptr<Engine> engine = make();
     RunOptions options;
-    options.record_every = stability_record_every(step_count(s, h));
+    options.record_every = stability_record_every(s, h);
     const Verdict v =
         classify_engine_run(s, run_scene(*engine, s, h, options), engine->info(), classify);
     ++probes;
@@ -131,6 +131,12 @@ void rise(Prober& p, double h0, const SearchOptions& o, StepSearch& r) {
 
 std::int64_t stability_record_every(std::int64_t steps) {
   return steps / 20000 + 1;
+}
+
+std::int64_t stability_record_every(const Scene& scene, double h) {
+  // The contact laws are judged step by step (classify_engine_run): keep every step of a contact
+  // scene (at most max_probe_steps, 400000 samples).
+  return scene.world.contacts ? 1 : stability_record_every(step_count(scene, h));
 }
 
 Scene scene_for_step(const Scene& scene, double h, double horizon) {

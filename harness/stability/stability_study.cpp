@@ -18,7 +18,7 @@ void study_default_step(Engine& engine, const Scene& scene, const StudyOptions& 
                         EngineStability& r) {
   const double h = scene.timestep.seconds;
   RunOptions run_options;
-  run_options.record_every = stability_record_every(step_count(scene, h));
+  run_options.record_every = stability_record_every(scene, h);
   const Trajectory run = run_scene(engine, scene, h, run_options);
   r.status = run.status;
   r.steps_run = run.recorded.empty() ? 0 : run.recorded.back();

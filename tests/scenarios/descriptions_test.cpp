@@ -320,11 +320,11 @@ const std::vector<Phrase>& phrases() {
       // A resting stack (harness/oracles/stack.hpp).
       {"rest heights, " + N + " and " + N + " m",
        [](const Scene& s, const std::smatch& m) {
-         std::vector<double> h;
-         for (const auto& st : dropcheck::stack_setups(s))
-           for (const auto& l : st.levels) h.push_back(l.rest_height);
-         const std::string p = agrees(m[1], h);
-         return p.empty() ? agrees(m[2], h) : p;
+         // In order: the bottom level's, then the next (of the first stack).
+         const auto stacks = dropcheck::stack_setups(s);
+         if (stacks.empty() || stacks[0].levels.size() < 2) return agrees(m[1], {});
+         const std::string p = agrees(m[1], {stacks[0].levels[0].rest_height});
+         return p.empty() ? agrees(m[2], {stacks[0].levels[1].rest_height}) : p;
        }},
       // A slide on an incline: gravity tilted by theta (harness/oracles/contact_laws.hpp).
       {"(?:incline of|tilted by) " + N + " degrees",

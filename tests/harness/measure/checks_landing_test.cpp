@@ -150,8 +150,8 @@ TEST_CASE("The landing check names the stacked bodies it does not judge, and why
   CHECK_THAT(r.message, Contains("'heavy_1e3' not judged: lands on dynamic body 'light_1e3' (the "
                                  "landing oracle covers one body over a static floor)"));
   CHECK_THAT(r.message, Contains("'light_1e5' not judged: dynamic body 'heavy_1e5' lands on it"));
-  CHECK_THAT(r.message, Contains("no body is judged here: the stacks are judged by the stack "
-                                 "check"));
+  CHECK_THAT(r.message, Contains("no body is judged here: a stack, a slide or a bounce is judged "
+                                 "by its own contact law"));
   CHECK_THAT(r.message, !Contains("first contact"));
 }
 

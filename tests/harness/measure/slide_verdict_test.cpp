@@ -159,6 +159,28 @@ TEST_CASE("an incline steeper than the friction: the block slides at g*(sin - mu
   CHECK(slipped.off_law > 0.01);
 }
 
+TEST_CASE("a slide that is not free is not judged by the slide law", "[contact][slide]") {
+  // Another cube on the slider: its normal force is 2*m*g, not m*g.
+  Scene loaded = shipped("slide_stop");
+  Body top = loaded.bodies[0];
+  top.name = "load";
+  top.position.y() = 1.5;
+  top.velocity = Vec3::Zero();
+  loaded.bodies.push_back(top);
+  CHECK(slide_setups(loaded).empty());
+  // Drag takes speed off too.
+  Scene damped = shipped("slide_stop");
+  damped.world.damping_rate = 0.1;
+  CHECK(slide_setups(damped).empty());
+  // A slide that would leave its floor: incline_slide's cube goes 2.95 m in 3 s (the sum
+  // pyramid, gripping least, 3.1 m); a floor 2 m long each way cannot hold it.
+  Scene short_floor = shipped("incline_slide");
+  short_floor.bodies[1].half_extents.x() = 2.0;
+  CHECK(slide_setups(short_floor).empty());
+  short_floor.bodies[1].half_extents.x() = 3.5;
+  CHECK(slide_setups(short_floor).size() == 1);
+}
+
 TEST_CASE("only a box launched along a floor it rests on is a slide", "[contact][slide]") {
   Scene scene = shipped("slide_stop");
   CHECK(slide_setups(scene).size() == 1);

@@ -34,7 +34,7 @@ TEST_CASE("a stack that sinks as its law says holds; more, a drift or a jitter f
   const double h = scene.timestep.seconds;
   const std::int64_t steps = 300;
   EngineInfo ode;
-  ode.stack_law = {.compliance = 1e-10 / 0.2, .points = 4};
+  ode.stack_law = {.compliance = 1e-10 / 0.2, .points = 4, .sink_bound = 1e-12};
   ode.rest_tolerance = 1e-8;
   // The ideal stack: nothing moves, and the law predicts 4.1e-11 m of sink (within the tolerance).
   for (const StackBodyVerdict& v : judge_stack(still_run(scene, steps), s, ode, h)) {
@@ -46,6 +46,14 @@ TEST_CASE("a stack that sinks as its law says holds; more, a drift or a jitter f
   CHECK(sunk[0].holds());
   CHECK_FALSE(sunk[1].holds());
   CHECK_THAT(sunk[1].sentence(), Contains("(level 2) sinks 1e-06 m") && Contains("OUT OF BOUNDS"));
+  // A soft contact that does not sink at all fails too: MuJoCo's law puts the 1 kg cube under
+  // 1e5 kg 8.507e-3 m down at 1/60, and a run that stays at the geometry is 100 % short.
+  const Scene ratio = scenario("extreme/mass_ratio");
+  EngineInfo soft;
+  soft.stack_law = {.soft = 1e-4 * 1.25 / 16.0, .tau_steps = 2.0, .sink_bound = 1e-12};
+  const auto unsunk = judge_stack(still_run(ratio, 300), stack_setups(ratio).at(1), soft, h);
+  CHECK(unsunk[0].predicted.sink == Approx(8.507e-3).epsilon(1e-3));
+  CHECK_FALSE(unsunk[0].holds());
   // Slid 2 mm aside: beyond the 1 mm drift bound; and the jump at step 250 is in the still window.
   const auto slid = judge_stack(still_run(scene, steps, 1, {0.002, 0.0, 0.0}, 250), s, ode, h);
   CHECK_FALSE(slid[0].holds());
@@ -68,6 +76,12 @@ TEST_CASE("a load an iterative solver cannot hold is a limit for the whole colum
   CHECK_THAT(v[0].limit_text(),
              Contains("each sweep leaves 0.999 of the error between 1 kg and the "
                       "1000 kg on it, 0.99 after a step's sweeps"));
+  // The limit waives the bounds, not the floor: a light cube pushed through it fails.
+  const auto through =
+      judge_stack(still_run(scene, 300, 1, {0.0, -1.0, 0.0}, 1), s, gs, scene.timestep.seconds);
+  CHECK(through[0].unheld);
+  CHECK_FALSE(through[0].above_floor);
+  CHECK_FALSE(through[0].passes());
   // A converging solver gets no limit: the same run fails.
   EngineInfo direct;
   const auto w =

@@ -36,6 +36,18 @@ TEST_CASE("a stack is a column of resting boxes over a floor, bottom up", "[cont
   REQUIRE(ratio.size() == 2);
   CHECK(ratio[1].levels[0].load == 100001.0);
   CHECK(ratio[1].levels[1].rest_height == 1.5);
+  // A third cube beside the small one, overlapping the medium's footprint: its load would go
+  // uncounted, so the column is not a stack the law can judge.
+  Scene crowded = scenario("stack_rest");
+  Body extra = crowded.bodies[2];
+  extra.name = "extra";
+  extra.position = {1.0, 2.0, 0.0};  // over the medium cube's edge (half extent 0.75)
+  crowded.bodies.push_back(extra);
+  CHECK(stack_setups(crowded).empty());
+  // A centre exactly on the edge of the face below balances: not carried by that column alone.
+  Scene edge = scenario("stack_rest");
+  edge.bodies[2].position.x() = 0.75;
+  CHECK(stack_setups(edge).empty());
   // One body alone is a landing; a slide is not at rest.
   CHECK(stack_setups(scenario("drop_on_floor")).empty());
   CHECK(stack_setups(scenario("slide_stop")).empty());
