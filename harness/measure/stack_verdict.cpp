@@ -14,6 +14,14 @@ std::vector<StackBodyVerdict> judge_stack(const Trajectory& run, const StackSetu
   if (run.samples() == 0) return out;
   const StillCriteria window;
   const std::int64_t from = run.recorded.back() - std::llround(window.seconds / h);
+  // The column's last landing, for a body dropped onto it from rest: sqrt(2*gap/g). Stillness is
+  // judged only over a window wholly after it.
+  double landing = 0.0;
+  for (const StackLevel& l : setup.levels) {
+    const double gap = run.at(0, l.body).position.y() - l.rest_height;
+    if (gap > 0.0) landing = std::max(landing, std::sqrt(2.0 * gap / setup.g));
+  }
+  const bool still_judged = static_cast<double>(from) * h > landing;
   for (std::size_t k = 0; k < setup.levels.size(); ++k) {
     const StackLevel& l = setup.levels[k];
     StackBodyVerdict v;
@@ -36,8 +44,9 @@ std::vector<StackBodyVerdict> judge_stack(const Trajectory& run, const StackSetu
     // floor than its half height).
     v.above_floor = std::isfinite(last.position.y()) && last.position.y() >= setup.floor_top;
     v.drift_ok = v.drift <= info.stack_law.drift_bound;
-    v.still_ok =
-        v.still.speed <= info.stack_law.still_bound && v.still.range <= info.stack_law.still_bound;
+    v.still_judged = still_judged;
+    v.still_ok = !still_judged || (v.still.speed <= info.stack_law.still_bound &&
+                                   v.still.range <= info.stack_law.still_bound);
     out.push_back(v);
   }
   // A contact the sweeps cannot hold lets the load squeeze every body of the column, those under
@@ -61,8 +70,11 @@ std::string StackBodyVerdict::sentence() const {
                                   : std::string(")");
   if (!sink_ok) text += " OUT OF BOUNDS";
   text += printf_string(", drift %.2g m", drift) + (drift_ok ? "" : " TOO FAR");
-  text += printf_string(", still: %.2g m/s, %.2g m", still.speed, still.range) +
-          (still_ok ? "" : " NOT STILL");
+  text += still_judged ? printf_string(", still: %.2g m/s, %.2g m", still.speed, still.range) +
+                             (still_ok ? "" : " NOT STILL")
+                       : std::string(
+                             ", stillness not judged: the run ends less than 2 s after "
+                             "the column's last landing");
   return text;
 }
 

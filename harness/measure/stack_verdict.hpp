@@ -20,8 +20,11 @@ struct StackBodyVerdict {
   StillFigures still;  // over the last StillCriteria::seconds
   // kStackSinkLow*law - bound <= sink <= kStackSink*law + bound, bound StackLaw::sink_bound.
   bool sink_ok = false;
-  bool drift_ok = false;     // drift <= StackLaw::drift_bound
-  bool still_ok = false;     // speed and range <= StackLaw::still_bound
+  bool drift_ok = false;  // drift <= StackLaw::drift_bound
+  // Speed and range <= StackLaw::still_bound over the last 2 s, judged when that window lies
+  // wholly after the column's last landing (a body dropped onto it from rest); else true.
+  bool still_judged = false;
+  bool still_ok = false;
   bool above_floor = false;  // its centre ends above the floor's top (finite)
   // Some contact of the column has a residual over kUnheldResidual (`limiting`): the solver is not
   // expected to hold the load, a named limit for every body of the column. It waives the sink,

@@ -35,14 +35,21 @@ TEST_CASE("a stack that sinks as its law says holds; more, a drift or a jitter f
   const std::int64_t steps = 300;
   EngineInfo ode;
   ode.stack_law = {.compliance = 1e-10 / 0.2, .points = 4, .sink_bound = 1e-12};
-  ode.rest_tolerance = 1e-8;
-  // The ideal stack: nothing moves, and the law predicts 4.1e-11 m of sink (within the tolerance).
-  for (const StackBodyVerdict& v : judge_stack(still_run(scene, steps), s, ode, h)) {
+  // The stack as its law says: the medium cube 4.083e-11 m down, the small one 6.125e-11 m.
+  std::vector<Vec3> law(scene.bodies.size(), Vec3::Zero());
+  for (std::size_t k = 0; k < 2; ++k) law[s.levels[k].body].y() = -predict_stack(s, k, ode, h).sink;
+  CHECK(law[2].y() == Approx(-6.125e-11).epsilon(1e-3));
+  for (const StackBodyVerdict& v :
+       judge_stack(testing::displaced_run(scene, steps, law), s, ode, h)) {
     CHECK(v.holds());
     CHECK_FALSE(v.unheld);
   }
-  // The small cube (body 2) 1e-6 m lower: beyond its law's 6.1e-11 m and the 2e-8 m tolerance.
-  const auto sunk = judge_stack(still_run(scene, steps, 2, {0.0, -1e-6, 0.0}), s, ode, h);
+  // Rigid, not sinking at all: below 0.8 of the law (its bound, 1e-12 m, is rounding).
+  CHECK_FALSE(judge_stack(still_run(scene, steps), s, ode, h)[0].holds());
+  // The small cube (body 2) 1e-6 m lower: far beyond its law's 6.1e-11 m.
+  std::vector<Vec3> deeper = law;
+  deeper[2].y() = -1e-6;
+  const auto sunk = judge_stack(testing::displaced_run(scene, steps, deeper), s, ode, h);
   CHECK(sunk[0].holds());
   CHECK_FALSE(sunk[1].holds());
   CHECK_THAT(sunk[1].sentence(), Contains("(level 2) sinks 1e-06 m") && Contains("OUT OF BOUNDS"));
@@ -76,6 +83,12 @@ TEST_CASE("a load an iterative solver cannot hold is a limit for the whole colum
   CHECK_THAT(v[0].limit_text(),
              Contains("each sweep leaves 0.999 of the error between 1 kg and the "
                       "1000 kg on it, 0.99 after a step's sweeps"));
+  // Stillness needs 2 s after the column's last landing: the heavy cube drops 1 m (0.4518 s), so
+  // a 2.4 s run cannot show it.
+  CHECK(v[0].still_judged);
+  const auto short_run = judge_stack(still_run(scene, 144), s, gs, scene.timestep.seconds);
+  CHECK_FALSE(short_run[1].still_judged);
+  CHECK_THAT(short_run[1].sentence(), Contains("stillness not judged"));
   // The limit waives the bounds, not the floor: a light cube pushed through it fails.
   const auto through =
       judge_stack(still_run(scene, 300, 1, {0.0, -1.0, 0.0}, 1), s, gs, scene.timestep.seconds);
