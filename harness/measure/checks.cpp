@@ -305,14 +305,12 @@ std::string landing_text(const Trajectory& run, const LandingSetup& setup, const
                           (o.still ? "" : " NOT STILL"));
 }
 
-// A turning body meets the floor with a corner or an edge, and each engine's contact model decides
-// what follows: no closed form to judge the landing by. What is judged: the run ends, and every
-// dynamic body ends with its centre above the top of the highest static body below it (a body
-// that fell through would end under it).
-CheckResult turning_landing(const Scene& scene, const Trajectory& run, CheckResult& r) {
-  r.message =
-      "a turning body's landing has no closed form (corner or edge first, then each "
-      "engine's contact model): compared in the report, not judged";
+// What is judged of a landing with no closed form (`why`): the run ends, and every dynamic body
+// ends with its centre above the top of the highest static body below it (a body that fell
+// through would end under it).
+CheckResult floor_held(const Scene& scene, const Trajectory& run, CheckResult& r,
+                       const std::string& why) {
+  r.message = why;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const Body& b = scene.bodies[i];
     if (b.is_static) continue;
@@ -328,6 +326,14 @@ CheckResult turning_landing(const Scene& scene, const Trajectory& run, CheckResu
     }
   }
   return r;
+}
+
+// A turning body meets the floor with a corner or an edge, and each engine's contact model decides
+// what follows: no closed form to judge the landing by.
+CheckResult turning_landing(const Scene& scene, const Trajectory& run, CheckResult& r) {
+  return floor_held(scene, run, r,
+                    "a turning body's landing has no closed form (corner or edge first, then each "
+                    "engine's contact model): compared in the report, not judged");
 }
 
 }  // namespace
@@ -365,6 +371,10 @@ CheckResult check_landing(const Scene& scene, const EngineFactory& make, const T
   const EngineInfo& info = c.info;
   const Trajectory& run = *c.run;
   if (needs_rotation(scene)) return turning_landing(scene, run, r);
+  if (scene.world.gravity.x() != 0.0 || scene.world.gravity.z() != 0.0)
+    return floor_held(scene, run, r,
+                      "gravity has a part along the floor, so a landing body slides on (only "
+                      "slides are judged there: docs/contact.md)");
   const std::vector<LandingSetup> setups = engine_landing_setups(scene, info);
   std::vector<std::string> limits;
   for (const LandingSetup& setup : setups) {
@@ -451,8 +461,9 @@ CheckResult check_stack(const Scene& scene, const EngineFactory& make, const Tim
       text += (text.empty() ? "" : "; ") + run.body_names[v.body] + " " + v.sentence();
     }
     append(r.message, "stack from '" + run.body_names[s.body] + "' up: " + text);
-    const bool squeezed = std::any_of(verdicts.begin(), verdicts.end(),
-                                      [](const auto& v) { return v.unheld && !v.holds(); });
+    const bool squeezed = std::any_of(verdicts.begin(), verdicts.end(), [](const auto& v) {
+      return v.unheld && v.above_floor && !v.holds();
+    });
     if (squeezed)
       append(r.limit, "the stack from '" + run.body_names[s.body] + "' up is " +
                           verdicts.front().limit_text());

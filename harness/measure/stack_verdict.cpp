@@ -14,14 +14,16 @@ std::vector<StackBodyVerdict> judge_stack(const Trajectory& run, const StackSetu
   if (run.samples() == 0) return out;
   const StillCriteria window;
   const std::int64_t from = run.recorded.back() - std::llround(window.seconds / h);
-  // The column's last landing, for a body dropped onto it from rest: sqrt(2*gap/g). Stillness is
-  // judged only over a window wholly after it.
+  // The column's last landing, for a body dropped onto it from rest (the continuous fall under the
+  // run's drag, harness/oracles/landing.hpp). Stillness is judged only over a window wholly after.
   double landing = 0.0;
   for (const StackLevel& l : setup.levels) {
-    const double gap = run.at(0, l.body).position.y() - l.rest_height;
-    if (gap > 0.0) landing = std::max(landing, std::sqrt(2.0 * gap / setup.g));
+    const double y0 = run.at(0, l.body).position.y();
+    if (y0 > l.rest_height)
+      landing = std::max(
+          landing, contact_time_continuous(y0, 0.0, -setup.g, setup.damping_rate, l.rest_height));
   }
-  const bool still_judged = static_cast<double>(from) * h > landing;
+  const bool still_judged = static_cast<double>(from) * h > landing;  // false for NaN
   for (std::size_t k = 0; k < setup.levels.size(); ++k) {
     const StackLevel& l = setup.levels[k];
     StackBodyVerdict v;

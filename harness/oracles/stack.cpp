@@ -59,8 +59,12 @@ std::vector<StackSetup> stack_setups(const Scene& scene) {
   for (const LandingSetup& l : landing_setups(scene)) {
     const Body& first = scene.bodies[l.body];
     if (!stackable(scene, l.body) || std::abs(first.position.y() - l.rest_height) > 1e-9) continue;
-    StackSetup s{
-        l.body, l.floor, l.floor_top, -g.y(), {{l.body, 1, l.rest_height, first.mass, 0.0, 0.0}}};
+    StackSetup s{l.body,
+                 l.floor,
+                 l.floor_top,
+                 -g.y(),
+                 scene.world.damping_rate,
+                 {{l.body, 1, l.rest_height, first.mass, 0.0, 0.0}}};
     for (;;) {
       const StackLevel& under_level = s.levels.back();
       const Body& under = scene.bodies[under_level.body];

@@ -33,6 +33,7 @@ struct StackSetup {
   std::size_t floor = 0;
   double floor_top = 0.0;          // m
   double g = 0.0;                  // m/s^2, straight down
+  double damping_rate = 0.0;       // 1/s, the scene's drag
   std::vector<StackLevel> levels;  // bottom up
 };
 

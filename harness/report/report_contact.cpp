@@ -150,9 +150,10 @@ std::string stack_section(const SceneEvaluation& se) {
                mark(v.drift_ok, printf_string("%.2g", v.drift)),
                mark(v.still_ok, printf_string("%.2g", v.still.speed)),
                mark(v.still_ok, printf_string("%.2g", v.still.range)), describe(ev.info.stack_law),
-               v.holds()  ? "yes"
-               : v.unheld ? "no: " + v.limit_text() + " (a limit)"
-                          : std::string("**NO**")});
+               v.holds()                   ? "yes"
+               : v.unheld && v.above_floor ? "no: " + v.limit_text() + " (a limit)"
+               : v.unheld                  ? std::string("**NO**: through the floor")
+                                           : std::string("**NO**")});
       }
   }
   return "#### Stacks at h = " + se.scene.timestep.text +

@@ -8,6 +8,7 @@
 #include "harness/core/forces.hpp"
 #include "harness/core/number_format.hpp"
 #include "harness/measure/rotation_metrics.hpp"
+#include "harness/oracles/landing.hpp"
 #include "harness/oracles/stack.hpp"
 
 namespace dropcheck::stability_detail {
@@ -128,8 +129,13 @@ void contact_growth(const Scene& scene, const Trajectory& run, const ClassifyOpt
         for (std::size_t i : f.bodies) total += spring_energy(*sp, run.at(s, i).position);
     return total;
   };
-  // Each body may rise resting_lift per contact level under it (1 off a stack).
+  // Each body may rise resting_lift per contact level under it: its stack level, 1 for a body on
+  // its own, and every dynamic body's count for one stacked outside a judged stack (at worst the
+  // top of a column of all of them).
+  int dynamic = 0;
+  for (const Body& b : scene.bodies) dynamic += b.is_static ? 0 : 1;
   std::vector<int> level(scene.bodies.size(), 1);
+  for (const LandingExclusion& x : landing_exclusions(scene)) level[x.body] = dynamic;
   for (const StackSetup& st : stack_setups(scene))
     for (const StackLevel& l : st.levels) level[l.body] = l.level;
   double ke = 0.0, peak_ke = 0.0, lift = 0.0;

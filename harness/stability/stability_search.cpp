@@ -18,6 +18,8 @@
 #include "harness/core/number_format.hpp"
 #include "harness/core/runner.hpp"
 #include "harness/io/trajectory_io.hpp"
+#include "harness/oracles/contact_laws.hpp"
+#include "harness/oracles/stack.hpp"
 #include "harness/stability/stability.hpp"
 #include "harness/stability/stability_contact.hpp"
 
@@ -134,9 +136,14 @@ std::int64_t stability_record_every(std::int64_t steps) {
 }
 
 std::int64_t stability_record_every(const Scene& scene, double h) {
-  // The contact laws are judged step by step (classify_engine_run): keep every step of a contact
-  // scene (at most max_probe_steps, 400000 samples).
-  return scene.world.contacts ? 1 : stability_record_every(step_count(scene, h));
+  // The contact laws are judged step by step (classify_engine_run): keep every step of a scene
+  // that holds a slide, a bounce or a stack, up to 200000 steps (a longer run is thinned as any
+  // other, and classified without its contact laws).
+  const std::int64_t steps = step_count(scene, h);
+  const bool contact_laws =
+      scene.world.contacts && (!slide_setups(scene).empty() || !bounce_setups(scene).empty() ||
+                               !stack_setups(scene).empty());
+  return contact_laws && steps <= 200000 ? 1 : stability_record_every(steps);
 }
 
 Scene scene_for_step(const Scene& scene, double h, double horizon) {

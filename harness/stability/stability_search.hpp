@@ -46,8 +46,8 @@ StepSearch search_max_stable_dt(const EngineFactory& make, const Scene& scene, d
 // The record_every that keeps a run of `steps` steps at most 20000 samples (frozen and growth
 // detection work on samples; a long run need not keep every step).
 std::int64_t stability_record_every(std::int64_t steps);
-// The record_every of a stability run of `scene` at h: every step on a contact scene (its contact
-// laws are judged step by step), else the one above.
+// The record_every of a stability run of `scene` at h: every step, up to 200000, on a scene that
+// holds a slide, a bounce or a stack (its contact laws are judged step by step), else the above.
 std::int64_t stability_record_every(const Scene& scene, double h);
 
 // The scene with its duration set to ceil(horizon/h)*h: whole steps of h (scene_for_step.duration/h

@@ -172,8 +172,9 @@ TEST_CASE("a slide that is not free is not judged by the slide law", "[contact][
   Scene damped = shipped("slide_stop");
   damped.world.damping_rate = 0.1;
   CHECK(slide_setups(damped).empty());
-  // A slide that would leave its floor: incline_slide's cube goes 2.95 m in 3 s (the sum
-  // pyramid, gripping least, 3.1 m); a floor 2 m long each way cannot hold it.
+  // A slide that would leave its floor: incline_slide's cube goes 2.954 m in 3 s (along an axis
+  // every model grips mu*g; 1.01 + 1/180 of it, 2.99 m, with the margin); a floor 2 m long each
+  // way cannot hold it, one 3.5 m long can.
   Scene short_floor = shipped("incline_slide");
   short_floor.bodies[1].half_extents.x() = 2.0;
   CHECK(slide_setups(short_floor).empty());

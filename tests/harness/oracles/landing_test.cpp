@@ -228,6 +228,8 @@ TEST_CASE("A stacked body is not judged by the landing oracle, and the reason na
   CHECK(landing_setups(scenario("incline_slide")).size() == 1);
   CHECK(engine_landing_setups(scenario("incline_slide"), EngineInfo{}).empty());
   CHECK(engine_landing_setups(scenario("bounce_e05"), EngineInfo{}).empty());
+  CHECK(landing_setups(scenario("slide_stop")).size() == 1);
+  CHECK(engine_landing_setups(scenario("slide_stop"), EngineInfo{}).empty());
 }
 
 TEST_CASE("Stillness is judged only over a window that lies wholly after first contact",

@@ -46,6 +46,7 @@ TEST_CASE("a stack resting on its engine's skins is not energy growth", "[stabil
   CHECK(bare.failures.front().mode == FailureMode::unbounded_growth);
   // An engine that declares no skin rests at the geometry: the same lift is off its stack law.
   EngineInfo rigid;
+  rigid.stack_law.sink_bound = 1e-12;  // rigid to rounding
   const Verdict v = classify_engine_run(scene, run, rigid);
   REQUIRE_FALSE(v.stable());
   CHECK(v.failures.front().mode == FailureMode::unbounded_growth);
