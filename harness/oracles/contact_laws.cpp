@@ -70,16 +70,16 @@ double slide_distance_continuous(double v0, double pull, double grip, double t) 
 
 namespace {
 
-// The farthest the slide goes from its start over `duration` (m along the slip, either way): the
-// continuous slide of the model that grips least, which goes farthest.
-double slide_reach(const SlideSetup& s, double duration) {
-  double grip = INFINITY;
-  for (FrictionModel m : kFrictionModels)
-    if (exact_slide_angle(m, s.angle)) grip = std::min(grip, slide_grip(s.mu, s.g, m, s.angle));
-  double reach = std::abs(slide_distance_continuous(s.v0, s.pull, grip, duration));
-  const double a = grip - s.pull;
-  if (s.v0 > 0.0 && a > 0.0 && s.v0 / a < duration)  // the forward stop, before any slide back
-    reach = std::max(reach, s.v0 * s.v0 / (2.0 * a));
+// The farthest the slide goes from its start at the scene's step over its duration (m along the
+// slip, either way): the ideal discrete law of every friction model exact at its angle.
+double slide_reach(const SlideSetup& s, const Scene& scene) {
+  const double h = scene.timestep.seconds;
+  double reach = 0.0;
+  for (FrictionModel m : kFrictionModels) {
+    if (!exact_slide_angle(m, s.angle)) continue;
+    for (const double d : slide_path(s, m, h, step_count(scene, h)).s)
+      reach = std::max(reach, std::abs(d));
+  }
   return reach;
 }
 
@@ -112,7 +112,8 @@ std::vector<SlideSetup> slide_setups(const Scene& scene) {
     const SlideSetup setup{i, launch.norm(), u, angle, *m.friction, -g.y(), pull.dot(u)};
     // It must stay over its floor: the end of its reach, either way, within the floor's top face.
     const Body& f = scene.bodies[l.floor];
-    const double reach = 1.01 * slide_reach(setup, scene.duration);
+    // (1 % more: a run at another step, as the stability search makes, goes a little farther.)
+    const double reach = 1.01 * slide_reach(setup, scene);
     bool on_floor = true;
     for (const double sign : {1.0, -1.0}) {
       const Vec3 end = b.position + sign * reach * u;
@@ -152,9 +153,10 @@ SlidePath observed_slide_path(const Trajectory& run, const SlideSetup& setup) {
     const double along = moved.dot(setup.direction);
     p.s.push_back(along);
     p.v.push_back(std::copysign(v.norm(), v.dot(setup.direction)));  // across counts too
-    // Across the slip, and up or down: a slide that sinks, hops or tips is off its law too.
-    p.off.push_back(
-        std::hypot((moved - along * setup.direction).norm(), b.position.y() - start.y()));
+    // Across the slip, and up or down from where its contact put it after step 1 (an engine's
+    // skin or sink sets that height): a slide that sinks, hops or tips on is off its law too.
+    const double settled = run.at(std::min<std::size_t>(k, 1), setup.body).position.y();
+    p.off.push_back(std::hypot((moved - along * setup.direction).norm(), b.position.y() - settled));
   }
   return p;
 }

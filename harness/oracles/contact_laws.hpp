@@ -67,13 +67,13 @@ struct SlideSetup {
 // (within 1e-9 m) that spans them, launched along the floor or pulled along it by a gravity with an
 // x-z part collinear with the launch, no force or torque on them, no other body on or under them
 // (landing_exclusions: the normal force would not be m*g), no damping, contacts on and the scene's
-// friction set, and the slide stays over its floor for the scene's duration (the continuous slide
-// of the model that grips least, 1 % longer). Empty when none.
+// friction set, and the slide stays over its floor for the scene's duration (the ideal discrete
+// slide of every model at the scene's step, 1 % longer). Empty when none.
 std::vector<SlideSetup> slide_setups(const Scene& scene);
 
 // A slide's path a step at a time: after step n = 0..steps, s[n] (m, along the slip from the
-// start), v[n] (m/s along it) and off[n] (m, the distance across it and up or down from the start:
-// 0 for a law).
+// start), v[n] (m/s along it) and off[n] (m, the distance across it and up or down from its height
+// after step 1: 0 for a law).
 struct SlidePath {
   std::vector<double> s, v, off;
 };

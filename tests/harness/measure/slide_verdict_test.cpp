@@ -135,6 +135,25 @@ TEST_CASE("an incline: the held block must not creep, the launched one stops at 
                                    Catch::Contains("DEPARTS"));
 }
 
+TEST_CASE("a slide's height is judged from where its contact put it after step 1",
+          "[contact][slide]") {
+  const Scene scene = shipped("slide_stop");
+  const std::vector<SlideSetup> slides = slide_setups(scene);
+  const double h = scene.timestep.seconds;
+  const SlidePath law = slide_path(slides[0], FrictionModel::cone, h, step_count(scene, h));
+  Trajectory run = path_run(scene, slides, {law});
+  const std::size_t bodies = scene.bodies.size();
+  // A skin lifts the cube 0.015 m in step 1 and it slides on at that height: it follows.
+  for (std::size_t n = 1; n < run.samples(); ++n) run.states[n * bodies].position.y() += 0.015;
+  CHECK(judge_slide(run, slides[0], FrictionModel::cone, h).follows);
+  // Sinking on after step 1, 1e-5 m a step: off its law by the height alone.
+  for (std::size_t n = 2; n < run.samples(); ++n)
+    run.states[n * bodies].position.y() -= 1e-5 * static_cast<double>(n - 1);
+  const SlideVerdict sunk = judge_slide(run, slides[0], FrictionModel::cone, h);
+  CHECK_FALSE(sunk.follows);
+  CHECK(sunk.off_law == Approx(1e-5 * 239).epsilon(1e-9));
+}
+
 TEST_CASE("an incline steeper than the friction: the block slides at g*(sin - mu*cos)",
           "[contact][slide]") {
   const Scene scene = shipped("incline_slide");
@@ -172,13 +191,13 @@ TEST_CASE("a slide that is not free is not judged by the slide law", "[contact][
   Scene damped = shipped("slide_stop");
   damped.world.damping_rate = 0.1;
   CHECK(slide_setups(damped).empty());
-  // A slide that would leave its floor: incline_slide's cube goes 2.954 m in 3 s (along an axis
-  // every model grips mu*g; 1.01 + 1/180 of it, 2.99 m, with the margin); a floor 2 m long each
-  // way cannot hold it, one 3.5 m long can.
+  // A slide that would leave its floor: incline_slide's cube goes 2.970552 m in 180 steps (along
+  // an axis every model grips mu*g; 3.0003 m with the 1 % margin): a floor 2.99 m long each way
+  // cannot hold it, one 3.01 m long can.
   Scene short_floor = shipped("incline_slide");
-  short_floor.bodies[1].half_extents.x() = 2.0;
+  short_floor.bodies[1].half_extents.x() = 2.99;
   CHECK(slide_setups(short_floor).empty());
-  short_floor.bodies[1].half_extents.x() = 3.5;
+  short_floor.bodies[1].half_extents.x() = 3.01;
   CHECK(slide_setups(short_floor).size() == 1);
 }
 
