@@ -9,6 +9,7 @@
 
 #include "harness/oracles/landing.hpp"
 #include "harness/scene/scene_loader.hpp"
+#include "tests/scene_texts.hpp"
 
 using dropcheck::bounce;
 using dropcheck::bounce_path;
@@ -232,47 +233,19 @@ TEST_CASE("a bounce turned by a speculative contact is observed at the step befo
 
 TEST_CASE("a sphere on or under another body, or over a static sphere, is no floor bounce",
           "[contact][reference]") {
-  const std::string text = R"(duration = 1.0
-timestep = "1/60"
-[world]
-gravity = [0.0, -9.8, 0.0]
-contacts = true
-[[body]]
-name = "floor"
-static = true
-half_extents = [5.0, 0.5, 5.0]
-position = [0.0, -0.5, 0.0]
-[[body]]
-name = "low"
-shape = "sphere"
-radius = 0.5
-position = [0.0, 1.5, 0.0]
-restitution = 0.5
-[[body]]
-name = "high"
-shape = "sphere"
-radius = 0.5
-position = [0.0, 3.0, 0.0]
-restitution = 0.5
-[[body]]
-name = "alone"
-shape = "sphere"
-radius = 0.5
-position = [3.0, 1.5, 0.0]
-restitution = 0.5
-[[body]]
-name = "ball_floor"
-static = true
-shape = "sphere"
-radius = 0.5
-position = [-3.0, 0.5, 0.0]
-[[body]]
-name = "on_ball"
-shape = "sphere"
-radius = 0.5
-position = [-3.0, 2.0, 0.0]
-restitution = 0.5
-)";
+  using dropcheck::testing::body_text;
+  const std::string ball = "shape = \"sphere\"\nradius = 0.5\n";
+  const std::string bouncy = ball + "restitution = 0.5\n";
+  const std::string text =
+      dropcheck::testing::scene_head("1.0", "1/60", dropcheck::testing::kEarth,
+                                     "contacts = true\n") +
+      body_text("floor", "[0.0, -0.5, 0.0]", "",
+                "static = true\nhalf_extents = [5.0, 0.5, 5.0]\n") +
+      body_text("low", "[0.0, 1.5, 0.0]", "", bouncy) +
+      body_text("high", "[0.0, 3.0, 0.0]", "", bouncy) +
+      body_text("alone", "[3.0, 1.5, 0.0]", "", bouncy) +
+      body_text("ball_floor", "[-3.0, 0.5, 0.0]", "", "static = true\n" + ball) +
+      body_text("on_ball", "[-3.0, 2.0, 0.0]", "", bouncy);
   const dropcheck::Scene scene = dropcheck::parse_scene(text, "stack.toml");
   const auto setups = dropcheck::bounce_setups(scene);
   REQUIRE(setups.size() == 1);
