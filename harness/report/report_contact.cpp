@@ -1,5 +1,7 @@
 #include "harness/report/report_contact.hpp"
 
+#include <algorithm>
+
 #include "harness/core/number_format.hpp"
 #include "harness/measure/bounce_verdict.hpp"
 #include "harness/measure/contact_departures.hpp"
@@ -9,21 +11,13 @@
 #include "harness/report/report_format.hpp"
 
 namespace dropcheck {
-namespace {
-
-// The engine's default-step run leaves a contact law of kind `law` (contact_departures).
-bool departs(const SceneEvaluation& se, const EngineEvaluation& ev, ContactLaw law) {
-  if (!ev.ran() || ev.at_default().run.status != RunStatus::ok) return false;
+std::vector<ContactLaw> departed_laws(const SceneEvaluation& se, const EngineEvaluation& ev) {
+  std::vector<ContactLaw> out;
+  if (!ev.ran() || ev.at_default().run.status != RunStatus::ok) return out;
   for (const ContactDeparture& d :
        contact_departures(se.scene, ev.at_default().run, ev.info, se.scene.timestep.seconds))
-    if (d.law == law) return true;
-  return false;
-}
-
-}  // namespace
-
-bool off_slide_law(const SceneEvaluation& se, const EngineEvaluation& ev) {
-  return departs(se, ev, ContactLaw::slide);
+    if (std::find(out.begin(), out.end(), d.law) == out.end()) out.push_back(d.law);
+  return out;
 }
 
 namespace {
@@ -77,10 +71,6 @@ std::string slide_section(const SceneEvaluation& se) {
          printf_string("%.0e", tolerance::kSlideDistance) + " m.\n\n" + t.str() + "\n";
 }
 
-bool off_bounce_law(const SceneEvaluation& se, const EngineEvaluation& ev) {
-  return departs(se, ev, ContactLaw::bounce);
-}
-
 std::string bounce_section(const SceneEvaluation& se) {
   const std::vector<BounceSetup> bounces = bounce_setups(se.scene);
   if (bounces.empty()) return {};
@@ -123,10 +113,6 @@ std::string bounce_section(const SceneEvaluation& se) {
          "its contact adds, named where they move its path off the ideal one (docs/contact.md). "
          "The closed form: " +
          closed + ".\n\n" + t.str() + "\n";
-}
-
-bool off_stack_law(const SceneEvaluation& se, const EngineEvaluation& ev) {
-  return departs(se, ev, ContactLaw::stack);
 }
 
 std::string stack_section(const SceneEvaluation& se) {

@@ -99,9 +99,11 @@ std::string verdict(const SceneEvaluation& se) {
     if (off_rest(se, ev)) add(rest, ev.name);
     if (restless(se, ev)) add(moving, ev.name);
     if (tunnelled(se, ev)) add(tunnels, ev.name);
-    if (off_slide_law(se, ev)) add(slides, ev.name);
-    if (off_bounce_law(se, ev)) add(bounces, ev.name);
-    if (off_stack_law(se, ev)) add(stacks, ev.name);
+    for (const ContactLaw law : departed_laws(se, ev))
+      add(law == ContactLaw::slide    ? slides
+          : law == ContactLaw::bounce ? bounces
+                                      : stacks,
+          ev.name);
   }
   std::string v;
   auto flag = [&v](const char* what, const std::string& list) {

@@ -15,6 +15,8 @@
 #include "harness/cli/cli.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/io/output_dir.hpp"
+#include "harness/report/report_contact.hpp"
+#include "harness/report/report_summary.hpp"
 #include "harness/scene/scene_loader.hpp"
 
 using namespace dropcheck;
@@ -248,4 +250,41 @@ TEST_CASE("the timings of a previous report are read only from a regular file, n
   const PreviousTimings l = read_previous_timings(dir.file("link2"));
   CHECK(!l.record);
   CHECK_THAT(l.warning, Contains("is a symbolic link") && !Contains("secret text"));
+}
+
+namespace {
+
+// ODE under a declaration of the cone: its box-pyramid slide at 45 degrees leaves the cone's law.
+class MisdeclaredOde : public Engine {
+ public:
+  MisdeclaredOde() : ode_(make_engine("ode")) {}
+  EngineInfo info() const override {
+    EngineInfo i = ode_->info();
+    i.name = "ode-as-cone";
+    i.friction_model = FrictionModel::cone;
+    return i;
+  }
+  std::string cannot_run(const Scene& scene) const override { return ode_->cannot_run(scene); }
+  void load(const Scene& scene, double h) override { ode_->load(scene, h); }
+  void set_forces(std::span<const Vec3> forces) override { ode_->set_forces(forces); }
+  void step() override { ode_->step(); }
+  void read(std::span<BodyState> out) const override { ode_->read(out); }
+
+ private:
+  std::unique_ptr<Engine> ode_;
+};
+
+}  // namespace
+
+TEST_CASE("the summary flags an engine off its slide law, once per engine", "[report][contact]") {
+  if (!make_engine("ode")) return;
+  const Scene scene =
+      load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/slide_diagonal.toml");
+  const std::vector<EngineSlot> engines{
+      {"ode", [] { return make_engine("ode"); }, ""},
+      {"ode-as-cone", [] { return std::make_unique<MisdeclaredOde>(); }, ""}};
+  const SceneEvaluation se = evaluate_scene(scene, engines);
+  CHECK(departed_laws(se, se.engines[0]).empty());
+  CHECK(departed_laws(se, se.engines[1]) == std::vector<ContactLaw>{ContactLaw::slide});
+  CHECK(summarize(se).verdict == "**OFF SLIDE LAW**: ode-as-cone");
 }
