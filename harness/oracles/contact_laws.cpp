@@ -8,18 +8,14 @@
 #include "harness/oracles/landing.hpp"
 
 namespace dropcheck {
-namespace {
 
-// What every contact law here assumes: contacts on, gravity with a part into a level floor (-y),
-// nothing turning. A bounce also needs gravity straight down (level_gravity).
 bool floor_contact(const Scene& scene) {
   return scene.world.contacts && scene.world.gravity.y() < 0.0 && !needs_rotation(scene);
 }
+
 bool level_gravity(const Scene& scene) {
   return scene.world.gravity.x() == 0.0 && scene.world.gravity.z() == 0.0;
 }
-
-}  // namespace
 
 bool exact_slide_angle(FrictionModel model, double angle) {
   return model == FrictionModel::cone || angle == 0.0 ||

@@ -15,6 +15,11 @@
 
 namespace dropcheck {
 
+// What every contact law here assumes: contacts on, gravity with a part into a level floor (-y),
+// nothing turning. A bounce and a stack also need gravity straight down (level_gravity).
+bool floor_contact(const Scene& scene);
+bool level_gravity(const Scene& scene);
+
 // A slide on a floor under friction mu, with gravity g into the floor and `pull` (m/s^2) along it:
 // a level floor has no pull, an incline of angle theta is a floor under gravity tilted by theta
 // (g = g0*cos(theta) into it, pull = g0*sin(theta) down the slope). The slip and the pull are

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "harness/oracles/contact_laws.hpp"
 #include "harness/oracles/landing.hpp"
 
 namespace dropcheck {
@@ -51,9 +52,7 @@ bool stackable(const Scene& scene, std::size_t i) {
 std::vector<StackSetup> stack_setups(const Scene& scene) {
   std::vector<StackSetup> out;
   const Vec3& g = scene.world.gravity;
-  if (!scene.world.contacts || g.x() != 0.0 || g.z() != 0.0 || !(g.y() < 0.0) ||
-      needs_rotation(scene))
-    return out;
+  if (!floor_contact(scene) || !level_gravity(scene)) return out;
   // A column starts with a body resting on its floor (the landing oracle's floor); the next level
   // is the lowest stackable body over the level under it, with its bottom at or above that top.
   for (const LandingSetup& l : landing_setups(scene)) {
