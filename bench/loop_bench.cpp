@@ -19,7 +19,7 @@
 
 #include "adapters/adapters.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/core/runner.hpp"
+#include "harness/run/runner.hpp"
 
 namespace dropcheck {
 namespace {

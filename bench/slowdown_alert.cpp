@@ -1,6 +1,6 @@
 // Does the slowdown alert catch a real slowdown? Times every cell of the shipped scenes twice, as
 // `dropcheck report` does (time_evaluations), the second time with one engine made 20 % slower,
-// and prints which cells the alert (slowdowns(), harness/measure/timing_record.hpp) flags: the
+// and prints which cells the alert (slowdowns(), harness/report/timing_record.hpp) flags: the
 // slowed engine's cells it catches, and any other engine's cell it flags (a false alarm).
 //
 //   dropcheck_slowdown_alert [--engine E] [--percent P] [SCENE_DIR]   (defaults: ours, 20,
@@ -23,10 +23,10 @@
 #include "harness/core/number_format.hpp"
 #include "harness/core/provenance.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/measure/evaluate.hpp"
-#include "harness/measure/timing_record.hpp"
+#include "harness/core/timestep.hpp"
+#include "harness/report/timing_record.hpp"
 #include "harness/scene/scene_loader.hpp"
-#include "harness/scene/timestep.hpp"
+#include "harness/study/evaluate.hpp"
 
 namespace dropcheck {
 namespace {

@@ -20,7 +20,7 @@
 #include "harness/plan/cell_record.hpp"
 #include "harness/plan/merge.hpp"
 #include "harness/plan/shard.hpp"
-#include "harness/process/isolated_run.hpp"
+#include "harness/run/isolated_run.hpp"
 
 namespace fs = std::filesystem;
 using namespace dropcheck;

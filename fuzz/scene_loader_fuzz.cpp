@@ -1,6 +1,6 @@
 // Fuzz target: the scene loader (harness/scene/scene_loader.cpp) on arbitrary bytes. Any input must
 // either load or be refused with InputError; any other exception, a crash or a sanitizer report is
-// a bug. A scene that loads also goes through the run pre-checks (harness/core/run_limits.cpp) for
+// a bug. A scene that loads also goes through the run pre-checks (harness/run/run_limits.cpp) for
 // an f32 and an f64 engine, which read every value of it. Built by scripts/fuzz.sh (libFuzzer,
 // clang) and by fuzz/CMakeLists.txt (replay driver, any compiler).
 #include <cstddef>
@@ -8,7 +8,7 @@
 #include <string>
 
 #include "harness/core/input_error.hpp"
-#include "harness/core/run_limits.hpp"
+#include "harness/run/run_limits.hpp"
 #include "harness/scene/scene_loader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -36,7 +36,7 @@ done
 # assertions off as in the library dropcheck links (the loader refuses control characters before
 # toml++ sees them, and hands it ASCII only: harness/scene/toml_ascii.hpp).
 sources=("$root"/harness/{core,scene,io,process}/*.cpp "$root"/harness/guard/baseline_parse.cpp "$root"/harness/guard/baseline_io.cpp
-         "$root"/harness/measure/timing_record.cpp "$root"/adapters/exec_protocol.cpp
+         "$root"/harness/report/timing_record.cpp "$root"/adapters/exec_protocol.cpp
          "$root"/harness/plan/{plan,axes,sweep_file}.cpp)
 flags=(-std=c++20 -O1 -g -fno-omit-frame-pointer -fsanitize=fuzzer-no-link,address,undefined
        -fno-sanitize-recover=all -ffp-contract=off -I"$root" -I/usr/include/eigen3

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "harness/core/scene.hpp"
 #include "harness/core/trajectory.hpp"
-#include "harness/scene/scene.hpp"
 
 namespace dropcheck::testing {
 

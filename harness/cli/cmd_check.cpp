@@ -1,5 +1,5 @@
 // dropcheck check FILE... [--engine E]...
-// Runs every check that applies to each scene on each engine (harness/measure/checks.hpp) and
+// Runs every check that applies to each scene on each engine (harness/study/checks.hpp) and
 // prints one line per check: PASS/LIMIT/FAIL (LIMIT: passed, the engine met a limit of its own
 // law or design, named), scene, engine, check, measured figures. Exit 1 if any check
 // failed. An engine that cannot run a scene is printed as "skipped: <reason>" (ctest reports it
@@ -8,8 +8,8 @@
 #include "cli.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/measure/checks.hpp"
 #include "harness/scene/scene_loader.hpp"
+#include "harness/study/checks.hpp"
 #include "selection.hpp"
 
 namespace dropcheck {

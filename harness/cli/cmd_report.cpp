@@ -1,7 +1,7 @@
 // dropcheck report [FILE|DIR]... [--out DIR] [--engine E]... [--no-timing]
-// Evaluates every scene on every engine (harness/measure/evaluate.hpp) and writes DIR/README.md
+// Evaluates every scene on every engine (harness/study/evaluate.hpp) and writes DIR/README.md
 // plus SVG plots (harness/report/report.hpp). Default: every *.toml directly in scenarios/; scenes
-// in an extreme/ folder go to the stability section (harness/stability/stability_report.hpp). Every
+// in an extreme/ folder go to the stability section (harness/report/stability_report.hpp). Every
 // scene file is loaded before any work starts, and the output is built in a staging directory and
 // swapped into place only when complete: a bad scene file exits 2 naming the file, key and problem,
 // and leaves the previous report untouched. DIR is replaced only when dropcheck wrote it (its
@@ -20,8 +20,8 @@
 #include "harness/io/output_plan.hpp"
 #include "harness/report/report.hpp"
 #include "harness/report/report_sweep.hpp"
+#include "harness/report/stability_report.hpp"
 #include "harness/scene/scene_loader.hpp"
-#include "harness/stability/stability_report.hpp"
 #include "selection.hpp"
 
 namespace fs = std::filesystem;

@@ -8,10 +8,10 @@
 #include "cli.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/core/number_format.hpp"
-#include "harness/core/runner.hpp"
 #include "harness/io/atomic_file.hpp"
 #include "harness/io/output_plan.hpp"
 #include "harness/io/trajectory_io.hpp"
+#include "harness/run/runner.hpp"
 #include "harness/scene/scene_loader.hpp"
 #include "selection.hpp"
 

@@ -8,9 +8,9 @@
 #include "harness/core/registry.hpp"
 #include "harness/io/atomic_file.hpp"
 #include "harness/io/output_plan.hpp"
+#include "harness/report/stability_io.hpp"
 #include "harness/scene/scene_loader.hpp"
-#include "harness/stability/stability_io.hpp"
-#include "harness/stability/stability_study.hpp"
+#include "harness/study/stability_study.hpp"
 #include "selection.hpp"
 
 namespace dropcheck {

@@ -1,7 +1,7 @@
 #include <iostream>
 
 #include "cli.hpp"
-#include "harness/process/isolated_run.hpp"
+#include "harness/run/isolated_run.hpp"
 
 int main(int argc, char** argv) {
   // Every engine run in its own process: an engine's crash or hang is that run's result.

@@ -2,7 +2,7 @@
 
 #include "harness/core/input_error.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/scene/timestep.hpp"
+#include "harness/core/timestep.hpp"
 
 namespace dropcheck {
 void refuse_name_clashes(const std::vector<std::pair<std::string, std::string>>& engines) {

@@ -16,8 +16,8 @@
 #include "harness/core/friction_model.hpp"
 #include "harness/core/law.hpp"
 #include "harness/core/rotation_law.hpp"
+#include "harness/core/scene.hpp"
 #include "harness/core/stack_law.hpp"
-#include "harness/scene/scene.hpp"
 
 namespace dropcheck {
 

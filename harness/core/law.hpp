@@ -16,7 +16,7 @@
 // fixed step: an error-controlled integrator (Scheme::ErrorControlled, Simbody's
 // Runge-Kutta-Merson) picks its own steps to hold an estimate of each step's error under a
 // requested accuracy, so its law is the continuous model itself, met within that accuracy rather
-// than to rounding (harness/measure/own_law.cpp says how far). Adding an engine or a scheme means
+// than to rounding (harness/judge/own_law.cpp says how far). Adding an engine or a scheme means
 // naming its member here; every oracle then predicts it.
 #pragma once
 

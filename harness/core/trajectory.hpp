@@ -19,7 +19,7 @@ enum class RunStatus {
               // external engine's (samples up to the step before)
   timed_out,  // the run exceeded the wall-clock limit: an isolated process is killed, an external
               // engine stopped after its step
-  refused,    // not started: the run exceeds a limit (harness/core/run_limits.hpp)
+  refused,    // not started: the run exceeds a limit (harness/run/run_limits.hpp)
 };
 
 struct Trajectory {

@@ -5,16 +5,16 @@
 #include <cmath>
 
 #include "harness/core/build_id.hpp"
-#include "harness/core/runner.hpp"
 #include "harness/core/trajectory_hash.hpp"
-#include "harness/measure/metrics.hpp"
-#include "harness/measure/own_law.hpp"
-#include "harness/measure/sweep.hpp"
-#include "harness/measure/timing.hpp"
+#include "harness/judge/metrics.hpp"
+#include "harness/judge/own_law.hpp"
 #include "harness/oracles/analytic.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/oracles/identify_rotation.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
+#include "harness/run/runner.hpp"
+#include "harness/study/sweep.hpp"
+#include "harness/timing/timing.hpp"
 
 namespace dropcheck {
 namespace {

@@ -27,7 +27,7 @@
 
 #include "harness/core/engine.hpp"
 #include "harness/core/trajectory.hpp"
-#include "harness/measure/own_law.hpp"
+#include "harness/judge/own_law.hpp"
 
 namespace dropcheck {
 
@@ -72,14 +72,14 @@ struct Baseline {
   std::string hash;           // trajectory_hash_hex of the run at dt, every step recorded
   Trajectory samples;         // the run at dt, every record_every-th step and the last
   std::vector<SweepPoint>
-      sweep;                 // scene_sweep(scene) (harness/measure/sweep.hpp): largest step first
+      sweep;                 // scene_sweep(scene) (harness/study/sweep.hpp): largest step first
   std::string failed_tiers;  // written as a "# FAILED ..." comment by `bless --out` (not parsed)
 };
 
 // How make_baseline samples and whether it times.
 struct BaselineOptions {
   std::int64_t record_every = 10;  // sampling of the stored trajectory
-  bool timing = false;  // measure wall time per simulated second (harness/measure/timing.hpp)
+  bool timing = false;  // measure wall time per simulated second (harness/timing/timing.hpp)
 };
 
 // Runs `scene` on a fresh engine from `make` at every step of its sweep (and its default step) and

@@ -10,8 +10,8 @@
 
 #include "harness/core/input_error.hpp"
 #include "harness/core/number_format.hpp"
+#include "harness/core/timestep.hpp"
 #include "harness/guard/baseline.hpp"
-#include "harness/scene/timestep.hpp"
 
 namespace dropcheck {
 namespace {

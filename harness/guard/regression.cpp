@@ -4,10 +4,10 @@
 #include <cmath>
 
 #include "harness/core/number_format.hpp"
-#include "harness/core/runner.hpp"
 #include "harness/core/trajectory_hash.hpp"
 #include "harness/io/trajectory_io.hpp"
-#include "harness/measure/tolerances.hpp"
+#include "harness/judge/tolerances.hpp"
+#include "harness/run/runner.hpp"
 
 namespace dropcheck {
 namespace {
@@ -91,7 +91,7 @@ std::string sweep_problem(const Baseline& expected, const Baseline& now, double 
 }  // namespace
 
 double regression_tolerance(Scalar scalar) {
-  // harness/measure/tolerances.hpp has the measurements behind both values.
+  // harness/judge/tolerances.hpp has the measurements behind both values.
   return scalar == Scalar::f32 ? tolerance::kRegressionF32 : tolerance::kRegressionF64;
 }
 

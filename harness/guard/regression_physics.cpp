@@ -1,6 +1,6 @@
 // Tier 3 of the regression guard: a fresh run against the two oracles, whatever the baseline says.
 //
-// Oracle 2 (own discrete law, harness/measure/own_law.hpp): at every h of the sweep the run follows
+// Oracle 2 (own discrete law, harness/judge/own_law.hpp): at every h of the sweep the run follows
 // the law its engine declares, within its own-law tolerance. When it does not, the verdict names
 // what the run does instead: a member of the law family (a consistent new scheme: declare it), or
 // nothing (an inconsistent scheme: its error against the analytic solution stops shrinking).
@@ -14,9 +14,9 @@
 
 #include "harness/core/number_format.hpp"
 #include "harness/guard/regression.hpp"
-#include "harness/measure/metrics.hpp"
-#include "harness/measure/sweep.hpp"
-#include "harness/measure/tolerances.hpp"
+#include "harness/judge/metrics.hpp"
+#include "harness/judge/tolerances.hpp"
+#include "harness/study/sweep.hpp"
 
 namespace dropcheck {
 namespace {

@@ -6,13 +6,13 @@
 
 #include "harness/guard/baseline.hpp"
 #include "harness/guard/regression.hpp"
-#include "harness/measure/checks.hpp"
+#include "harness/study/checks.hpp"
 
 namespace dropcheck {
 
 // Tier 3: `now` (a fresh make_baseline, not a parsed file) follows its own discrete law within its
 // own-law tolerance at every h of the sweep, and its error against the analytic solution shrinks
-// at first order as h halves (harness/measure/tolerances.hpp). A departure names what the run
+// at first order as h halves (harness/judge/tolerances.hpp). A departure names what the run
 // follows instead (a member of the law family: "first-order, follows explicit Euler (...);
 // differs from the baseline by 3.2 cm at h = 1/60", measured against `baseline` when given) or
 // "order 0.03: not consistent".

@@ -1,5 +1,5 @@
 // A Trajectory in a compact binary form, for an isolated run's child to send its result to the
-// parent over a pipe (harness/process/isolated_run.cpp). Same machine, same build: native byte
+// parent over a pipe (harness/run/isolated_run.cpp). Same machine, same build: native byte
 // order, doubles as their 8 bytes (bit-exact), strings and arrays prefixed by their length.
 #pragma once
 

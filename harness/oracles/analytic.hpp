@@ -13,8 +13,8 @@
 #include <string>
 
 #include "harness/core/engine.hpp"
-#include "harness/core/runner.hpp"
 #include "harness/core/trajectory.hpp"
+#include "harness/run/runner.hpp"
 
 namespace dropcheck {
 

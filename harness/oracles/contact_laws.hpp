@@ -10,8 +10,8 @@
 
 #include "harness/core/bounce_law.hpp"
 #include "harness/core/friction_model.hpp"
+#include "harness/core/scene.hpp"
 #include "harness/core/trajectory.hpp"
-#include "harness/scene/scene.hpp"
 
 namespace dropcheck {
 

@@ -10,8 +10,8 @@
 #pragma once
 
 #include "harness/core/engine.hpp"
-#include "harness/core/runner.hpp"
 #include "harness/core/trajectory.hpp"
+#include "harness/run/runner.hpp"
 
 namespace dropcheck {
 

@@ -26,7 +26,7 @@
 
 #include <vector>
 
-#include "harness/scene/scene.hpp"
+#include "harness/core/scene.hpp"
 
 namespace dropcheck {
 

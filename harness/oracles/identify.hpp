@@ -23,8 +23,8 @@
 #include <vector>
 
 #include "harness/core/law.hpp"
+#include "harness/core/scene.hpp"
 #include "harness/core/trajectory.hpp"
-#include "harness/scene/scene.hpp"
 
 namespace dropcheck {
 

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "harness/core/friction_model.hpp"
+#include "harness/core/scene.hpp"
 #include "harness/core/trajectory.hpp"
-#include "harness/scene/scene.hpp"
 
 namespace dropcheck {
 

@@ -2,7 +2,7 @@
 // double) with its own operation order, as its source writes it (EngineInfo::arithmetic).
 //
 // A correct engine then matches the prediction to the bit (0 m), so the own-law tolerance is a few
-// ulps (harness/measure/tolerances.hpp), and the cost of the scalar becomes a measured figure: this
+// ulps (harness/judge/tolerances.hpp), and the cost of the scalar becomes a measured figure: this
 // prediction against the long-double law (harness/oracles/discrete_law.hpp), the "precision part".
 //   phi_multiply (ours, ours/physics.hpp):      v = v + g*h; v = v + (F/m)*h; v = v*phi; x = x +
 //   v*h pade (Box2D 2.4.1, b2Island::Solve):        v = v + (h*(1/m))*((1*m)*g + F);
@@ -14,8 +14,8 @@
 #pragma once
 
 #include "harness/core/engine.hpp"
-#include "harness/core/runner.hpp"
 #include "harness/core/trajectory.hpp"
+#include "harness/run/runner.hpp"
 
 namespace dropcheck {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "harness/core/forces.hpp"
-#include "harness/measure/rotation_metrics.hpp"
+#include "harness/core/rotation_metrics.hpp"
 
 namespace dropcheck {
 namespace {

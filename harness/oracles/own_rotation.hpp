@@ -1,7 +1,7 @@
 // Oracle 2 for rotation: an engine's own rotational member (harness/core/rotation_law.hpp),
 // iterated in long double from the scene's initial state, and how far a run departs from it.
 //
-// The departure is measured with metrics that do not lie (harness/measure/rotation_metrics.hpp):
+// The departure is measured with metrics that do not lie (harness/core/rotation_metrics.hpp):
 // the geodesic angle between the run's orientation and the law's, and |w - w_law|, worst over
 // samples and bodies. Free bodies only: contacts are not modelled.
 #pragma once

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "harness/core/engine.hpp"
-#include "harness/scene/scene.hpp"
+#include "harness/core/scene.hpp"
 
 namespace dropcheck {
 

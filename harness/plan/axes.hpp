@@ -12,9 +12,9 @@
 #include <span>
 #include <string>
 
+#include "harness/core/scene.hpp"
+#include "harness/core/timestep.hpp"
 #include "harness/plan/sweep_file.hpp"
-#include "harness/scene/scene.hpp"
-#include "harness/scene/timestep.hpp"
 
 namespace dropcheck {
 

@@ -10,14 +10,14 @@
 #include "harness/core/provenance.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/rotation_law.hpp"
-#include "harness/core/runner.hpp"
 #include "harness/core/trajectory_hash.hpp"
-#include "harness/measure/law_stability.hpp"
-#include "harness/measure/metrics.hpp"
-#include "harness/measure/own_law.hpp"
+#include "harness/judge/law_stability.hpp"
+#include "harness/judge/metrics.hpp"
+#include "harness/judge/own_law.hpp"
 #include "harness/oracles/analytic.hpp"
+#include "harness/oracles/stability_theory.hpp"
 #include "harness/plan/axes.hpp"
-#include "harness/stability/stability_theory.hpp"
+#include "harness/run/runner.hpp"
 
 namespace dropcheck {
 namespace {

@@ -9,8 +9,8 @@
 
 #include <string>
 
-#include "harness/core/runner.hpp"
 #include "harness/plan/plan.hpp"
+#include "harness/run/runner.hpp"
 
 namespace dropcheck {
 

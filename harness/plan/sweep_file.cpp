@@ -7,8 +7,8 @@
 
 #include "harness/core/input_error.hpp"
 #include "harness/core/number_format.hpp"
+#include "harness/core/timestep.hpp"
 #include "harness/io/bounded_read.hpp"
-#include "harness/scene/timestep.hpp"
 #include "harness/scene/toml_reader.hpp"
 
 namespace dropcheck {

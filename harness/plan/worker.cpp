@@ -16,8 +16,8 @@
 #include <system_error>
 
 #include "harness/io/fd_write.hpp"
-#include "harness/process/isolated_run.hpp"
 #include "harness/process/signal_cleanup.hpp"
+#include "harness/run/isolated_run.hpp"
 
 namespace dropcheck {
 namespace {

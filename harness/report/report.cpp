@@ -7,10 +7,10 @@
 #include <filesystem>
 
 #include "harness/io/atomic_file.hpp"
-#include "harness/measure/calibration.hpp"
 #include "harness/report/report_format.hpp"
 #include "harness/report/report_scene.hpp"
 #include "harness/report/report_summary.hpp"
+#include "harness/timing/calibration.hpp"
 
 namespace dropcheck {
 namespace {
@@ -108,19 +108,19 @@ std::string method(const ReportInput& in) {
       "finest step of the sweep / 8, compared at the coarse run's sample times.\n";
   md +=
       "- Divergence: distance from ours-f64 at the same step; attribution x_E - x_R = (L_E - "
-      "L_R) + residual, with L the exact discrete laws (harness/measure/attribution.hpp).\n";
+      "L_R) + residual, with L the exact discrete laws (harness/judge/attribution.hpp).\n";
   if (in.timing)
     md += printf_string(
         "- Timing (⏱ wall time): wall seconds per simulated second, the minimum (the headline; "
         "also the median and interquartile range) of %d timed runs after %d warm-up round, and "
         "the same minimum divided by the minimum of a calibration loop timed in the same rounds "
-        "(%d particles, %d steps of semi-implicit Euler: harness/measure/calibration.hpp), a "
+        "(%d particles, %d steps of semi-implicit Euler: harness/timing/calibration.hpp), a "
         "ratio to compare across machines. The work of one run is "
         "fixed by the scene, h and engine name alone: the scene replicated side by side, the "
         "smallest power "
         "of two copies (at most %d) that holds %.0f body-steps, run back to back a power of two "
         "times (at most %d) so that a sample lasts %.0f ms at the engine's nominal cost per "
-        "body-step, a constant per engine name (harness/measure/timing.hpp): cheap engines are "
+        "body-step, a constant per engine name (harness/timing/timing.hpp): cheap engines are "
         "timed over milliseconds, not microseconds. Cell after cell, every round times the "
         "calibration loop, then runs each engine once, in alternating order: an untimed bare "
         "loop to warm it, then the timed full and bare loops. "

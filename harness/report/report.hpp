@@ -1,5 +1,5 @@
 // The Markdown comparison report (reports/README.md) and its SVG plots. It knows results, not
-// engines: everything comes in as SceneEvaluation (harness/measure/evaluate.hpp), EngineInfo and
+// engines: everything comes in as SceneEvaluation (harness/study/evaluate.hpp), EngineInfo and
 // Provenance. Deterministic except the columns marked as timings.
 #pragma once
 
@@ -9,10 +9,10 @@
 
 #include "harness/core/engine.hpp"
 #include "harness/core/provenance.hpp"
-#include "harness/measure/evaluate.hpp"
-#include "harness/measure/timing_record.hpp"
 #include "harness/report/plot.hpp"
 #include "harness/report/report_plots.hpp"
+#include "harness/report/timing_record.hpp"
+#include "harness/study/evaluate.hpp"
 
 namespace dropcheck {
 

@@ -3,11 +3,11 @@
 #include <algorithm>
 
 #include "harness/core/number_format.hpp"
-#include "harness/measure/bounce_verdict.hpp"
-#include "harness/measure/contact_departures.hpp"
-#include "harness/measure/slide_verdict.hpp"
-#include "harness/measure/stack_verdict.hpp"
-#include "harness/measure/tolerances.hpp"
+#include "harness/judge/bounce_verdict.hpp"
+#include "harness/judge/contact_departures.hpp"
+#include "harness/judge/slide_verdict.hpp"
+#include "harness/judge/stack_verdict.hpp"
+#include "harness/judge/tolerances.hpp"
 #include "harness/report/report_format.hpp"
 
 namespace dropcheck {

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/measure/contact_departures.hpp"
-#include "harness/measure/evaluate.hpp"
+#include "harness/judge/contact_departures.hpp"
+#include "harness/study/evaluate.hpp"
 
 namespace dropcheck {
 

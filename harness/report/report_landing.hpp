@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "harness/measure/evaluate.hpp"
 #include "harness/oracles/landing.hpp"
+#include "harness/study/evaluate.hpp"
 
 namespace dropcheck {
 

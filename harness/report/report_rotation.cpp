@@ -1,13 +1,13 @@
 // The rotation part of a rotating scene's section: what each engine does to the conserved
-// quantities (harness/measure/rotation_budget.hpp), the flips against the closed form
+// quantities (harness/judge/rotation_budget.hpp), the flips against the closed form
 // (harness/oracles/free_rotation.hpp), and published figures reproduced by the rotational member
 // that explains them (Scene::published, harness/oracles/own_rotation.hpp).
 #include "harness/report/report_rotation.hpp"
 
 #include <cmath>
 
-#include "harness/measure/rotation_budget.hpp"
-#include "harness/measure/rotation_metrics.hpp"
+#include "harness/core/rotation_metrics.hpp"
+#include "harness/judge/rotation_budget.hpp"
 #include "harness/oracles/own_rotation.hpp"
 #include "harness/report/report_format.hpp"
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "harness/measure/evaluate.hpp"
+#include "harness/study/evaluate.hpp"
 
 namespace dropcheck {
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "harness/measure/evaluate.hpp"
+#include "harness/study/evaluate.hpp"
 
 namespace dropcheck {
 

@@ -10,12 +10,12 @@
 
 #include "harness/core/input_error.hpp"
 #include "harness/core/number_format.hpp"
+#include "harness/core/timestep.hpp"
 #include "harness/io/atomic_file.hpp"
 #include "harness/io/bounded_read.hpp"
 #include "harness/io/file_slug.hpp"
 #include "harness/report/plot.hpp"
 #include "harness/report/report_format.hpp"
-#include "harness/scene/timestep.hpp"
 
 namespace dropcheck {
 namespace {

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "harness/core/input_error.hpp"
-#include "harness/scene/scene.hpp"
+#include "harness/core/scene.hpp"
 
 namespace dropcheck {
 

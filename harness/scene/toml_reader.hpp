@@ -13,8 +13,8 @@
 
 #include "harness/core/input_error.hpp"
 #include "harness/core/number_format.hpp"
-#include "harness/scene/scene.hpp"
-#include "harness/scene/timestep.hpp"
+#include "harness/core/scene.hpp"
+#include "harness/core/timestep.hpp"
 
 namespace dropcheck {
 

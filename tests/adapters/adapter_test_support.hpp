@@ -14,10 +14,10 @@
 #include <string>
 
 #include "harness/core/registry.hpp"
-#include "harness/core/runner.hpp"
 #include "harness/core/trajectory.hpp"
-#include "harness/measure/bounce_verdict.hpp"
+#include "harness/judge/bounce_verdict.hpp"
 #include "harness/oracles/discrete_law.hpp"
+#include "harness/run/runner.hpp"
 #include "harness/scene/scene_loader.hpp"
 
 // Declares `engine` as make_engine(name), or warns why that engine is unavailable and ends the test
@@ -192,7 +192,7 @@ struct BounceCase {
 };
 
 // Runs each case on `engine` and checks that it follows its declared bounce law
-// (harness/measure/bounce_verdict.hpp): within tolerance and within 1.5x the measured departure,
+// (harness/judge/bounce_verdict.hpp): within tolerance and within 1.5x the measured departure,
 // contact at step 27 at 4.41 m/s (every shipped bounce falls 1 m at 1/60), the rebound and apex.
 inline void check_bounces(Engine& engine, std::initializer_list<BounceCase> cases) {
   for (const BounceCase& c : cases) {

@@ -10,7 +10,7 @@ examples/python/seed_engine.py that goes wrong at step STEP in the way MODE name
   fail          exits with status 1 when the scene arrives (STEP unused)
   none          never misbehaves (the seed engine)
 With TAG, it first starts a helper: a second Python process that sleeps 300 s with TAG among its
-arguments, in the engine's process group (tests/harness/process/engine_processes_test.cpp finds
+arguments, in the engine's process group (tests/harness/run/engine_processes_test.cpp finds
 both in /proc by TAG, and checks that neither outlives the run).
 Usage: bad_engine.py MODE STEP [TAG]
 """

@@ -12,8 +12,8 @@
 
 #include "adapter_test_support.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/core/runner.hpp"
 #include "harness/oracles/discrete_law.hpp"
+#include "harness/run/runner.hpp"
 #include "harness/scene/scene_loader.hpp"
 
 namespace dropcheck {

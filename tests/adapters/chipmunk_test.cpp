@@ -9,11 +9,11 @@
 
 #include "adapter_test_support.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/core/runner.hpp"
-#include "harness/measure/attribution.hpp"
+#include "harness/judge/attribution.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
 #include "harness/oracles/own_rotation.hpp"
+#include "harness/run/runner.hpp"
 
 using namespace dropcheck;
 using dropcheck::testing::drag_figure_run;

@@ -1,5 +1,5 @@
 // One conformance suite over the registry: every engine compiled into this build, through the
-// measurement core (harness/measure/own_law.hpp, checks.hpp) exactly as `dropcheck check` judges
+// measurement core (harness/judge/own_law.hpp, checks.hpp) exactly as `dropcheck check` judges
 // it: its own law at every step of each shipped free-flight scene's sweep, and its landing on the
 // contact scenes; and the Engine contract every adapter must keep (a force lasts one step, a
 // reload replays, a static body stays put, a misreported law or damping is caught). Engine-specific
@@ -10,14 +10,14 @@
 
 #include "adapter_test_support.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/core/runner.hpp"
-#include "harness/measure/checks.hpp"
-#include "harness/measure/own_law.hpp"
-#include "harness/measure/sweep.hpp"
+#include "harness/judge/own_law.hpp"
 #include "harness/oracles/landing.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
 #include "harness/oracles/stack.hpp"
+#include "harness/run/runner.hpp"
 #include "harness/scene/scene_loader.hpp"
+#include "harness/study/checks.hpp"
+#include "harness/study/sweep.hpp"
 
 using namespace dropcheck;
 
@@ -152,7 +152,7 @@ TEST_CASE("The own-law check catches every adapter that misreports its law or it
       const CheckResult r = check_own_law(scene, broken, scene.timestep);
       INFO(name << ": " << r.message);
       CHECK_FALSE(r.passed);
-      // The message names the body, the step and both values (harness/measure/checks.cpp).
+      // The message names the body, the step and both values (harness/study/checks.cpp).
       CHECK_THAT(r.message, Catch::Contains("worst at body 'cube' step") &&
                                 Catch::Contains("engine x = (") && Catch::Contains("law x = ("));
     }

@@ -6,8 +6,8 @@
 
 #include "adapter_test_support.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/core/runner.hpp"
 #include "harness/oracles/discrete_law.hpp"
+#include "harness/run/runner.hpp"
 
 using namespace dropcheck;
 using dropcheck::testing::check_declared_law;

@@ -17,9 +17,9 @@
 #include "harness/cli/cli.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/core/runner.hpp"
-#include "harness/measure/checks.hpp"
+#include "harness/run/runner.hpp"
 #include "harness/scene/scene_loader.hpp"
+#include "harness/study/checks.hpp"
 
 using namespace dropcheck;
 using Catch::Matchers::Contains;

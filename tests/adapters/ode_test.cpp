@@ -8,7 +8,7 @@
 
 #include "adapter_test_support.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/core/runner.hpp"
+#include "harness/run/runner.hpp"
 
 using namespace dropcheck;
 using dropcheck::testing::check_bounces;

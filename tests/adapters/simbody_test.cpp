@@ -15,13 +15,13 @@
 #include "adapters/simbody_world.hpp"
 #include "harness/cli/cli.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/core/runner.hpp"
-#include "harness/measure/accuracy_response.hpp"
-#include "harness/measure/metrics.hpp"
-#include "harness/measure/own_law.hpp"
+#include "harness/judge/metrics.hpp"
+#include "harness/judge/own_law.hpp"
 #include "harness/oracles/analytic.hpp"
 #include "harness/oracles/identify_rotation.hpp"
 #include "harness/oracles/own_rotation.hpp"
+#include "harness/run/runner.hpp"
+#include "harness/study/accuracy_response.hpp"
 
 using namespace dropcheck;
 using dropcheck::testing::drag_figure_run;

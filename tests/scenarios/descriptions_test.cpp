@@ -20,14 +20,14 @@
 #include <string>
 #include <vector>
 
+#include "harness/judge/stability_classify.hpp"
 #include "harness/oracles/analytic.hpp"
 #include "harness/oracles/contact_laws.hpp"
 #include "harness/oracles/free_rotation.hpp"
 #include "harness/oracles/landing.hpp"
+#include "harness/oracles/stability_theory.hpp"
 #include "harness/oracles/stack.hpp"
 #include "harness/scene/scene_loader.hpp"
-#include "harness/stability/stability.hpp"
-#include "harness/stability/stability_theory.hpp"
 #include "tests/shipped_scenes.hpp"
 
 namespace {
@@ -391,7 +391,7 @@ const std::vector<Phrase>& phrases() {
        [](const Scene& s, const std::smatch& m) {
          return agrees(m[1], {1.0 / s.timestep.seconds});
        }},
-      // Stability edge of a spring (harness/stability: theory per damping order).
+      // Stability edge of a spring (harness/oracles/stability_theory.cpp: theory per damping order).
       {"stability edge h = " + N +
            " s(?: where damping (follows the forces|precedes the forces|"
            "follows the position update))?",

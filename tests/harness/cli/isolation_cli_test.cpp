@@ -8,7 +8,7 @@
 #include "../test_dirs.hpp"
 #include "harness/cli/cli.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/process/isolated_run.hpp"
+#include "harness/run/isolated_run.hpp"
 
 using namespace dropcheck;
 using Catch::Matchers::Contains;

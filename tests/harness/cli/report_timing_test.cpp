@@ -8,7 +8,7 @@
 #include <string>
 
 #include "cli_driver.hpp"
-#include "harness/measure/timing_record.hpp"
+#include "harness/report/timing_record.hpp"
 #include "tests/harness/test_dirs.hpp"
 #include "tests/scene_texts.hpp"
 

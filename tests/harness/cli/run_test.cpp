@@ -16,7 +16,7 @@
 #include "cli_driver.hpp"
 #include "harness/cli/cli.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/core/runner.hpp"
+#include "harness/run/runner.hpp"
 #include "harness/scene/scene_loader.hpp"
 
 using Catch::Matchers::Contains;

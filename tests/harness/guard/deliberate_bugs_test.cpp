@@ -14,7 +14,7 @@
 #include "harness/guard/baseline_io.hpp"
 #include "harness/guard/regression.hpp"
 #include "harness/guard/regression_physics.hpp"
-#include "harness/measure/checks.hpp"
+#include "harness/study/checks.hpp"
 
 using namespace dropcheck;
 using namespace dropcheck::testing;

@@ -9,10 +9,10 @@
 #include "../test_dirs.hpp"
 #include "harness/core/number_format.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/core/runner.hpp"
 #include "harness/core/trajectory_hash.hpp"
 #include "harness/guard/regression_physics.hpp"
 #include "harness/io/trajectory_io.hpp"
+#include "harness/run/runner.hpp"
 
 using namespace dropcheck;
 using namespace dropcheck::testing;

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "harness/core/registry.hpp"
-#include "harness/core/runner.hpp"
-#include "harness/measure/metrics.hpp"
+#include "harness/judge/metrics.hpp"
+#include "harness/run/runner.hpp"
 
 using namespace dropcheck;
 

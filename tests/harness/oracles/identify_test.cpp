@@ -15,9 +15,9 @@
 #include "harness/cli/cli.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/core/runner.hpp"
 #include "harness/io/trajectory_csv.hpp"
 #include "harness/io/trajectory_io.hpp"
+#include "harness/run/runner.hpp"
 #include "harness/scene/scene_loader.hpp"
 
 using namespace dropcheck;

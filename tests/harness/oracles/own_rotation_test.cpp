@@ -6,14 +6,14 @@
 #include <catch2/catch.hpp>
 
 #include "harness/core/registry.hpp"
-#include "harness/core/runner.hpp"
-#include "harness/measure/attribution.hpp"
-#include "harness/measure/evaluate.hpp"
-#include "harness/measure/own_law.hpp"
+#include "harness/judge/attribution.hpp"
+#include "harness/judge/own_law.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
 #include "harness/report/report_summary.hpp"
+#include "harness/run/runner.hpp"
 #include "harness/scene/scene_loader.hpp"
+#include "harness/study/evaluate.hpp"
 
 using namespace dropcheck;
 

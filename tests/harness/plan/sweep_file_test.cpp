@@ -13,7 +13,7 @@
 #include "harness/plan/cell_record.hpp"
 #include "harness/plan/plan.hpp"
 #include "harness/plan/worker.hpp"
-#include "harness/process/isolated_run.hpp"
+#include "harness/run/isolated_run.hpp"
 #include "tests/harness/test_dirs.hpp"
 
 using namespace dropcheck;

@@ -1,4 +1,4 @@
-// Tests the comparison report end to end (harness/report*.cpp, harness/measure/evaluate.cpp and
+// Tests the comparison report end to end (harness/report*.cpp, harness/study/evaluate.cpp and
 // harness/cli/cmd_report.cpp): byte-stable output, the sections and only the metrics that apply,
 // and atomic output (a bad scene file exits 2 and leaves the previous report as it was).
 #include "harness/report/report.hpp"

@@ -1,0 +1,114 @@
+#include "harness/judge/bounce_verdict.hpp"
+
+#include <cmath>
+
+#include "harness/core/number_format.hpp"
+#include "harness/judge/tolerances.hpp"
+
+namespace dropcheck {
+namespace {
+
+struct PathGap {
+  double worst = 0.0;
+  std::int64_t step = 0;
+};
+
+// The largest |gap| difference between a run's path and a law's, over the steps both have.
+PathGap path_gap(const BouncePath& run, const BouncePath& law) {
+  PathGap p;
+  const std::size_t n = std::min(run.gap.size(), law.gap.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    const double d = std::abs(run.gap[i] - law.gap[i]);
+    if (std::isnan(d)) return {d, static_cast<std::int64_t>(i)};  // never "within" anything
+    if (d > p.worst) p = {d, static_cast<std::int64_t>(i)};
+  }
+  return p;
+}
+
+// The members of `law` that move its path off the ideal one by more than the path tolerance, each
+// tried alone.
+std::vector<std::string> departing_members(const BounceLaw& law, const BounceSetup& s, double h,
+                                           const BouncePath& ideal) {
+  std::vector<std::string> out;
+  const auto steps = static_cast<std::int64_t>(ideal.gap.size()) - 1;
+  const auto moves = [&](const BounceLaw& alone) {
+    return path_gap(bounce_path(alone, s.h0, s.e, s.g, h, steps, s.size), ideal).worst >
+           tolerance::kBouncePath;
+  };
+  if (law.erp > 0.0 &&
+      moves({.erp = law.erp, .max_push = law.max_push, .push_in_position = law.push_in_position}))
+    out.push_back(push_text(law));
+  if (law.threshold > 0.0 && moves({.threshold = law.threshold}))
+    out.push_back(printf_string("restitution threshold %.6g m/s", law.threshold));
+  if ((law.contact_distance > 0.0 || law.contact_distance_per_size > 0.0) &&
+      moves({.contact_distance = law.contact_distance,
+             .contact_distance_per_size = law.contact_distance_per_size}))
+    out.push_back(contact_distance_text(law) +
+                  printf_string(" (%.4g m here)",
+                                law.contact_distance + law.contact_distance_per_size * s.size));
+  return out;
+}
+
+}  // namespace
+
+std::string apex_text(const std::vector<double>& apexes) {
+  if (apexes.empty()) return "none";
+  std::string text;
+  for (double a : apexes) text += (text.empty() ? "" : ", ") + printf_string("%.4g", a);
+  return text + " m";
+}
+
+BounceVerdict judge_bounce(const Trajectory& run, const BounceSetup& s, const BounceLaw& law,
+                           double h) {
+  BounceVerdict v;
+  v.law = law;
+  const BouncePath seen = observed_path(run, s);
+  const auto steps = static_cast<std::int64_t>(seen.gap.size()) - 1;
+  const BouncePath predicted = bounce_path(law, s.h0, s.e, s.g, h, steps, s.size);
+  const BouncePath ideal = bounce_path(kIdealBounce, s.h0, s.e, s.g, h, steps);
+  v.seen = observe_bounce(seen.gap, seen.v, s.g, h);
+  v.predicted = observe_bounce(predicted.gap, predicted.v, s.g, h);
+  v.ideal = observe_bounce(ideal.gap, ideal.v, s.g, h);
+  v.closed = bounce(s.h0, s.e, s.g, h);
+  const PathGap to_law = path_gap(seen, predicted);
+  v.worst_gap = to_law.worst;
+  v.worst_step = to_law.step;
+  v.follows = to_law.worst <= tolerance::kBouncePath;
+  v.follows_ideal = path_gap(seen, ideal).worst <= tolerance::kBouncePath;
+  v.law_to_ideal = path_gap(predicted, ideal).worst;
+  if (v.law_to_ideal > tolerance::kBouncePath) {
+    v.causes = departing_members(law, s, h, ideal);
+    if (v.causes.empty()) v.causes.push_back("its members together (none alone)");
+  }
+  double before = s.h0;
+  for (double a : v.seen.apexes) {
+    v.energy_rises = v.energy_rises || a > before + tolerance::kBouncePath;
+    before = a;
+  }
+  return v;
+}
+
+std::string BounceVerdict::sentence() const {
+  std::string text =
+      seen.contact_step < 0
+          ? std::string("never reaches the floor")
+          : printf_string("hits at step %lld at %.4g m/s, leaves at %.4g m/s, apexes ",
+                          static_cast<long long>(seen.contact_step), seen.speed_in,
+                          seen.speed_out) +
+                apex_text(seen.apexes);
+  if (energy_rises) text += " (ENERGY RISES)";
+  text += "; its law (" + describe(law) + "): ";
+  text += follows ? printf_string("the same path to %.2g m", worst_gap)
+                  : printf_string("DEPARTS at step %lld by %.3g m",
+                                  static_cast<long long>(worst_step), worst_gap);
+  if (!follows && follows_ideal) text += ": it follows the ideal law instead";
+  if (law_to_ideal > tolerance::kBouncePath) {
+    text += printf_string("; its law is %.3g m off the ideal law (apexes ", law_to_ideal) +
+            apex_text(ideal.apexes) + ")";
+    for (std::size_t i = 0; i < causes.size(); ++i) text += (i ? " and " : ": ") + causes[i];
+  }
+  text += "; continuous apexes " + apex_text(closed.apexes);
+  return text;
+}
+
+}  // namespace dropcheck

@@ -1,0 +1,33 @@
+#include "harness/judge/contact_departures.hpp"
+
+#include "harness/judge/bounce_verdict.hpp"
+#include "harness/judge/slide_verdict.hpp"
+#include "harness/judge/stack_verdict.hpp"
+
+namespace dropcheck {
+
+std::vector<ContactDeparture> contact_departures(const Scene& scene, const Trajectory& run,
+                                                 const EngineInfo& info, double h) {
+  std::vector<ContactDeparture> out;
+  if (run.samples() == 0) return out;
+  for (const SlideSetup& s : slide_setups(scene)) {
+    const SlideVerdict v = judge_slide(run, s, info.friction_model, h);
+    if (v.exact && !v.follows)
+      out.push_back({ContactLaw::slide, s.body,
+                     v.seen.stop_step >= 0 ? v.seen.stop_step : run.recorded.back(),
+                     "slide " + v.sentence()});
+  }
+  for (const BounceSetup& s : bounce_setups(scene)) {
+    const BounceVerdict v = judge_bounce(run, s, info.bounce_law, h);
+    if (!v.follows)
+      out.push_back({ContactLaw::bounce, s.body, v.worst_step, "bounce " + v.sentence()});
+  }
+  for (const StackSetup& s : stack_setups(scene))
+    for (const StackBodyVerdict& v : judge_stack(run, s, info, h))
+      if (!v.passes())
+        out.push_back(
+            {ContactLaw::stack, v.body, run.recorded.back(), "in a stack " + v.sentence()});
+  return out;
+}
+
+}  // namespace dropcheck

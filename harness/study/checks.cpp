@@ -1,0 +1,493 @@
+#include "harness/study/checks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+
+#include "harness/core/number_format.hpp"
+#include "harness/core/timestep.hpp"
+#include "harness/judge/attribution.hpp"
+#include "harness/judge/bounce_verdict.hpp"
+#include "harness/judge/law_stability.hpp"
+#include "harness/judge/metrics.hpp"
+#include "harness/judge/own_law.hpp"
+#include "harness/judge/slide_verdict.hpp"
+#include "harness/judge/stack_verdict.hpp"
+#include "harness/judge/tolerances.hpp"
+#include "harness/oracles/analytic.hpp"
+#include "harness/oracles/contact_laws.hpp"
+#include "harness/oracles/discrete_law.hpp"
+#include "harness/oracles/landing.hpp"
+#include "harness/oracles/own_arithmetic.hpp"
+#include "harness/run/runner.hpp"
+#include "harness/study/phase_drift.hpp"
+#include "harness/study/sweep.hpp"
+
+namespace dropcheck {
+namespace {
+
+std::string fmt(const char* format, double a, double b = 0.0, double c = 0.0) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, format, a, b, c);
+  return buf;
+}
+
+std::string vec(const Vec3& v) {
+  return fmt("(%.17g, %.17g, %.17g)", v.x(), v.y(), v.z());
+}
+
+CheckResult result(const Scene& scene, const std::string& engine, const std::string& check) {
+  return {scene.name, engine, check, false, {}, {}};
+}
+
+// Where the verdict's worst departure lies, both states.
+std::string worst_text(const OwnLawVerdict& v, const Trajectory& run, const Trajectory& own) {
+  const BodyState& got = run.at(v.worst_sample, v.worst_body);
+  const BodyState& want = own.at(v.worst_sample, v.worst_body);
+  return "; worst at body '" + run.body_names[v.worst_body] + "' step " +
+         std::to_string(run.recorded[v.worst_sample]) + ": engine x = " + vec(got.position) +
+         " v = " + vec(got.velocity) + ", law x = " + vec(want.position) +
+         " v = " + vec(want.velocity);
+}
+
+}  // namespace
+
+std::vector<Timestep> conformance_steps(const Scene& scene) {
+  return own_law_steps(scene);
+}
+
+CheckResult check_own_law(const Scene& scene, const EngineFactory& make, const Timestep& h) {
+  std::unique_ptr<Engine> engine = make();
+  const EngineInfo info = engine->info();
+  CheckResult r = result(scene, info.name, "own law at h = " + h.text);
+  const Trajectory run = run_scene(*engine, scene, h.seconds);
+  const std::string unstable = law_instability(scene, info.law, h);
+  if (run.status != RunStatus::ok) {
+    r.message = std::string("run failed: ") + to_string(run.status) + ": " + run.failure;
+    if (unstable.empty() || !blew_up(run)) return r;
+  }
+  if (!unstable.empty()) {
+    // Its law blows up at this h: the engine blowing up too is the law's limit, provided it
+    // followed the law up to where it stopped or the law left finite values.
+    const OwnLawVerdict v = judge_while_law_finite(info, scene, run);
+    r.passed = v.follows();
+    r.limit = r.passed ? unstable : "";
+    r.message += std::string(r.message.empty() ? "" : "; ") +
+                 (r.passed ? "up to step " : unstable + ", but up to step ") +
+                 std::to_string(v.compared_steps) +
+                 (r.passed ? " it follows its law: " : " it departs from its law: ") + v.sentence();
+    if (!r.passed) r.message += worst_text(v, run, predict_own_arithmetic(info, scene, h.seconds));
+    return r;
+  }
+  const Trajectory own = predict_own_arithmetic(info, scene, h.seconds);
+  const OwnLawVerdict v =
+      judge_own_law(info, run, own, predict_discrete(info.law, scene, h.seconds));
+  r.passed = v.follows();
+  r.message = v.sentence();
+  if (!r.passed) r.message += worst_text(v, run, own);
+  return r;
+}
+
+namespace {
+
+// A run of an extended sweep keeps at most this many samples (a long scene halved twice has
+// millions of steps; 200000 samples of two bodies take 19 MB).
+constexpr std::int64_t kExtensionSamples = 200000;
+
+RunOptions extension_options(const Scene& scene, double h) {
+  RunOptions o;
+  o.record_every = std::max<std::int64_t>(1, step_count(scene, h) / kExtensionSamples);
+  return o;
+}
+
+std::string orders_text(const std::vector<double>& orders) {
+  std::string out;
+  for (double p : orders) out += std::isfinite(p) ? fmt(" %.3f", p) : std::string(" undefined");
+  return out;
+}
+
+// The error of the next step of a pre-asymptotic sweep. The reference: its run against the
+// analytic solution, provided it follows its own law there too (its precision part, own
+// arithmetic against the long-double law, raises `precision`). Another engine: the law part
+// |L_E - L_R| alone (both engines were shown to follow their laws over the scene's sweep; the law
+// part is a property of the two laws).
+ErrorAt extension_error(const Scene& scene, Engine& engine, const EngineInfo& ei,
+                        const EngineInfo& ri, bool is_reference, double& precision) {
+  return [&scene, &engine, &ei, &ri, is_reference, &precision](
+             double h, std::string& why) -> std::optional<double> {
+    const Timestep step{h, step_text(h)};
+    for (const EngineInfo* i : {&ei, &ri})
+      if (std::string u = law_instability(scene, i->law, step); !u.empty()) {
+        why = i->name + ": " + u;
+        return std::nullopt;
+      }
+    const RunOptions o = extension_options(scene, h);
+    if (!is_reference)
+      return compare_worst(predict_discrete(ei.law, scene, h, o),
+                           predict_discrete(ri.law, scene, h, o), scene.tolerance)
+          .max_dx;
+    const Trajectory run = run_scene(engine, scene, h, o);
+    if (run.status != RunStatus::ok) {
+      why = "run failed: " + run.failure;
+      return std::nullopt;
+    }
+    const Trajectory own = predict_own_arithmetic(ei, scene, h, o);
+    const OwnLawVerdict v = judge_own_law(ei, run, own, predict_discrete(ei.law, scene, h, o));
+    if (!v.follows()) {
+      why = ei.name + " departs from its own law: " + v.sentence();
+      return std::nullopt;
+    }
+    precision = std::max(precision, v.precision);
+    return compare_worst(run, *analytic_trajectory(scene, h, o), scene.tolerance).max_dx;
+  };
+}
+
+}  // namespace
+
+CheckResult check_divergence(const Scene& scene, const EngineFactory& make,
+                             const EngineFactory& reference, std::int64_t extension_steps) {
+  std::unique_ptr<Engine> engine = make(), ref = reference();
+  const EngineInfo ei = engine->info(), ri = ref->info();
+  const bool is_reference = ei.name == ri.name;
+  CheckResult r = result(scene, ei.name,
+                         is_reference ? "convergence to analytic" : "divergence from " + ri.name);
+  if (is_reference && !analytic_unavailable(scene).empty()) {
+    r.passed = true;
+    r.message =
+        "no analytic solution (" + analytic_unavailable(scene) + "); nothing to converge to";
+    return r;
+  }
+  std::vector<double> hs, errors;
+  double noise = 0.0, precision = 0.0;  // the reference's own-law tolerance and precision part
+  std::string left_out, left_out_cause, departs, rotation_note;
+  for (const Timestep& h : scene_sweep(scene)) {
+    // A step where either law is unstable measures the blow-up, not the order: left out.
+    // Each law's instability once (RK4's predicts its rotation over the whole run to find it).
+    const std::string engine_unstable = law_instability(scene, ei.law, h);
+    const std::string unstable = !engine_unstable.empty() || is_reference
+                                     ? engine_unstable
+                                     : law_instability(scene, ri.law, h);
+    if (!unstable.empty()) {
+      left_out += (left_out.empty() ? "" : ", ") + h.text;
+      if (left_out_cause.empty())
+        left_out_cause = (engine_unstable.empty() ? ri.name : ei.name) + ": " + unstable;
+      continue;
+    }
+    const Trajectory run = run_scene(*engine, scene, h.seconds);
+    if (run.status != RunStatus::ok) {
+      r.message = "run at h = " + h.text + " failed: " + run.failure;
+      return r;
+    }
+    hs.push_back(h.seconds);
+    const Trajectory ae = predict_own_arithmetic(ei, scene, h.seconds);
+    const Trajectory le = predict_discrete(ei.law, scene, h.seconds);
+    if (is_reference) {
+      errors.push_back(
+          compare_worst(run, *analytic_trajectory(scene, h.seconds), scene.tolerance).max_dx);
+      noise = std::max(noise, own_law_tolerance(ei, ae).x);
+      const OwnLawVerdict own = judge_own_law(ei, run, ae, le);
+      precision = std::max(precision, own.precision);
+      if (departs.empty() && !own.follows())
+        departs = ei.name + " departs from its own law at h = " + h.text;
+      continue;
+    }
+    const Trajectory other = run_scene(*ref, scene, h.seconds);
+    const Trajectory ar = predict_own_arithmetic(ri, scene, h.seconds);
+    const Trajectory lr = predict_discrete(ri.law, scene, h.seconds);
+    const Attribution a =
+        attribute({ei, run, ae, le}, {ri, other, ar, lr}, scene.world.damping_rate != 0.0);
+    if (!a.explained()) {
+      r.message = "at h = " + h.text + ": " + a.sentence();
+      return r;
+    }
+    errors.push_back(a.law_part > tolerance::kLawsDifferFactor * a.budget ? a.law_part : 0.0);
+    if (a.rotation && !a.rotation_laws_differ() && a.rotation_total > 0.0 && rotation_note.empty())
+      rotation_note = "; rotation: one rotational law (" + a.rotation_laws + "), " +
+                      g3(a.rotation_total) + " rad apart at h = " + h.text +
+                      " from the scalars' rounding, amplified by the motion";
+    if (a.rotation_laws_differ() && rotation_note.empty())
+      rotation_note = "; rotation: the rotational laws differ (" + a.rotation_laws + ", " +
+                      g3(a.rotation_law_part) + " rad apart at h = " + h.text +
+                      "), each engine follows its own";
+  }
+  const std::string skipped = (left_out.empty() ? ""
+                                                : "; left out of the order: h = " + left_out +
+                                                      " (" + left_out_cause + ")") +
+                              rotation_note;
+  if (hs.size() < 2) {
+    r.passed = true;
+    r.message = "fewer than two steps of the sweep where the laws are stable: no order" + skipped;
+    return r;
+  }
+  if (!is_reference && errors.back() == 0.0) {
+    r.passed = true;
+    r.message =
+        (rotation_note.empty() ? "same discrete law: divergence within rounding at every step"
+                               : "same linear law: divergence within rounding at every step") +
+        skipped;
+    return r;
+  }
+  const double measurable_noise = tolerance::kOrderMeasurableFactor * noise;
+  const OrderEstimate o = estimate_order(hs, errors, measurable_noise);
+  const std::string band =
+      fmt(" (expected %.1f-%.1f)", tolerance::kFirstOrderLow, tolerance::kFirstOrderHigh);
+  r.passed = o.first_order || (is_reference && !o.measurable);
+  r.message = o.text + band + (o.measurable ? "" : ", at rounding level: order not measurable");
+  if (r.passed || !o.measurable) {
+    r.message += skipped;
+    return r;
+  }
+  if (!departs.empty()) {
+    r.message += "; not extended: " + departs + skipped;
+    return r;
+  }
+  // Both engines follow their laws, yet the order is out of band: the scene's steps may be
+  // pre-asymptotic. Halve the finest step until the last order is in band (extend_sweep).
+  const std::string cause = pre_asymptotic_cause(scene, hs.back());
+  const ExtendedSweep x = extend_sweep(
+      scene, hs, errors, measurable_noise,
+      extension_error(scene, *engine, ei, ri, is_reference, precision), extension_steps);
+  r.passed = x.reached;
+  r.message = x.estimate.text + band + "; the scene's sweep" +
+              (x.reached ? " is pre-asymptotic (" : " may be pre-asymptotic (") + cause +
+              "): its orders were" + orders_text(o.orders) + "; extended by " +
+              std::to_string(x.added) + " halving" + (x.added == 1 ? "" : "s") +
+              (is_reference ? "" : " (law part alone)") +
+              (x.reached ? ", the last order is in band" : ", stopped: " + x.stopped) + skipped;
+  if (x.reached || !is_reference) return r;
+  // Out of reach: on a long run, the phase drift of the law keeps the error second order down to
+  // steps the cap does not allow. The drift's closed form (phase_drift.hpp) must then explain every
+  // error of the sweep, within the engine's rounding (its own-law noise and precision part).
+  const DriftVerdict d = judge_drift(scene, ei.law, x.h, x.e, measurable_noise + precision);
+  if (!d.applies) return r;
+  r.passed = d.explained;
+  r.limit = d.limit;
+  r.message += "; " + d.text;
+  return r;
+}
+
+namespace {
+
+// Appends `part` to `text`, "; "-separated.
+void append(std::string& text, const std::string& part) {
+  text += (text.empty() ? "" : "; ") + part;
+}
+
+// One judged body's landing figures against its expectations; clears `passed` on a failure.
+// Stillness is judged only over a window wholly after first contact.
+std::string landing_text(const Trajectory& run, const LandingSetup& setup, const EngineInfo& info,
+                         const Scene& scene, const Timestep& h, bool& passed) {
+  const StillCriteria still;
+  const LandingObservation o = observe_landing(run, setup, still);
+  const std::int64_t law_step = discrete_contact_step(info.law, scene, h.seconds, setup);
+  const bool on_time = o.first_contact_step >= 0 &&
+                       std::abs(o.first_contact_step - law_step) <= tolerance::kContactStepSlack;
+  const double rebound = o.rebound - info.rest_offset;  // above the engine's own rest height
+  const bool no_rebound = rebound <= tolerance::kMaxRebound;
+  const bool rests = std::abs(o.rest_offset - info.rest_offset) <= info.rest_tolerance;
+  // A run that ends less than the window after first contact cannot show stillness: not judged.
+  const bool short_run = o.first_contact_step >= 0 && !o.still_judged;
+  passed = passed && on_time && no_rebound && rests && (o.still || short_run);
+  return fmt("first contact at step %.0f (law: step %.0f; continuous t = %.4f s)",
+             double(o.first_contact_step), double(law_step), setup.contact_time) +
+         (on_time ? "" : " MORE THAN ONE STEP OFF") +
+         fmt(", rebound %.3g m above rest (limit %.0e)", rebound, tolerance::kMaxRebound) +
+         (no_rebound ? "" : " TOO HIGH") +
+         fmt(", rest offset %.3g m (expected %.3g +- %.3g)", o.rest_offset, info.rest_offset,
+             info.rest_tolerance) +
+         (rests ? "" : " OUT OF RANGE") +
+         (short_run ? fmt(", stillness not judged: the run ends %.3g s after first contact "
+                          "(window %.3g s)",
+                          o.after_contact, still.seconds)
+                    : fmt(", still: max |v| %.3g m/s, range %.3g m over the last %.3g s",
+                          o.still_speed, o.still_range, still.seconds) +
+                          (o.still ? "" : " NOT STILL"));
+}
+
+// What is judged of a landing with no closed form (`why`): the run ends, and every dynamic body
+// ends with its centre above the top of the highest static body below it (a body that fell
+// through would end under it).
+CheckResult floor_held(const Scene& scene, const Trajectory& run, CheckResult& r,
+                       const std::string& why) {
+  r.message = why;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const Body& b = scene.bodies[i];
+    if (b.is_static) continue;
+    double floor_top = -INFINITY;
+    for (const Body& s : scene.bodies)
+      if (s.is_static && s.position.y() < b.position.y())
+        floor_top = std::max(floor_top, s.position.y() + s.half_extents.y());
+    const double y = run.final_state(i).position.y();
+    r.message += "; " + b.name + fmt(" ends at y = %.6g m", y);
+    if (y < floor_top) {
+      r.passed = false;
+      r.message += fmt(" BELOW the floor's top (%.6g m): fell through", floor_top);
+    }
+  }
+  return r;
+}
+
+// A turning body meets the floor with a corner or an edge, and each engine's contact model decides
+// what follows: no closed form to judge the landing by.
+CheckResult turning_landing(const Scene& scene, const Trajectory& run, CheckResult& r) {
+  return floor_held(scene, run, r,
+                    "a turning body's landing has no closed form (corner or edge first, then each "
+                    "engine's contact model): compared in the report, not judged");
+}
+
+}  // namespace
+
+namespace {
+
+// The one run of a contact check named `what` ("landing", "slide") at h: its result, passed so far,
+// or failed with the reason when the run did not finish (then `run` is empty).
+struct ContactRun {
+  CheckResult result;
+  EngineInfo info;
+  std::optional<Trajectory> run;
+};
+
+ContactRun contact_run(const Scene& scene, const EngineFactory& make, const Timestep& h,
+                       const std::string& what) {
+  std::unique_ptr<Engine> engine = make();
+  ContactRun c{result(scene, engine->info().name, what + " at h = " + h.text), engine->info(), {}};
+  Trajectory run = run_scene(*engine, scene, h.seconds);
+  if (run.status != RunStatus::ok) {
+    c.result.message = std::string("run failed: ") + to_string(run.status) + ": " + run.failure;
+    return c;
+  }
+  c.result.passed = true;
+  c.run = std::move(run);
+  return c;
+}
+
+}  // namespace
+
+CheckResult check_landing(const Scene& scene, const EngineFactory& make, const Timestep& h) {
+  ContactRun c = contact_run(scene, make, h, "landing");
+  if (!c.run) return c.result;
+  CheckResult& r = c.result;
+  const EngineInfo& info = c.info;
+  const Trajectory& run = *c.run;
+  if (needs_rotation(scene)) return turning_landing(scene, run, r);
+  if (scene.world.gravity.x() != 0.0 || scene.world.gravity.z() != 0.0)
+    return floor_held(scene, run, r,
+                      "gravity has a part along the floor, so a landing body slides on (only "
+                      "slides are judged there: docs/contact.md)");
+  const std::vector<LandingSetup> setups = engine_landing_setups(scene, info);
+  std::vector<std::string> limits;
+  for (const LandingSetup& setup : setups) {
+    const std::string body = run.body_names[setup.body];
+    const Tunnelling tunnel = discrete_tunnelling(info.law, scene, h.seconds, setup);
+    const TunnelVerdict through = judge_tunnelling(tunnel, info, run, setup);
+    if (through == TunnelVerdict::limit) {
+      limits.push_back((setups.size() > 1 ? "'" + body + "' " : "") + tunnel.sentence() +
+                       "; no continuous collision");
+      append(r.message,
+             body + ": tunnelled through the floor as its own law predicts (step " +
+                 std::to_string(tunnel.step) + ")" +
+                 fmt(", final centre %.3g m below the floor's bottom; not judged further",
+                     setup.floor_bottom - run.final_state(setup.body).position.y()));
+      continue;
+    }
+    append(r.message, body + ": " + landing_text(run, setup, info, scene, h, r.passed));
+    if (through == TunnelVerdict::fault) {
+      r.passed = false;
+      r.message += " TUNNELLED although the engine declares continuous collision";
+    }
+  }
+  for (const LandingExclusion& e : landing_exclusions(scene)) append(r.message, e.sentence(scene));
+  if (setups.empty())
+    append(r.message,
+           scene.world.gravity.x() != 0.0 || scene.world.gravity.z() != 0.0
+               ? "no body is judged here: gravity has a part along the floor, so a landing body "
+                 "slides on (only slides are judged there: docs/contact.md)"
+               : "no body is judged here: a stack, a slide or a bounce is judged by its own "
+                 "contact law where the scene holds one (docs/contact.md)");
+  for (const std::string& l : limits) append(r.limit, l);
+  return r;
+}
+
+namespace {
+
+// A contact check named `what` over the scene's `setups`: judge(run, setup, info) gives whether the
+// body passes and the sentence that says why, one line per judged body.
+template <typename Setup, typename Judge>
+CheckResult check_contact_law(const Scene& scene, const EngineFactory& make, const Timestep& h,
+                              const std::string& what, const std::vector<Setup>& setups,
+                              Judge&& judge) {
+  ContactRun c = contact_run(scene, make, h, what);
+  if (!c.run) return c.result;
+  CheckResult& r = c.result;
+  const Trajectory& run = *c.run;
+  for (const Setup& s : setups) {
+    const auto [passes, sentence] = judge(run, s, c.info);
+    r.passed = r.passed && passes;
+    append(r.message, run.body_names[s.body] + ": " + sentence);
+  }
+  return r;
+}
+
+}  // namespace
+
+CheckResult check_slide(const Scene& scene, const EngineFactory& make, const Timestep& h) {
+  return check_contact_law(scene, make, h, "slide", slide_setups(scene),
+                           [&](const Trajectory& run, const SlideSetup& s, const EngineInfo& i) {
+                             const SlideVerdict v =
+                                 judge_slide(run, s, i.friction_model, h.seconds);
+                             return std::pair(v.follows || !v.exact, v.sentence());
+                           });
+}
+
+CheckResult check_bounce(const Scene& scene, const EngineFactory& make, const Timestep& h) {
+  return check_contact_law(scene, make, h, "bounce", bounce_setups(scene),
+                           [&](const Trajectory& run, const BounceSetup& s, const EngineInfo& i) {
+                             const BounceVerdict v = judge_bounce(run, s, i.bounce_law, h.seconds);
+                             return std::pair(v.follows, v.sentence());
+                           });
+}
+
+CheckResult check_stack(const Scene& scene, const EngineFactory& make, const Timestep& h) {
+  ContactRun c = contact_run(scene, make, h, "stack");
+  if (!c.run) return c.result;
+  CheckResult& r = c.result;
+  const Trajectory& run = *c.run;
+  for (const StackSetup& s : stack_setups(scene)) {
+    std::string text;
+    const std::vector<StackBodyVerdict> verdicts = judge_stack(run, s, c.info, h.seconds);
+    for (const StackBodyVerdict& v : verdicts) {
+      r.passed = r.passed && v.passes();
+      text += (text.empty() ? "" : "; ") + run.body_names[v.body] + " " + v.sentence();
+    }
+    append(r.message, "stack from '" + run.body_names[s.body] + "' up: " + text);
+    const bool squeezed = std::any_of(verdicts.begin(), verdicts.end(), [](const auto& v) {
+      return v.unheld && v.above_floor && !v.holds();
+    });
+    if (squeezed)
+      append(r.limit, "the stack from '" + run.body_names[s.body] + "' up is " +
+                          verdicts.front().limit_text());
+  }
+  return r;
+}
+
+std::vector<CheckResult> check_scene(const Scene& scene, const EngineFactory& make,
+                                     const EngineFactory& reference) {
+  std::vector<CheckResult> out;
+  if (!make()->cannot_run(scene).empty()) return out;
+  if (scene.world.contacts) {
+    // Each contact law the scene holds, then the landing of every other body over a floor (or
+    // the landing check alone, which names what it leaves out).
+    if (!slide_setups(scene).empty()) out.push_back(check_slide(scene, make, scene.timestep));
+    if (!bounce_setups(scene).empty()) out.push_back(check_bounce(scene, make, scene.timestep));
+    if (!stack_setups(scene).empty()) out.push_back(check_stack(scene, make, scene.timestep));
+    if (out.empty() || !engine_landing_setups(scene, make()->info()).empty())
+      out.push_back(check_landing(scene, make, scene.timestep));
+    return out;
+  }
+  for (const Timestep& h : own_law_steps(scene)) out.push_back(check_own_law(scene, make, h));
+  out.push_back(check_divergence(scene, make, reference));
+  return out;
+}
+
+}  // namespace dropcheck

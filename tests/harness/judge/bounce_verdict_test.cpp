@@ -1,0 +1,97 @@
+// Tests harness/judge/bounce_verdict.cpp: a run is judged step by step against its engine's
+// bounce law; the members that move that law off the ideal one are named; a run that follows the
+// ideal law where its engine declares another, or that gains height, is caught. The runs are the
+// laws themselves, written as trajectories, so no engine is needed.
+#include "harness/judge/bounce_verdict.hpp"
+
+#include <catch2/catch.hpp>
+
+#include "harness/scene/scene_loader.hpp"
+
+using namespace dropcheck;
+using Catch::Matchers::Contains;
+
+namespace {
+
+Scene shipped(const std::string& stem) {
+  return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + stem + ".toml");
+}
+
+constexpr BounceLaw kOde{.erp = 0.2, .max_push = 0.3};
+
+// `law`'s path on the scene's bounce as a trajectory, every step recorded (the floor at rest).
+Trajectory law_run(const Scene& scene, const BounceSetup& s, const BounceLaw& law) {
+  const double h = scene.timestep.seconds;
+  Trajectory t;
+  t.h = h;
+  t.steps = step_count(scene, h);
+  for (const Body& body : scene.bodies) t.body_names.push_back(body.name);
+  const BouncePath p = bounce_path(law, s.h0, s.e, s.g, h, t.steps);
+  for (std::int64_t n = 0; n <= t.steps; ++n) {
+    t.recorded.push_back(n);
+    const auto i = static_cast<std::size_t>(n);
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+      t.states.push_back(b == s.body ? BodyState{Vec3(0.0, p.gap[i] + s.radius + s.floor_top, 0.0),
+                                                 Vec3(0.0, p.v[i], 0.0)}
+                                     : BodyState{scene.bodies[b].position, {}});
+  }
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("a bounce following its engine's law passes, with the members that move it named",
+          "[contact][bounce]") {
+  const Scene scene = shipped("bounce_e01");
+  const std::vector<BounceSetup> setups = bounce_setups(scene);
+  REQUIRE(setups.size() == 1);
+  CHECK(setups[0].h0 == 1.0);
+  CHECK(setups[0].e == 0.1);
+  const double h = scene.timestep.seconds;
+  const BounceVerdict ode = judge_bounce(law_run(scene, setups[0], kOde), setups[0], kOde, h);
+  CHECK(ode.follows);
+  CHECK(ode.worst_gap < 1e-15);  // the written heights round once
+  CHECK(ode.seen.contact_step == 27);
+  // The ideal law stays 0.01512 m in the floor; the push-out brings the sphere back to the surface.
+  CHECK(ode.law_to_ideal == Approx(0.0151).epsilon(1e-3));
+  REQUIRE(ode.causes.size() == 1);
+  CHECK_THAT(ode.causes[0], Contains("push-out 0.2*depth/h capped at 0.3 m/s"));
+  CHECK_THAT(ode.sentence(), Contains("the same path to") && Contains("0.0151 m off the ideal"));
+}
+
+TEST_CASE("a bounce that follows the ideal law where its engine declares a push-out departs",
+          "[contact][bounce]") {
+  const Scene scene = shipped("bounce_e01");
+  const BounceSetup s = bounce_setups(scene)[0];
+  const double h = scene.timestep.seconds;
+  const BounceVerdict v = judge_bounce(law_run(scene, s, kIdealBounce), s, kOde, h);
+  CHECK_FALSE(v.follows);
+  CHECK(v.follows_ideal);
+  CHECK(v.worst_gap == Approx(0.0151).epsilon(1e-3));
+  CHECK_THAT(v.sentence(),
+             Contains("DEPARTS at step") && Contains("follows the ideal law instead"));
+  // A threshold above the impact speed: the rebound never happens, the departure is named.
+  const BounceVerdict dead =
+      judge_bounce(law_run(scene, s, {.threshold = 5.0}), s, kIdealBounce, h);
+  CHECK_FALSE(dead.follows);
+}
+
+TEST_CASE("a bounce that climbs above where it fell from is flagged: energy rises",
+          "[contact][bounce]") {
+  const Scene scene = shipped("bounce_e09");
+  const BounceSetup s = bounce_setups(scene)[0];
+  const double h = scene.timestep.seconds;
+  // The law of e = 0.9 judged as e = 0.9 passes, apexes falling (0.8081, 0.6469, 0.5215 m).
+  const BounceVerdict fair = judge_bounce(law_run(scene, s, kIdealBounce), s, kIdealBounce, h);
+  CHECK(fair.follows);
+  CHECK_FALSE(fair.energy_rises);
+  REQUIRE(fair.seen.apexes.size() == 3);
+  CHECK(fair.seen.apexes[0] == Approx(0.8081).epsilon(1e-4));
+  // A run that returns more than it received (e = 1.2, the scene says 0.9).
+  BounceSetup gains = s;
+  gains.e = 1.2;
+  const BounceVerdict v = judge_bounce(law_run(scene, gains, kIdealBounce), s, kIdealBounce, h);
+  CHECK(v.energy_rises);
+  CHECK_FALSE(v.follows);
+  CHECK_THAT(v.sentence(), Contains("ENERGY RISES"));
+}

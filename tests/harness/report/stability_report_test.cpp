@@ -1,0 +1,87 @@
+// Tests harness/report/stability_report.cpp and harness/report/stability_io.cpp: the report
+// section is Markdown with one column per known engine, byte-identical from run to run, and names
+// every failure; the JSON and text forms of a study carry the search's result.
+#include "harness/report/stability_report.hpp"
+
+#include <catch2/catch.hpp>
+#include <sstream>
+
+#include "harness/core/registry.hpp"
+#include "harness/report/stability_io.hpp"
+#include "harness/scene/scene_loader.hpp"
+#include "harness/study/stability_study.hpp"
+
+using Catch::Matchers::Contains;
+using namespace dropcheck;
+
+namespace {
+
+const std::string kTiny = DROPCHECK_SOURCE_DIR "/scenarios/extreme/tiny_step.toml";
+const std::string kSpring = DROPCHECK_SOURCE_DIR "/scenarios/extreme/stiff_spring.toml";
+
+// Engine slots for `names`, as the command line makes them (harness/cli/cmd_report.cpp).
+std::vector<EngineSlot> slots(const std::vector<std::string>& names) {
+  std::vector<EngineSlot> out;
+  for (const std::string& name : names) {
+    const std::string why = engine_unavailable_reason(name);
+    out.push_back(
+        {name, why.empty() ? EngineFactory([name] { return make_engine(name); }) : EngineFactory(),
+         why});
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("The stability section runs only the engines passed in", "[stability][report]") {
+  std::ostringstream progress;
+  stability_report_section({kTiny}, slots({"ours"}), progress);
+  CHECK(progress.str().find("ours") != std::string::npos);
+  for (const std::string& other : available_engine_names())
+    if (other.rfind("ours", 0) != 0)
+      CHECK(progress.str().find(" " + other + " ") == std::string::npos);
+}
+
+TEST_CASE("The stability section is deterministic Markdown naming every failure",
+          "[stability][report]") {
+  std::ostringstream progress;
+  const std::string a =
+      stability_report_section({kTiny, kSpring}, slots(available_engine_names()), progress);
+  const std::string b =
+      stability_report_section({kSpring, kTiny}, slots(available_engine_names()), progress);
+  CHECK(a == b);  // scenes sorted by name, no timings
+  CHECK_THAT(a, Contains("## Stability: stiff and extreme cases"));
+  std::string header = "| scene | h |";
+  for (const std::string& e : known_engine_names()) header += " " + e + " |";
+  CHECK_THAT(a, Contains(header));
+  CHECK_THAT(a, Contains("| `stiff_spring` | 1/32 | stable |"));
+  CHECK_THAT(
+      a, Contains(
+             "- `tiny_step`, ours (f32), frozen: body 'at_10m': position frozen at y = 10.000000"));
+  CHECK_THAT(a, Contains("0.0333 (unbounded growth) / 0.03333"));  // ours: measured / theory
+  CHECK_THAT(progress.str(), Contains("stability tiny_step: ours (f32) frozen"));
+}
+
+TEST_CASE("Stability: a bad scene file is an InputError naming it", "[stability][report]") {
+  std::ostringstream progress;
+  CHECK_THROWS_AS(stability_report_section({"/nonexistent/x.toml"}, slots({"ours"}), progress),
+                  InputError);
+}
+
+TEST_CASE("Stability: the study's JSON and text carry verdicts, the search and skipped engines",
+          "[stability][report]") {
+  const Scene scene = load_scene(kTiny);
+  const SceneStability s = study_scene(scene, slots({"ours", "ours-f64"}));
+  const std::string json = stability_to_json(s, StudyOptions{}.search_options);
+  CHECK_THAT(json, Contains("\"engine\":\"ours\",\"scalar\":\"f32\"") &&
+                       Contains("\"verdict\":\"frozen\""));
+  CHECK_THAT(json, Contains("\"min_stable_dt\":") && Contains("\"max_stable_dt\":"));
+  const std::string text = stability_to_text(s);
+  CHECK_THAT(text, Contains("ours (f32)       frozen") && Contains("frozen below"));
+  const SceneStability floor =
+      study_scene(load_scene(DROPCHECK_SOURCE_DIR "/scenarios/extreme/thin_floor.toml"),
+                  slots({"ours"}), StudyOptions{});
+  CHECK(floor.engines.front().skipped == "no contacts");
+  CHECK_THAT(stability_to_json(floor, {}),
+             Contains("{\"engine\":\"ours\",\"skipped\":\"no contacts\"}"));
+}
