@@ -1,0 +1,3 @@
+// The command line of the test tree (tests/layers/upward).
+#pragma once
+#include "harness/core/vocabulary.hpp"
