@@ -120,7 +120,7 @@ class OursEngine final : public Engine {
 
 // The bare loop of OursEngine<T> (bare_step_loop in adapters.hpp): load untimed, then steps only.
 template <typename T>
-double bare_seconds_ours(const Scene& scene, double h) {
+double bare_seconds_of(const Scene& scene, double h) {
   OursEngine<T> e;
   e.load(scene, h);
   return e.bare_seconds(step_count(scene, h));
@@ -128,18 +128,18 @@ double bare_seconds_ours(const Scene& scene, double h) {
 
 }  // namespace
 
-std::unique_ptr<Engine> make_ours_f32() {
+std::unique_ptr<Engine> make_ours() {
   return std::make_unique<OursEngine<float>>();
 }
 std::unique_ptr<Engine> make_ours_f64() {
   return std::make_unique<OursEngine<double>>();
 }
 
-double bare_seconds_ours_f32(const Scene& scene, double h) {
-  return bare_seconds_ours<float>(scene, h);
+double bare_seconds_ours(const Scene& scene, double h) {
+  return bare_seconds_of<float>(scene, h);
 }
 double bare_seconds_ours_f64(const Scene& scene, double h) {
-  return bare_seconds_ours<double>(scene, h);
+  return bare_seconds_of<double>(scene, h);
 }
 
 }  // namespace dropcheck

@@ -13,18 +13,20 @@ DROPCHECK_PACKAGES=(
   nlohmann-json3-dev                   # JSON output, every name escaped by construction
   libfmt-dev                           # number formatting (harness/core/number_format.hpp)
   libboost-math-dev                    # Jacobi elliptic functions (harness/oracles/free_rotation)
-  libbullet-dev libode-dev libbox2d-dev libmujoco-dev libqhull-dev  # the engines compared
-  libchipmunk-dev                      # Chipmunk2D (2-D, double)
-  libsimbody-dev                       # Simbody (multibody, semi-explicit Euler)
-  libdart-dev                          # DART 6.12 (Gazebo's fourth engine; pulls Boost and Open MPI)
-  libwildmagic-dev                     # Wild Magic 5 (RigidBody, fourth-order Runge-Kutta)
-  libgl-dev                            # MuJoCo's CMake package requires OpenGL to be findable
   gnuplot-nox                          # report plots (SVG)
   clang-format-14 git                  # scripts/format.sh and the ctest entry `format`
   libbenchmark-dev                     # benchmarks (bench/, scripts/bench.sh)
   slurmctld slurmd slurm-client munge  # sweeps on a localhost Slurm (ctest slurm, scripts/slurm/)
   python3-jsonschema                   # validates sweep records against docs/results.schema.json
 )
+# The engines compared: the packages column of adapters/engines.txt, the one list of engines.
+engines="$(dirname "${BASH_SOURCE[0]}")/../adapters/engines.txt"
+while read -r name source find packages rest; do
+  case "$name" in ''|'#'*) continue ;; esac
+  [ "$packages" = "-" ] && continue
+  IFS=, read -r -a engine_packages <<< "$packages"
+  DROPCHECK_PACKAGES+=("${engine_packages[@]}")
+done < "$engines"
 
 missing=()
 for p in "${DROPCHECK_PACKAGES[@]}"; do

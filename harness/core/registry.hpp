@@ -1,4 +1,5 @@
-// The registry: engine names to adapters compiled into this build (adapters/registry.cpp).
+// The registry: engine names to adapters compiled into this build (adapters/registry.cpp). What the
+// harness knows of every engine, compiled in or not, is harness/core/engine_listing.hpp.
 #pragma once
 
 #include <memory>

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <tuple>
 
+#include "harness/core/engine_listing.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/io/bounded_read.hpp"
 
@@ -140,22 +141,6 @@ double moved(double a, double b) {
   return lo == 0 ? INFINITY : hi / lo - 1;
 }
 
-// The alert's thresholds: per engine, the largest move of kAlertFigure measured between two reports
-// of the same code on this project's 2-core machine, quiet (six reports back to back at commit
-// 3b02bad plus the timing change, five consecutive pairs, 172 cells each), times 1.5, rounded up
-// to a whole percent. Measured largest moves: ours 3.55 % (throw_3d 1/60), ours-f64 11.37 %
-// (throw_up 1/240), bullet 5.06 % (wind 1/30), ode 5.81 % (wind 1/30), box2d 4.33 % (drop_on_floor
-// 1/30), mujoco 12.19 % (seed_part3 1/60). The absolute minimum moved up to 8.2 %, 10.7 %, 10.0 %,
-// 7.4 %, 8.1 % and 15.1 % in the same pairs: the ratio is the steadier figure.
-struct Threshold {
-  const char* engine;
-  double rise;
-};
-constexpr Threshold kThresholds[] = {{"ours", 0.06}, {"ours-f64", 0.18}, {"bullet", 0.08},
-                                     {"ode", 0.09},  {"box2d", 0.07},    {"mujoco", 0.19}};
-// An engine not measured (an external one): the largest of the above.
-constexpr double kUnmeasuredThreshold = 0.19;
-
 }  // namespace
 
 std::string to_string(TimingFigure f) {
@@ -257,9 +242,14 @@ std::vector<MovedCell> pairs(const TimingRecord& before, const TimingRecord& now
 }  // namespace
 
 double slowdown_threshold(const std::string& engine) {
-  for (const Threshold& t : kThresholds)
-    if (engine == t.engine) return t.rise;
-  return kUnmeasuredThreshold;
+  // Each engine's threshold is declared with it (adapters/engines.txt, where it was measured); an
+  // engine not measured (an external one) gets the largest of them.
+  const EngineListing* listing = find_engine_listing(engine);
+  if (listing && listing->slowdown_threshold > 0) return listing->slowdown_threshold;
+  double largest = 0.0;
+  for (const EngineListing& l : engine_listings())
+    largest = std::max(largest, l.slowdown_threshold);
+  return largest;
 }
 
 std::vector<Slowdown> slowdowns(const TimingRecord& before, const TimingRecord& now,

@@ -5,6 +5,7 @@
 #include <ctime>
 #include <variant>
 
+#include "harness/core/engine_listing.hpp"
 #include "harness/run/runner.hpp"
 #include "harness/timing/calibration.hpp"
 
@@ -185,22 +186,10 @@ int replicas_for(const Scene& scene, double h, const TimingOptions& options) {
 }
 
 double nominal_ns_per_body_step(const std::string& engine) {
-  // Bare loop at N = 1000 free cubes on the 2-core VM, quiet (bench/results, 2026-11-23):
-  // ours 3.72, ours-f64 4.23, ode 189, box2d 259, mujoco 567, bullet 591 ns; contact scenes cost
-  // the engines more. Chipmunk 33.9, Simbody 1824 (2026-11-25); DART 1817-1924, Wild Magic
-  // 142-146 (2026-11-26, six and nine runs); simbody-rkm 10064-10289 (2026-11-26, three runs: five
-  // stages per step). Rounded down.
-  if (engine == "ours" || engine == "ours-f64") return 3.5;
-  if (engine == "ode") return 180.0;
-  if (engine == "box2d") return 250.0;
-  if (engine == "mujoco") return 550.0;
-  if (engine == "bullet") return 580.0;
-  if (engine == "chipmunk") return 33.0;
-  if (engine == "simbody") return 1800.0;
-  if (engine == "simbody-rkm") return 10000.0;
-  if (engine == "dart") return 1800.0;
-  if (engine == "wildmagic") return 140.0;
-  return 1000.0;
+  // Each engine's figure is declared with it (adapters/engines.txt, where it was measured); an
+  // engine not in the list (an external one) is planned as a slow one.
+  const EngineListing* listing = find_engine_listing(engine);
+  return listing ? listing->nominal_ns_per_body_step : 1000.0;
 }
 
 int repeats_for(const Scene& scene, double h, const std::string& engine, int replicas,
