@@ -1,4 +1,4 @@
-// The cost of the sweep path (docs/sweeps.md), printed as figures (README, "Sweeps"):
+// The cost of the sweep path, printed as figures (docs/sweeps.md, "Cost"):
 //  1. cells per second of `dropcheck sweep` (run_cells: one worker process for the shard, a cell
 //     it dies in rerun alone, records sorted and written whole) against the same cells run in one
 //     loop in this process (no isolation, no file), on sweeps/small.toml's 256 cells;

@@ -1,5 +1,5 @@
-// Loads a scene file (TOML; the contract is in docs/design.md "Scenario files") into a validated
-// Scene.
+// Loads a scene file (TOML; every key in docs/scene-keys.md, the rules in docs/design.md "Scenario
+// files") into a validated Scene.
 #pragma once
 
 #include <string>

@@ -40,9 +40,9 @@ const char* to_string(Statistic s);
 // The figure that reproduces best between two reports on a shared machine, measured on this
 // project's 2-core VM over three pairs of back-to-back reports, quiet, and four with a noisy
 // neighbour (172 cells each): within 10 % in 98.8-100 % of cells with a median move of 1.3-2.5 %,
-// where the median gave 98.8-100 % and 1.4-3.0 % (report.cpp kWhyHeadline, README "Timings and
-// benchmarks"). The machine's speed changes for seconds at a time and slows a run, never speeds it
-// up, so the fastest of eight runs is the least disturbed one.
+// where the median gave 98.8-100 % and 1.4-3.0 % (report.cpp kWhyHeadline, docs/timing.md). The
+// machine's speed changes for seconds at a time and slows a run, never speeds it up, so the
+// fastest of eight runs is the least disturbed one.
 inline constexpr Statistic kHeadline = Statistic::min;
 
 // The statistic of `samples` (0 for none); quantiles linear between order statistics.

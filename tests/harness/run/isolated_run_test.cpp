@@ -191,7 +191,7 @@ TEST_CASE("the process default decides where a run without an explicit choice go
   CHECK_FALSE(runs_isolated({}));
 }
 
-// The cost of isolation, for the README (hidden: run with `dropcheck_tests "[.isolation-cost]"`).
+// The cost of isolation, for docs/runs.md (hidden: run with `dropcheck_tests "[.isolation-cost]"`).
 TEST_CASE("isolation cost per run: fork, pipe transfer and reaping", "[.isolation-cost]") {
   const Scene scene = load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/free_fall.toml");
   for (const Scene& s : {ten_steps(), scene}) {
