@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <variant>
@@ -97,6 +98,14 @@ struct PublishedFigure {
   std::string note;     // why that member, in a sentence
 };
 
+// A figure a scene's [expect] table states (docs/design.md, "Scenario files"): its value and its
+// text as the file writes it ("2.5510", "1e-5"), which the description quotes where it writes the
+// figure's {name}.
+struct ExpectedFigure {
+  double value = 0.0;
+  std::string text;
+};
+
 struct World {
   Vec3 gravity = Vec3::Zero();        // m/s^2, y up
   double damping_rate = 0.0;          // k in 1/s: dv/dt = ... - k*v; per-step decay phi = exp(-k*h)
@@ -106,16 +115,18 @@ struct World {
 
 struct Scene {
   std::string name;
-  std::string description;
-  std::string source;               // file the scene came from ("" when built in code)
-  double duration = 0.0;            // simulated seconds
-  Timestep timestep;                // default step
+  std::string description;  // as the report prints it: every {name} replaced by expect's text
+  std::string source;       // file the scene came from ("" when built in code)
+  double duration = 0.0;    // simulated seconds
+  Timestep timestep;        // default step
   std::vector<Timestep> timesteps;  // sweep; never empty after loading (holds at least `timestep`)
   World world;
   std::vector<Body> bodies;
   std::vector<Force> forces;
   std::vector<Torque> torques;
   std::vector<PublishedFigure> published;
+  // [expect]: name -> figure, a body's figures named "<body>.<quantity>" ([expect.<body>]).
+  std::map<std::string, ExpectedFigure> expect;
   double tolerance = 1e-3;  // m: |dx| above this counts as diverged (time to divergence)
 };
 

@@ -203,7 +203,7 @@ CellSetup setup_cell(const std::string& text, const std::string& file, const std
   for (std::size_t i = 0; i < axes.size(); ++i)
     if (axes[i].kind == AxisKind::scene_key)
       set_key(root, axes[i].name, number_of(axes[i].name, values[i]));
-  CellSetup c{scene_from_table(root, file), {}, engine, ""};
+  CellSetup c{scene_from_table(root, text, file), {}, engine, ""};
   c.h = c.scene.timestep;
   for (std::size_t i = 0; i < axes.size(); ++i) apply_named(axes[i], values[i], c);
   return c;

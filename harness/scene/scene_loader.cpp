@@ -14,6 +14,7 @@
 #include "harness/core/rotation_law.hpp"
 #include "harness/core/timestep.hpp"
 #include "harness/io/bounded_read.hpp"
+#include "harness/scene/expect_table.hpp"
 #include "harness/scene/toml_ascii.hpp"
 #include "harness/scene/toml_reader.hpp"
 
@@ -290,10 +291,10 @@ void load_published(const Reader& r, Scene& s) {
   s.published.push_back(p);
 }
 
-Scene build(const toml::table& root, const std::string& path) {
+Scene build(const toml::table& root, const std::string& text, const std::string& path) {
   Reader r(path, root, "");
   r.only({"name", "description", "duration", "timestep", "timesteps", "tolerance", "world", "body",
-          "force", "torque", "published"});
+          "force", "torque", "published", "expect"});
   Scene s;
   s.source = path;
   s.name = r.name("name", std::filesystem::path(path).stem().string());
@@ -315,17 +316,18 @@ Scene build(const toml::table& root, const std::string& path) {
     for (std::size_t i = 0; i < published->size(); ++i)
       load_published(
           Reader(path, *published->get(i)->as_table(), "published[" + std::to_string(i) + "]"), s);
+  load_expect(r, text, s);  // after the bodies: a table in [expect] names one
   return s;
 }
 
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& path) {
-  return build(parse_toml(text, path), path);
+  return build(parse_toml(text, path), text, path);
 }
 
-Scene scene_from_table(const toml::table& root, const std::string& path) {
-  return build(root, path);
+Scene scene_from_table(const toml::table& root, const std::string& text, const std::string& path) {
+  return build(root, text, path);
 }
 
 Scene load_scene(const std::string& path) {

@@ -11,7 +11,9 @@ namespace dropcheck {
 
 // Reads and validates `path`. Throws InputError naming the file, line, key and problem for a
 // syntax error, an unknown key, a wrong type, a non-finite or out-of-range value, a duplicate or
-// unknown body name, both linear_drag and linear_damping, or a step that cannot cover the duration.
+// unknown body name, both linear_drag and linear_damping, a step that cannot cover the duration, or
+// an [expect] table or description placeholder load_expect refuses (expect_table.hpp). The
+// description comes back with its {placeholders} replaced by the [expect] figures' text.
 // Only a regular file of at most kMaxSceneBytes is read (see read_scene_text).
 Scene load_scene(const std::string& path);
 

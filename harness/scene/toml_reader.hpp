@@ -23,8 +23,9 @@ namespace dropcheck {
 toml::table parse_toml(const std::string& text, const std::string& path);
 
 // A scene from a parsed TOML table, validated as load_scene validates a file (scene_loader.cpp):
-// for a sweep cell's scene with its keys set (harness/plan/axes.cpp).
-Scene scene_from_table(const toml::table& root, const std::string& path);
+// for a sweep cell's scene with its keys set (harness/plan/axes.cpp). `text` is the file's text
+// `root` was parsed from, where the [expect] figures' text as written is read.
+Scene scene_from_table(const toml::table& root, const std::string& text, const std::string& path);
 
 // 2^53: every integer up to it in magnitude is exactly a double; past it, not all are.
 inline constexpr std::int64_t kExactIntegerLimit = std::int64_t{1} << 53;

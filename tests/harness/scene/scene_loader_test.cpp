@@ -452,3 +452,99 @@ TEST_CASE("one friction and one restitution per scene: two bodies that differ ar
   CHECK(*dropcheck::scene_material(same).friction == 0.5);
   CHECK(*dropcheck::scene_material(same).restitution == 0.2);
 }
+
+TEST_CASE("[expect] figures keep their text as written, and the description quotes it",
+          "[loader]") {
+  const std::string text =
+      "description = \"stops at step {stop_step} after {stop_distance} m; "
+      "{cube.rest_height} {tiny}\"\n" +
+      kHead +
+      "[expect]\r\nstop_step = 62\r\nstop_distance =\t2.5510 # a comment\n"
+      "tiny = -1e-5\n[expect.cube]\nrest_height = 0.50\n" +
+      kWorld + kBody;
+  const dropcheck::Scene s = dropcheck::parse_scene(text, "x.toml");
+  CHECK(s.description == "stops at step 62 after 2.5510 m; 0.50 -1e-5");
+  REQUIRE(s.expect.size() == 4);
+  CHECK(s.expect.at("stop_step").value == 62.0);
+  CHECK(s.expect.at("stop_step").text == "62");
+  CHECK(s.expect.at("stop_distance").value == 2.551);
+  CHECK(s.expect.at("stop_distance").text == "2.5510");
+  CHECK(s.expect.at("tiny").text == "-1e-5");
+  CHECK(s.expect.at("cube.rest_height").text == "0.50");
+  // An inline table, values without spaces around them.
+  const dropcheck::Scene inline_table = dropcheck::parse_scene(
+      "description = \"{a},{b}\"\n" + kHead + "expect = {a=1.50,b = 3}\n" + kWorld + kBody,
+      "x.toml");
+  CHECK(inline_table.description == "1.50,3");
+}
+
+TEST_CASE("a description without placeholders loads as written, braces are placeholders only",
+          "[loader]") {
+  CHECK(
+      dropcheck::parse_scene("description = \"h = 1/60\"\n" + scene(kHead, kWorld, kBody), "x.toml")
+          .description == "h = 1/60");
+  check_error("description = \"a {b\"\n" + scene(kHead, kWorld, kBody), "description",
+              "a '{' never closed: '{b'");
+  check_error("description = \"a} b\"\n" + scene(kHead, kWorld, kBody), "description",
+              "a '}' that closes no {placeholder}: 'a}'");
+  check_error("description = \"{b}\"\n" + scene(kHead, kWorld, kBody), "description",
+              "'{b}' names no figure of [expect]");
+}
+
+TEST_CASE("an [expect] figure that is not a plain finite number is refused naming it", "[loader]") {
+  const auto with = [](const std::string& figure) {
+    return "description = \"{a}\"\n" + kHead + "[expect]\na = " + figure + "\n" + kWorld + kBody;
+  };
+  CHECK(error_of(with("1.5")) == "(loaded)");
+  check_error(with("\"62\""), "expect.a", "expected a number, got a string");
+  check_error(with("true"), "expect.a", "expected a number, got a boolean");
+  check_error(with("[1, 2]"), "expect.a", "expected a number, got an array");
+  check_error(with("nan"), "expect.a", "must be finite");
+  check_error(with("-inf"), "expect.a", "must be finite");
+  check_error(with("9007199254740993"), "expect.a", "too large to be exactly a double");
+  for (const char* written : {"0x3e", "1_000", "+5", "1E5", "5e+00_1"}) {
+    INFO(written);
+    const std::string msg = error_of(with(written));
+    CHECK_THAT(msg, Contains("expect.a: write a figure as a plain decimal number") ||
+                        Contains("TOML syntax error"));
+  }
+  check_error(with("0x3e"), "expect.a", "got '0x3e'");
+  check_error("description = \"{a}\"\n" + kHead + "expect = 5\n" + kWorld + kBody, "expect",
+              "expected a table [expect]");
+}
+
+TEST_CASE("[expect] names are [a-z][a-z0-9_]*, and a table in it names a body", "[loader]") {
+  const auto with = [](const std::string& description, const std::string& expect) {
+    return "description = \"" + description + "\"\n" + kHead + expect + kWorld + kBody;
+  };
+  check_error(with("{Stop}", "[expect]\nStop = 1\n"), "expect.Stop", "[a-z][a-z0-9_]*");
+  check_error(with("{_a}", "[expect]\n_a = 1\n"), "expect._a", "[a-z][a-z0-9_]*");
+  check_error(with("x", "[expect]\n\"a b\" = 1\n"), "expect.a b", "[a-z][a-z0-9_]*");
+  CHECK_THAT(error_of(with("x", "[expect]\n\"a\\u001b[2J\" = 1\n")),
+             Contains("expect.a\\x1b[2J: ") && !Contains("\x1b"));
+  check_error(with("{ghost.a}", "[expect.ghost]\na = 1\n"), "expect.ghost",
+              "no body named 'ghost'");
+  check_error(with("{cube.x.a}", "[expect.cube.x]\na = 1\n"), "expect.cube.x",
+              "expected a number, got a table");
+  CHECK(error_of(with("{cube.a}", "[expect.cube]\na = 1\n")) == "(loaded)");
+}
+
+TEST_CASE("an [expect] table holds at most 64 figures, each quoted by the description",
+          "[loader]") {
+  std::string description, expect = "[expect]\n";
+  for (int i = 0; i < 65; ++i) {
+    description += "{f" + std::to_string(i) + "} ";
+    expect += "f" + std::to_string(i) + " = " + std::to_string(i) + "\n";
+  }
+  const std::string text = "description = \"" + description + "\"\n" + kHead + expect;
+  CHECK_THAT(error_of(text + kWorld + kBody),
+             Contains("x.toml:") && Contains(": more than 64 figures in [expect]"));
+  check_error("description = \"{a}\"\n" + kHead + "[expect]\na = 1\nb = 2\n" + kWorld + kBody,
+              "expect.b", "the description never quotes it (write {b} where it states it)");
+  CHECK_THAT(
+      error_of("description = \"{a}\"\n" + kHead + "[expect]\na = 1\nb = 2\n" + kWorld + kBody),
+      Contains("x.toml:5: expect.b: "));  // the line of b
+  check_error("description = \"{a}\"\n" + kHead + "[expect]\na = 1\n[expect.cube]\nb = 2\n" +
+                  kWorld + kBody,
+              "expect.cube.b", "the description never quotes it (write {cube.b}");
+}
