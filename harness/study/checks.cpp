@@ -262,8 +262,8 @@ CheckResult check_divergence(const Scene& scene, const EngineFactory& make,
   const DriftVerdict d = judge_drift(scene, ei.law, x.h, x.e, measurable_noise + precision);
   if (!d.applies) return r;
   r.passed = d.explained;
-  r.limit = d.limit;
-  r.message += "; " + d.text;
+  r.limit = d.limit_text();
+  r.message += "; " + d.sentence();
   return r;
 }
 

@@ -85,65 +85,91 @@ double drift_significant_ratio() {
   return (g - 1.0) / (1.0 - 0.5 * g);
 }
 
+namespace {
+
+// The band of the worst error over the bodies that drift at h: the largest lower and upper bound
+// of any body (a body the drift does not cover must stay below the upper bound, or it is
+// unexplained), and the largest drift.
+DriftBand band_at(const std::vector<DriftPrediction>& bodies, double h, double error,
+                  double noise) {
+  DriftBand b{h, 0.0, 0.0, 0.0, error, false};
+  for (const DriftPrediction& p : bodies) {
+    b.lower = std::max(b.lower, p.lower), b.upper = std::max(b.upper, p.upper),
+    b.drift = std::max(b.drift, p.drift);
+  }
+  b.within = !(error < b.lower - noise || error > b.upper + noise);
+  return b;
+}
+
+// The body that drifts most.
+const DriftPrediction& most_drifting(const std::vector<DriftPrediction>& bodies) {
+  const DriftPrediction* worst = nullptr;
+  for (const DriftPrediction& p : bodies)
+    if (!worst || p.drift > worst->drift) worst = &p;
+  return *worst;
+}
+
+}  // namespace
+
 DriftVerdict judge_drift(const Scene& scene, Law law, std::span<const double> h,
                          std::span<const double> e, double noise) {
   DriftVerdict v;
   if (h.size() < 2 || h.size() != e.size()) return v;
-  // The band of the worst error over bodies: the largest lower and upper bound of any drifting
-  // body (a body the drift does not cover must stay below the upper bound, or it is unexplained).
-  std::vector<double> lower, upper, drift;
-  const DriftPrediction* worst = nullptr;  // the body that drifts most, at the coarsest step
   std::vector<std::vector<DriftPrediction>> all;
   for (double step : h) {
     all.push_back(predict_drift(scene, law, step));
     if (all.back().empty()) return v;
-    double lo = 0.0, hi = 0.0, most = 0.0;
-    for (const DriftPrediction& p : all.back()) {
-      lo = std::max(lo, p.lower), hi = std::max(hi, p.upper), most = std::max(most, p.drift);
-    }
-    lower.push_back(lo), upper.push_back(hi), drift.push_back(most);
   }
-  for (const DriftPrediction& p : all.front())
-    if (!worst || p.drift > worst->drift) worst = &p;
   // Significant at the coarser step of the last pair: the drift alone bends that order out of band.
-  const std::size_t coarser = h.size() - 2;
-  for (const DriftPrediction& p : all[coarser])
+  for (const DriftPrediction& p : all[h.size() - 2])
     v.applies = v.applies || p.drift_part >= drift_significant_ratio() * p.offset;
   if (!v.applies) return v;
+  const DriftPrediction& worst = most_drifting(all.front());
+  v.law = law, v.body = worst.body, v.duration = worst.duration, v.omega = worst.omega;
   v.explained = true;
-  std::string outside;
-  for (std::size_t k = 0; k < h.size(); ++k)
-    if (e[k] < lower[k] - noise || e[k] > upper[k] + noise) {
-      v.explained = false;
-      outside += (outside.empty() ? "" : ", ") + step_text(h[k]);
-    }
-  std::string bands;
-  for (std::size_t k = 0; k < h.size(); ++k)
-    bands += (k ? ", " : "") + ("[" + sig(lower[k], 4) + ", " + sig(upper[k], 4) + "]");
-  const double t = worst->duration;
-  v.text = "phase drift of its law (" + law_family_name(law) + ") over " + sig(t, 4) + " s on '" +
-           worst->body + "', omega*T*(theta/(omega*h) - 1) with theta the angle of the law's " +
-           "eigenvalues: " + list(drift, " rad") + " at h = " + steps_text(h) +
-           "; 2*S*sin(drift/2) +- D (S the orbit's semi-major axis, D the law's first-order " +
-           "initial phase offset) bounds its error against the closed form to " + bands +
-           " m; measured " + list(e, " m") +
-           (v.explained ? ": within the band"
-                        : ": OUTSIDE the band at h = " + outside + ", not explained by the drift");
-  if (!v.explained) return v;
-  // The first-order regime: where the drift omega*T*(omega*h)^2/24 falls to the law's phase offset
-  // omega*h/2, h = 12/(omega^2*T); well below it the error is C*h.
-  const double w = worst->omega, edge = 12.0 / (w * w * t);
-  const std::size_t last = h.size() - 1;
-  v.limit = "pre-asymptotic: the phase drift of semi-implicit Euler over " + sig(t, 4) + " s on '" +
-            worst->body + "' is " + sig(drift.front(), 3) + " rad at h = " + step_text(h.front()) +
-            " and still " + sig(drift.back(), 3) + " rad at h = " + step_text(h.back()) +
-            " (error predicted " + sig(lower.front(), 4) + ".." + sig(upper.front(), 4) +
-            " m and " + sig(lower[last], 4) + ".." + sig(upper[last], 4) + " m, measured " +
-            sig(e.front(), 4) + " m and " + sig(e[last], 4) +
-            " m): the error is that drift, second order in h, until h is well below "
-            "12/(omega^2*T) = " +
-            sig(edge, 3) + " s (" + sig(t / edge, 3) + " steps)";
+  for (std::size_t k = 0; k < h.size(); ++k) {
+    v.steps.push_back(band_at(all[k], h[k], e[k], noise));
+    v.explained = v.explained && v.steps.back().within;
+  }
   return v;
+}
+
+double DriftVerdict::first_order_edge() const {
+  return 12.0 / (omega * omega * duration);
+}
+
+std::string DriftVerdict::sentence() const {
+  if (!applies) return "";
+  std::vector<double> h, drift, e;
+  std::string bands, outside;
+  for (const DriftBand& b : steps) {
+    h.push_back(b.h), drift.push_back(b.drift), e.push_back(b.error);
+    bands += (bands.empty() ? "[" : ", [") + sig(b.lower, 4) + ", " + sig(b.upper, 4) + "]";
+    if (!b.within) outside += (outside.empty() ? "" : ", ") + step_text(b.h);
+  }
+  return "phase drift of its law (" + law_family_name(law) + ") over " + sig(duration, 4) +
+         " s on '" + body + "', omega*T*(theta/(omega*h) - 1) with theta the angle of the law's " +
+         "eigenvalues: " + list(drift, " rad") + " at h = " + steps_text(h) +
+         "; 2*S*sin(drift/2) +- D (S the orbit's semi-major axis, D the law's first-order " +
+         "initial phase offset) bounds its error against the closed form to " + bands +
+         " m; measured " + list(e, " m") +
+         (explained ? ": within the band"
+                    : ": OUTSIDE the band at h = " + outside + ", not explained by the drift");
+}
+
+std::string DriftVerdict::limit_text() const {
+  if (!explained) return "";
+  const DriftBand &first = steps.front(), &last = steps.back();
+  const double edge = first_order_edge();
+  return "pre-asymptotic: the phase drift of semi-implicit Euler over " + sig(duration, 4) +
+         " s on '" + body + "' is " + sig(first.drift, 3) + " rad at h = " + step_text(first.h) +
+         " and still " + sig(last.drift, 3) + " rad at h = " + step_text(last.h) +
+         " (error predicted " + sig(first.lower, 4) + ".." + sig(first.upper, 4) + " m and " +
+         sig(last.lower, 4) + ".." + sig(last.upper, 4) + " m, measured " + sig(first.error, 4) +
+         " m and " + sig(last.error, 4) +
+         " m): the error is that drift, second order in h, until h is well below "
+         "12/(omega^2*T) = " +
+         sig(edge, 3) + " s (" + sig(duration / edge, 3) + " steps)";
 }
 
 }  // namespace dropcheck

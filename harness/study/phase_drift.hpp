@@ -57,13 +57,34 @@ std::vector<DriftPrediction> predict_drift(const Scene& scene, Law law, double h
 // step: (1 + q)/(1 + q/2) = 2^(kFirstOrderHigh - 1), q = 0.155.
 double drift_significant_ratio();
 
+// One step of a sweep against the drift's band.
+struct DriftBand {
+  double h = 0.0;       // s
+  double drift = 0.0;   // the largest drift of any body at h (rad)
+  double lower = 0.0;   // the band of the worst error over bodies: the largest lower bound (m)
+  double upper = 0.0;   // ... and the largest upper bound (m)
+  double error = 0.0;   // the measured error (m)
+  bool within = false;  // error within [lower, upper], widened by the noise
+};
+
 // Whether the phase drift explains a convergence sweep (errors e, m, at steps h, largest first).
 struct DriftVerdict {
   bool applies = false;    // a body drifts, and its drift part is significant at the coarser step
                            // of the sweep's last pair (P >= drift_significant_ratio() * D)
   bool explained = false;  // applies, and every error lies in its band (+- noise)
-  std::string limit;       // when explained: the cause, one sentence
-  std::string text;        // when it applies: the drift, the predicted band and the measured error
+  Law law;                 // the law judged
+  std::string body;        // the body that drifts most at the coarsest step
+  double duration = 0.0;   // T: the time of the run's last step (s)
+  double omega = 0.0;      // that body's angular frequency (rad/s)
+  std::vector<DriftBand> steps;  // when it applies: one per step of the sweep, largest first
+
+  // Where the drift omega*T*(omega*h)^2/24 falls to the law's phase offset omega*h/2:
+  // 12/(omega^2*T) (s); well below it the error is first order.
+  double first_order_edge() const;
+  // When it applies: the drift, the predicted band and the measured error, one sentence.
+  std::string sentence() const;
+  // When explained: the cause, one sentence (the check's LIMIT).
+  std::string limit_text() const;
 };
 
 // Judges the errors of a sweep of `scene` under `law` against the drift prediction; `noise` (m)

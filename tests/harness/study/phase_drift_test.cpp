@@ -5,6 +5,7 @@
 // (a frequency off by 0.05%, a spring of the wrong sign), still FAIL.
 #include "harness/study/phase_drift.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
@@ -125,12 +126,48 @@ TEST_CASE("the drift band holds the error of the iterated law at every step of a
 TEST_CASE("the drift explains a long run's sweep of the law and names the cause", "[phase_drift]") {
   const Scene s = long_spring();
   const DriftVerdict v = judge_drift(s, kOurs, kSweep, law_errors(s, s, kSweep), 0.0);
-  INFO(v.limit << " | " << v.text);
+  INFO(v.limit_text() << " | " << v.sentence());
   CHECK(v.applies);
   CHECK(v.explained);
-  CHECK_THAT(v.limit, Contains("pre-asymptotic: the phase drift of semi-implicit Euler over 40 s "
-                               "on 'bob' is 0.462 rad at h = 1/30"));
-  CHECK_THAT(v.text, Contains(": within the band"));
+  CHECK_THAT(v.limit_text(),
+             Contains("pre-asymptotic: the phase drift of semi-implicit Euler over 40 s "
+                      "on 'bob' is 0.462 rad at h = 1/30"));
+  CHECK_THAT(v.sentence(), Contains(": within the band"));
+}
+
+TEST_CASE("the drift verdict holds the drifting body, its band and the error at every step",
+          "[phase_drift]") {
+  const Scene s = long_spring();
+  const std::vector<double> e = law_errors(s, s, kSweep);
+  const DriftVerdict v = judge_drift(s, kOurs, kSweep, e, 0.0);
+  CHECK(v.law == kOurs);
+  CHECK(v.body == "bob");
+  CHECK(v.duration == Approx(40.0));
+  CHECK(v.omega == Approx(2.0 * std::numbers::pi));
+  CHECK(v.first_order_edge() == Approx(12.0 / (v.omega * v.omega * 40.0)));
+  REQUIRE(v.steps.size() == kSweep.size());
+  for (std::size_t k = 0; k < kSweep.size(); ++k) {
+    const DriftBand& b = v.steps[k];
+    const DriftPrediction p = predict_drift(s, kOurs, kSweep[k]).at(0);
+    CHECK(b.h == kSweep[k]);
+    CHECK(b.error == e[k]);
+    CHECK(b.drift == p.drift);
+    CHECK(b.lower == p.lower);
+    CHECK(b.upper == p.upper);
+    CHECK(b.within);
+  }
+  CHECK(v.steps.front().drift == Approx(0.462).epsilon(0.002));
+  // Errors from a frequency 0.05% off leave the band at some step, and that step says so.
+  const DriftVerdict off =
+      judge_drift(s, kOurs, kSweep, law_errors(long_spring(1.001), s, kSweep), 0.0);
+  CHECK(std::any_of(off.steps.begin(), off.steps.end(),
+                    [](const DriftBand& b) { return !b.within; }));
+  // Where it does not apply, nothing is measured.
+  const DriftVerdict none = judge_drift(load_scene("scenarios/free_fall.toml"), kOurs, kSweep,
+                                        std::vector<double>(4, 1.0), 0.0);
+  CHECK_FALSE(none.applies);
+  CHECK(none.steps.empty());
+  CHECK(none.sentence().empty());
 }
 
 TEST_CASE("errors from a frequency error of the wrong size are not explained by the drift",
@@ -139,11 +176,11 @@ TEST_CASE("errors from a frequency error of the wrong size are not explained by 
   // The law run with a stiffness 0.1% off: its frequency error is the law's plus 5e-4.
   const DriftVerdict off =
       judge_drift(s, kOurs, kSweep, law_errors(long_spring(1.001), s, kSweep), 0.0);
-  INFO(off.text);
+  INFO(off.sentence());
   CHECK(off.applies);
   CHECK_FALSE(off.explained);
-  CHECK(off.limit.empty());
-  CHECK_THAT(off.text, Contains("OUTSIDE the band at h = "));
+  CHECK(off.limit_text().empty());
+  CHECK_THAT(off.sentence(), Contains("OUTSIDE the band at h = "));
   // No error at all (an engine exact where its law drifts) is not the law either.
   const DriftVerdict none = judge_drift(s, kOurs, kSweep, std::vector<double>(4, 0.0), 1e-9);
   CHECK_FALSE(none.explained);
