@@ -1,5 +1,6 @@
-// Tests harness/judge/stability_motion.cpp: a body that passes through the thin floor (tunnelled),
-// and a coordinate held constant by float rounding or by the engine (frozen).
+// Tests harness/judge/stability_motion.cpp: a body that passes through or sinks into the body it
+// started above (tunnelled), and a coordinate held constant while the physics moves it by more
+// than half a float spacing and the scene's tolerance (frozen), by rounding or by the engine.
 #include "harness/judge/stability_motion.hpp"
 
 #include <catch2/catch.hpp>
@@ -9,6 +10,7 @@
 #include "harness/core/registry.hpp"
 #include "harness/judge/stability_classify.hpp"
 #include "harness/run/runner.hpp"
+#include "tests/displaced_run.hpp"
 #include "tests/faulty_engine.hpp"
 
 using Catch::Matchers::Contains;
@@ -67,4 +69,95 @@ TEST_CASE("Stability: a body that passes through the thin floor is classified tu
     REQUIRE_FALSE(r.stable());
     CHECK(r.failures.front().mode == FailureMode::tunnelled);
   }
+}
+
+namespace {
+
+// A unit cube resting on a static floor 0.01 m thick (top at y = 0), contacts on.
+Scene cube_on_floor() {
+  Scene s;
+  s.name = "rest";
+  s.duration = 1.0;
+  s.timestep = {0.01, "0.01"};
+  s.world.gravity = Vec3(0.0, -9.8, 0.0);
+  s.world.contacts = true;
+  Body floor;
+  floor.name = "floor";
+  floor.is_static = true;
+  floor.half_extents = Vec3(5.0, 0.005, 5.0);
+  floor.position = Vec3(0.0, -0.005, 0.0);
+  Body cube;
+  cube.name = "cube";
+  cube.position = Vec3(0.0, 0.5, 0.0);
+  s.bodies = {floor, cube};
+  return s;
+}
+
+std::vector<Failure> tunnelling(const Scene& scene, const Vec3& cube_moved_by) {
+  std::vector<Failure> out;
+  stability_detail::find_tunnelling(
+      scene, testing::displaced_run(scene, 10, {Vec3::Zero(), cube_moved_by}), out);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("a body sunk deeper than a quarter of the thinner box, or below it, has tunnelled",
+          "[stability][motion]") {
+  // Resting, the cube's centre is 0.5 + 0.005 above the floor's. It may sink a quarter of the
+  // thinner box, 0.5*min(0.5, 0.005) = 0.0025 m (engines rest within millimetres), no more.
+  const Scene scene = cube_on_floor();
+  CHECK(tunnelling(scene, Vec3::Zero()).empty());
+  CHECK(tunnelling(scene, Vec3(0.0, -0.002, 0.0)).empty());
+  const std::vector<Failure> sank = tunnelling(scene, Vec3(0.0, -0.003, 0.0));
+  REQUIRE(sank.size() == 1);
+  CHECK(sank[0].mode == FailureMode::tunnelled);
+  CHECK(sank[0].body == "cube");
+  CHECK(sank[0].step == 1);
+  CHECK_THAT(sank[0].what, Contains("sank 0.003 m into 'floor' (more than a quarter of the "
+                                    "thinner box, 0.0025 m)"));
+  // Centre 0.1 m below the floor's top: centres -0.095 m apart vertically.
+  const std::vector<Failure> below = tunnelling(scene, Vec3(0.0, -0.6, 0.0));
+  REQUIRE(below.size() == 1);
+  CHECK_THAT(below[0].what, Contains("ended below 'floor'") && Contains("-0.095 m apart"));
+  // Off the floor's footprint (|x| = 6 > 0.5 + 5) a body may fall as far as it likes.
+  CHECK(tunnelling(scene, Vec3(6.0, -3.0, 0.0)).empty());
+}
+
+TEST_CASE("a coordinate is frozen only over 20 steps and beyond the scene's tolerance",
+          "[stability][motion]") {
+  // A body coasting at 1e-3 m/s along x in empty space (h = 1/60), whose x stays at 0 for the
+  // first n steps: the physics moves it 1e-3*n/60 m meanwhile, 3.3e-4 m over 20 steps.
+  auto frozen = [](std::int64_t n, double tolerance) {
+    Scene s;
+    s.name = "coast";
+    s.timestep = {1.0 / 60.0, "1/60"};
+    s.duration = 1.0;
+    s.tolerance = tolerance;
+    Body b;
+    b.name = "coaster";
+    b.velocity = Vec3(1e-3, 0.0, 0.0);
+    s.bodies.push_back(b);
+    Trajectory t;
+    t.h = s.timestep.seconds;
+    t.steps = 60;
+    t.body_names = {"coaster"};
+    for (std::int64_t k = 0; k <= 60; ++k) {
+      t.recorded.push_back(k);
+      const double x = k <= n ? 0.0 : 1e-3 * static_cast<double>(k) * t.h;
+      t.states.push_back({Vec3(x, 0.0, 0.0), Vec3::Zero()});
+    }
+    std::vector<Failure> out;
+    stability_detail::find_frozen(s, t, Scalar::f64, ClassifyOptions{}, out);
+    return out;
+  };
+  const std::vector<Failure> f = frozen(20, 1e-4);
+  REQUIRE(f.size() == 1);
+  CHECK(f[0].mode == FailureMode::frozen);
+  CHECK(f[0].step == 1);
+  CHECK_THAT(f[0].what, Contains("frozen at x = 0.000000 from step 1 to step 20") &&
+                            Contains("should have moved 0.000333 m") &&
+                            Contains("the engine held it"));
+  CHECK(frozen(19, 1e-4).empty());  // 19 steps: too short to call
+  CHECK(frozen(20, 1e-3).empty());  // 3.3e-4 m is within the scene's tolerance
 }
