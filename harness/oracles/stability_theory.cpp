@@ -131,12 +131,15 @@ std::optional<StepRotation> spring_step_rotation(Law law, const SpringModel& spr
   // z^2 - t*z + beta = 0 with t = 1 + beta - A has the pair sqrt(beta)*exp(+-i*theta) when
   // t^2 < 4*beta, cos(theta) = t/(2*sqrt(beta)). theta is found from 1 - cos(theta) =
   // 2*sin^2(theta/2) = (2*sqrt(beta) - t)/(2*sqrt(beta)), which keeps its digits at small theta
-  // where acos would not (undamped: beta = 1, 2 - t = A = (w*h)^2, theta = 2*asin(w*h/2)).
+  // where acos would not, provided 2*sqrt(beta) - t is not formed from t: t rounds near 2, and
+  // the difference would keep only the bits of A above t's last one (at w*h = 1e-4 a relative
+  // error of 3e-9 in theta, more than the frequency error (w*h)^2/24 = 4e-10 it carries). It is
+  // A - (1 - sqrt(beta))^2, exactly A undamped: theta = 2*asin(w*h/2).
   if (law.scheme == Scheme::ErrorControlled) return std::nullopt;
   const StepCoefficients c = coefficients(law, spring, h);
   if (c.beta <= 0.0) return std::nullopt;
-  const double root = std::sqrt(c.beta), t = 1.0 + c.beta - c.a;
-  const double half_versine = (2.0 * root - t) / (4.0 * root);  // sin^2(theta/2)
+  const double root = std::sqrt(c.beta), gap = 1.0 - root;
+  const double half_versine = (c.a - gap * gap) / (4.0 * root);  // sin^2(theta/2)
   if (!(half_versine > 0.0 && half_versine < 1.0)) return std::nullopt;
   return StepRotation{root, 2.0 * std::asin(std::sqrt(half_versine))};
 }

@@ -1,15 +1,13 @@
-// Tests harness/report/stability_report.cpp and harness/report/stability_io.cpp: the report
-// section is Markdown with one column per known engine, byte-identical from run to run, and names
-// every failure; the JSON and text forms of a study carry the search's result.
+// Tests harness/report/stability_report.cpp: the report section is Markdown with one column per
+// known engine, byte-identical from run to run, runs only the engines passed in and names every
+// failure (the JSON and text forms of a study: stability_io_test.cpp).
 #include "harness/report/stability_report.hpp"
 
 #include <catch2/catch.hpp>
 #include <sstream>
 
+#include "harness/core/input_error.hpp"
 #include "harness/core/registry.hpp"
-#include "harness/report/stability_io.hpp"
-#include "harness/scene/scene_loader.hpp"
-#include "harness/study/stability_study.hpp"
 
 using Catch::Matchers::Contains;
 using namespace dropcheck;
@@ -66,22 +64,4 @@ TEST_CASE("Stability: a bad scene file is an InputError naming it", "[stability]
   std::ostringstream progress;
   CHECK_THROWS_AS(stability_report_section({"/nonexistent/x.toml"}, slots({"ours"}), progress),
                   InputError);
-}
-
-TEST_CASE("Stability: the study's JSON and text carry verdicts, the search and skipped engines",
-          "[stability][report]") {
-  const Scene scene = load_scene(kTiny);
-  const SceneStability s = study_scene(scene, slots({"ours", "ours-f64"}));
-  const std::string json = stability_to_json(s, StudyOptions{}.search_options);
-  CHECK_THAT(json, Contains("\"engine\":\"ours\",\"scalar\":\"f32\"") &&
-                       Contains("\"verdict\":\"frozen\""));
-  CHECK_THAT(json, Contains("\"min_stable_dt\":") && Contains("\"max_stable_dt\":"));
-  const std::string text = stability_to_text(s);
-  CHECK_THAT(text, Contains("ours (f32)       frozen") && Contains("frozen below"));
-  const SceneStability floor =
-      study_scene(load_scene(DROPCHECK_SOURCE_DIR "/scenarios/extreme/thin_floor.toml"),
-                  slots({"ours"}), StudyOptions{});
-  CHECK(floor.engines.front().skipped == "no contacts");
-  CHECK_THAT(stability_to_json(floor, {}),
-             Contains("{\"engine\":\"ours\",\"skipped\":\"no contacts\"}"));
 }
