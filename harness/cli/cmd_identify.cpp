@@ -8,7 +8,8 @@
 // declared law is not the one found, or the engine's run failed; 2: bad input.
 //
 // Argument parsing (IdentifyRequest, parse_identify_request) is kept apart from the work
-// (run_identify) so that the CLI front end can change without touching the analysis.
+// (run_identify) so that the CLI front end can change without touching the analysis; the analysis
+// is computed in harness/study/identify_analysis.hpp, and this file only writes it out.
 #include <cmath>
 
 #include "args.hpp"
@@ -17,15 +18,9 @@
 #include "harness/core/number_format.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/io/trajectory_csv.hpp"
-#include "harness/judge/tolerances.hpp"
 #include "harness/oracles/contact_laws.hpp"
-#include "harness/oracles/identify.hpp"
-#include "harness/oracles/identify_friction.hpp"
-#include "harness/oracles/identify_rotation.hpp"
-#include "harness/run/runner.hpp"
 #include "harness/scene/scene_loader.hpp"
-#include "harness/study/accuracy_response.hpp"
-#include "harness/study/closed_form_order.hpp"
+#include "harness/study/identify_analysis.hpp"
 #include "selection.hpp"
 
 namespace dropcheck {
@@ -92,19 +87,48 @@ Trajectory trajectory_from_file(const std::string& file) {
   return runs[0];
 }
 
-// A Gazebo benchmark log names its models model_0, model_1, ...: read as the scene's dynamic
-// bodies, in order, when there are as many (said on `out`).
-void adopt_scene_names(Trajectory& run, const Scene& scene, std::ostream& out) {
+// A Gazebo benchmark log names its models model_0, model_1, ...: the scene's dynamic bodies, in
+// order, when there are as many; else none.
+std::vector<std::string> scene_names_for(const Trajectory& run, const Scene& scene) {
   std::vector<std::string> dynamic;
   for (const Body& b : scene.bodies)
     if (!b.is_static) dynamic.push_back(b.name);
-  if (dynamic.size() != run.bodies() || dynamic.size() != scene.bodies.size()) return;
+  if (dynamic.size() != run.bodies() || dynamic.size() != scene.bodies.size()) return {};
   for (std::size_t i = 0; i < run.bodies(); ++i)
-    if (run.body_names[i] != "model_" + std::to_string(i)) return;
-  for (std::size_t i = 0; i < run.bodies(); ++i) {
-    out << "reading " << run.body_names[i] << " as body '" << dynamic[i] << "'\n";
-    run.body_names[i] = dynamic[i];
+    if (run.body_names[i] != "model_" + std::to_string(i)) return {};
+  return dynamic;
+}
+
+// Reads a Gazebo log's models as the scene's bodies (scene_names_for), said on `out`.
+void adopt_scene_names(Trajectory& run, const Scene& scene, std::ostream& out) {
+  const std::vector<std::string> names = scene_names_for(run, scene);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    out << "reading " << run.body_names[i] << " as body '" << names[i] << "'\n";
+    run.body_names[i] = names[i];
   }
+}
+
+// The word for a declaration against what was found.
+const char* match_word(DeclaredMatch m) {
+  switch (m) {
+    case DeclaredMatch::matches:
+      return "matches";
+    case DeclaredMatch::tied:
+      return "one of the equal fits (not confirmed)";
+    case DeclaredMatch::mismatch:
+      return "MISMATCH";
+  }
+  return "MISMATCH";
+}
+
+const char* match_word(bool matches) {
+  return match_word(matches ? DeclaredMatch::matches : DeclaredMatch::mismatch);
+}
+
+// "the run of bullet failed at step 12 (non-finite): ...".
+std::string failure_text(const RunFailure& f) {
+  return "the run of " + f.engine + " failed at step " + std::to_string(f.step) + " (" +
+         to_string(f.status) + "): " + f.failure;
 }
 
 void print_fits(const Identification& id, std::ostream& out) {
@@ -133,27 +157,26 @@ std::string hint(const Identification& id) {
   return "";
 }
 
-// The verdict line(s); true when one member is named.
-bool print_verdict(const Identification& id, std::ostream& out) {
+// The verdict line.
+void print_verdict(const Identification& id, std::ostream& out) {
   const MemberFit& best = id.fits[id.best];
   const MemberFit& next = id.fits[id.runner_up];
   if (!id.fits_any) {
     out << "no member fits better than 2 cm: not a fixed-step scheme of the family (closest: "
         << law_key(best.law) << " at " << g3(best.max_dx) << " m)\n";
-    return false;
+    return;
   }
   if (id.ambiguous) {
     out << "ambiguous: " << law_key(best.law) << " (" << g3(best.max_dx) << " m) and "
         << law_key(next.law) << " (" << g3(next.max_dx)
         << " m) fit equally well: this scene cannot tell them apart" << hint(id) << "\n";
-    return false;
+    return;
   }
   out << "best fit: " << law_key(best.law) << " (" << to_string(best.law) << ")"
       << printf_string(": residual %.3g m, phi = %.9g, ", best.max_dx, best.phi)
       << printf_string("g = (%.6g, %.6g, %.6g); runner-up ", best.gravity.x(), best.gravity.y(),
                        best.gravity.z())
       << law_key(next.law) << " at " << g3(next.max_dx) << " m\n";
-  return true;
 }
 
 // A rotational member and, when the scene's angular damping shows it, where the damping sits, or
@@ -165,10 +188,9 @@ std::string rotation_member(const RotationFit& f, bool damping_seen) {
   return rotation_law_key(f.law) + (explicit_turn ? ", step-start w" : "");
 }
 
-// The rotational fits and verdict; true when one member is named. `declared` (with --engine)
-// is checked against the member found.
-bool print_rotation(const RotationIdentification& id, const std::optional<EngineInfo>& declared,
-                    std::ostream& out) {
+// The rotational fits, the verdict and, with an engine, its declared member.
+void print_rotation(const RotationIdentification& id,
+                    const std::optional<RotationDeclared>& declared, std::ostream& out) {
   out << "rotation: every member replayed from the first sample"
       << (id.damping_seen ? ", with each placement of the angular damping"
                           : " (no angular damping: where it sits leaves no trace)")
@@ -179,7 +201,6 @@ bool print_rotation(const RotationIdentification& id, const std::optional<Engine
                          f.max_angle, f.max_dw);
   const RotationFit& best = id.fits[id.best];
   const RotationFit& next = id.fits[id.runner_up];
-  bool ok = false;
   if (!id.fits_any) {
     out << "no rotational member fits within " << g3(kIdentifyRotationTolerance)
         << " rad (closest: " << rotation_member(best, id.damping_seen) << " at "
@@ -194,52 +215,51 @@ bool print_rotation(const RotationIdentification& id, const std::optional<Engine
         << "): " << g3(best.max_angle) << " rad, |w - fit| " << g3(best.max_dw)
         << " rad/s; runner-up " << rotation_member(next, id.damping_seen) << " at "
         << g3(next.max_angle) << " rad\n";
-    ok = true;
   }
-  if (!declared) return ok;
-  const RotationFit want{declared->rotation_law, declared->law};
-  const auto same = [&](const RotationFit& f) {
-    return f.law == want.law && f.linear.position == want.linear.position &&
-           (!id.damping_seen || law_difference(f.linear, want.linear).empty());
-  };
-  const bool match = ok && same(best);
-  bool tied = false;  // the declared member fits as well as the best (within the 2x of ambiguity)
-  for (const RotationFit& f : id.fits)
-    tied = tied || (same(f) && f.max_angle <= 2.0 * best.max_angle + 1e-12);
-  out << "declared rotation " << rotation_member(want, id.damping_seen) << ": "
-      << (match                  ? "matches"
-          : id.ambiguous && tied ? "one of the equal fits (not confirmed)"
-                                 : "MISMATCH")
-      << "\n";
-  return match;
+  if (declared)
+    out << "declared rotation " << rotation_member(declared->member, id.damping_seen) << ": "
+        << match_word(declared->match) << "\n";
 }
 
-// The engine's observed order against the closed form and whether it is its declared law's;
-// false only when an order was measured and it is not.
-bool print_order(const ClosedFormOrder& o, Law declared, std::ostream& out) {
-  const int want = order_of(declared);
+// The engine's observed order against the closed form, and whether it is its declared law's.
+void print_order(const ClosedFormOrder& o, Law declared, bool matches, std::ostream& out) {
   if (!o.unavailable.empty()) {
     out << "order: not measured: " << o.unavailable << "\n";
-    return true;
+    return;
   }
-  bool match = true;
-  for (double p : o.estimate.orders) match = match && order_matches(p, want);
   out << "order against the closed form: " << o.estimate.text
       << (o.dropped.empty() ? "" : " (left out: " + o.dropped + ")") << "; declared "
-      << law_key(declared) << " is order " << want << ": " << (match ? "matches" : "MISMATCH")
+      << law_key(declared) << " is order " << order_of(declared) << ": " << match_word(matches)
       << "\n";
-  return match;
+}
+
+// The law behind a free-flight run: the fits, the verdict, and what the engine declares.
+void print_free_flight(const FreeFlightIdentity& f, std::ostream& out) {
+  out << "identify " << f.scene << ": trajectory of " << f.engine << ", " << f.bodies << " bodies, "
+      << f.steps << " steps"
+      << " at h = " << sig(f.h, 9) << " s\n";
+  print_fits(f.law, out);
+  print_verdict(f.law, out);
+  if (f.declared) {
+    out << "declared " << law_key(*f.declared) << ": " << match_word(f.law_match) << "\n";
+    print_order(*f.order, *f.declared, f.order_matches, out);
+  }
+  if (f.rotation)
+    print_rotation(*f.rotation, f.rotation_declared, out);
+  else if (f.rotation_unread)
+    out << "rotation: the trajectory carries no rotation columns (qw..wz): its rotational law is "
+           "not identified\n";
 }
 
 // An error-controlled engine is not fitted to a discrete member (law.hpp: it has none); its error
-// against the closed form is printed per accuracy, each against its budget. True when within all.
-bool print_accuracy_response(const AccuracyResponse& a, const EngineInfo& info, std::ostream& out) {
+// against the closed form is printed per accuracy, each against its budget.
+void print_accuracy_response(const AccuracyResponse& a, const EngineInfo& info, std::ostream& out) {
   out << "declared " << law_key(info.law) << " (" << to_string(info.law)
       << "): not fitted to a discrete member; its law is the continuous model, judged against "
          "the closed form within each accuracy's budget\n";
   if (!a.unavailable.empty()) {
     out << "error per accuracy: not measured: " << a.unavailable << "\n";
-    return false;
+    return;
   }
   out << printf_string("  %-10s %16s %16s %14s %14s\n", "accuracy", "max|x - exact| m",
                        "max|v - exact|", "engine steps", "budget x m");
@@ -249,109 +269,124 @@ bool print_accuracy_response(const AccuracyResponse& a, const EngineInfo& info, 
                          p.within() ? "" : "  OUTSIDE");
   out << "error per accuracy: "
       << (a.within() ? "within the budget at every accuracy" : "OUTSIDE the budget") << "\n";
-  return a.within();
+}
+
+// An engine's run on a free-flight scene: its error per accuracy, its failure or its law.
+void print_engine(const EngineIdentity& e, std::ostream& out) {
+  if (e.accuracy) {
+    out << "identify " << e.scene << ": " << e.info.name << " at h = " << sig(e.h, 9) << " s\n";
+    print_accuracy_response(*e.accuracy, e.info, out);
+  } else if (e.failed) {
+    out << "identify " << e.scene << ": " << failure_text(*e.failed) << "\n";
+  } else {
+    print_free_flight(*e.fit, out);
+  }
+}
+
+// The friction model from the slides at 0 and 45 degrees, against the declared one.
+void print_friction_model(const FrictionModelIdentity& f, std::ostream& out) {
+  if (f.planar) {
+    out << "friction model: not applicable: " << f.engine
+        << " is a 2-D engine, with one tangent direction (a cone and the pyramids coincide)\n";
+    return;
+  }
+  if (f.failed) {
+    out << "identify " << f.scene << ": " << failure_text(*f.failed) << "\n";
+    return;
+  }
+  if (!f.found) {
+    out << "identify " << f.scene << ": " << f.engine << "'s slide at " << f.still_sliding_angle
+        << " degrees still slides at the run's end ("
+        << printf_string("%.7g m", f.still_sliding_distance) << "): no ratio; lengthen the scene\n";
+    return;
+  }
+  out << "identify " << f.scene << ": " << f.engine << "'s friction from its slides at 0 and 45 "
+      << "degrees"
+      << (f.raw ? printf_string(" (each body's own coefficient: the pair's %.5g)", *f.mu)
+                : std::string())
+      << "\nfriction model: " << f.found->sentence() << "\n";
+  if (f.raw)
+    out << "declared: none (its adapter does not map friction)\n";
+  else
+    out << "declared " << to_string(f.declared) << ": " << match_word(f.found->named == f.declared)
+        << "\n";
+}
+
+void print_combine_rule(const CombineRuleIdentity& c, std::ostream& out) {
+  if (c.per_pair)
+    out << "combine rule: not identified: " << c.engine
+        << "'s adapter sets each pair's friction itself (the engine has no per-body material)\n";
+  else if (c.failed)
+    out << "combine rule: " << failure_text(*c.failed) << "\n";
+  else
+    out << "combine rule: " << c.found->sentence() << "\n";
 }
 
 // An engine for identifying friction on `s`: the one `dropcheck check` would run, or, when its
 // adapter does not map the scene's friction, the engine with each body's own coefficient passed
 // verbatim (Engine::use_body_materials: its combine rule makes the pair's; `raw` says so). Throws
 // InputError, with the reason, when neither can run the scene.
-std::unique_ptr<Engine> friction_engine(const std::string& name, const Scene& s, bool& raw) {
+FrictionEngine friction_engine(const std::string& name, const Scene& s) {
   std::vector<SelectedEngine> engines = select_engines({name}, s);
-  raw = false;
-  if (engines[0].engine) return std::move(engines[0].engine);
+  if (engines[0].engine) return {std::move(engines[0].engine), false};
   Scene plain = s;  // the scene as the engine would take it without the friction it cannot map
   for (Body& b : plain.bodies) b.friction.reset();
   std::unique_ptr<Engine> e = make_engine(name);
   if (!e || !e->cannot_run(plain).empty() || !e->use_body_materials())
     throw InputError("", 0, "--engine " + name, engines[0].skipped_because);
-  raw = true;
-  return e;
+  return {std::move(e), true};
 }
 
-// A slide to a stop: the engine's friction model from its stop distances at 0 and 45 degrees
-// (harness/oracles/identify_friction.hpp), against the model it declares when its adapter maps
-// friction.
-int identify_friction_model(const Scene& scene, const IdentifyRequest& r, std::ostream& out) {
+// The engine and steps of the request.
+IdentifySource source_of(const IdentifyRequest& r) {
+  return {[&r]() -> std::optional<EngineInfo> {
+            const std::unique_ptr<Engine> e = make_engine(r.engine);
+            if (!e) return std::nullopt;
+            return e->info();
+          },
+          [&r](const Scene& s) { return friction_engine(r.engine, s); },
+          [&r](const Scene& s) { return step_from_flag(r.dt, s).seconds; }};
+}
+
+// A slide to a stop: the engine's friction model (harness/oracles/identify_friction.hpp).
+int identify_friction(const Scene& scene, const IdentifyRequest& r, std::ostream& out) {
   if (r.engine.empty())
     throw InputError("", 0, "--trajectory",
                      "a slide is identified from two runs, at 0 and 45 degrees: use --engine E");
-  const SlidePair pair = slide_pair(scene);
-  if (const std::unique_ptr<Engine> e = make_engine(r.engine);
-      e && e->info().capabilities.planar_only) {
-    out << "friction model: not applicable: " << e->info().name
-        << " is a 2-D engine, with one tangent direction (a cone and the pyramids coincide)\n";
-    return kExitOk;
-  }
-  double distance[2] = {0.0, 0.0};
-  double h = 0.0;
-  std::optional<double> mu;
-  std::string name;
-  bool raw = false;
-  FrictionModel declared = FrictionModel::cone;
-  for (int k = 0; k < 2; ++k) {
-    const Scene& s = k == 0 ? pair.along_axis : pair.diagonal;
-    std::unique_ptr<Engine> engine = friction_engine(r.engine, s, raw);
-    name = engine->info().name;
-    declared = engine->info().friction_model;
-    h = step_from_flag(r.dt, s).seconds;
-    const Trajectory run = run_scene(*engine, s, h);
-    if (run.status != RunStatus::ok) {
-      out << "identify " << scene.name << ": the run of " << run.engine << " failed at step "
-          << run.failed_step << " (" << to_string(run.status) << "): " << run.failure << "\n";
-      return kExitCheckFailed;
-    }
-    // The distance to the stop, or to the run's end for an engine that creeps on (Bullet ends at
-    // 9e-5 m/s); a slide still above 1 % of its launch speed at the end has no distance yet.
-    const SlideSetup slide = slide_setups(s).at(0);
-    const SlidePath path = observed_slide_path(run, slide);
-    const SlideObservation seen = observe_slide(path, tolerance::kStoppedSpeed);
-    if (observe_slide(path, 0.01 * slide.v0).stop_step < 0) {
-      out << "identify " << scene.name << ": " << run.engine << "'s slide at "
-          << (k == 0 ? "0" : "45") << " degrees still slides at the run's end ("
-          << printf_string("%.7g m", seen.distance) << "): no ratio; lengthen the scene\n";
-      return kExitCheckFailed;
-    }
-    distance[k] = seen.distance;
-    if (raw && k == 0) mu = pair_friction(s, run);
-  }
-  const FrictionIdentification id = identify_friction(scene, h, distance[0], distance[1], mu);
-  out << "identify " << scene.name << ": " << name << "'s friction from its slides at 0 and 45 "
-      << "degrees"
-      << (raw ? printf_string(" (each body's own coefficient: the pair's %.5g)", *mu)
-              : std::string())
-      << "\nfriction model: " << id.sentence() << "\n";
-  if (raw) {
-    out << "declared: none (its adapter does not map friction)\n";
-    return id.named ? kExitOk : kExitCheckFailed;
-  }
-  out << "declared " << to_string(declared) << ": "
-      << (id.named == declared ? "matches" : "MISMATCH") << "\n";
-  return id.named == declared ? kExitOk : kExitCheckFailed;
+  const FrictionModelIdentity f = identify_friction_model(scene, source_of(r));
+  print_friction_model(f, out);
+  return f.ok() ? kExitOk : kExitCheckFailed;
 }
 
 // The engine's combine rule for friction (harness/oracles/identify_friction.hpp): the slide with
 // each body's coefficient passed verbatim. It runs outside the capability check on purpose: what
 // is asked is the engine's own rule, which an adapter that maps the scene's value hides.
-int identify_combine_rule(const Scene& scene, const IdentifyRequest& r, std::ostream& out) {
+int identify_combine(const Scene& scene, const IdentifyRequest& r, std::ostream& out) {
   std::unique_ptr<Engine> engine = make_engine(r.engine);
   if (!engine) throw InputError("", 0, "--engine " + r.engine, engine_unavailable_reason(r.engine));
-  const std::string name = engine->info().name;
-  if (!engine->use_body_materials()) {
-    out << "combine rule: not identified: " << name
-        << "'s adapter sets each pair's friction itself (the engine has no per-body material)\n";
-    return kExitOk;
-  }
-  const Scene combined = combine_scene(scene);
-  const Trajectory run = run_scene(*engine, combined, step_from_flag(r.dt, combined).seconds);
-  if (run.status != RunStatus::ok) {
-    out << "combine rule: the run of " << name << " failed at step " << run.failed_step << " ("
-        << to_string(run.status) << "): " << run.failure << "\n";
-    return kExitCheckFailed;
-  }
-  const CombineIdentification id = identify_combine(combined, run);
-  out << "combine rule: " << id.sentence() << "\n";
-  return id.named ? kExitOk : kExitCheckFailed;
+  const CombineRuleIdentity c = identify_combine_rule(scene, *engine, source_of(r));
+  print_combine_rule(c, out);
+  return c.ok() ? kExitOk : kExitCheckFailed;
+}
+
+// A free-flight scene with --engine E: the engine's run at the scene's step (or --dt).
+int identify_engine_law(const Scene& scene, const IdentifyRequest& r, std::ostream& out) {
+  std::vector<SelectedEngine> engines = select_engines({r.engine}, scene);
+  if (!engines[0].engine)
+    throw InputError("", 0, "--engine " + r.engine, engines[0].skipped_because);
+  const double h = step_from_flag(r.dt, scene).seconds;
+  const EngineIdentity e = identify_engine(scene, *engines[0].engine, h);
+  print_engine(e, out);
+  return e.ok() ? kExitOk : kExitCheckFailed;
+}
+
+// A free-flight scene with --trajectory CSV: the law behind the one run in the file.
+int identify_trajectory(const Scene& scene, const IdentifyRequest& r, std::ostream& out) {
+  Trajectory run = trajectory_from_file(r.trajectory);
+  adopt_scene_names(run, scene, out);
+  const FreeFlightIdentity f = identify_free_flight(scene, run);
+  print_free_flight(f, out);
+  return f.ok() ? kExitOk : kExitCheckFailed;
 }
 
 int run_identify(const IdentifyRequest& r, std::ostream& out) {
@@ -360,63 +395,11 @@ int run_identify(const IdentifyRequest& r, std::ostream& out) {
     throw InputError(r.scene_file, 0, "--combine",
                      "applies to a slide to a stop (docs/contact.md)");
   if (r.combine) {
-    const int rule = identify_combine_rule(scene, r, out);
-    return std::max(rule, identify_friction_model(scene, r, out));
+    const int rule = identify_combine(scene, r, out);
+    return std::max(rule, identify_friction(scene, r, out));
   }
-  if (!slide_setups(scene).empty()) return identify_friction_model(scene, r, out);
-  Trajectory run;
-  std::optional<Law> declared;
-  std::optional<EngineInfo> declared_info;
-  std::unique_ptr<Engine> engine;
-  if (!r.engine.empty()) {
-    std::vector<SelectedEngine> engines = select_engines({r.engine}, scene);
-    if (!engines[0].engine)
-      throw InputError("", 0, "--engine " + r.engine, engines[0].skipped_because);
-    engine = std::move(engines[0].engine);
-    declared_info = engine->info();
-    declared = declared_info->law;
-    const double h = step_from_flag(r.dt, scene).seconds;
-    if (declared->scheme == Scheme::ErrorControlled) {
-      out << "identify " << scene.name << ": " << declared_info->name << " at h = " << sig(h, 9)
-          << " s\n";
-      const bool within =
-          print_accuracy_response(error_per_accuracy(*engine, scene, h), *declared_info, out);
-      return within ? kExitOk : kExitCheckFailed;
-    }
-    run = run_scene(*engine, scene, h);
-    if (run.status != RunStatus::ok) {
-      out << "identify " << scene.name << ": the run of " << run.engine << " failed at step "
-          << run.failed_step << " (" << to_string(run.status) << "): " << run.failure << "\n";
-      return kExitCheckFailed;
-    }
-  } else {
-    run = trajectory_from_file(r.trajectory);
-    adopt_scene_names(run, scene, out);
-  }
-  const Identification id = identify_law(scene, run);
-  out << "identify " << scene.name << ": trajectory of " << run.engine << ", " << run.bodies()
-      << " bodies, " << run.steps << " steps"
-      << " at h = " << sig(run.h, 9) << " s\n";
-  print_fits(id, out);
-  bool ok = print_verdict(id, out);
-  if (declared) {
-    const bool match = ok && id.fits[id.best].law == *declared;
-    const bool tied = id.ambiguous &&
-                      (id.fits[id.best].law == *declared || id.fits[id.runner_up].law == *declared);
-    out << "declared " << law_key(*declared) << ": "
-        << (match  ? "matches"
-            : tied ? "one of the equal fits (not confirmed)"
-                   : "MISMATCH")
-        << "\n";
-    ok = ok && match;
-    ok = print_order(order_against_closed_form(*engine, scene, run.h), *declared, out) && ok;
-  }
-  if (run.rotates)
-    ok = print_rotation(identify_rotation(scene, run), declared_info, out) && ok;
-  else if (needs_rotation(scene))
-    out << "rotation: the trajectory carries no rotation columns (qw..wz): its rotational law is "
-           "not identified\n";
-  return ok ? kExitOk : kExitCheckFailed;
+  if (!slide_setups(scene).empty()) return identify_friction(scene, r, out);
+  return r.engine.empty() ? identify_trajectory(scene, r, out) : identify_engine_law(scene, r, out);
 }
 
 }  // namespace

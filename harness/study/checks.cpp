@@ -21,7 +21,7 @@
 #include "harness/oracles/landing.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
 #include "harness/run/runner.hpp"
-#include "harness/study/phase_drift.hpp"
+#include "harness/study/divergence.hpp"
 #include "harness/study/sweep.hpp"
 
 namespace dropcheck {
@@ -91,179 +91,95 @@ CheckResult check_own_law(const Scene& scene, const EngineFactory& make, const T
 
 namespace {
 
-// A run of an extended sweep keeps at most this many samples (a long scene halved twice has
-// millions of steps; 200000 samples of two bodies take 19 MB).
-constexpr std::int64_t kExtensionSamples = 200000;
-
-RunOptions extension_options(const Scene& scene, double h) {
-  RunOptions o;
-  o.record_every = std::max<std::int64_t>(1, step_count(scene, h) / kExtensionSamples);
-  return o;
-}
-
 std::string orders_text(const std::vector<double>& orders) {
   std::string out;
   for (double p : orders) out += std::isfinite(p) ? fmt(" %.3f", p) : std::string(" undefined");
   return out;
 }
 
-// The error of the next step of a pre-asymptotic sweep. The reference: its run against the
-// analytic solution, provided it follows its own law there too (its precision part, own
-// arithmetic against the long-double law, raises `precision`). Another engine: the law part
-// |L_E - L_R| alone (both engines were shown to follow their laws over the scene's sweep; the law
-// part is a property of the two laws).
-ErrorAt extension_error(const Scene& scene, Engine& engine, const EngineInfo& ei,
-                        const EngineInfo& ri, bool is_reference, double& precision) {
-  return [&scene, &engine, &ei, &ri, is_reference, &precision](
-             double h, std::string& why) -> std::optional<double> {
-    const Timestep step{h, step_text(h)};
-    for (const EngineInfo* i : {&ei, &ri})
-      if (std::string u = law_instability(scene, i->law, step); !u.empty()) {
-        why = i->name + ": " + u;
-        return std::nullopt;
-      }
-    const RunOptions o = extension_options(scene, h);
-    if (!is_reference)
-      return compare_worst(predict_discrete(ei.law, scene, h, o),
-                           predict_discrete(ri.law, scene, h, o), scene.tolerance)
-          .max_dx;
-    const Trajectory run = run_scene(engine, scene, h, o);
-    if (run.status != RunStatus::ok) {
-      why = "run failed: " + run.failure;
-      return std::nullopt;
-    }
-    const Trajectory own = predict_own_arithmetic(ei, scene, h, o);
-    const OwnLawVerdict v = judge_own_law(ei, run, own, predict_discrete(ei.law, scene, h, o));
-    if (!v.follows()) {
-      why = ei.name + " departs from its own law: " + v.sentence();
-      return std::nullopt;
-    }
-    precision = std::max(precision, v.precision);
-    return compare_worst(run, *analytic_trajectory(scene, h, o), scene.tolerance).max_dx;
-  };
+// What the order leaves out (the steps where a law is unstable, and why the first one is), and
+// how the two runs' rotations stand: the tail of every message over a whole sweep.
+std::string sweep_notes(const Divergence& d) {
+  std::string out;
+  if (const DivergenceStep* first = d.first_left_out()) {
+    std::string steps;
+    for (const DivergenceStep& s : d.steps)
+      if (!s.unstable.empty()) steps += (steps.empty() ? "" : ", ") + s.h.text;
+    out = "; left out of the order: h = " + steps + " (" + first->unstable_engine + ": " +
+          first->unstable + ")";
+  }
+  const DivergenceStep* apart = d.rotations_apart();
+  if (!apart) return out;
+  const Attribution& a = *apart->attribution;
+  if (a.rotation_laws_differ())
+    return out + "; rotation: the rotational laws differ (" + a.rotation_laws + ", " +
+           g3(a.rotation_law_part) + " rad apart at h = " + apart->h.text +
+           "), each engine follows its own";
+  return out + "; rotation: one rotational law (" + a.rotation_laws + "), " + g3(a.rotation_total) +
+         " rad apart at h = " + apart->h.text +
+         " from the scalars' rounding, amplified by the motion";
+}
+
+// " (expected 0.9-1.1)": the first-order band.
+std::string band_text() {
+  return fmt(" (expected %.1f-%.1f)", tolerance::kFirstOrderLow, tolerance::kFirstOrderHigh);
+}
+
+// The extended sweep: its order, why the scene's steps were pre-asymptotic, and how it ended.
+std::string extension_text(const Divergence& d) {
+  const ExtendedSweep& x = *d.extended;
+  return x.estimate.text + band_text() + "; the scene's sweep" +
+         (x.reached ? " is pre-asymptotic (" : " may be pre-asymptotic (") + d.pre_asymptotic +
+         "): its orders were" + orders_text(d.order->orders) + "; extended by " +
+         std::to_string(x.added) + " halving" + (x.added == 1 ? "" : "s") +
+         (d.to_analytic ? "" : " (law part alone)") +
+         (x.reached ? ", the last order is in band" : ", stopped: " + x.stopped);
+}
+
+// The message of the divergence check: what decided it, with its figures.
+std::string divergence_message(const Divergence& d) {
+  using F = DivergenceFinding;
+  const DivergenceStep* last = d.steps.empty() ? nullptr : &d.steps.back();
+  switch (d.finding) {
+    case F::no_closed_form:
+      return "no analytic solution (" + d.no_closed_form + "); nothing to converge to";
+    case F::run_failed:
+      return "run at h = " + last->h.text + " failed: " + last->failure;
+    case F::unexplained:
+      return "at h = " + last->h.text + ": " + last->attribution->sentence();
+    case F::no_order:
+      return "fewer than two steps of the sweep where the laws are stable: no order" +
+             sweep_notes(d);
+    case F::same_law:
+      return (d.rotations_apart() ? "same linear law: divergence within rounding at every step"
+                                  : "same discrete law: divergence within rounding at every step") +
+             sweep_notes(d);
+    case F::order:
+      return d.order->text + band_text() +
+             (d.order->measurable ? "" : ", at rounding level: order not measurable") +
+             sweep_notes(d);
+    case F::not_extended:
+      return d.order->text + band_text() + "; not extended: " + d.engine +
+             " departs from its own law at h = " + d.first_departure()->h.text + sweep_notes(d);
+    case F::extended:
+      return extension_text(d) + sweep_notes(d);
+    case F::phase_drift:
+      return extension_text(d) + sweep_notes(d) + "; " + d.drift->sentence();
+  }
+  return "";
 }
 
 }  // namespace
 
 CheckResult check_divergence(const Scene& scene, const EngineFactory& make,
                              const EngineFactory& reference, std::int64_t extension_steps) {
-  std::unique_ptr<Engine> engine = make(), ref = reference();
-  const EngineInfo ei = engine->info(), ri = ref->info();
-  const bool is_reference = ei.name == ri.name;
-  CheckResult r = result(scene, ei.name,
-                         is_reference ? "convergence to analytic" : "divergence from " + ri.name);
-  if (is_reference && !analytic_unavailable(scene).empty()) {
-    r.passed = true;
-    r.message =
-        "no analytic solution (" + analytic_unavailable(scene) + "); nothing to converge to";
-    return r;
-  }
-  std::vector<double> hs, errors;
-  double noise = 0.0, precision = 0.0;  // the reference's own-law tolerance and precision part
-  std::string left_out, left_out_cause, departs, rotation_note;
-  for (const Timestep& h : scene_sweep(scene)) {
-    // A step where either law is unstable measures the blow-up, not the order: left out.
-    // Each law's instability once (RK4's predicts its rotation over the whole run to find it).
-    const std::string engine_unstable = law_instability(scene, ei.law, h);
-    const std::string unstable = !engine_unstable.empty() || is_reference
-                                     ? engine_unstable
-                                     : law_instability(scene, ri.law, h);
-    if (!unstable.empty()) {
-      left_out += (left_out.empty() ? "" : ", ") + h.text;
-      if (left_out_cause.empty())
-        left_out_cause = (engine_unstable.empty() ? ri.name : ei.name) + ": " + unstable;
-      continue;
-    }
-    const Trajectory run = run_scene(*engine, scene, h.seconds);
-    if (run.status != RunStatus::ok) {
-      r.message = "run at h = " + h.text + " failed: " + run.failure;
-      return r;
-    }
-    hs.push_back(h.seconds);
-    const Trajectory ae = predict_own_arithmetic(ei, scene, h.seconds);
-    const Trajectory le = predict_discrete(ei.law, scene, h.seconds);
-    if (is_reference) {
-      errors.push_back(
-          compare_worst(run, *analytic_trajectory(scene, h.seconds), scene.tolerance).max_dx);
-      noise = std::max(noise, own_law_tolerance(ei, ae).x);
-      const OwnLawVerdict own = judge_own_law(ei, run, ae, le);
-      precision = std::max(precision, own.precision);
-      if (departs.empty() && !own.follows())
-        departs = ei.name + " departs from its own law at h = " + h.text;
-      continue;
-    }
-    const Trajectory other = run_scene(*ref, scene, h.seconds);
-    const Trajectory ar = predict_own_arithmetic(ri, scene, h.seconds);
-    const Trajectory lr = predict_discrete(ri.law, scene, h.seconds);
-    const Attribution a =
-        attribute({ei, run, ae, le}, {ri, other, ar, lr}, scene.world.damping_rate != 0.0);
-    if (!a.explained()) {
-      r.message = "at h = " + h.text + ": " + a.sentence();
-      return r;
-    }
-    errors.push_back(a.law_part > tolerance::kLawsDifferFactor * a.budget ? a.law_part : 0.0);
-    if (a.rotation && !a.rotation_laws_differ() && a.rotation_total > 0.0 && rotation_note.empty())
-      rotation_note = "; rotation: one rotational law (" + a.rotation_laws + "), " +
-                      g3(a.rotation_total) + " rad apart at h = " + h.text +
-                      " from the scalars' rounding, amplified by the motion";
-    if (a.rotation_laws_differ() && rotation_note.empty())
-      rotation_note = "; rotation: the rotational laws differ (" + a.rotation_laws + ", " +
-                      g3(a.rotation_law_part) + " rad apart at h = " + h.text +
-                      "), each engine follows its own";
-  }
-  const std::string skipped = (left_out.empty() ? ""
-                                                : "; left out of the order: h = " + left_out +
-                                                      " (" + left_out_cause + ")") +
-                              rotation_note;
-  if (hs.size() < 2) {
-    r.passed = true;
-    r.message = "fewer than two steps of the sweep where the laws are stable: no order" + skipped;
-    return r;
-  }
-  if (!is_reference && errors.back() == 0.0) {
-    r.passed = true;
-    r.message =
-        (rotation_note.empty() ? "same discrete law: divergence within rounding at every step"
-                               : "same linear law: divergence within rounding at every step") +
-        skipped;
-    return r;
-  }
-  const double measurable_noise = tolerance::kOrderMeasurableFactor * noise;
-  const OrderEstimate o = estimate_order(hs, errors, measurable_noise);
-  const std::string band =
-      fmt(" (expected %.1f-%.1f)", tolerance::kFirstOrderLow, tolerance::kFirstOrderHigh);
-  r.passed = o.first_order || (is_reference && !o.measurable);
-  r.message = o.text + band + (o.measurable ? "" : ", at rounding level: order not measurable");
-  if (r.passed || !o.measurable) {
-    r.message += skipped;
-    return r;
-  }
-  if (!departs.empty()) {
-    r.message += "; not extended: " + departs + skipped;
-    return r;
-  }
-  // Both engines follow their laws, yet the order is out of band: the scene's steps may be
-  // pre-asymptotic. Halve the finest step until the last order is in band (extend_sweep).
-  const std::string cause = pre_asymptotic_cause(scene, hs.back());
-  const ExtendedSweep x = extend_sweep(
-      scene, hs, errors, measurable_noise,
-      extension_error(scene, *engine, ei, ri, is_reference, precision), extension_steps);
-  r.passed = x.reached;
-  r.message = x.estimate.text + band + "; the scene's sweep" +
-              (x.reached ? " is pre-asymptotic (" : " may be pre-asymptotic (") + cause +
-              "): its orders were" + orders_text(o.orders) + "; extended by " +
-              std::to_string(x.added) + " halving" + (x.added == 1 ? "" : "s") +
-              (is_reference ? "" : " (law part alone)") +
-              (x.reached ? ", the last order is in band" : ", stopped: " + x.stopped) + skipped;
-  if (x.reached || !is_reference) return r;
-  // Out of reach: on a long run, the phase drift of the law keeps the error second order down to
-  // steps the cap does not allow. The drift's closed form (phase_drift.hpp) must then explain every
-  // error of the sweep, within the engine's rounding (its own-law noise and precision part).
-  const DriftVerdict d = judge_drift(scene, ei.law, x.h, x.e, measurable_noise + precision);
-  if (!d.applies) return r;
-  r.passed = d.explained;
-  r.limit = d.limit_text();
-  r.message += "; " + d.sentence();
+  const Divergence d = measure_divergence(scene, make, reference, extension_steps);
+  CheckResult r =
+      result(scene, d.engine,
+             d.to_analytic ? "convergence to analytic" : "divergence from " + d.reference);
+  r.passed = d.passed;
+  r.limit = d.limit() ? d.drift->limit_text() : "";
+  r.message = divergence_message(d);
   return r;
 }
 
