@@ -135,11 +135,26 @@ void print_fits(const Identification& id, std::ostream& out) {
   out << printf_string("  %-24s %-38s %12s  %-32s %14s %14s\n", "member", "update", "phi",
                        "gravity (m/s^2)", "max|x-fit| m", "max|v-fit| m/s");
   for (const MemberFit& m : id.fits) {
-    const std::string g =
-        printf_string("(%.6g, %.6g, %.6g)", m.gravity.x(), m.gravity.y(), m.gravity.z());
-    out << printf_string("  %-24s %-38s %12.9f  %-32s %14.3g %14.3g\n", law_key(m.law).c_str(),
-                         to_string(m.law).c_str(), m.phi, g.c_str(), m.max_dx, m.max_dv);
+    const std::string phi = m.determined ? printf_string("%12.9f", m.phi) : "undetermined";
+    const std::string g = m.determined ? printf_string("(%.6g, %.6g, %.6g)", m.gravity.x(),
+                                                       m.gravity.y(), m.gravity.z())
+                                       : "undetermined";
+    out << printf_string("  %-24s %-38s %12s  %-32s %14.3g %14.3g\n", law_key(m.law).c_str(),
+                         to_string(m.law).c_str(), phi.c_str(), g.c_str(), m.max_dx, m.max_dv);
   }
+}
+
+// The tied members, each with its residual: "a (r m), b (r m) and c (r m)".
+std::string tied_fits(const Identification& id) {
+  std::string out;
+  for (std::size_t i = 0; i < id.tied.size(); ++i) {
+    const MemberFit& m = id.fits[id.tied[i]];
+    out += (i == 0                    ? ""
+            : i + 1 == id.tied.size() ? " and "
+                                      : ", ") +
+           law_key(m.law) + " (" + g3(m.max_dx) + " m)";
+  }
+  return out;
 }
 
 // Why two members can tie, for the ambiguity message.
@@ -161,15 +176,21 @@ std::string hint(const Identification& id) {
 void print_verdict(const Identification& id, std::ostream& out) {
   const MemberFit& best = id.fits[id.best];
   const MemberFit& next = id.fits[id.runner_up];
+  if (!id.determined) {
+    out << "not determined: the velocities do not change over the run (a force-free run, or one at "
+           "its terminal velocity), so the damping factor and gravity cannot be read from it; "
+        << tied_fits(id) << " replay it equally well: this run cannot tell them apart (use a "
+        << "scene whose velocities change)\n";
+    return;
+  }
   if (!id.fits_any) {
     out << "no member fits better than 2 cm: not a fixed-step scheme of the family (closest: "
         << law_key(best.law) << " at " << g3(best.max_dx) << " m)\n";
     return;
   }
   if (id.ambiguous) {
-    out << "ambiguous: " << law_key(best.law) << " (" << g3(best.max_dx) << " m) and "
-        << law_key(next.law) << " (" << g3(next.max_dx)
-        << " m) fit equally well: this scene cannot tell them apart" << hint(id) << "\n";
+    out << "ambiguous: " << tied_fits(id) << " fit equally well: this scene cannot tell them apart"
+        << hint(id) << "\n";
     return;
   }
   out << "best fit: " << law_key(best.law) << " (" << to_string(best.law) << ")"

@@ -64,12 +64,17 @@ std::vector<Vec3> accelerations_from_forces(const Scene& scene, const Trajectory
   return out;
 }
 
-// Least squares for (phi, c) on the velocity sequence; fills phi and gravity. An RK4 member is
-// fitted as before-forces with its force share T(k*h) (law.hpp: v' = R*v + h*T*a): T = 1 at
-// first, then from the k*h of the fitted phi, three times (forces held at their step-start
-// values: springs make this an estimate, which the residual then judges exactly).
-void fit_velocity(const Scene& scene, const Trajectory& run, const std::vector<Vec3>& f,
-                  MemberFit& m, double gain = 1.0) {
+// The velocity fit's design is rank-deficient (phi's column is a combination of the constants'
+// columns) when every row's regressor is the same per component: the velocities do not change
+// (a force-free run, or one at its terminal velocity). Then phi and c are not determined: any phi
+// with c = v - phi*v fits. Pivots below this fraction of the largest count as zero.
+constexpr double kRankThreshold = 1e-9;
+
+// Least squares for (phi, c) on the velocity sequence, with the forces' share `gain` (1 for the
+// Euler members); fills phi, gravity and determined. Undetermined, the replay takes phi = 1 and
+// c = the mean change per step (every solution predicts the same velocities; none is reported).
+void solve_velocity(const Scene& scene, const Trajectory& run, const std::vector<Vec3>& f,
+                    MemberFit& m, double gain) {
   const bool af = after_forces_type(m.law);
   std::size_t dynamic = 0;
   for (const Body& b : scene.bodies) dynamic += b.is_static ? 0 : 1;
@@ -90,12 +95,31 @@ void fit_velocity(const Scene& scene, const Trajectory& run, const std::vector<V
       }
     }
   }
-  const Eigen::Vector4d theta = A.colPivHouseholderQr().solve(y);
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
+  qr.setThreshold(kRankThreshold);
+  m.determined = qr.rank() == 4;
+  Eigen::Vector4d theta;
+  if (m.determined) {
+    theta = qr.solve(y);
+  } else {
+    theta(0) = 1.0;
+    const Eigen::VectorXd change = y - A.col(0);
+    for (int j = 0; j < 3; ++j) theta(1 + j) = change(Eigen::seqN(j, rows / 3, 3)).mean();
+  }
   m.phi = theta(0);
   const double scale = af ? m.phi * run.h : gain * run.h;
   m.gravity = theta.tail<3>() / scale;
-  if (m.law.scheme == Scheme::RK4 && gain == 1.0)
-    for (int i = 0; i < 3; ++i) fit_velocity(scene, run, f, m, rk4_gain(rk4_step_rate(m.phi)));
+}
+
+// The member's fit. An RK4 member is fitted as before-forces with its force share T(k*h) (law.hpp:
+// v' = R*v + h*T*a): T = 1 at first, then from the k*h of the fitted phi, three times (forces held
+// at their step-start values: springs make this an estimate, which the residual then judges
+// exactly).
+void fit_velocity(const Scene& scene, const Trajectory& run, const std::vector<Vec3>& f,
+                  MemberFit& m) {
+  solve_velocity(scene, run, f, m, 1.0);
+  if (m.law.scheme != Scheme::RK4 || !m.determined) return;
+  for (int i = 0; i < 3; ++i) solve_velocity(scene, run, f, m, rk4_gain(rk4_step_rate(m.phi)));
 }
 
 // Iterates the member from the recorded initial state; fills max_dx and max_dv.
@@ -151,7 +175,11 @@ Identification identify_law(const Scene& scene, const Trajectory& run) {
   id.runner_up = order[1];
   const double best = id.fits[id.best].max_dx;
   id.fits_any = best <= kIdentifyTolerance;
-  id.ambiguous = id.fits[id.runner_up].max_dx <= 2.0 * best + 1e-12;
+  for (std::size_t i : order)
+    if (id.fits[i].max_dx <= 2.0 * best + 1e-12) id.tied.push_back(i);
+  id.ambiguous = id.tied.size() > 1;
+  id.determined =
+      std::all_of(id.fits.begin(), id.fits.end(), [](const MemberFit& m) { return m.determined; });
   return id;
 }
 

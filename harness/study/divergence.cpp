@@ -139,8 +139,8 @@ void measure_between(const Pair& p, const Trajectory& run, DivergenceStep& s) {
   const Trajectory other = run_scene(p.ref, p.scene, h);
   const Trajectory ar = predict_own_arithmetic(p.ri, p.scene, h);
   const Trajectory lr = predict_discrete(p.ri.law, p.scene, h);
-  s.attribution = attribute({p.ei, run, ae, le}, {p.ri, other, ar, lr},
-                            p.scene.world.damping_rate != 0.0);
+  s.attribution =
+      attribute({p.ei, run, ae, le}, {p.ri, other, ar, lr}, p.scene.world.damping_rate != 0.0);
   const Attribution& a = *s.attribution;
   s.error = a.law_part > tolerance::kLawsDifferFactor * a.budget ? a.law_part : 0.0;
 }

@@ -18,9 +18,8 @@ namespace {
 // The declared linear member against the fits: named, or one of two equal fits.
 DeclaredMatch law_match(const Identification& id, bool named, Law declared) {
   if (named && id.fits[id.best].law == declared) return DeclaredMatch::matches;
-  if (id.ambiguous &&
-      (id.fits[id.best].law == declared || id.fits[id.runner_up].law == declared))
-    return DeclaredMatch::tied;
+  for (std::size_t i : id.tied)
+    if (id.ambiguous && id.fits[i].law == declared) return DeclaredMatch::tied;
   return DeclaredMatch::mismatch;
 }
 
@@ -46,7 +45,7 @@ RotationDeclared rotation_declared(const RotationIdentification& id, bool named,
   bool tied = false;  // the declared member fits as well as the best (within the 2x of ambiguity)
   for (const RotationFit& f : id.fits)
     tied = tied || (same(f) && f.max_angle <= 2.0 * best.max_angle + 1e-12);
-  d.match = named && same(best)      ? DeclaredMatch::matches
+  d.match = named && same(best)    ? DeclaredMatch::matches
             : id.ambiguous && tied ? DeclaredMatch::tied
                                    : DeclaredMatch::mismatch;
   return d;
@@ -70,7 +69,8 @@ FreeFlightIdentity free_flight(const Scene& scene, const Trajectory& run,
   }
   if (run.rotates) {
     f.rotation = identify_rotation(scene, run);
-    if (declared) f.rotation_declared = rotation_declared(*f.rotation, f.rotation_named(), *declared);
+    if (declared)
+      f.rotation_declared = rotation_declared(*f.rotation, f.rotation_named(), *declared);
   } else {
     f.rotation_unread = needs_rotation(scene);
   }
@@ -80,7 +80,7 @@ FreeFlightIdentity free_flight(const Scene& scene, const Trajectory& run,
 }  // namespace
 
 bool FreeFlightIdentity::named() const {
-  return law.fits_any && !law.ambiguous;
+  return law.fits_any && !law.ambiguous && law.determined;
 }
 
 bool FreeFlightIdentity::rotation_named() const {
@@ -96,8 +96,7 @@ bool FreeFlightIdentity::ok() const {
   return ok;
 }
 
-FreeFlightIdentity identify_free_flight(const Scene& scene, const Trajectory& run,
-                                        Engine* engine) {
+FreeFlightIdentity identify_free_flight(const Scene& scene, const Trajectory& run, Engine* engine) {
   if (!engine) return free_flight(scene, run, nullptr, nullptr);
   const EngineInfo info = engine->info();
   return free_flight(scene, run, &info, engine);

@@ -52,17 +52,17 @@ struct FreeFlightIdentity {
   std::string engine;  // the run's
   std::size_t bodies = 0;
   std::int64_t steps = 0;
-  double h = 0.0;               // s
-  Identification law;           // every member's fit, and which one is named
-  std::optional<Law> declared;  // with an engine: its declared law ...
+  double h = 0.0;                                     // s
+  Identification law;                                 // every member's fit, and which one is named
+  std::optional<Law> declared;                        // with an engine: its declared law ...
   DeclaredMatch law_match = DeclaredMatch::mismatch;  // ... against the member found
-  std::optional<ClosedFormOrder> order;  // with an engine: its order at 2h, h and h/2
+  std::optional<ClosedFormOrder> order;               // with an engine: its order at 2h, h and h/2
   bool order_matches = true;  // every order measured is the declared law's (true when none is)
-  std::optional<RotationIdentification> rotation;  // the run rotates: its rotational member
+  std::optional<RotationIdentification> rotation;     // the run rotates: its rotational member
   std::optional<RotationDeclared> rotation_declared;  // ... and, with an engine, the declared one
   bool rotation_unread = false;  // the scene turns but the run carries no rotation columns
 
-  bool named() const;  // one linear member fits, alone
+  bool named() const;           // one linear member fits, alone
   bool rotation_named() const;  // one rotational member fits, alone
   bool ok() const;  // named, as declared (with an engine), order and rotation as declared
 };
@@ -77,7 +77,7 @@ FreeFlightIdentity identify_free_flight(const Scene& scene, const Trajectory& ru
 struct EngineIdentity {
   std::string scene;
   EngineInfo info;
-  double h = 0.0;                           // s
+  double h = 0.0;                            // s
   std::optional<AccuracyResponse> accuracy;  // error-controlled: no fixed-step member to fit
   std::optional<RunFailure> failed;
   std::optional<FreeFlightIdentity> fit;
@@ -110,11 +110,11 @@ struct FrictionModelIdentity {
   std::string scene;
   std::string engine;
   bool planar = false;  // a 2-D engine: one tangent direction, the models coincide; nothing run
-  std::optional<RunFailure> failed;  // a slide's run failed
-  int still_sliding_angle = -1;      // the slide at this angle (0 or 45) still slides at the end
+  std::optional<RunFailure> failed;     // a slide's run failed
+  int still_sliding_angle = -1;         // the slide at this angle (0 or 45) still slides at the end
   double still_sliding_distance = 0.0;  // ... having come this far (m)
-  bool raw = false;             // run with each body's own coefficient: no model declared
-  std::optional<double> mu;     // raw: the pair's coefficient the slide shows
+  bool raw = false;                     // run with each body's own coefficient: no model declared
+  std::optional<double> mu;             // raw: the pair's coefficient the slide shows
   FrictionModel declared = FrictionModel::cone;
   std::optional<FrictionIdentification> found;  // both slides stopped: the ratio and the model
 

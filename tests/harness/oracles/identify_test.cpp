@@ -118,6 +118,49 @@ TEST_CASE("A gravity-only scene cannot separate after-forces from before-forces 
   }
 }
 
+TEST_CASE("An undamped run fits phi = 1 on every member, RK4's included, without recursion",
+          "[identify]") {
+  // The RK4 member is refitted with the force share T(k*h) of its fitted phi; at phi = 1 exactly
+  // (an f64 engine without damping) T = 1 again, which once recursed without end (SIGSEGV).
+  const Scene s = scene("free_fall");
+  const Identification id = identify_law(s, run("ours-f64", s));
+  CHECK(id.determined);
+  for (const MemberFit& m : id.fits) {
+    INFO(law_key(m.law));
+    CHECK(m.determined);
+    CHECK(m.phi == Approx(1.0).margin(1e-12));
+  }
+  std::ostringstream out, err;
+  CHECK(cli_main({"identify", s.source, "--engine", "ours-f64"}, out, err) == kExitCheckFailed);
+  CHECK_THAT(out.str(), Contains("where the damping sits leaves no trace"));
+}
+
+TEST_CASE("A force-free run determines neither phi nor gravity, and every member ties",
+          "[identify]") {
+  // Gazebo's simple boxes: no gravity, a constant velocity. Any phi with c = (1 - phi)*v fits the
+  // velocities, so the fit reports no figure (it once printed phi = 0.86 and g = 150 m/s^2).
+  const Scene s = scene("gazebo_boxes_simple");
+  const Identification id = identify_law(s, run("ours-f64", s));
+  CHECK_FALSE(id.determined);
+  CHECK(id.ambiguous);
+  CHECK(id.tied.size() == id.fits.size());
+  for (const MemberFit& m : id.fits) {
+    CHECK_FALSE(m.determined);
+    CHECK(m.max_dx < 1e-9);
+  }
+  std::ostringstream out, err;
+  CHECK(cli_main({"identify", s.source, "--engine", "ours-f64"}, out, err) == kExitCheckFailed);
+  CHECK_THAT(out.str(), Contains("not determined: the velocities do not change"));
+  CHECK_THAT(out.str(), Contains("undetermined"));
+  CHECK_THAT(out.str(), Contains("declared after-forces: one of the equal fits (not confirmed)"));
+  // A changing velocity determines them again: the same box under gravity.
+  Scene fall = s;
+  fall.world.gravity = Vec3(0.0, -9.81, 0.0);
+  const Identification g = identify_law(fall, run("ours-f64", fall));
+  CHECK(g.determined);
+  CHECK(g.fits[0].gravity.y() == Approx(-9.81).epsilon(1e-9));
+}
+
 TEST_CASE("A trajectory CSV reads back exactly and identifies like the run it came from",
           "[identify]") {
   const Scene s = scene("wind");

@@ -15,7 +15,9 @@ namespace {
 // The engine `name` for every scene, mapped as `dropcheck check` maps it, at the scene's step.
 IdentifySource source(const std::string& name) {
   return {[name]() -> std::optional<EngineInfo> { return make_engine(name)->info(); },
-          [name](const Scene&) { return FrictionEngine{make_engine(name), false}; },
+          [name](const Scene&) {
+            return FrictionEngine{make_engine(name), false};
+          },
           [](const Scene& s) { return s.timestep.seconds; }};
 }
 
@@ -48,7 +50,8 @@ TEST_CASE("identify on an engine: its law named, as declared, and its order meas
   CHECK(e.ok());
 }
 
-TEST_CASE("identify on a trajectory alone: the law named, nothing declared", "[identify][analysis]") {
+TEST_CASE("identify on a trajectory alone: the law named, nothing declared",
+          "[identify][analysis]") {
   const Scene scene = load_scene("scenarios/wind.toml");
   const std::unique_ptr<Engine> engine = make_engine("ours");
   const Trajectory run = run_scene(*engine, scene, scene.timestep.seconds);
