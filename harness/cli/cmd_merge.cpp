@@ -5,6 +5,7 @@
 #include "cli.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/io/atomic_file.hpp"
+#include "harness/io/output_plan.hpp"
 #include "harness/plan/merge.hpp"
 
 namespace dropcheck {
@@ -31,9 +32,15 @@ int cmd_merge(const std::vector<std::string>& argv, std::ostream& out, std::ostr
   const Args args = parse_args(merge_spec(), argv);
   const std::string target = args.value("--out");
   if (target.empty()) throw InputError("", 0, "--out", "required: where to write the results");
+  const std::string missing = args.value("--missing", target + ".missing");
+  OutputPlan files;  // neither output lands on the plan, in the shard folder, or on the other
+  files.read(args.positional[0]);
+  files.read(args.positional[1]);
+  files.write_file("--out", target);
+  files.write_file("--missing", missing);
+  files.check();
   const Plan plan = read_plan(args.positional[0]);
   const MergeResult m = merge_shards(plan, args.positional[1], target);
-  const std::string missing = args.value("--missing", target + ".missing");
   if (m.missing.empty()) {
     // A list of missing cells from an earlier merge of the same results is stale now.
     std::error_code ec;

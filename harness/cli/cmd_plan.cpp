@@ -5,6 +5,7 @@
 #include "harness/core/input_error.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/io/atomic_file.hpp"
+#include "harness/io/output_plan.hpp"
 #include "harness/plan/plan.hpp"
 
 namespace dropcheck {
@@ -29,7 +30,13 @@ int cmd_plan(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   const Args args = parse_args(plan_spec(), argv);
   const std::string target = args.value("--out");
   if (target.empty()) throw InputError("", 0, "--out", "required: where to write the plan");
-  const Plan plan = make_plan(load_sweep(args.positional[0], known_engine_names()));
+  const SweepSpec sweep = load_sweep(args.positional[0], known_engine_names());
+  OutputPlan files;  // the plan lands on neither the sweep file nor a scene it names
+  files.read(sweep.file);
+  for (const std::string& f : sweep.scene_files) files.read(f);
+  files.write_file("--out", target);
+  files.check();
+  const Plan plan = make_plan(sweep);
   write_file_atomic(target, plan_text(plan));
   out << "plan " << plan.hash << ": " << plan.cell_count() << " cells (" << plan.scenes.size()
       << " scenes x " << plan.engines.size() << " engines";

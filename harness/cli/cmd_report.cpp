@@ -177,8 +177,11 @@ int sweep_report(const Args& args, const std::string& out_dir, std::ostream& out
                  std::ostream& err) {
   if (!args.positional.empty() || args.has("--engine"))
     throw InputError("", 0, "--results", "a sweep report takes no scene files or engines");
+  OutputPlan files;
+  files.read(args.value("--results"));
+  files.write_folder("--out", out_dir);
+  files.check();
   const std::vector<SweepCell> cells = read_sweep_results(args.value("--results"));
-  check_replaceable(out_dir);
   StagingDir staging(out_dir);
   write_sweep_report(cells, args.value("--results"), staging.path(),
                      [&](const std::string& what) { err << "report: " << what << " ...\n"; });

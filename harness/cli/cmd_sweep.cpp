@@ -6,6 +6,7 @@
 #include "cli.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/io/atomic_file.hpp"
+#include "harness/io/output_plan.hpp"
 #include "harness/plan/shard.hpp"
 
 namespace dropcheck {
@@ -47,13 +48,20 @@ int cmd_sweep(const std::vector<std::string>& argv, std::ostream& out, std::ostr
     cells = cells_from(plan, args.value("--cells-from"), name);
   }
   // Where the records go, settled before any cell runs: a folder (made when missing), and in it a
-  // shard file or nothing, never a link (output_target refuses one).
+  // shard file or nothing, never a link, never an input; the cache a folder too (its entries are
+  // checked for links at every depth by run_cells, before the first cell runs).
+  const std::string target = (std::filesystem::path(dir) / name).string();
+  OutputPlan files;
+  files.read(args.positional[0]);
+  if (args.has("--cells-from")) files.read(args.value("--cells-from"));
+  files.write_into("--out", dir);
+  files.write_entry("--out", target);
+  if (args.has("--cache")) files.write_into("--cache", args.value("--cache"));
+  files.check();
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (!std::filesystem::is_directory(dir, ec))
     throw InputError("", 0, "--out", excerpt(dir) + " is not a folder and cannot be made one");
-  const std::string target = (std::filesystem::path(dir) / name).string();
-  output_target(target, "--out", Links::refuse);
   std::ostream null_stream(nullptr);
   const ShardSummary s = run_cells(plan, cells, target, args.has("--quiet") ? null_stream : err,
                                    args.value("--cache"));

@@ -104,6 +104,28 @@ fs::path output_target(const std::string& path, const std::string& key, Links li
   }
 }
 
+void check_no_links_below(const fs::path& root, const fs::path& path, const std::string& key) {
+  const fs::path rel = path.lexically_normal().lexically_relative(root.lexically_normal());
+  if (rel.empty() || *rel.begin() == "..")
+    throw InputError(path.string(), 0, key, "lies outside '" + root.string() + "'");
+  fs::path at = root;
+  for (const fs::path& part : rel.parent_path()) {
+    at /= part;
+    struct stat st {};
+    if (::lstat(at.c_str(), &st) != 0) {
+      if (errno == ENOENT) return;  // made later, as a folder
+      throw InputError(at.string(), 0, key, std::string("cannot inspect: ") + std::strerror(errno));
+    }
+    if (S_ISLNK(st.st_mode))
+      throw InputError(at.string(), 0, key,
+                       "is a symbolic link inside a folder dropcheck fills; it never writes "
+                       "through one (remove the link)");
+    if (!S_ISDIR(st.st_mode))
+      throw InputError(at.string(), 0, key,
+                       std::string("is ") + kind_of(st.st_mode) + ", where a folder is expected");
+  }
+}
+
 void write_file_atomic(const std::string& path, const std::string& content, Links links) {
   write_file_atomic(
       path, [&](std::ostream& out) { out.write(content.data(), content.size()); }, links);

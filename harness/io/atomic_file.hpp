@@ -20,6 +20,14 @@ namespace dropcheck {
 std::filesystem::path output_target(const std::string& path, const std::string& key = "",
                                     Links links = Links::follow);
 
+// Throws InputError, prefixed by `key`, when `path` does not lie below `root`, or when a folder on
+// the way from `root` (the user's own: a link there is followed) down to `path`'s folder is a
+// symbolic link or not a folder. Folders not yet made pass: they are made as folders. An entry of a
+// folder dropcheck fills at depth (a cache's subfolders) is checked so before it is read or
+// written.
+void check_no_links_below(const std::filesystem::path& root, const std::filesystem::path& path,
+                          const std::string& key);
+
 // Writes `content` to output_target(path) atomically, creating missing parent folders. Throws
 // InputError naming the path when it cannot; the previous file is then untouched. With
 // Links::refuse a link at `path` is refused, and the rename replaces the entry itself: a link

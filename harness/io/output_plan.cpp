@@ -103,25 +103,31 @@ void OutputPlan::read(const std::string& path) {
 }
 
 void OutputPlan::write_file(const std::string& key, const std::string& path) {
-  outputs_.push_back({key, path, Output::Kind::file});
+  outputs_.push_back({key, path, Output::Kind::file, ""});
 }
 
 void OutputPlan::write_entry(const std::string& key, const std::string& path) {
-  outputs_.push_back({key, path, Output::Kind::entry});
+  outputs_.push_back({key, path, Output::Kind::entry, ""});
+}
+
+void OutputPlan::write_entry_below(const std::string& key, const std::string& root,
+                                   const std::string& path) {
+  outputs_.push_back({key, path, Output::Kind::entry, root});
 }
 
 void OutputPlan::write_folder(const std::string& key, const std::string& path) {
-  outputs_.push_back({key, path, Output::Kind::folder});
+  outputs_.push_back({key, path, Output::Kind::folder, ""});
 }
 
 void OutputPlan::write_into(const std::string& key, const std::string& path) {
-  outputs_.push_back({key, path, Output::Kind::into});
+  outputs_.push_back({key, path, Output::Kind::into, ""});
 }
 
 void OutputPlan::check() const {
   for (std::size_t i = 0; i < outputs_.size(); ++i) {
     const Output& o = outputs_[i];
     check_not_empty(o.key, o.path);
+    if (!o.root.empty()) check_no_links_below(o.root, o.path, o.key);
     if (o.is_file())
       check_file(o.key, o.path, o.links());
     else

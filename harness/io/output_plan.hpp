@@ -22,6 +22,9 @@ class OutputPlan {
   // A file the command writes inside such a folder: like write_file, but a symbolic link there is
   // refused, never written through (the folder may come from someone else).
   void write_entry(const std::string& key, const std::string& path);
+  // An entry at depth below `root`, a folder the command fills (a cache): no folder between `root`
+  // and the entry may be a link either (check_no_links_below).
+  void write_entry_below(const std::string& key, const std::string& root, const std::string& path);
 
   // Throws InputError naming the option and the problem: an empty path, a path that names a
   // folder where a file is expected, something that is not a regular file, a place that cannot be
@@ -33,6 +36,7 @@ class OutputPlan {
   struct Output {
     std::string key, path;
     enum class Kind { file, entry, folder, into } kind;
+    std::string root;  // an entry's folder that no link may lie below (empty: none)
     bool is_file() const { return kind == Kind::file || kind == Kind::entry; }
     Links links() const { return kind == Kind::entry ? Links::refuse : Links::follow; }
   };

@@ -99,6 +99,18 @@ std::string cache_entry(const std::string& cache, const Plan& plan, const Cell& 
   return (std::filesystem::path(cache) / id.substr(0, 2) / (id + ".json")).string();
 }
 
+// Keeps a record in the cache. A link planted in the cache while the sweep ran is never written
+// through: the record is then kept in the shard file alone, and the progress says so.
+void cache_record(const std::string& cache, const std::string& entry, const std::string& line,
+                  std::ostream& progress) {
+  try {
+    check_no_links_below(cache, entry, "--cache");
+    write_file_atomic(entry, line + "\n", Links::refuse);
+  } catch (const InputError& e) {
+    progress << "not cached: " << e.what() << "\n";
+  }
+}
+
 }  // namespace
 
 ShardSummary run_cells(const Plan& plan, const std::vector<std::size_t>& cells,
@@ -114,6 +126,10 @@ ShardSummary run_cells(const Plan& plan, const std::vector<std::size_t>& cells,
     progress << "cell " << s.cells << " of " << cells.size() << ": " << keys[at] << ": " << r.status
              << "\n";
   };
+  // A link at any depth of the cache is refused before any cell is read or run.
+  if (!cache.empty())
+    for (std::size_t cell : cells)
+      check_no_links_below(cache, cache_entry(cache, plan, plan.cell(cell)), "--cache");
   for (std::size_t at = 0; at < cells.size(); ++at) {
     const Cell c = plan.cell(cells[at]);
     keys.push_back(c.key);
@@ -132,7 +148,7 @@ ShardSummary run_cells(const Plan& plan, const std::vector<std::size_t>& cells,
   run_cells_in_worker(plan, todo, [&](std::size_t k, const CellRecord& r) {
     const std::size_t at = todo_at[k];
     got[at] = r;
-    if (!entries[at].empty()) write_file_atomic(entries[at], r.line + "\n", Links::refuse);
+    if (!entries[at].empty()) cache_record(cache, entries[at], r.line, progress);
     report(at);
   });
   std::vector<std::pair<std::string, std::string>> records;  // key, record

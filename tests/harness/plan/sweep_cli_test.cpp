@@ -235,3 +235,68 @@ TEST_CASE("report --results draws a sweep's maps and lists its failed cells, the
   CHECK_THAT(bad.err, Contains("bad.jsonl:1"));
   CHECK_FALSE(std::filesystem::exists(d.file("m2")));
 }
+
+TEST_CASE(
+    "plan, sweep, merge and report --results never write over one of their inputs, nor through a "
+    "link at any depth of a cache",
+    "[plan][cli][hostile]") {
+  ScratchDir d("sweep-inputs");
+  const std::string plan = make_plan_file(d), dir = d.file("shards");
+  const std::string plan_bytes = slurp(plan);
+  const auto refused = [](const Cli& c, const std::string& key) {
+    CHECK(c.code == 2);
+    CHECK_THAT(c.err, Contains(key) && Contains("input"));
+    CHECK_THAT(c.err, !Contains("cell 1 of"));
+  };
+  // plan: onto its sweep file, onto a scene the sweep names.
+  const std::string sweep =
+      d.write("s2.toml", "scenes = [\"" +
+                             d.write("scene.toml", slurp(std::string(DROPCHECK_SOURCE_DIR) +
+                                                         "/scenarios/free_fall.toml")) +
+                             "\"]\nengines = [\"ours\"]\n[[axis]]\nname = \"timestep\"\nvalues = "
+                             "[\"1/60\"]\n");
+  const std::string sweep_bytes = slurp(sweep), scene_bytes = slurp(d.file("scene.toml"));
+  refused(run({"plan", sweep, "--out", sweep}), "--out");
+  refused(run({"plan", sweep, "--out", d.file("scene.toml")}), "--out");
+  CHECK(slurp(sweep) == sweep_bytes);
+  CHECK(slurp(d.file("scene.toml")) == scene_bytes);
+  // sweep: its shard file onto the plan (--out being the plan's folder, the plan named so), onto
+  // the --cells-from list.
+  std::filesystem::create_directories(d.file("here"));
+  const std::string named_like_shard = d.file("here/shard-1-of-1.jsonl");
+  std::filesystem::copy_file(plan, named_like_shard);
+  refused(run({"sweep", named_like_shard, "--shard", "1/1", "--out", d.file("here")}), "--out");
+  CHECK(slurp(named_like_shard) == plan_bytes);
+  // merge: --out onto the plan, --out or --missing inside the shard folder, onto each other.
+  run_shards(plan, dir, 1);
+  refused(run({"merge", plan, dir, "--out", plan}), "--out");
+  CHECK(slurp(plan) == plan_bytes);
+  refused(run({"merge", plan, dir, "--out", dir + "/shard-1-of-1.jsonl"}), "--out");
+  refused(run({"merge", plan, dir, "--out", d.file("r.jsonl"), "--missing", plan}), "--missing");
+  const Cli same =
+      run({"merge", plan, dir, "--out", d.file("r.jsonl"), "--missing", d.file("r.jsonl")});
+  CHECK(same.code == 2);
+  CHECK_THAT(same.err, Contains("name two different files"));
+  // report --results: a report folder that holds the result file.
+  REQUIRE(run({"merge", plan, dir, "--out", d.file("maps/r.jsonl")}).code == 0);
+  const Cli rep = run({"report", "--results", d.file("maps/r.jsonl"), "--out", d.file("maps")});
+  CHECK(rep.code == 2);
+  CHECK_THAT(rep.err, Contains("--out") && Contains("refusing"));
+  CHECK(std::filesystem::exists(d.file("maps/r.jsonl")));
+  // sweep --cache: a subfolder that is a link to a folder outside the cache is refused before any
+  // cell runs, and nothing is written through it.
+  const std::string cache = d.file("cache");
+  REQUIRE(run({"sweep", plan, "--shard", "1/1", "--out", d.file("a"), "--cache", cache, "--quiet"})
+              .code == 0);
+  std::filesystem::path sub;
+  for (const auto& e : std::filesystem::directory_iterator(cache)) sub = e.path();
+  REQUIRE_FALSE(sub.empty());
+  std::filesystem::create_directories(d.file("elsewhere"));
+  std::filesystem::remove_all(sub);
+  std::filesystem::create_symlink(d.file("elsewhere"), sub);
+  const Cli linked = run({"sweep", plan, "--shard", "1/1", "--out", d.file("b"), "--cache", cache});
+  CHECK(linked.code == 2);
+  CHECK_THAT(linked.err, Contains("--cache") && Contains("symbolic link"));
+  CHECK_THAT(linked.err, !Contains("cell 1 of"));
+  CHECK(std::filesystem::is_empty(d.file("elsewhere")));
+}
