@@ -137,6 +137,21 @@ remove_ours() {
     rm -rf --one-file-system -- "$path"
 }
 
+# True if folder $1 is a temp folder a short link may live in, resolved
+# (TMPDIR may differ between start and stop; /tmp is always accepted).
+is_temp_base() {
+    [[ $1 == "$(realpath -m -- "${TMPDIR:-/tmp}")" || $1 == "$(realpath -m /tmp)" ]]
+}
+
+# The short link folder's path holds only plain characters (see setup_paths).
+check_temp_base() {
+    local base
+    ((${#STATE} > 60)) || return 0   # no short link (choose_runroot)
+    base=$(realpath -m -- "${TMPDIR:-/tmp}")
+    [[ $base =~ ^[A-Za-z0-9._+@~/-]+$ ]] ||
+        refuse "TMPDIR ($base) may hold only letters, digits and . _ + @ ~ / -"
+}
+
 # Sets RUNROOT, the path the daemons reach STATE by. Unix socket paths (munge
 # socket and slurmstepd sockets in SlurmdSpoolDir) are limited to ~107 bytes, so
 # if STATE is long we reach it through a short symlink /tmp/lslurm.XXXXXX/s -> STATE.
@@ -146,11 +161,52 @@ choose_runroot() {
     else
         local tmp
         tmp=$(mktemp -d "${TMPDIR:-/tmp}/lslurm.XXXXXX")
+        tmp=$(realpath -e -- "$tmp")   # recorded resolved: stop compares it as is
         chmod 700 "$tmp"
         ln -s "$STATE" "$tmp/s"
         RUNROOT="$tmp/s"
-        echo "$tmp" >"$LINKFILE"
+        (set -C; echo "$tmp" >"$LINKFILE")
     fi
+}
+
+# Why folder $1 is not one choose_runroot made (nothing printed if it is, or if
+# it is gone). run/shortlink, which names it, can be changed by anyone who can
+# write STATE, so the name is not trusted: the folder must be canonical (no link
+# on the way, no ..), directly in a temp folder, named like mktemp's lslurm.XXXXXX,
+# ours, and hold exactly one entry, the link s to STATE.
+shortdir_problem() {
+    local tmp=$1
+    [[ ${tmp##*/} =~ ^lslurm\.[A-Za-z0-9]{6}$ ]] || { echo "not named lslurm.XXXXXX"; return; }
+    is_temp_base "${tmp%/*}" || { echo "not directly in the temp folder"; return; }
+    [[ -e $tmp || -L $tmp ]] || return 0
+    [[ -d $tmp && ! -L $tmp && $(realpath -e -- "$tmp") == "$tmp" ]] ||
+        { echo "not a folder (a link, or reached through one)"; return; }
+    [[ -O $tmp ]] || { echo "not owned by $(id -un)"; return; }
+    [[ -L $tmp/s && $(readlink -- "$tmp/s") == "$STATE" ]] || { echo "holds no link s to $STATE"; return; }
+    [[ $(ls -A -- "$tmp") == s ]] || { echo "holds more than the link s"; return; }
+}
+
+# Sets SHORTDIR to the short link folder named in run/shortlink (empty if none),
+# refusing (exit 2) one this script did not make.
+check_shortlink() {
+    local why
+    SHORTDIR=
+    [[ -e $LINKFILE || -L $LINKFILE ]] || return 0
+    [[ -f $LINKFILE && ! -L $LINKFILE ]] || refuse "$LINKFILE: not a regular file"
+    read_first SHORTDIR "$LINKFILE" || refuse "$LINKFILE: cannot read it"
+    why=$(shortdir_problem "$SHORTDIR")
+    [[ -z $why ]] || refuse "$LINKFILE names '$SHORTDIR', $why: not a folder local_cluster.sh" \
+                            "made, nothing removed"
+}
+
+# Removes the folder check_shortlink accepted: the link s alone, then the folder
+# with rmdir, which leaves it if anything else appeared in it.
+remove_shortlink() {
+    if [[ -n $SHORTDIR && -d $SHORTDIR ]]; then
+        rm -f -- "$SHORTDIR/s"
+        rmdir -- "$SHORTDIR" || log "left $SHORTDIR: it is not empty"
+    fi
+    remove_ours run/shortlink
 }
 
 # ---------------------------------------------------------------- stop -----
@@ -246,7 +302,7 @@ stop_stepds() {
 }
 
 # Stops what start started in DIR. Before anything: DIR must be a folder start
-# made (or nothing to stop), holding no planted link.
+# made (or nothing to stop), holding no planted link or short link folder name.
 cmd_stop() {
     [[ -e $1 || -L $1 ]] || return 0
     setup_paths "$1"
@@ -256,6 +312,7 @@ cmd_stop() {
                "nothing removed"
     fi
     check_own_paths
+    check_shortlink
     # Cancel leftover jobs (needs both daemons) so no job processes outlive slurmd.
     if [[ -f $CONF ]] && pid_from_file "$STATE/run/slurmctld.pid" "$CONF" >/dev/null &&
        pid_from_file "$STATE/run/slurmd.pid" "$CONF" >/dev/null; then
@@ -275,12 +332,7 @@ cmd_stop() {
     stop_stepds
     stop_daemon slurmctld run/slurmctld.pid "$CONF"
     stop_daemon munged munge/munged.pid "$STATE/munge/munged.pid"
-    if [[ -f $LINKFILE ]]; then
-        local tmp
-        tmp=$(<"$LINKFILE")
-        [[ $tmp == */lslurm.* ]] && rm -rf -- "$tmp"
-        remove_ours run/shortlink
-    fi
+    remove_shortlink
     return 0
 }
 
@@ -433,6 +485,8 @@ cmd_start() {
     setup_paths "$1"
     check_claimable
     check_own_paths
+    check_shortlink
+    check_temp_base
     cmd_check >&2   # exits 77 if binaries are missing (ctest SKIP_RETURN_CODE)
     claim_state
     SECONDS=0
