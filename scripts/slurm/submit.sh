@@ -7,7 +7,8 @@
 #                           [--dropcheck PATH] [--logs DIR] [--wait] [-- SBATCH_OPTIONS...]
 #
 # PLAN, DIR, FILE and the dropcheck binary must be on a file system every node sees. SBATCH_OPTIONS
-# (--partition, --time, --account, --mem...) go to both jobs. Prints "array JOBID" and "merge
+# go to both jobs; only those of FORWARDED below are taken (-p short, -pshort, --partition short,
+# --partition=short), anything else is refused (exit 2). Prints "array JOBID" and "merge
 # JOBID"; with --wait, returns when the merge job has ended, with its exit code (0: FILE holds
 # every record; 1: cells missing, listed in FILE.missing: rerun them with
 # `dropcheck sweep PLAN --cells-from FILE.missing --out DIR`).
@@ -31,13 +32,64 @@ while [ $# -gt 0 ]; do
   esac
 done
 die() { echo "submit.sh: $*" >&2; exit 2; }
-# Options after -- go to both jobs; those that would change what the jobs are are refused.
-for o in "$@"; do
-  case $o in
-    -a|--array|--array=*|-d|--dependency|--dependency=*|-o|--output|--output=*|--wrap|--wrap=*|-W|--wait)
-      die "$o after --: submit.sh sets it itself" ;;
-  esac
-done
+
+# The sbatch options forwarded after --: where, when and with what resources a job runs, never
+# what it runs or where its output goes (submit.sh sets --array, --output, --dependency itself).
+# An allow-list, because sbatch (getopt_long) also takes any unambiguous prefix of a long option
+# (--arr=2, --dep=x) and short options with their value attached (-a2, -ofile): a list of refused
+# names is always bypassed. Each takes a value; the short letter, if any, follows the colon.
+FORWARDED=(partition:p time:t account:A qos:q mem: mem-per-cpu: cpus-per-task:c constraint:C
+  reservation: exclude:x)
+forwarded_list() {   # "--partition (-p), --time (-t), ..."
+  local o list=
+  for o in "${FORWARDED[@]}"; do
+    list+=", --${o%%:*}"
+    [ -z "${o#*:}" ] || list+=" (-${o#*:})"
+  done
+  echo "${list#, }"
+}
+
+# The long name of forwarded option $2, given as a long name (--$2) when $1 is long, as a short
+# letter (-$2) when $1 is short; fails if it is not forwarded.
+forwarded_name() {
+  local o
+  for o in "${FORWARDED[@]}"; do
+    if { [ "$1" = long ] && [ "$2" = "${o%%:*}" ]; } ||
+       { [ "$1" = short ] && [ -n "${o#*:}" ] && [ "$2" = "${o#*:}" ]; }; then
+      echo "${o%%:*}"; return 0
+    fi
+  done
+  return 1
+}
+
+# Sets SBATCH_OPTS to the options after -- rewritten as --NAME=VALUE, so that sbatch reads exactly
+# what was checked here; dies naming the first option that is not forwarded or lacks its value.
+parse_forwarded() {
+  SBATCH_OPTS=()
+  local arg kind name value
+  while [ $# -gt 0 ]; do
+    arg=$1; shift
+    case $arg in
+      --?*=*) kind=long name=${arg%%=*} name=${name#--} value=${arg#*=} ;;
+      --?*) kind=long name=${arg#--} value= ;;
+      -?*) kind=short name=${arg:1:1} value=${arg:2} ;;      # -p VALUE or -pVALUE
+      *) die "$arg after --: not an option (sbatch would run it as the batch script)" ;;
+    esac
+    name=$(forwarded_name "$kind" "$name") ||
+      die "$arg after --: not an sbatch option submit.sh forwards; it forwards only" \
+          "$(forwarded_list), long names written in full"
+    if [ -z "$value" ] && [ "$arg" = "${arg%%=*}" ]; then
+      [ $# -gt 0 ] || die "$arg after --: needs a value"
+      value=$1; shift
+    fi
+    # A value that looks like an option is a forgotten value (sbatch would take it as one).
+    case $value in
+      ''|-*) die "$arg after --: needs a value (got '$value')" ;;
+    esac
+    SBATCH_OPTS+=("--$name=$value")
+  done
+}
+parse_forwarded "$@"
 [ -n "$plan" ] && [ -f "$plan" ] || die "--plan PLAN: a plan file (dropcheck plan SWEEP --out PLAN)"
 [ -n "$out" ] || die "--out DIR: the folder of shard files"
 [ -n "$results" ] || die "--results FILE: where the merge job writes the records"
@@ -51,12 +103,12 @@ plan=$(abs "$plan") out=$(abs "$out") results=$(abs "$results") dropcheck=$(abs 
 logs=${logs:-$out/slurm-logs}
 mkdir -p "$logs"
 
-array=$(sbatch --parsable --array="1-$shards" --output="$logs/shard-%A_%a.out" "$@" \
+array=$(sbatch --parsable --array="1-$shards" --output="$logs/shard-%A_%a.out" "${SBATCH_OPTS[@]}" \
   "$here/shard.sbatch" "$dropcheck" "$plan" "$shards" "$out")
 array=${array%%;*}
 echo "array $array"
 merge_args=(--parsable --dependency="afterany:$array"
-  --output="$logs/merge-%j.out" "$@")
+  --output="$logs/merge-%j.out" "${SBATCH_OPTS[@]}")
 if [ "$wait" -eq 1 ]; then
   set +e
   sbatch --wait "${merge_args[@]}" "$here/merge.sbatch" "$dropcheck" "$plan" "$out" "$results" |
