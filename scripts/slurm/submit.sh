@@ -91,17 +91,42 @@ parse_forwarded() {
 }
 parse_forwarded "$@"
 [ -n "$plan" ] && [ -f "$plan" ] || die "--plan PLAN: a plan file (dropcheck plan SWEEP --out PLAN)"
-[ -n "$out" ] || die "--out DIR: the folder of shard files"
-[ -n "$results" ] || die "--results FILE: where the merge job writes the records"
 [ -n "$dropcheck" ] && [ -x "$dropcheck" ] || die "--dropcheck PATH: the dropcheck binary"
 # One task per shard, at most 1000 (a common MaxArraySize; larger plans: more cells per shard).
 [[ "$shards" =~ ^[0-9]+$ ]] && [ "$shards" -ge 1 ] && [ "$shards" -le 1000 ] ||
   die "--shards N: 1 to 1000"
-abs() { echo "$(cd "$(dirname -- "$1")" && pwd)/$(basename -- "$1")"; }
-mkdir -p "$out" "$(dirname "$results")"
-plan=$(abs "$plan") out=$(abs "$out") results=$(abs "$results") dropcheck=$(abs "$dropcheck")
+
+# An absolute path, without resolving links (like the shell's pwd) and without creating anything.
+abs() { case $1 in /*) realpath -m -s -- "$1" ;; *) realpath -m -s -- "$PWD/$1" ;; esac; }
+
+# Slurm reads log paths (sbatch --output) as file name patterns: % starts a replacement (%j, %A,
+# %a...), \ turns them off, and # cuts the name; in a folder's name any of them sends every task's
+# log elsewhere or nowhere, silently. So the folders of shard files and logs may hold none of them
+# (checked on the absolute path: the current folder is part of a relative one), nor a control
+# character.
+check_log_path() {  # OPTION PATH
+  local c
+  for c in % '#' '\'; do
+    case $2 in
+      *"$c"*) die "$1 $2: holds '$c', which Slurm reads specially in log file names" \
+                  "(%j, %A...): choose a folder whose path has no % # or \\" ;;
+    esac
+  done
+  case $2 in *[[:cntrl:]]*) die "$1: the path holds a control character (a newline?)" ;; esac
+}
+
+[ -n "$out" ] || die "--out DIR: the folder of shard files"
+[ -n "$results" ] || die "--results FILE: where the merge job writes the records"
+out=$(abs "$out") results=$(abs "$results")
+check_log_path --out "$out"
+if [ -n "$logs" ]; then logs=$(abs "$logs"); check_log_path --logs "$logs"; fi
 logs=${logs:-$out/slurm-logs}
-mkdir -p "$logs"
+[ ! -e "$out" ] || [ -d "$out" ] || die "--out $out: exists and is not a folder"
+[ ! -e "$logs" ] || [ -d "$logs" ] || die "--logs $logs: exists and is not a folder"
+[ ! -d "$results" ] || die "--results $results: is a folder; name the file to write"
+plan=$(abs "$plan") dropcheck=$(abs "$dropcheck")
+
+mkdir -p "$out" "$(dirname "$results")" "$logs"
 
 array=$(sbatch --parsable --array="1-$shards" --output="$logs/shard-%A_%a.out" "${SBATCH_OPTS[@]}" \
   "$here/shard.sbatch" "$dropcheck" "$plan" "$shards" "$out")
