@@ -8,9 +8,12 @@
 #
 # PLAN, DIR, FILE and the dropcheck binary must be on a file system every node sees. SBATCH_OPTIONS
 # go to both jobs; only those of FORWARDED below are taken (-p short, -pshort, --partition short,
-# --partition=short), anything else is refused (exit 2). Prints "array JOBID" and "merge
-# JOBID"; with --wait, returns when the merge job has ended, with its exit code (0: FILE holds
-# every record; 1: cells missing, listed in FILE.missing: rerun them with
+# --partition=short), anything else is refused (exit 2). Before submitting anything it checks its
+# input and exits 2 naming the option and the problem: the binary must run and read PLAN as a plan
+# (it is run once here, on the submitting machine), DIR and the logs folder may not hold % # or \
+# (Slurm reads log paths as patterns). Prints "array JOBID" and "merge JOBID"; with --wait,
+# returns when the merge job has ended, with its exit code (0: FILE holds every record; 1: cells
+# missing, listed in FILE.missing: rerun them with
 # `dropcheck sweep PLAN --cells-from FILE.missing --out DIR`).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -90,11 +93,10 @@ parse_forwarded() {
   done
 }
 parse_forwarded "$@"
-[ -n "$plan" ] && [ -f "$plan" ] || die "--plan PLAN: a plan file (dropcheck plan SWEEP --out PLAN)"
-[ -n "$dropcheck" ] && [ -x "$dropcheck" ] || die "--dropcheck PATH: the dropcheck binary"
 # One task per shard, at most 1000 (a common MaxArraySize; larger plans: more cells per shard).
-[[ "$shards" =~ ^[0-9]+$ ]] && [ "$shards" -ge 1 ] && [ "$shards" -le 1000 ] ||
-  die "--shards N: 1 to 1000"
+if ! [[ $shards =~ ^[1-9][0-9]{0,3}$ ]] || [ "$shards" -gt 1000 ]; then
+  die "--shards ${shards:-N}: give a number of shards from 1 to 1000"
+fi
 
 # An absolute path, without resolving links (like the shell's pwd) and without creating anything.
 abs() { case $1 in /*) realpath -m -s -- "$1" ;; *) realpath -m -s -- "$PWD/$1" ;; esac; }
@@ -106,7 +108,7 @@ abs() { case $1 in /*) realpath -m -s -- "$1" ;; *) realpath -m -s -- "$PWD/$1" 
 # character.
 check_log_path() {  # OPTION PATH
   local c
-  for c in % '#' '\'; do
+  for c in % '#' "\\"; do
     case $2 in
       *"$c"*) die "$1 $2: holds '$c', which Slurm reads specially in log file names" \
                   "(%j, %A...): choose a folder whose path has no % # or \\" ;;
@@ -124,6 +126,41 @@ logs=${logs:-$out/slurm-logs}
 [ ! -e "$out" ] || [ -d "$out" ] || die "--out $out: exists and is not a folder"
 [ ! -e "$logs" ] || [ -d "$logs" ] || die "--logs $logs: exists and is not a folder"
 [ ! -d "$results" ] || die "--results $results: is a folder; name the file to write"
+
+# The binary: a file that can be run (found on PATH when --dropcheck is not given).
+check_binary() {
+  [ -n "$dropcheck" ] || die "--dropcheck PATH: no dropcheck on PATH; name the binary"
+  [ -e "$dropcheck" ] || die "--dropcheck $dropcheck: no such file"
+  [ -f "$dropcheck" ] || die "--dropcheck $dropcheck: not a file"
+  [ -x "$dropcheck" ] || die "--dropcheck $dropcheck: not executable"
+}
+
+# The plan: a readable file that this binary reads as a plan. Merging it with no shard file reads
+# and checks the whole plan and lists every cell as missing (exit 1, the list not empty); a file
+# that is not a plan, or one this binary cannot read, exits 2 with dropcheck's reason. Runs in a
+# temporary folder of its own, removed after, with no input and at most 5 minutes.
+check_plan() {
+  [ -n "$plan" ] || die "--plan PLAN: the plan file (dropcheck plan SWEEP --out PLAN)"
+  [ -e "$plan" ] || die "--plan $plan: no such file"
+  [ -f "$plan" ] || die "--plan $plan: not a file"
+  [ -r "$plan" ] || die "--plan $plan: not readable"
+  local rc=0 said
+  checkdir=$(mktemp -d "${TMPDIR:-/tmp}/submit-check.XXXXXX")
+  mkdir "$checkdir/shards"
+  said=$(timeout 300 "$dropcheck" merge "$plan" "$checkdir/shards" --out "$checkdir/results" \
+         --missing "$checkdir/missing" 2>&1 </dev/null) || rc=$?
+  if [ "$rc" -eq 2 ]; then
+    die "--plan $plan: not a plan $dropcheck can run: ${said##*$'\n'}"
+  elif [ "$rc" -ne 1 ] || [ ! -s "$checkdir/missing" ]; then
+    die "--dropcheck $dropcheck: did not read the plan as dropcheck does (dropcheck merge exited" \
+        "$rc${said:+: ${said##*$'\n'}})"
+  fi
+  rm -rf -- "$checkdir"; checkdir=
+}
+checkdir=
+trap '[ -z "$checkdir" ] || rm -rf -- "$checkdir"' EXIT
+check_binary
+check_plan
 plan=$(abs "$plan") dropcheck=$(abs "$dropcheck")
 
 mkdir -p "$out" "$(dirname "$results")" "$logs"
