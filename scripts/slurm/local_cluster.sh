@@ -15,6 +15,10 @@
 # state, spool, logs, pid files) lives under STATE_DIR. A private munged with its
 # own key and socket is used, so a system-wide munge (if any) is not touched.
 # Debian 12 packages: slurmctld slurmd slurm-client munge.
+#
+# STATE_DIR must be new, empty, or a folder this script made before (it writes
+# STATE_DIR/.local_cluster-state first): anything else is refused (exit 2), so a
+# user's own files are never touched. Only what the script makes is removed.
 set -euo pipefail
 
 PATH="$PATH:/usr/sbin:/sbin:/usr/local/sbin"
@@ -31,6 +35,8 @@ REQUIRED_BINS=(slurmctld slurmd sbatch squeue sinfo scontrol munged)
 
 log() { echo "local_cluster: $*" >&2; }
 die() { log "ERROR: $*"; exit 1; }
+# Bad input (a folder that is not ours, a planted link): exit 2, before any side effect.
+refuse() { log "ERROR: $*"; exit 2; }
 
 usage() {
     echo "usage: $0 start STATE_DIR | stop STATE_DIR | check" >&2
@@ -51,28 +57,156 @@ cmd_check() {
 }
 
 # ---------------------------------------------------------------- paths ----
-# Sets STATE (absolute), CONF, and RUNROOT. Unix socket paths (munge socket and
-# slurmstepd sockets in SlurmdSpoolDir) are limited to ~107 bytes, so if STATE
-# is long we reach it through a short symlink /tmp/lslurm.XXXXXX/s -> STATE.
+# The marker start writes into a state folder before anything else: a folder
+# holding it (a regular file, ours, with this first line) was made by this script.
+MARKER_NAME=.local_cluster-state
+MARKER_TEXT="state folder of scripts/slurm/local_cluster.sh"
+# What start makes in STATE (and so removes first, when re-starting there).
+OWN_ENTRIES=(munge ctld spool log run slurm.conf plugstack.conf)
+# Files stop removes (the daemons' pid files, the name of the short link folder).
+OWN_FILES=(run/slurmd.pid run/slurmctld.pid munge/munged.pid run/shortlink)
+
+# Sets STATE (DIR resolved: absolute, no link, no ..), CONF, LINKFILE, MARKER.
+# Creates nothing: a DIR that does not exist yet resolves to the path it will have.
 setup_paths() {
     local dir=$1
-    mkdir -p "$dir"
-    STATE=$(cd "$dir" && pwd -P)
+    [[ -n $dir ]] || refuse "STATE_DIR is empty"
+    if [[ -e $dir || -L $dir ]] && [[ ! -d $dir ]]; then
+        refuse "$dir: not a folder"
+    fi
+    STATE=$(realpath -m -- "$dir") || refuse "$dir: cannot resolve the path"
+    # STATE is written unquoted into slurm.conf (where # starts a comment and blanks
+    # separate keys, and Slurm expands % in file names): plain characters only.
+    [[ $STATE =~ ^[A-Za-z0-9._+@~/-]+$ ]] ||
+        refuse "$dir: the state folder's path ($STATE) may hold only letters, digits and . _ + @ ~ / -"
     CONF="$STATE/slurm.conf"
     LINKFILE="$STATE/run/shortlink"
+    MARKER="$STATE/$MARKER_NAME"
 }
 
+# True if STATE holds the marker this script writes (see MARKER_NAME).
+state_is_ours() {
+    local line
+    [[ -f $MARKER && ! -L $MARKER && -O $MARKER ]] && read_first line "$MARKER" &&
+        [[ $line == "$MARKER_TEXT" ]]
+}
+
+state_is_empty() { [[ -d $STATE && -z $(ls -A -- "$STATE") ]]; }
+
+# start may use STATE if it does not exist, is empty, or was made by this script.
+check_claimable() {
+    [[ -e $STATE ]] || return 0
+    state_is_ours || state_is_empty ||
+        refuse "$STATE is not empty and was not made by local_cluster.sh (no $MARKER_NAME):" \
+               "refusing to use it, nothing in it was touched; give a new or empty folder"
+}
+
+# Every path the script removes in STATE must be what it made there: no link
+# (it makes none in STATE), neither the path nor a folder on the way to it.
+check_own_paths() {
+    local rel part path parts
+    for rel in "${OWN_ENTRIES[@]}" "${OWN_FILES[@]}"; do
+        path=$STATE
+        IFS=/ read -ra parts <<<"$rel"
+        for part in "${parts[@]}"; do
+            path+=/$part
+            [[ ! -L $path ]] ||
+                refuse "$path is a symbolic link, which local_cluster.sh never makes: refusing to touch $STATE"
+        done
+    done
+}
+
+# Creates STATE if needed and marks it as ours (set -C: never through a link).
+claim_state() {
+    mkdir -p -- "$STATE"
+    state_is_ours || (set -C; echo "$MARKER_TEXT" >"$MARKER") ||
+        refuse "could not write $MARKER"
+}
+
+# Removes STATE/REL (REL: one of OWN_ENTRIES or OWN_FILES) after checking, at the
+# moment of removal, that it is not a link and that its folder, resolved, lies
+# inside STATE. rm -r does not follow links below it; it stays on this file system.
+remove_ours() {
+    local rel=$1 path=$STATE/$1 parent
+    [[ /$rel/ != */../* ]] || refuse "internal: '$rel' holds .."
+    [[ -e $path || -L $path ]] || return 0
+    [[ ! -L $path ]] || refuse "$path is a symbolic link, which local_cluster.sh never makes: not removed"
+    parent=$(realpath -e -- "${path%/*}") || refuse "cannot resolve ${path%/*}"
+    [[ $parent == "$STATE" || $parent == "$STATE"/* ]] ||
+        refuse "$path lies outside $STATE once resolved: not removed"
+    rm -rf --one-file-system -- "$path"
+}
+
+# True if folder $1 is a temp folder a short link may live in, resolved
+# (TMPDIR may differ between start and stop; /tmp is always accepted).
+is_temp_base() {
+    [[ $1 == "$(realpath -m -- "${TMPDIR:-/tmp}")" || $1 == "$(realpath -m /tmp)" ]]
+}
+
+# The short link folder's path holds only plain characters (see setup_paths).
+check_temp_base() {
+    local base
+    ((${#STATE} > 60)) || return 0   # no short link (choose_runroot)
+    base=$(realpath -m -- "${TMPDIR:-/tmp}")
+    [[ $base =~ ^[A-Za-z0-9._+@~/-]+$ ]] ||
+        refuse "TMPDIR ($base) may hold only letters, digits and . _ + @ ~ / -"
+}
+
+# Sets RUNROOT, the path the daemons reach STATE by. Unix socket paths (munge
+# socket and slurmstepd sockets in SlurmdSpoolDir) are limited to ~107 bytes, so
+# if STATE is long we reach it through a short symlink /tmp/lslurm.XXXXXX/s -> STATE.
 choose_runroot() {
     if ((${#STATE} <= 60)); then
         RUNROOT=$STATE
     else
         local tmp
         tmp=$(mktemp -d "${TMPDIR:-/tmp}/lslurm.XXXXXX")
+        tmp=$(realpath -e -- "$tmp")   # recorded resolved: stop compares it as is
         chmod 700 "$tmp"
         ln -s "$STATE" "$tmp/s"
         RUNROOT="$tmp/s"
-        echo "$tmp" >"$LINKFILE"
+        (set -C; echo "$tmp" >"$LINKFILE")
     fi
+}
+
+# Why folder $1 is not one choose_runroot made (nothing printed if it is, or if
+# it is gone). run/shortlink, which names it, can be changed by anyone who can
+# write STATE, so the name is not trusted: the folder must be canonical (no link
+# on the way, no ..), directly in a temp folder, named like mktemp's lslurm.XXXXXX,
+# ours, and hold exactly one entry, the link s to STATE.
+shortdir_problem() {
+    local tmp=$1
+    [[ ${tmp##*/} =~ ^lslurm\.[A-Za-z0-9]{6}$ ]] || { echo "not named lslurm.XXXXXX"; return; }
+    is_temp_base "${tmp%/*}" || { echo "not directly in the temp folder"; return; }
+    [[ -e $tmp || -L $tmp ]] || return 0
+    [[ -d $tmp && ! -L $tmp && $(realpath -e -- "$tmp") == "$tmp" ]] ||
+        { echo "not a folder (a link, or reached through one)"; return; }
+    [[ -O $tmp ]] || { echo "not owned by $(id -un)"; return; }
+    [[ -L $tmp/s && $(readlink -- "$tmp/s") == "$STATE" ]] || { echo "holds no link s to $STATE"; return; }
+    [[ $(ls -A -- "$tmp") == s ]] || { echo "holds more than the link s"; return; }
+}
+
+# Sets SHORTDIR to the short link folder named in run/shortlink (empty if none),
+# refusing (exit 2) one this script did not make.
+check_shortlink() {
+    local why
+    SHORTDIR=
+    [[ -e $LINKFILE || -L $LINKFILE ]] || return 0
+    [[ -f $LINKFILE && ! -L $LINKFILE ]] || refuse "$LINKFILE: not a regular file"
+    read_first SHORTDIR "$LINKFILE" || refuse "$LINKFILE: cannot read it"
+    why=$(shortdir_problem "$SHORTDIR")
+    [[ -z $why ]] || refuse "$LINKFILE names '$SHORTDIR', $why: not a folder local_cluster.sh" \
+                            "made, nothing removed"
+}
+
+# Removes the folder check_shortlink accepted: the link s alone, then the folder
+# with rmdir, which leaves it if anything else appeared in it.
+remove_shortlink() {
+    if [[ -n $SHORTDIR && -d $SHORTDIR ]]; then
+        rm -f -- "$SHORTDIR/s"
+        rmdir -- "$SHORTDIR" || log "left $SHORTDIR: it is not empty"
+    fi
+    remove_ours run/shortlink
 }
 
 # ---------------------------------------------------------------- stop -----
@@ -99,9 +233,10 @@ pid_from_file() {
     echo "$pid"
 }
 
+# stop_daemon NAME PIDFILE MARKER; PIDFILE relative to STATE (one of OWN_FILES).
 stop_daemon() {
-    local name=$1 pidfile=$2 marker=$3 pid i
-    pid=$(pid_from_file "$pidfile" "$marker") || { rm -f "$pidfile"; return 0; }
+    local name=$1 rel=$2 marker=$3 pidfile=$STATE/$2 pid i
+    pid=$(pid_from_file "$pidfile" "$marker") || { remove_ours "$rel"; return 0; }
     kill -TERM "$pid" 2>/dev/null || true
     for ((i = 0; i < STOP_TIMEOUT * 10; i++)); do
         pid_alive "$pid" || break
@@ -112,7 +247,7 @@ stop_daemon() {
         kill -KILL "$pid" 2>/dev/null || true
         for ((i = 0; i < 50; i++)); do pid_alive "$pid" || break; sleep 0.1; done
     fi
-    rm -f "$pidfile"
+    remove_ours "$rel"
 }
 
 # slurmstepd processes of our slurmd: they keep SlurmdLogFile open.
@@ -166,9 +301,18 @@ stop_stepds() {
     kill -KILL $pids 2>/dev/null || true
 }
 
+# Stops what start started in DIR. Before anything: DIR must be a folder start
+# made (or nothing to stop), holding no planted link or short link folder name.
 cmd_stop() {
-    [[ -d $1 ]] || return 0
+    [[ -e $1 || -L $1 ]] || return 0
     setup_paths "$1"
+    if ! state_is_ours; then
+        state_is_empty && return 0
+        refuse "$STATE was not made by local_cluster.sh (no $MARKER_NAME): nothing stopped," \
+               "nothing removed"
+    fi
+    check_own_paths
+    check_shortlink
     # Cancel leftover jobs (needs both daemons) so no job processes outlive slurmd.
     if [[ -f $CONF ]] && pid_from_file "$STATE/run/slurmctld.pid" "$CONF" >/dev/null &&
        pid_from_file "$STATE/run/slurmd.pid" "$CONF" >/dev/null; then
@@ -184,16 +328,11 @@ cmd_stop() {
             done
         fi
     fi
-    stop_daemon slurmd "$STATE/run/slurmd.pid" "$CONF"
+    stop_daemon slurmd run/slurmd.pid "$CONF"
     stop_stepds
-    stop_daemon slurmctld "$STATE/run/slurmctld.pid" "$CONF"
-    stop_daemon munged "$STATE/munge/munged.pid" "$STATE/munge/munged.pid"
-    if [[ -f $LINKFILE ]]; then
-        local tmp
-        tmp=$(<"$LINKFILE")
-        [[ $tmp == */lslurm.* ]] && rm -rf -- "$tmp"
-        rm -f "$LINKFILE"
-    fi
+    stop_daemon slurmctld run/slurmctld.pid "$CONF"
+    stop_daemon munged munge/munged.pid "$STATE/munge/munged.pid"
+    remove_shortlink
     return 0
 }
 
@@ -341,18 +480,24 @@ start_slurm() {
 }
 
 cmd_start() {
-    cmd_check >&2   # exits 77 if binaries are missing (ctest SKIP_RETURN_CODE)
+    # Every check before any side effect: a folder that is not ours is refused (2)
+    # even where Slurm is missing, and a missing Slurm (77) leaves no folder behind.
     setup_paths "$1"
+    check_claimable
+    check_own_paths
+    check_shortlink
+    check_temp_base
+    cmd_check >&2   # exits 77 if binaries are missing (ctest SKIP_RETURN_CODE)
+    claim_state
     SECONDS=0
-    local deadline=$START_TIMEOUT attempt rc
+    local deadline=$START_TIMEOUT attempt rc entry
     # Clean up whatever a previous run left behind (daemons and state).
     cmd_stop "$STATE" >/dev/null 2>&1 || true
-    rm -rf -- "$STATE/munge" "$STATE/ctld" "$STATE/spool" "$STATE/log" "$STATE/run" \
-              "$STATE/slurm.conf" "$STATE/plugstack.conf"
-    mkdir -p "$STATE/log" "$STATE/run"
+    for entry in "${OWN_ENTRIES[@]}"; do remove_ours "$entry"; done
+    mkdir -- "$STATE/log" "$STATE/run"
     chmod 700 "$STATE/run"
     choose_runroot
-    mkdir -p "$STATE/munge" "$STATE/ctld" "$STATE/spool"
+    mkdir -- "$STATE/munge" "$STATE/ctld" "$STATE/spool"
     chmod 700 "$STATE/ctld" "$STATE/spool"
     chmod 711 "$STATE/munge"   # munged: socket dir must not be group/world writable
 
@@ -368,8 +513,8 @@ cmd_start() {
         ((rc == 0)) && break
         if ((rc == 2 && attempt < 3)); then
             log "port clash on $CTLD_PORT/$SLURMD_PORT, retrying with other ports"
-            stop_daemon slurmd "$STATE/run/slurmd.pid" "$CONF"
-            stop_daemon slurmctld "$STATE/run/slurmctld.pid" "$CONF"
+            stop_daemon slurmd run/slurmd.pid "$CONF"
+            stop_daemon slurmctld run/slurmctld.pid "$CONF"
             continue
         fi
         fail_start "Slurm did not come up (timeout ${START_TIMEOUT}s, state dir $STATE)"
