@@ -11,6 +11,7 @@
 #include "harness/core/registry.hpp"
 #include "harness/core/rotation_law.hpp"
 #include "harness/core/trajectory_hash.hpp"
+#include "harness/io/json_reader.hpp"
 #include "harness/judge/law_stability.hpp"
 #include "harness/judge/metrics.hpp"
 #include "harness/judge/own_law.hpp"
@@ -111,7 +112,7 @@ std::string cell_identity(const Plan& plan, const Cell& cell) {
 CellRecord adopt_record(const Plan& plan, const Cell& cell, const std::string& line) {
   Json r;
   try {
-    r = Json::parse(line);
+    r = parse_json<Json>(line);
   } catch (const std::exception&) {
     return {};
   }

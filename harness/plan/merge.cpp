@@ -10,6 +10,7 @@
 #include "harness/core/input_error.hpp"
 #include "harness/io/atomic_file.hpp"
 #include "harness/io/bounded_read.hpp"
+#include "harness/io/json_reader.hpp"
 #include "harness/plan/cell_record.hpp"
 
 namespace dropcheck {
@@ -48,7 +49,7 @@ std::string record_key(const Plan& plan, const std::unordered_set<std::string>& 
                        const std::string& file, long long line, const std::string& text) {
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(text);
+    j = parse_json<nlohmann::json>(text);
   } catch (const std::exception&) {
     throw InputError(file + ":" + std::to_string(line), 0, "",
                      "not a JSON record: " + excerpt(text));
@@ -60,7 +61,10 @@ std::string record_key(const Plan& plan, const std::unordered_set<std::string>& 
   if (j["plan"] != plan.hash)
     throw InputError(
         file, line, "plan",
-        "this record belongs to plan " + excerpt(j["plan"].dump()) + ", not " + plan.hash);
+        "this record belongs to plan " +
+            (j["plan"].is_string() ? excerpt(j["plan"].get<std::string>())
+                                   : std::string("of a JSON ") + j["plan"].type_name()) +
+            ", not " + plan.hash);
   std::string key = j["key"].get<std::string>();
   if (!keys.count(key))
     throw InputError(file + ":" + std::to_string(line), 0, "key",
@@ -79,15 +83,12 @@ MergeResult merge_shards(const Plan& plan, const std::string& dir, const std::st
   std::map<std::string, Seen> records;
   MergeResult m;
   for (const fs::path& path : shard_files(dir)) {
-    // Names in messages escaped: a planted file name could carry terminal controls.
-    const std::string file = escape_controls(path.string());
-    const std::string text =
-        read_regular_file(path.string(), kMaxShardBytes, "4 GiB, for a shard", Links::refuse);
+    // Read a line at a time; names in messages escaped (a planted file name could carry controls).
+    LineReader in(path.string(), kMaxShardBytes, kMaxRecordLine, "a shard file", Links::refuse);
+    const std::string& file = in.name();
     ++m.files;
-    std::istringstream in(text);
-    long long n = 0;
-    for (std::string line; std::getline(in, line);) {
-      ++n;
+    for (std::string line; in.next(line);) {
+      const long long n = in.line_number();
       if (line.empty()) continue;
       const std::string key = record_key(plan, keys, file, n, line);
       const auto [it, added] = records.try_emplace(key, Seen{line, file});

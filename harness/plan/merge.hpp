@@ -25,5 +25,7 @@ MergeResult merge_shards(const Plan& plan, const std::string& dir, const std::st
 
 // Largest shard file read: 4 GiB.
 inline constexpr long long kMaxShardBytes = 4LL << 30;
+// Longest record line read (bytes): a record of dropcheck's is under 2 KiB.
+inline constexpr std::size_t kMaxRecordLine = 1 << 20;
 
 }  // namespace dropcheck

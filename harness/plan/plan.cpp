@@ -7,6 +7,7 @@
 #include "harness/core/input_error.hpp"
 #include "harness/core/trajectory_hash.hpp"
 #include "harness/io/bounded_read.hpp"
+#include "harness/io/json_reader.hpp"
 #include "harness/plan/axes.hpp"
 #include "harness/scene/scene_loader.hpp"
 
@@ -203,7 +204,7 @@ Plan read_plan(const std::string& path) {
 Plan parse_plan(const std::string& text, const std::string& path, bool check_hash) {
   Plan p;
   try {
-    p = from_json(Json::parse(text));
+    p = from_json(parse_json<Json>(text));
   } catch (const InputError& e) {
     throw InputError(path, 0, "", std::string("not a valid plan: ") + e.what());
   } catch (const std::exception& e) {

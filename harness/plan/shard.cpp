@@ -11,6 +11,7 @@
 #include "harness/io/atomic_file.hpp"
 #include "harness/io/bounded_read.hpp"
 #include "harness/plan/cell_record.hpp"
+#include "harness/plan/merge.hpp"
 #include "harness/plan/worker.hpp"
 
 namespace dropcheck {
@@ -59,16 +60,14 @@ std::vector<std::size_t> cells_from(const Plan& plan, const std::string& path,
                                     std::string& file_name) {
   std::unordered_map<std::string, std::size_t> index;
   for (std::size_t i = 0; i < plan.cell_count(); ++i) index.emplace(plan.cell(i).key, i);
-  const std::string text = read_regular_file(path, kMaxPlanBytes, "256 MiB, for a cell list");
-  std::istringstream in(text);
+  LineReader in(path, kMaxPlanBytes, kMaxRecordLine, "a list of cells");
   std::vector<std::size_t> out;
-  int line = 0;
-  for (std::string key; std::getline(in, key);) {
-    ++line;
+  for (std::string key; in.next(key);) {
     if (key.empty()) continue;
     const auto it = index.find(key);
     if (it == index.end())
-      throw InputError(path, line, "", "cell " + excerpt(key) + " is not in plan " + plan.hash);
+      throw InputError(in.name(), static_cast<int>(in.line_number()), "",
+                       "cell " + excerpt(key) + " is not in plan " + plan.hash);
     out.push_back(it->second);
   }
   std::sort(out.begin(), out.end());

@@ -14,6 +14,7 @@
 #include "harness/io/atomic_file.hpp"
 #include "harness/io/bounded_read.hpp"
 #include "harness/io/file_slug.hpp"
+#include "harness/io/json_reader.hpp"
 #include "harness/report/plot.hpp"
 #include "harness/report/report_format.hpp"
 
@@ -222,19 +223,18 @@ void timings(const std::vector<SweepCell>& cells, std::ostringstream& md) {
 }  // namespace
 
 std::vector<SweepCell> read_sweep_results(const std::string& path) {
-  const std::string text = read_regular_file(path, 4LL << 30, "4 GiB, for results");
-  std::istringstream in(text);
+  // At most 4 GiB, a line at most 1 MiB (a record of dropcheck's is under 2 KiB).
+  LineReader in(path, 4LL << 30, 1 << 20, "a result file");
   std::vector<SweepCell> out;
-  long long n = 0;
-  for (std::string line; std::getline(in, line);) {
-    ++n;
+  for (std::string line; in.next(line);) {
+    const long long n = in.line_number();
     if (line.empty()) continue;
     try {
-      const Json j = Json::parse(line);
+      const Json j = parse_json<Json>(line);
       if (j.value("format", "") != "dropcheck-record/1") throw std::invalid_argument("format");
       out.push_back(cell_of(j));
     } catch (const std::exception&) {
-      throw InputError(escape_controls(path) + ":" + std::to_string(n), 0, "",
+      throw InputError(in.name() + ":" + std::to_string(n), 0, "",
                        "not a dropcheck-record/1 record: " + excerpt(line));
     }
   }

@@ -11,6 +11,7 @@
 #include "harness/core/engine_listing.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/io/bounded_read.hpp"
+#include "harness/io/json_reader.hpp"
 
 namespace dropcheck {
 namespace {
@@ -172,8 +173,8 @@ TimingRecord parse_timing_record(const std::string& text, const std::string& fil
   const Reader r{file};
   Json root;
   try {
-    root = Json::parse(text);
-  } catch (const Json::exception& e) {  // a syntax error, or a number beyond double's range
+    root = parse_json<Json>(text);
+  } catch (const std::exception& e) {  // a syntax error, a number beyond double's range, depth
     r.fail("", "not a timings record: " + excerpt(e.what(), 120));
   }
   if (!root.is_object()) r.fail("", "not a timings record: expected a JSON object");

@@ -61,3 +61,29 @@ TEST_CASE("a scene file over 1 MiB is refused with its size and the limit", "[lo
   // At the limit it is read (and then refused only because it holds no scene).
   CHECK(read_regular_file(big, 2 << 20, "test").size() == 1048579);
 }
+
+TEST_CASE("LineReader streams lines, CRLF too, and numbers them", "[limits]") {
+  ScratchDir d("line-reader");
+  const std::string f = d.write("a.txt", "one\r\ntwo\n\nlast without a break");
+  LineReader in(f, 1 << 20, 64, "a test file");
+  std::vector<std::string> lines;
+  for (std::string l; in.next(l);) lines.push_back(l);
+  CHECK(lines == std::vector<std::string>{"one", "two", "", "last without a break"});
+  CHECK(in.line_number() == 4);
+}
+
+TEST_CASE("LineReader refuses a line over its bound by file and line, never as the end of the file",
+          "[limits]") {
+  ScratchDir d("line-reader-long");
+  // A 100 KiB line where at most 1 KiB is allowed: an error naming line 2, not two lines read.
+  const std::string f = d.write("long.jsonl", "{}\n" + std::string(100 * 1024, 'x') + "\n{}\n");
+  LineReader in(f, 1 << 20, 1024, "a shard file");
+  std::string l;
+  REQUIRE(in.next(l));
+  CHECK_THROWS_WITH(in.next(l), Contains("long.jsonl:2") &&
+                                    Contains("a line longer than 1024 bytes: not a shard file"));
+  // The size bound is checked before a byte is read, and a name's control bytes are escaped.
+  const std::string odd = d.write("odd\x1b[31m.jsonl", std::string(2048, '\n'));
+  CHECK_THROWS_WITH(LineReader(odd, 1024, 64, "a shard file"),
+                    Contains("odd\\x1b[31m.jsonl") && Contains("more than the limit of 1024"));
+}

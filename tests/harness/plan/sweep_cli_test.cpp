@@ -300,3 +300,22 @@ TEST_CASE(
   CHECK_THAT(linked.err, !Contains("cell 1 of"));
   CHECK(std::filesystem::is_empty(d.file("elsewhere")));
 }
+
+TEST_CASE("a plan or a record nesting arrays past 64 levels is refused by file, not a crash",
+          "[plan][cli][hostile]") {
+  ScratchDir d("sweep-deep");
+  const std::string deep = std::string(1000000, '[') + std::string(1000000, ']');
+  const Cli s = run({"sweep", d.write("deep.plan", "{\"description\":" + deep + "}"), "--shard",
+                     "1/1", "--out", d.file("x")});
+  CHECK(s.code == 2);
+  CHECK_THAT(s.err, Contains("deep.plan") && Contains("nest deeper than 64 levels"));
+  const std::string plan = make_plan_file(d);
+  std::filesystem::create_directories(d.file("shards"));
+  // 200,000 levels: a line under the 1 MiB a record line may take.
+  const std::string record_deep = std::string(200000, '[') + std::string(200000, ']');
+  d.write("shards/shard-1-of-1.jsonl",
+          "{\"format\":\"dropcheck-record/1\",\"key\":\"k\",\"plan\":" + record_deep + "}\n");
+  const Cli m = run({"merge", plan, d.file("shards"), "--out", d.file("r.jsonl")});
+  CHECK(m.code == 2);
+  CHECK_THAT(m.err, Contains("shard-1-of-1.jsonl:1") && Contains("not a JSON record"));
+}
