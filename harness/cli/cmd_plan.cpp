@@ -36,8 +36,17 @@ int cmd_plan(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   for (const std::string& f : sweep.scene_files) files.read(f);
   files.write_file("--out", target);
   files.check();
-  const Plan plan = make_plan(sweep);
-  write_file_atomic(target, plan_text(plan));
+  std::vector<EngineInfo> engines;  // the sweep's engines this build has, for the run limits
+  for (const std::string& name : sweep.engines)
+    if (const std::unique_ptr<Engine> e = make_engine(name)) engines.push_back(e->info());
+  const Plan plan = make_plan(sweep, engines);
+  const std::string text = plan_text(plan);
+  if (static_cast<long long>(text.size()) > kMaxPlanBytes)  // every sweep would refuse it
+    throw InputError(sweep.file, 0, "",
+                     "the plan would take " + std::to_string(text.size()) +
+                         " bytes, more than the " + std::to_string(kMaxPlanBytes) +
+                         " a sweep reads: split the sweep (fewer scenes, axes or values)");
+  write_file_atomic(target, text);
   out << "plan " << plan.hash << ": " << plan.cell_count() << " cells (" << plan.scenes.size()
       << " scenes x " << plan.engines.size() << " engines";
   for (const Axis& a : plan.axes) out << " x " << a.values.size() << " " << a.name;

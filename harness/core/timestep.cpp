@@ -18,6 +18,7 @@ bool parse_double(const std::string& s, double& out) {
 
 std::optional<Timestep> parse_timestep(const std::string& text, std::string& why) {
   double seconds = 0.0;
+  std::string canonical;  // "1/N" without leading zeros, or the shortest text of the seconds
   if (text.rfind("1/", 0) == 0) {
     long long n = 0;
     const char* end = text.data() + text.size();
@@ -27,6 +28,7 @@ std::optional<Timestep> parse_timestep(const std::string& text, std::string& why
       return std::nullopt;
     }
     seconds = 1.0 / static_cast<double>(n);
+    canonical = "1/" + std::to_string(n);
   } else if (!parse_double(text, seconds)) {
     why = "expected seconds (0.01) or a rate (\"1/60\"), got \"" + text + "\"";
     return std::nullopt;
@@ -35,7 +37,7 @@ std::optional<Timestep> parse_timestep(const std::string& text, std::string& why
     why = "must be a finite number of seconds > 0, got \"" + text + "\"";
     return std::nullopt;
   }
-  return Timestep{seconds, text};
+  return Timestep{seconds, canonical.empty() ? shortest(seconds) : canonical};
 }
 
 std::string step_problem(double duration, double h) {

@@ -20,8 +20,8 @@ inline constexpr int kMaxJsonDepth = 64;
 template <class J>
 J parse_json(std::string_view text) {
   return J::parse(text, [](int depth, typename J::parse_event_t event, J&) {
-    if (depth >= kMaxJsonDepth && (event == J::parse_event_t::object_start ||
-                                   event == J::parse_event_t::array_start))
+    if (depth >= kMaxJsonDepth &&
+        (event == J::parse_event_t::object_start || event == J::parse_event_t::array_start))
       throw std::invalid_argument("arrays and objects nest deeper than " +
                                   std::to_string(kMaxJsonDepth) + " levels");
     return true;

@@ -169,6 +169,10 @@ CellRecord run_cell(const Plan& plan, const Cell& cell, Isolation isolation,
     r["reason"] = run.failure.substr(0, run.failure.find(';'));
     return {status, r.dump()};
   }
+  if (run.status == RunStatus::refused) {  // over a run limit: nothing ran, nothing to measure
+    r["reason"] = run.failure;
+    return {status, r.dump()};
+  }
   if (run.status != RunStatus::ok) {
     r["reason"] = run.failure;
     r["failed_step"] = run.failed_step;

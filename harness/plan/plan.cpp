@@ -9,6 +9,7 @@
 #include "harness/io/bounded_read.hpp"
 #include "harness/io/json_reader.hpp"
 #include "harness/plan/axes.hpp"
+#include "harness/run/run_limits.hpp"
 #include "harness/scene/scene_loader.hpp"
 
 namespace dropcheck {
@@ -18,19 +19,29 @@ using Json = nlohmann::ordered_json;
 
 constexpr const char* kPlanFormat = "dropcheck-plan/1";
 
-// Checks that each value of each axis applies to each scene on its own (the product is not
-// built: a combination that cannot apply becomes its cell's record).
-void validate_axes(const SweepSpec& sweep, const Plan& plan) {
+// Checks that each value of each axis applies to each scene on its own, and that each engine's run
+// there is within the limits a run is held to (run_limits.hpp: steps, recorded samples' memory,
+// float range), so that `run --dt` and a plan refuse the same steps. The product is not built: a
+// combination that cannot apply becomes its cell's record.
+void validate_axes(const SweepSpec& sweep, const Plan& plan, std::span<const EngineInfo> engines) {
   for (std::size_t i = 0; i < sweep.axes.size(); ++i) {
     const Axis& a = sweep.axes[i];
     for (const PlanScene& s : plan.scenes)
       for (const std::string& v : a.values) {
+        const auto refuse = [&](const std::string& why) {
+          return InputError(sweep.file, a.line, "axis[" + std::to_string(i) + "]",
+                            a.name + " = " + v + " on scene " + s.name + ": " + why);
+        };
+        CellSetup c;
         try {
-          setup_cell(s.text, s.file, sweep.engines.front(), {&a, 1}, {&v, 1});
+          c = setup_cell(s.text, s.file, sweep.engines.front(), {&a, 1}, {&v, 1});
         } catch (const InputError& e) {
-          throw InputError(sweep.file, a.line, "axis[" + std::to_string(i) + "]",
-                           a.name + " = " + v + " on scene " + s.name + ": " + e.what());
+          throw refuse(e.what());
         }
+        for (const EngineInfo& info : engines)
+          if (const std::string why = run_refusal(info, c.scene, c.h.seconds, RunOptions{});
+              !why.empty())
+            throw refuse(info.name + ": " + why);
       }
   }
 }
@@ -170,7 +181,7 @@ bool Plan::has(Measure m) const {
   return std::find(measures.begin(), measures.end(), m) != measures.end();
 }
 
-Plan make_plan(const SweepSpec& sweep) {
+Plan make_plan(const SweepSpec& sweep, std::span<const EngineInfo> engines) {
   Plan p;
   p.sweep = sweep.file;
   p.description = sweep.description;
@@ -186,7 +197,7 @@ Plan make_plan(const SweepSpec& sweep) {
                        "two scenes are named " + excerpt(s.name) + " (the second: " + file + ")");
     p.scenes.push_back({s.name, file, std::move(text)});
   }
-  validate_axes(sweep, p);
+  validate_axes(sweep, p, engines);
   p.hash = hash_of(p);
   return p;
 }

@@ -8,10 +8,12 @@
 #pragma once
 
 #include <cstddef>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "harness/core/engine.hpp"
 #include "harness/plan/sweep_file.hpp"
 
 namespace dropcheck {
@@ -44,8 +46,10 @@ struct Plan {
 
 // The plan of a loaded sweep. Reads every scene and applies each axis value to each (one axis at a
 // time): a value that cannot apply is an InputError naming the sweep file, the axis and the scene,
-// before any cell runs. Two scenes of one name are refused.
-Plan make_plan(const SweepSpec& sweep);
+// before any cell runs. Two scenes of one name are refused. `engines`: the declared info of the
+// sweep's engines this build has; a step any of them would refuse to run (run_limits.hpp: steps,
+// recorded samples' memory, float range) is refused here too.
+Plan make_plan(const SweepSpec& sweep, std::span<const EngineInfo> engines = {});
 
 // The hash of a plan's content (FNV-1a over its JSON without the hash and the paths).
 std::string plan_hash(const Plan& plan);

@@ -319,3 +319,51 @@ TEST_CASE("a plan or a record nesting arrays past 64 levels is refused by file, 
   CHECK(m.code == 2);
   CHECK_THAT(m.err, Contains("shard-1-of-1.jsonl:1") && Contains("not a JSON record"));
 }
+
+TEST_CASE("report --results escapes record text everywhere and gives two scenes two map files",
+          "[plan][cli][report][hostile]") {
+  ScratchDir d("sweep-escapes");
+  // Hand-made records: scenes "a b" and "a_b" (one file slug), an engine name with a terminal
+  // escape, a status and reason with a line break.
+  std::string text;
+  for (const std::string scene : {"a b", "a_b"})
+    for (const std::string h : {"1/60", "1/30"})
+      text += "{\"format\":\"dropcheck-record/1\",\"key\":\"" + scene +
+              "|e\\u001b[31m|timestep=" + h + "\",\"scene\":\"" + scene +
+              "\",\"engine\":{\"name\":\"e\\u001b[31m\"},\"axes\":{\"timestep\":\"" + h +
+              "\"},\"status\":\"odd\\nstatus\",\"reason\":\"line\\n## injected\","
+              "\"stability\":{\"theory_max_h\":null,\"law_unstable\":\"\"}}\n";
+  const std::string results = d.write("r.jsonl", text);
+  const Cli c = run({"report", "--results", results, "--out", d.file("maps")});
+  REQUIRE(c.code == 0);
+  CHECK_THAT(c.err, !Contains("\x1b"));
+  const std::string readme = slurp(d.file("maps/README.md"));
+  CHECK_THAT(readme, !Contains("\x1b") && !Contains("\n## injected"));
+  CHECK_THAT(readme, Contains("\\x1b[31m"));
+  std::size_t svgs = 0;
+  for (const auto& e : std::filesystem::directory_iterator(d.file("maps")))
+    svgs += e.path().extension() == ".svg";
+  CHECK(svgs == 2);  // one stability map per scene, none written over the other
+}
+
+TEST_CASE("plan refuses what run refuses, and one step written two ways", "[plan][cli][hostile]") {
+  ScratchDir d("sweep-limits");
+  const auto sweep = [&](const std::string& values) {
+    return d.write("s.toml", "scenes = [\"" + std::string(DROPCHECK_SOURCE_DIR) +
+                                 "/scenarios/free_fall.toml\"]\nengines = [\"ours\"]\n"
+                                 "[[axis]]\nname = \"timestep\"\nvalues = [" +
+                                 values + "]\n");
+  };
+  // 1e-9 s: 10^9 steps, as `run --dt 1e-9` refuses them.
+  const Cli tiny = run({"plan", sweep("\"1e-9\""), "--out", d.file("p.plan")});
+  CHECK(tiny.code == 2);
+  CHECK_THAT(tiny.err, Contains("s.toml") && Contains("exceed the limit of 20000000 steps"));
+  CHECK_FALSE(std::filesystem::exists(d.file("p.plan")));
+  // "1/60" and "1/060" are one step: one text, so listed twice.
+  const Cli twice = run({"plan", sweep("\"1/60\", \"1/060\""), "--out", d.file("p.plan")});
+  CHECK(twice.code == 2);
+  CHECK_THAT(twice.err, Contains("1/60 appears twice"));
+  const Cli seconds = run({"plan", sweep("\"0.0010\", 0.001"), "--out", d.file("p.plan")});
+  CHECK(seconds.code == 2);
+  CHECK_THAT(seconds.err, Contains("0.001 appears twice"));
+}
