@@ -18,7 +18,7 @@ bool parse_double(const std::string& s, double& out) {
 
 std::optional<Timestep> parse_timestep(const std::string& text, std::string& why) {
   double seconds = 0.0;
-  std::string canonical;  // "1/N" without leading zeros, or the shortest text of the seconds
+  std::string canonical;  // a rate's text: "1/N" without leading zeros
   if (text.rfind("1/", 0) == 0) {
     long long n = 0;
     const char* end = text.data() + text.size();
@@ -37,7 +37,7 @@ std::optional<Timestep> parse_timestep(const std::string& text, std::string& why
     why = "must be a finite number of seconds > 0, got \"" + text + "\"";
     return std::nullopt;
   }
-  return Timestep{seconds, canonical.empty() ? shortest(seconds) : canonical};
+  return Timestep{seconds, canonical.empty() ? text : canonical};
 }
 
 std::string step_problem(double duration, double h) {

@@ -9,9 +9,8 @@
 namespace dropcheck {
 
 // Parses "1/N" (N a positive integer) or a decimal number of seconds. Returns nullopt, with the
-// problem in `why`, for anything else, zero, negatives and non-finite values. The step's text is
-// canonical, one text per step: "1/N" without leading zeros ("1/060" is "1/60"), or the shortest
-// text of the seconds ("1e-3" and "0.0010" are "0.001"); so a sweep never names one step twice.
+// problem in `why`, for anything else, zero, negatives and non-finite values. A rate's text is
+// written without leading zeros ("1/060" is "1/60"); seconds keep the text given ("1e-5").
 std::optional<Timestep> parse_timestep(const std::string& text, std::string& why);
 
 // The largest step count a run may ask for (duration / h).

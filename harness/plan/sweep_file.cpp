@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <set>
 
 #include "harness/core/input_error.hpp"
@@ -186,9 +187,18 @@ Axis load_axis(const Reader& r) {
   } else {
     a.values = range_values(r, a);
   }
-  std::set<std::string> seen;
-  for (const std::string& v : a.values)
-    if (!seen.insert(v).second) r.fail("values", "value " + v + " appears twice");
+  // One value twice is one cell twice. A step is the same step however it is written ("0.0010"
+  // and 0.001, "1/60" and 1/60's seconds are not: 1/60 has no exact decimal).
+  std::map<std::string, std::string> seen;  // identity -> the text first seen
+  for (const std::string& v : a.values) {
+    std::string why;
+    const std::optional<Timestep> h =
+        a.kind == AxisKind::timestep ? parse_timestep(v, why) : std::nullopt;
+    const std::string identity = h ? shortest(h->seconds) : v;
+    if (const auto [it, added] = seen.emplace(identity, v); !added)
+      r.fail("values",
+             "value " + v + " appears twice" + (it->second == v ? "" : " (as " + it->second + ")"));
+  }
   return a;
 }
 

@@ -365,5 +365,5 @@ TEST_CASE("plan refuses what run refuses, and one step written two ways", "[plan
   CHECK_THAT(twice.err, Contains("1/60 appears twice"));
   const Cli seconds = run({"plan", sweep("\"0.0010\", 0.001"), "--out", d.file("p.plan")});
   CHECK(seconds.code == 2);
-  CHECK_THAT(seconds.err, Contains("0.001 appears twice"));
+  CHECK_THAT(seconds.err, Contains("0.001 appears twice (as 0.0010)"));
 }
