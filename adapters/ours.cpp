@@ -6,7 +6,13 @@
 //   damping rate k     -> World::linearDrag = exp(-k*h), the seed's per-step factor at this h
 //   mass, position, v  -> Model::translation, RigidBody::{mass, velocity}; static -> isStatic
 //   force this step    -> RigidBody::force (IntegrateLinearForce clears it)
-// Contacts: ours has none yet (the seed's Part IV adds them), so contact scenes are refused.
+//   contacts           -> World::collisions (ours/collision.hpp); each body's shape and extent
+//                         -> Model::collider; the scene's friction and restitution (one value per
+//                         scene) -> World::friction, ::restitution (0 when unset)
+// Contacts (ours/collision.hpp): touching and overlapping pairs found at the step's start, resolved
+// from the floor up with a Coulomb cone clamp and the restitution of the step-start approach, the
+// overlap pushed out in position. Its impulses act through the centre of mass, so a contact scene
+// with a box that is turned or turning is refused (its landing on an edge is not modelled).
 #include <chrono>
 #include <vector>
 
@@ -25,13 +31,42 @@ class OursEngine final : public Engine {
     i.name = sizeof(T) == 4 ? "ours" : "ours-f64";
     i.version = "seed part III";
     i.scalar = sizeof(T) == 4 ? Scalar::f32 : Scalar::f64;
-    i.capabilities = {.contacts = false, .planar_only = false, .rotation = Rotation::full};
+    i.capabilities = {.contacts = true,
+                      .planar_only = false,
+                      .rotation = Rotation::full,
+                      .friction = true,
+                      .restitution = true,
+                      .spheres = true};
     i.law = DampingOrder::AfterForces;
     i.rotation_law = {Gyroscopic::explicit_term, OrientationUpdate::first_order};
     i.arithmetic = DampingForm::phi_multiply;  // ours/physics.hpp, copied by own_arithmetic.cpp
     i.damping_mapping = "linearDrag f = exp(-k*h) per step";
-    i.continuous_collision = false;  // no contacts at all
+    i.continuous_collision = false;  // contacts found where the last step left the bodies
+    i.contact_settings =
+        "touching and overlapping pairs at the step start, resolved from the floor up "
+        "(each against the body under it as immovable); Coulomb cone clamp, restitution of the "
+        "step-start approach, the overlap pushed out in position; mu and e 0 unless set";
+    i.friction_model = FrictionModel::cone;  // ResolveContact: |v_t| clamped by mu*j_n
+    // The ideal law with the whole step-start depth pushed out in position, a touch a contact.
+    i.bounce_law = {.erp = 1.0, .push_in_position = true, .touching = true};
+    i.stack_law = {.sink_bound = 1e-12, .drift_bound = 1e-12, .still_bound = 1e-12};  // rigid
     return i;
+  }
+
+  // Contacts push through the centre of mass: a box that is turned or turning would land on an
+  // edge, which ours does not model.
+  std::string cannot_run(const Scene& scene) const override {
+    if (std::string why = Engine::cannot_run(scene); !why.empty()) return why;
+    if (!scene.world.contacts) return {};
+    for (const Body& b : scene.bodies)
+      if (b.shape == Shape::box && !b.is_static &&
+          (!b.orientation.isApprox(Quat::Identity(), 0.0) || !b.angular_velocity.isZero(0.0)))
+        return "a turned or turning box in contact: ours pushes through the centre of mass and "
+               "does not model a landing on an edge";
+    for (const Body& b : scene.bodies)
+      if (b.shape == Shape::box && b.is_static && !b.orientation.isApprox(Quat::Identity(), 0.0))
+        return "a turned static box: ours collides axis-aligned boxes";
+    return {};
   }
 
   void load(const Scene& scene, double h) override {
@@ -39,6 +74,10 @@ class OursEngine final : public Engine {
     world_.gravity = scene.world.gravity.cast<T>();
     world_.linearDrag = static_cast<T>(decay_per_step(scene, h));
     world_.angularDrag = static_cast<T>(angular_decay_per_step(scene, h));
+    const Material material = scene_material(scene);
+    world_.collisions = scene.world.contacts;
+    world_.friction = static_cast<T>(material.friction.value_or(0.0));
+    world_.restitution = static_cast<T>(material.restitution.value_or(0.0));
     models_.assign(scene.bodies.size(), {});
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
       const Body& b = scene.bodies[i];
@@ -49,6 +88,10 @@ class OursEngine final : public Engine {
       models_[i].rotation = b.orientation.cast<T>();
       models_[i].rigidBody.angularVelocity = b.angular_velocity.cast<T>();
       models_[i].rigidBody.inertia = inertia_of(b).cast<T>();
+      ours::Collider<T>& c = models_[i].collider;
+      c.shape = b.shape == Shape::sphere ? ours::Shape::Sphere : ours::Shape::Box;
+      c.halfExtents = b.half_extents.cast<T>();
+      c.radius = static_cast<T>(b.radius);
     }
   }
 

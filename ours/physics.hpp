@@ -24,10 +24,14 @@
 // RigidBody, the gravity and per-step drags as World settings so the harness can run at any h with
 // f = exp(-k*h), and the orientation as a quaternion `rotation` (the seed's Model keeps a
 // rotationMatrix for drawing, which is R of this quaternion).
+//
+// Collisions (collision.hpp, the part the seed announces next) run only when World::collisions is
+// on: Part III's step, as above, is then split around ResolveContacts, its arithmetic unchanged.
 #pragma once
 
 #include <span>
 
+#include "collision.hpp"
 #include "constants.hpp"
 
 namespace ours {
@@ -50,6 +54,7 @@ struct Model {
   Vector3<T> translation = Vector3<T>::Zero();         // m
   Quaternion<T> rotation = Quaternion<T>::Identity();  // body frame to world frame
   RigidBody<T> rigidBody;
+  Collider<T> collider;  // what it collides as (collision.hpp)
 };
 
 // World settings the seed hard-codes as constants.
@@ -58,6 +63,9 @@ struct World {
   Vector3<T> gravity = GRAVITY<T>;
   T linearDrag = LINEAR_DRAG<T>;    // per-step factor in (0, 1]
   T angularDrag = ANGULAR_DRAG<T>;  // per-step factor in (0, 1]
+  bool collisions = false;          // Part III: off, the cubes fall through the floor
+  T friction = T(0);                // Coulomb mu of every contact
+  T restitution = T(0);             // e of every contact
 };
 
 // v += g*h
@@ -66,14 +74,26 @@ void ApplyGravity(Model<T>* model, const World<T>& world, T deltaTime) {
   model->rigidBody.velocity += world.gravity * deltaTime;
 }
 
-// v += (F/m)*h; F = 0; v *= f; x += v*h
+// v += (F/m)*h; F = 0; v *= f
 template <typename T>
-void IntegrateLinearForce(Model<T>* model, const World<T>& world, T deltaTime) {
+void IntegrateLinearVelocity(Model<T>* model, const World<T>& world, T deltaTime) {
   RigidBody<T>& body = model->rigidBody;
   body.velocity += (body.force / body.mass) * deltaTime;
   body.force = Vector3<T>::Zero();
   body.velocity *= world.linearDrag;
-  model->translation += body.velocity * deltaTime;
+}
+
+// x += v*h
+template <typename T>
+void IntegratePosition(Model<T>* model, T deltaTime) {
+  model->translation += model->rigidBody.velocity * deltaTime;
+}
+
+// v += (F/m)*h; F = 0; v *= f; x += v*h
+template <typename T>
+void IntegrateLinearForce(Model<T>* model, const World<T>& world, T deltaTime) {
+  IntegrateLinearVelocity(model, world, deltaTime);
+  IntegratePosition(model, deltaTime);
 }
 
 // w += I_w^-1*(tau - w x (I_w*w))*h; tau = 0; w *= f_a; q = normalize(q + (h/2)*(0, w)*q).
@@ -95,9 +115,34 @@ void IntegrateAngularForce(Model<T>* model, const World<T>& world, T deltaTime) 
   model->rotation.normalize();
 }
 
+// One fixed step with collisions: contacts found where the last step left the bodies, the
+// velocities updated as in Part III, the contacts resolved, then the positions moved and the
+// overlaps pushed out (collision.hpp).
+template <typename T>
+void ApplyPhysicsWithCollisions(std::span<Model<T>> models, const World<T>& world, T deltaTime) {
+  std::vector<Contact<T>> contacts = FindContacts<T>(std::span<const Model<T>>(models));
+  for (Model<T>& model : models) {
+    if (model.rigidBody.isStatic) continue;
+    ApplyGravity(&model, world, deltaTime);
+    IntegrateLinearVelocity(&model, world, deltaTime);
+  }
+  ResolveContacts(models, contacts, world.friction, world.restitution);
+  for (Model<T>& model : models) {
+    if (model.rigidBody.isStatic) continue;
+    IntegratePosition(&model, deltaTime);
+  }
+  PushOut(models, contacts);
+  for (Model<T>& model : models)
+    if (!model.rigidBody.isStatic) IntegrateAngularForce(&model, world, deltaTime);
+}
+
 // One fixed step for every model that is not static.
 template <typename T>
 void ApplyPhysics(std::span<Model<T>> models, const World<T>& world, T deltaTime) {
+  if (world.collisions) {
+    ApplyPhysicsWithCollisions(models, world, deltaTime);
+    return;
+  }
   for (Model<T>& model : models) {
     if (model.rigidBody.isStatic) continue;
     ApplyGravity(&model, world, deltaTime);

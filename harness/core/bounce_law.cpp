@@ -27,6 +27,7 @@ std::string describe(const BounceLaw& law) {
   if (law.erp > 0.0) text += ", " + push_text(law);
   if (law.contact_distance > 0.0 || law.contact_distance_per_size > 0.0)
     text += ", " + contact_distance_text(law);
+  if (law.touching) text += ", a touch (gap 0) is a contact";
   return text;
 }
 

@@ -5,7 +5,8 @@
 // Every engine here finds its contacts where the last step left the bodies, so a falling sphere
 // meets the floor by penetrating it (or, with a speculative contact distance, just before) and the
 // next step answers. With gap the distance to the floor at the start of a step (negative: depth d
-// in it) and v the normal velocity then (negative: approaching), while gap < contact distance:
+// in it) and v the normal velocity then (negative: approaching), while gap < contact distance
+// (or gap <= 0 for an engine whose touching pairs are contacts):
 //   v_free = v - g*h                                  (this step's gravity)
 //   rest   = e*(-v)  when -v > threshold, else 0      (restitution of the step-start approach)
 //   gap >= 0: target = rest - gap/h                   (speculative: may close the gap this step)
@@ -32,6 +33,9 @@ struct BounceLaw {
   // ... plus this times the smaller bounding-box half diagonal of the pair (Bullet's relative
   // contact breaking threshold).
   double contact_distance_per_size = 0.0;
+  // A gap of exactly 0 (a body resting on the floor's top) is a contact too, not only an overlap
+  // (ours: its contacts include touching pairs, so a resting body is held from its first step).
+  bool touching = false;
 };
 
 // The ideal member: restitution of the step-start approach, no push-out, no threshold.

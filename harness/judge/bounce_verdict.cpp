@@ -74,6 +74,15 @@ BounceVerdict judge_bounce(const Trajectory& run, const BounceSetup& s, const Bo
   v.worst_gap = to_law.worst;
   v.worst_step = to_law.step;
   v.follows = to_law.worst <= tolerance::kBouncePath;
+  if (!v.follows) {
+    const BouncePath ahead = bounce_steps(law, seen, s.e, s.g, h, s.size);
+    const PathGap local = path_gap(seen, ahead);
+    v.step_gap = local.worst;
+    v.step_worst = local.step;
+    for (std::size_t n = 0; n < seen.v.size(); ++n)
+      v.step_speed = std::max(v.step_speed, std::abs(seen.v[n] - ahead.v[n]));
+    v.follows = local.worst <= tolerance::kBouncePath && v.step_speed <= tolerance::kStepSpeed;
+  }
   v.follows_ideal = path_gap(seen, ideal).worst <= tolerance::kBouncePath;
   v.law_to_ideal = path_gap(predicted, ideal).worst;
   if (v.law_to_ideal > tolerance::kBouncePath) {
@@ -98,9 +107,19 @@ std::string BounceVerdict::sentence() const {
                 apex_text(seen.apexes);
   if (energy_rises) text += " (ENERGY RISES)";
   text += "; its law (" + describe(law) + "): ";
-  text += follows ? printf_string("the same path to %.2g m", worst_gap)
-                  : printf_string("DEPARTS at step %lld by %.3g m",
-                                  static_cast<long long>(worst_step), worst_gap);
+  if (step_gap < 0.0)
+    text += printf_string("the same path to %.2g m", worst_gap);
+  else if (follows)
+    text += printf_string(
+        "every step as its law to %.2g m and %.2g m/s; the paths part at step %lld by %.3g m: "
+        "the run's rounding, amplified where a contact was decided on the other side",
+        step_gap, step_speed, static_cast<long long>(worst_step), worst_gap);
+  else
+    text += printf_string(
+        "DEPARTS at step %lld by %.3g m (one step from its own state: %.3g m at "
+        "step %lld, %.3g m/s)",
+        static_cast<long long>(worst_step), worst_gap, step_gap, static_cast<long long>(step_worst),
+        step_speed);
   if (!follows && follows_ideal) text += ": it follows the ideal law instead";
   if (law_to_ideal > tolerance::kBouncePath) {
     text += printf_string("; its law is %.3g m off the ideal law (apexes ", law_to_ideal) +

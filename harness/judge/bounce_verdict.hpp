@@ -21,7 +21,14 @@ struct BounceVerdict {
   Bounce closed;                // the continuous closed form
   double worst_gap = 0.0;       // m: the largest |gap - its law's gap| over the run
   std::int64_t worst_step = 0;  // where
-  bool follows = false;         // worst_gap <= tolerance::kBouncePath
+  bool follows = false;         // worst_gap, or else step_gap, <= tolerance::kBouncePath
+  // When the path leaves its law's: the largest |gap - the law's step from the run's own state
+  // the step before| (bounce_steps), and where. A run that rounds otherwise than the law in double
+  // meets a contact decided on a gap within rounding of 0 on the other side, and its path leaves
+  // the law's there while every step follows the law: it follows its law.
+  double step_gap = -1.0;       // m (-1: not needed, the path follows)
+  std::int64_t step_worst = 0;  // where
+  double step_speed = 0.0;      // m/s: the largest |v - the law's step| likewise
   bool follows_ideal = false;   // the run is within that tolerance of the ideal law too
   bool energy_rises = false;    // an apex above the height before it (h0 for the first)
   double law_to_ideal = 0.0;    // m: the largest gap difference between its law and the ideal's

@@ -70,6 +70,13 @@ SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& s, FrictionMod
   v.off_law = own.off;
   v.follows = own.follows;
   if (v.follows) return v;
+  const SlidePath ahead = slide_steps(s, model, h, path);
+  v.off_steps = path_distance(path, ahead);
+  for (std::size_t n = 0; n < path.v.size(); ++n)
+    v.off_steps_speed = std::max(v.off_steps_speed, std::abs(path.v[n] - ahead.v[n]));
+  v.follows =
+      v.off_steps <= tolerance::kSlideDistance && v.off_steps_speed <= tolerance::kStepSpeed;
+  if (v.follows) return v;
   for (FrictionModel other : kFrictionModels)
     if (other != model && exact_slide_angle(other, s.angle) &&
         fit(path, v.seen, s, other, h).follows)
@@ -85,6 +92,12 @@ std::string SlideVerdict::sentence() const {
               ? printf_string(" (continuous: %.5g s, %.5g m)", law.stop_time, law.distance)
               : printf_string(" (continuous: %.7g m by the end)", end_continuous);
   text += printf_string(", %.2g m off it", off_law);
+  if (off_steps >= 0.0)
+    text += printf_string(
+        follows ? ", every step as its law to %.2g m and %.2g m/s (the drift is the run's "
+                  "rounding)"
+                : " (one step from its own state: %.2g m, %.2g m/s)",
+        off_steps, off_steps_speed);
   if (follows) return text;
   text += " DEPARTS";
   if (instead) text += std::string(": it follows the ") + to_string(*instead) + "'s law instead";

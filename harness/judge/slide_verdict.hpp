@@ -21,7 +21,13 @@ struct SlideVerdict {
   SlideObservation law_seen;    // the law's path read as the run's is
   double end_continuous = 0.0;  // m along the slip at the run's end, continuous (exact only)
   double off_law = 0.0;         // m: the largest distance between the run and its law over the run
-  bool follows = false;         // stop step equal, off_law within tolerance::kSlideDistance
+  bool follows = false;  // stop step equal and off_law within tolerance::kSlideDistance, or else
+                         // off_steps within it
+  // When the path leaves its law's: the largest distance between the run and its law one step
+  // ahead of the run's own state (slide_steps). A float engine's path drifts from the law's in
+  // double by its rounding while every step follows the law.
+  double off_steps = -1.0;               // m (-1: not needed, the path follows)
+  double off_steps_speed = 0.0;          // m/s: the same for the speed along the slip
   std::optional<FrictionModel> instead;  // another model whose law the run follows, if any
   // "stops at step 62, 2.509472 m; its box pyramid's clamp law: stops at step 62, 2.509472 m
   // (continuous: 1.0204 s, 2.551 m), 9.1e-12 m off it", with " DEPARTS: it follows the cone's law

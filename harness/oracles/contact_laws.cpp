@@ -121,16 +121,37 @@ std::vector<SlideSetup> slide_setups(const Scene& scene) {
   return out;
 }
 
+namespace {
+
+// One step of the clamp law from (s, v).
+void slide_step(const SlideSetup& setup, double grip_h, double h, double& s, double& v) {
+  const double v_free = v + setup.pull * h;
+  v = std::abs(v_free) <= grip_h ? 0.0 : v_free - std::copysign(grip_h, v_free);
+  s += h * v;
+}
+
+}  // namespace
+
 SlidePath slide_path(const SlideSetup& setup, FrictionModel model, double h, std::int64_t steps) {
   const double grip_h = slide_grip(setup.mu, setup.g, model, setup.angle) * h;
   SlidePath p;
   double s = 0.0, v = setup.v0;
   for (std::int64_t n = 0; n <= steps; ++n) {
-    if (n > 0) {
-      const double v_free = v + setup.pull * h;
-      v = std::abs(v_free) <= grip_h ? 0.0 : v_free - std::copysign(grip_h, v_free);
-      s += h * v;
-    }
+    if (n > 0) slide_step(setup, grip_h, h, s, v);
+    p.s.push_back(s);
+    p.v.push_back(v);
+    p.off.push_back(0.0);
+  }
+  return p;
+}
+
+SlidePath slide_steps(const SlideSetup& setup, FrictionModel model, double h,
+                      const SlidePath& from) {
+  const double grip_h = slide_grip(setup.mu, setup.g, model, setup.angle) * h;
+  SlidePath p;
+  for (std::size_t n = 0; n < from.s.size(); ++n) {
+    double s = n == 0 ? 0.0 : from.s[n - 1], v = n == 0 ? setup.v0 : from.v[n - 1];
+    if (n > 0) slide_step(setup, grip_h, h, s, v);
     p.s.push_back(s);
     p.v.push_back(v);
     p.off.push_back(0.0);
@@ -188,7 +209,7 @@ class BounceStepper {
   void step() {
     const double v_free = v_ - g_ * h_;
     double moved = 0.0;  // a push in position
-    if (gap_ < reach_ || gap_ < 0.0) {
+    if (gap_ < reach_ || gap_ < 0.0 || (law_.touching && gap_ == 0.0)) {
       const double rest = -v_ > law_.threshold ? e_ * -v_ : 0.0;
       double target = rest - gap_ / h_;  // speculative: the gap may close this step
       if (gap_ < 0.0) {
@@ -204,6 +225,11 @@ class BounceStepper {
   }
   double gap() const { return gap_; }
   double v() const { return v_; }
+  // Restarts from a state (a run's, for its law one step ahead).
+  void reset(double gap, double v) {
+    gap_ = gap;
+    v_ = v;
+  }
 
  private:
   BounceLaw law_;
@@ -251,6 +277,22 @@ BouncePath bounce_path(const BounceLaw& law, double h0, double e, double g, doub
   p.gap.push_back(sphere.gap());
   p.v.push_back(sphere.v());
   for (std::int64_t n = 1; n <= steps; ++n) {
+    sphere.step();
+    p.gap.push_back(sphere.gap());
+    p.v.push_back(sphere.v());
+  }
+  return p;
+}
+
+BouncePath bounce_steps(const BounceLaw& law, const BouncePath& from, double e, double g, double h,
+                        double size) {
+  BouncePath p;
+  if (from.gap.empty()) return p;
+  BounceStepper sphere(law, from.gap[0], e, g, h, size);
+  p.gap.push_back(from.gap[0]);
+  p.v.push_back(from.v[0]);
+  for (std::size_t n = 1; n < from.gap.size(); ++n) {
+    sphere.reset(from.gap[n - 1], from.v[n - 1]);
     sphere.step();
     p.gap.push_back(sphere.gap());
     p.v.push_back(sphere.v());

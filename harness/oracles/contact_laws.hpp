@@ -87,6 +87,13 @@ struct SlidePath {
 // slip when it can (|v_free| <= grip*h gives v = 0) and otherwise takes grip*h off it; x += h*v.
 SlidePath slide_path(const SlideSetup& setup, FrictionModel model, double h, std::int64_t steps);
 
+// The law one step ahead of a path (a run's): step n + 1 of the result is the law's step from
+// `from`'s state after step n. A run that rounds differently from the law in double (a float
+// engine) can leave the law's whole path where a contact decision lies within rounding, and still
+// follow the law at every step.
+SlidePath slide_steps(const SlideSetup& setup, FrictionModel model, double h,
+                      const SlidePath& from);
+
 // A run's path of one slide (a run that keeps every step, as the checks' runs do).
 SlidePath observed_slide_path(const Trajectory& run, const SlideSetup& setup);
 
@@ -109,6 +116,10 @@ struct BouncePath {
 // the law's contact_distance_per_size.
 BouncePath bounce_path(const BounceLaw& law, double h0, double e, double g, double h,
                        std::int64_t steps, double size = 0.0);
+
+// The law one step ahead of a path (a run's), as slide_steps.
+BouncePath bounce_steps(const BounceLaw& law, const BouncePath& from, double e, double g, double h,
+                        double size = 0.0);
 
 // What a path shows (a law's or a run's): its first impact and the apexes after it.
 struct BounceObservation {

@@ -215,5 +215,5 @@ TEST_CASE("identify rejects unusable input with the file and the problem", "[ide
   fails({"identify", s.source, "--trajectory", temp_file("two.csv", trajectories_to_csv(both))},
         "holds 2 runs (ours at dt 0.0166667, ours-f64 at dt 0.0166667)");
   fails({"identify", DROPCHECK_SOURCE_DIR "/scenarios/drop_on_floor.toml", "--engine", "ours-f64"},
-        "--engine ours-f64: no contacts");
+        "needs a free-flight scene (contacts = false)");
 }
