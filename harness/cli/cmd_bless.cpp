@@ -69,7 +69,8 @@ TierResult run_tier(Tier tier, const Scene& scene, const NamedFactory& engine,
     const std::optional<Baseline> baseline = read_baseline_if_present(path);
     if (baseline) check_baseline_claims(*baseline, *now, path);
     return check_physics(*now, baseline ? &*baseline : nullptr,
-                         core_checks(scene, engine.second, [] { return make_engine("ours-f64"); }));
+                         core_checks(scene, engine.second, [] { return make_engine("ours-f64"); }),
+                         scene.world.contacts);
   }
   const std::string name = scene.name + " / " + engine.first + " / " + to_string(tier) + ": ";
   if (!now->skipped.empty())

@@ -82,8 +82,9 @@ BlessOutcome bless(const std::vector<Scene>& scenes, const std::vector<NamedFact
       b.provenance = provenance(options.commit);
       const std::string before = baseline_path(options.baselines_dir, scene.name, engine.first);
       const std::optional<Baseline> baseline = read_baseline_if_present(before);
-      const TierResult physics = check_physics(
-          b, baseline ? &*baseline : nullptr, core_checks(scene, engine.second, options.reference));
+      const TierResult physics =
+          check_physics(b, baseline ? &*baseline : nullptr,
+                        core_checks(scene, engine.second, options.reference), scene.world.contacts);
       if (physics.verdict == Verdict::failed) {
         out.refused.push_back(physics.message);
         b.failed_tiers = "physics: " + physics.message;

@@ -157,6 +157,21 @@ TierResult ask_core(const std::string& p, const std::string& why, const CoreChec
                                " (the stored sweep alone fails: " + why + ")"};
 }
 
+// A contact scene has no free-flight law to store: its laws (landing, slide, bounce, stack) are
+// judged by the checks `dropcheck check` runs, each naming the step and quantity where the run
+// leaves its engine's law.
+TierResult contact_laws(const std::string& p, const CoreChecks& core) {
+  if (!core)
+    return {Verdict::skipped, p + "a contact scene: its laws are judged by the checks of "
+                                  "`dropcheck check`, and no reference engine was given"};
+  std::string passed;
+  for (const CheckResult& r : core()) {
+    if (!r.passed) return {Verdict::failed, p + "contact: " + r.check + ": " + r.message};
+    passed += (passed.empty() ? "" : "; ") + r.check;
+  }
+  return {Verdict::passed, p + "contact: the checks of `dropcheck check` pass (" + passed + ")"};
+}
+
 }  // namespace
 
 CoreChecks core_checks(const Scene& scene, const EngineFactory& engine,
@@ -165,12 +180,14 @@ CoreChecks core_checks(const Scene& scene, const EngineFactory& engine,
   return [&scene, engine, reference] { return check_scene(scene, engine, reference); };
 }
 
-TierResult check_physics(const Baseline& now, const Baseline* baseline, const CoreChecks& core) {
+TierResult check_physics(const Baseline& now, const Baseline* baseline, const CoreChecks& core,
+                         bool contacts) {
   const std::string p = now.scene + " / " + now.engine + " / physics: ";
   if (!now.skipped.empty())
     return {Verdict::skipped, p + "the engine cannot run this scene: " + now.skipped};
   if (now.status != "ok")
     return ask_core(p, "the run at h = " + now.dt.text + " ended: " + now.status, core);
+  if (contacts) return contact_laws(p, core);
   std::string law, order;
   if (std::string why = law_problem(now, baseline, law); !why.empty())
     return ask_core(p, why, core);

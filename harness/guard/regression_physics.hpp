@@ -21,9 +21,12 @@ namespace dropcheck {
 // the measurement core, the checks `dropcheck check` runs (check_scene of the engine against
 // itself), and passes when every one of them passes, naming their LIMITs; when one fails, the
 // tier's own message stands.
+// A contact scene (`contacts`) stores no free-flight law: the tier is the core's contact checks
+// (landing, slide, bounce, stack, each against the engine's declared contact law), failed with the
+// first one that fails, its step and quantity named; skipped without a core.
 using CoreChecks = std::function<std::vector<CheckResult>()>;
 TierResult check_physics(const Baseline& now, const Baseline* baseline = nullptr,
-                         const CoreChecks& core = {});
+                         const CoreChecks& core = {}, bool contacts = false);
 
 // The checks `dropcheck check` runs on `engine` in `scene` against `reference` (check_scene), as
 // check_physics asks for them; none (an empty function) without a reference.

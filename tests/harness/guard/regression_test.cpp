@@ -7,6 +7,7 @@
 
 #include "../moved_drag_engine.hpp"
 #include "../test_dirs.hpp"
+#include "contact_bugs.hpp"
 #include "harness/core/number_format.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/core/trajectory_hash.hpp"
@@ -162,4 +163,31 @@ TEST_CASE("The guard catches a changed quaternion update in ours and blames ours
                  Catch::Contains("the rotation of ours-f64 departs from it by 2.89e-05 rad") &&
                  Catch::Contains("positions and velocities follow") &&
                  Catch::Contains("no-gyro/exp-map or explicit/exp-map"));
+}
+
+TEST_CASE("The guard sees contact: friction after the position update and a doubled restitution",
+          "[regression][demo][contact]") {
+  using dropcheck::testing::buggy_contact_ours;
+  using dropcheck::testing::ContactBug;
+  const EngineFactory reference = [] { return make_engine("ours-f64"); };
+  const auto physics = [&](const char* stem, ContactBug bug) {
+    const Scene scene = shipped_scene(stem);
+    const EngineFactory engine = buggy_contact_ours(bug);
+    return check_physics(make_baseline(scene, engine), nullptr,
+                         core_checks(scene, engine, reference), true);
+  };
+  // The double without a bug is ours' step: the tier passes on both scenes.
+  CHECK(physics("slide_stop", ContactBug::none).verdict == Verdict::passed);
+  CHECK(physics("bounce_e05", ContactBug::none).verdict == Verdict::passed);
+  const TierResult slide = physics("slide_stop", ContactBug::friction_after_position);
+  const TierResult bounce = physics("bounce_e05", ContactBug::restitution_twice);
+  std::cout << "What `ctest -L regression` says about the contact bugs:\n  " << slide.message
+            << "\n  " << bounce.message << "\n";
+  REQUIRE(slide.verdict == Verdict::failed);
+  CHECK_THAT(slide.message, Catch::StartsWith("slide_stop / ours-f64 / physics: contact: slide") &&
+                                Catch::Contains("DEPARTS"));
+  REQUIRE(bounce.verdict == Verdict::failed);
+  CHECK_THAT(bounce.message,
+             Catch::StartsWith("bounce_e05 / ours-f64 / physics: contact: bounce") &&
+                 Catch::Contains("DEPARTS at step"));
 }

@@ -1,0 +1,101 @@
+// Test doubles for the regression guard on contact scenes: ours' contact step (ours/collision.hpp)
+// with one deliberate bug each, still declaring ours' contact laws, as an edited
+// ours/physics.hpp behind the unchanged adapter would:
+//   none                      the step of ours/physics.hpp (ApplyPhysicsWithCollisions)
+//   friction_after_position   the positions move before the contacts are resolved
+//   restitution_twice         the restitution impulse applied twice (e*(1 + e) of the approach)
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "harness/core/engine.hpp"
+#include "ours/physics.hpp"
+
+namespace dropcheck::testing {
+
+enum class ContactBug { none, friction_after_position, restitution_twice };
+
+class BuggyContactOurs final : public Engine {
+ public:
+  explicit BuggyContactOurs(ContactBug bug) : bug_(bug) {}
+
+  // ours-f64's own declaration of its contacts (adapters/ours.cpp), whatever the bug.
+  EngineInfo info() const override {
+    EngineInfo i;
+    i.name = "ours-f64";
+    i.scalar = Scalar::f64;
+    i.capabilities = {.contacts = true, .friction = true, .restitution = true, .spheres = true};
+    i.law = DampingOrder::AfterForces;
+    i.arithmetic = DampingForm::phi_multiply;
+    i.friction_model = FrictionModel::cone;
+    i.bounce_law = {.erp = 1.0, .push_in_position = true, .touching = true};
+    i.stack_law = {.sink_bound = 1e-12, .drift_bound = 1e-12, .still_bound = 1e-12};
+    return i;
+  }
+
+  void load(const Scene& scene, double h) override {
+    h_ = h;
+    world_.gravity = scene.world.gravity;
+    world_.linearDrag = decay_per_step(scene, h);
+    world_.collisions = scene.world.contacts;
+    world_.friction = scene_material(scene).friction.value_or(0.0);
+    world_.restitution = scene_material(scene).restitution.value_or(0.0);
+    models_.assign(scene.bodies.size(), ours::Model<double>{});
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      const Body& b = scene.bodies[i];
+      models_[i].translation = b.position;
+      models_[i].rigidBody.velocity = b.velocity;
+      models_[i].rigidBody.mass = b.mass;
+      models_[i].rigidBody.isStatic = b.is_static;
+      models_[i].collider.shape = b.shape == Shape::sphere ? ours::Shape::Sphere : ours::Shape::Box;
+      models_[i].collider.halfExtents = b.half_extents;
+      models_[i].collider.radius = b.radius;
+    }
+  }
+
+  void set_forces(std::span<const Vec3> forces) override {
+    for (std::size_t i = 0; i < models_.size(); ++i) models_[i].rigidBody.force = forces[i];
+  }
+
+  void step() override {
+    std::span<ours::Model<double>> m(models_);
+    std::vector<ours::Contact<double>> contacts =
+        ours::FindContacts<double>(std::span<const ours::Model<double>>(m));
+    for (ours::Model<double>& model : m)
+      if (!model.rigidBody.isStatic) {
+        ours::ApplyGravity(&model, world_, h_);
+        ours::IntegrateLinearVelocity(&model, world_, h_);
+      }
+    if (bug_ == ContactBug::friction_after_position) move(m);
+    const double e = world_.restitution;
+    ours::ResolveContacts(m, contacts, world_.friction, e);
+    if (bug_ == ContactBug::restitution_twice)  // the rebound's impulse once more
+      for (const ours::Contact<double>& c : contacts)
+        if (c.approach > 0.0) m[c.body].rigidBody.velocity += e * c.approach * c.normal;
+    if (bug_ != ContactBug::friction_after_position) move(m);
+    ours::PushOut(m, contacts);
+  }
+
+  void read(std::span<BodyState> out) const override {
+    for (std::size_t i = 0; i < models_.size(); ++i)
+      out[i] = {models_[i].translation, models_[i].rigidBody.velocity};
+  }
+
+ private:
+  void move(std::span<ours::Model<double>> m) const {
+    for (ours::Model<double>& model : m)
+      if (!model.rigidBody.isStatic) ours::IntegratePosition(&model, h_);
+  }
+
+  ContactBug bug_;
+  double h_ = 1.0 / 60.0;
+  ours::World<double> world_;
+  std::vector<ours::Model<double>> models_;
+};
+
+inline EngineFactory buggy_contact_ours(ContactBug bug) {
+  return [bug] { return std::make_unique<BuggyContactOurs>(bug); };
+}
+
+}  // namespace dropcheck::testing
