@@ -3,9 +3,9 @@
 // land on it, slide on it with Coulomb friction, bounce with a restitution, and rest on each other.
 //
 // Per fixed step h (ApplyPhysics, physics.hpp), with collisions on:
-//   FindContacts         every pair that touches or overlaps where the last step left it: the normal
-//                        n (out of the lower body), the depth d >= 0, and the approach speed
-//                        a = -(v_body - v_other).n at the step's start
+//   FindContacts         every pair that touches or overlaps where the last step left it:
+//                        the normal n (out of the lower body), the depth d >= 0, and the
+//                        approach speed a = -(v_body - v_other).n at the step's start
 //   ApplyGravity, IntegrateLinearVelocity    v_free = f*(v + (g + F/m)*h)       (Part III's order)
 //   ResolveContacts      bottom up, each body against the one under it taken as immovable:
 //                          target = e*a when a > 0, else 0                (restitution)
@@ -50,8 +50,8 @@ struct Contact {
   int body = 0;   // index of the upper body (never static)
   int other = 0;  // index of the body it touches, below it along the normal
   Vector3<T> normal = Vector3<T>::UnitY();  // unit, out of `other` towards `body`
-  T depth = T(0);                            // m, >= 0: how far the two overlap
-  T approach = T(0);                         // m/s: -(v_body - v_other).n at the step's start
+  T depth = T(0);                           // m, >= 0: how far the two overlap
+  T approach = T(0);                        // m/s: -(v_body - v_other).n at the step's start
 };
 
 // The overlap of two unturned boxes along each axis (>= 0 where they overlap or touch), and the
@@ -136,7 +136,8 @@ std::vector<Contact<T>> FindContacts(std::span<const Model> models) {
       c.body = aUp ? i : j;
       c.other = aUp ? j : i;
       if (!aUp) c.normal = -c.normal;
-      const Vector3<T> relative = models[c.body].rigidBody.velocity - models[c.other].rigidBody.velocity;
+      const Vector3<T> relative =
+          models[c.body].rigidBody.velocity - models[c.other].rigidBody.velocity;
       c.approach = -relative.dot(c.normal);
       contacts.push_back(c);
     }
