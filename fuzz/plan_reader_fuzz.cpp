@@ -1,22 +1,35 @@
 // Fuzz target: the plan reader (harness/plan/plan.cpp) and what a shard does with a plan before it
 // runs anything: every cell's key, and the first cells' scenes set up from the plan's scene texts
 // and axis values (harness/plan/axes.cpp: key paths such as "body.cube.mass", named axes). Any
-// input must be refused with InputError or set up; any other exception, a crash or a sanitizer
-// report is a bug. The hash check is off: a fuzzer cannot forge FNV-1a on purpose, a user can.
+// input must be refused with InputError or set up, a refusal's message short and inert (no control
+// character, no invalid UTF-8); any other exception, a crash or a sanitizer report is a bug. The
+// hash check is off: a fuzzer cannot forge FNV-1a on purpose, a user can.
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <string>
 
 #include "harness/core/input_error.hpp"
 #include "harness/plan/axes.hpp"
 #include "harness/plan/plan.hpp"
 
+namespace {
+
+void require_inert(const dropcheck::InputError& e) {
+  const std::string message = e.what();
+  if (message.size() > 1024 || dropcheck::find_unsafe_byte(message) != std::string::npos)
+    std::abort();
+}
+
+}  // namespace
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   dropcheck::Plan plan;
   try {
     plan = dropcheck::parse_plan(text, "fuzz.plan", false);
-  } catch (const dropcheck::InputError&) {
+  } catch (const dropcheck::InputError& e) {
+    require_inert(e);
     return 0;
   }
   const std::size_t cells = plan.cell_count();

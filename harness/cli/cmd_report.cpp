@@ -21,6 +21,7 @@
 #include "harness/report/report.hpp"
 #include "harness/report/report_sweep.hpp"
 #include "harness/report/stability_report.hpp"
+#include "harness/report/sweep_results.hpp"
 #include "harness/scene/scene_loader.hpp"
 #include "selection.hpp"
 

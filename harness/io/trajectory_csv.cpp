@@ -243,6 +243,10 @@ std::vector<Trajectory> parse_gazebo_log(std::istream& in, const std::string& fi
     row.step = std::round((row.step - first_time) / t.h);
     if (row.step > 9007199254740992.0)
       throw InputError(file, row.line, "sim_time", "beyond 2^53 steps from the first row");
+    if (!std::isfinite(row.step * t.h))  // the time dropcheck uses, step x time_step, overflows
+      throw InputError(file, row.line, "sim_time",
+                       "step " + std::to_string(static_cast<long long>(row.step)) +
+                           " x time_step " + excerpt(run[1]) + " is not a finite time");
   }
   std::stable_sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) {
     return a.step != b.step ? a.step < b.step : a.model < b.model;

@@ -44,7 +44,14 @@ std::vector<fs::path> shard_files(const std::string& dir) {
   return out;
 }
 
-// The key of one record line, after checking it belongs to `plan`.
+}  // namespace
+
+std::unordered_set<std::string> cell_keys(const Plan& plan) {
+  std::unordered_set<std::string> keys;
+  for (std::size_t i = 0; i < plan.cell_count(); ++i) keys.insert(plan.cell(i).key);
+  return keys;
+}
+
 std::string record_key(const Plan& plan, const std::unordered_set<std::string>& keys,
                        const std::string& file, long long line, const std::string& text) {
   nlohmann::json j;
@@ -72,11 +79,8 @@ std::string record_key(const Plan& plan, const std::unordered_set<std::string>& 
   return key;
 }
 
-}  // namespace
-
 MergeResult merge_shards(const Plan& plan, const std::string& dir, const std::string& out) {
-  std::unordered_set<std::string> keys;
-  for (std::size_t i = 0; i < plan.cell_count(); ++i) keys.insert(plan.cell(i).key);
+  const std::unordered_set<std::string> keys = cell_keys(plan);
   struct Seen {
     std::string line, file;
   };

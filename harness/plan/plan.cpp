@@ -137,7 +137,8 @@ Plan from_json(const Json& j) {
       axis.kind = *kind;
     }
     axis.values = a.at("values").get<std::vector<std::string>>();
-    if (axis.values.empty()) throw std::invalid_argument("axis " + axis.name + " has no values");
+    if (axis.values.empty())
+      throw std::invalid_argument("axis " + excerpt(axis.name) + " has no values");
     p.axes.push_back(std::move(axis));
   }
   for (const Json& s : j.at("scenes"))
@@ -219,7 +220,8 @@ Plan parse_plan(const std::string& text, const std::string& path, bool check_has
   } catch (const InputError& e) {
     throw InputError(path, 0, "", std::string("not a valid plan: ") + e.what());
   } catch (const std::exception& e) {
-    throw InputError(path, 0, "", std::string("not a dropcheck plan: ") + e.what());
+    // The JSON parser's message quotes the text it stopped at as it is: escaped and cut here.
+    throw InputError(path, 0, "", std::string("not a dropcheck plan: ") + excerpt(e.what(), 200));
   }
   if (check_hash && hash_of(p) != p.hash)
     throw InputError(path, 0, "hash",

@@ -4,7 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <map>
-#include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -13,53 +13,12 @@
 #include "harness/core/timestep.hpp"
 #include "harness/core/trajectory_hash.hpp"
 #include "harness/io/atomic_file.hpp"
-#include "harness/io/bounded_read.hpp"
 #include "harness/io/file_slug.hpp"
-#include "harness/io/json_reader.hpp"
 #include "harness/report/plot.hpp"
 #include "harness/report/report_format.hpp"
 
 namespace dropcheck {
 namespace {
-
-using Json = nlohmann::json;
-
-std::optional<double> number(const Json& j) {
-  if (j.is_number()) return j.get<double>();
-  if (j.is_string()) {
-    const std::string s = j.get<std::string>();
-    if (s == "inf") return INFINITY;
-    if (s == "-inf") return -INFINITY;
-    if (s == "nan") return NAN;
-  }
-  return std::nullopt;
-}
-
-SweepCell cell_of(const Json& j) {
-  SweepCell c;
-  c.key = j.at("key").get<std::string>();
-  c.scene = j.at("scene").get<std::string>();
-  c.status = j.at("status").get<std::string>();
-  c.reason = j.value("reason", "");
-  c.engine = j.contains("engine")
-                 ? j["engine"].at("name").get<std::string>()
-                 : c.key.substr(c.key.find('|') + 1,
-                                c.key.find('|', c.key.find('|') + 1) - c.key.find('|') - 1);
-  for (const auto& [name, value] : j.at("axes").items())
-    c.axes.emplace_back(name, value.get<std::string>());
-  if (j.contains("error") && j["error"].contains("closed_form") &&
-      j["error"]["closed_form"].is_object())
-    c.error = number(j["error"]["closed_form"].at("max_dx"));
-  if (j.contains("stability")) {
-    c.theory_max_h = number(j["stability"].at("theory_max_h"));
-    c.law_unstable = j["stability"].value("law_unstable", "");
-  }
-  if (j.contains("timing")) {
-    c.ns_per_body_step = number(j["timing"].at("ns_per_body_step"));
-    c.cpu = j["timing"].value("cpu", "");
-  }
-  return c;
-}
 
 // An axis value as a number: a step "1/60" in seconds, anything else as written.
 std::optional<double> axis_number(const std::string& name, const std::string& text) {
@@ -233,26 +192,6 @@ void give_slugs(std::map<std::pair<std::string, std::string>, Group>& groups) {
 }
 
 }  // namespace
-
-std::vector<SweepCell> read_sweep_results(const std::string& path) {
-  // At most 4 GiB, a line at most 1 MiB (a record of dropcheck's is under 2 KiB).
-  LineReader in(path, 4LL << 30, 1 << 20, "a result file");
-  std::vector<SweepCell> out;
-  for (std::string line; in.next(line);) {
-    const long long n = in.line_number();
-    if (line.empty()) continue;
-    try {
-      const Json j = parse_json<Json>(line);
-      if (j.value("format", "") != "dropcheck-record/1") throw std::invalid_argument("format");
-      out.push_back(cell_of(j));
-    } catch (const std::exception&) {
-      throw InputError(in.name() + ":" + std::to_string(n), 0, "",
-                       "not a dropcheck-record/1 record: " + excerpt(line));
-    }
-  }
-  if (out.empty()) throw InputError(escape_controls(path), 0, "", "holds no record");
-  return out;
-}
 
 void write_sweep_report(const std::vector<SweepCell>& cells, const std::string& results,
                         const std::string& dir,

@@ -169,3 +169,16 @@ TEST_CASE("a Gazebo log written model by model is read step by step", "[csv][rot
   CHECK(t.at(1, 0).position.x() == 2.0);
   CHECK(t.at(1, 1).position.x() == 20.0);
 }
+
+TEST_CASE("a Gazebo log whose time, step x time_step, overflows is refused", "[csv][rotation]") {
+  // Found by review of the fuzz target trajectory_csv (fuzz/regressions/trajectory_csv/
+  // gazebo_time_overflow.csv): read, the run's last time was inf, which the CSV it prints refuses.
+  const std::string columns =
+      "sim_time,model_no,linear_velocity_x,linear_velocity_y,linear_velocity_z,"
+      "angular_velocity_x,angular_velocity_y,angular_velocity_z,position_x,position_y,"
+      "position_z,quaternion_w,quaternion_x,quaternion_y,quaternion_z\n";
+  CHECK(error_of("physics_engine,time_step,\node,1e308\n" + columns +
+                 "0,0,0,0,0,0,0,0,0,0,0,1,0,0,0\n"
+                 "1.79e308,0,0,0,0,0,0,0,0,0,0,1,0,0,0\n") ==
+        "run.csv:5: sim_time: step 2 x time_step '1e308' is not a finite time");
+}

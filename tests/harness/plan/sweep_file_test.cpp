@@ -333,3 +333,25 @@ TEST_CASE(
   const CellRecord here = run_cell(plan, plan.cell(0), Isolation::in_process, 0.1);
   CHECK(here.line == first.line);
 }
+
+TEST_CASE("a plan that is not JSON is refused with an escaped, short excerpt of where it stopped",
+          "[plan][hostile]") {
+  // The JSON parser quotes the bytes it stopped at as they are: a C1 control (CSI) or a long token
+  // reached the terminal whole (fuzz/regressions/plan_reader/parse_error_c1_byte.plan).
+  auto error_of = [](const std::string& text) {
+    try {
+      parse_plan(text, "p.plan");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(read)");
+  };
+  const std::string c1 = error_of("{\"a\":\x9b[31m}");
+  CHECK_THAT(c1, Contains("p.plan: not a dropcheck plan: '[json.exception.parse_error.101]") &&
+                     Contains("\\x9b"));
+  CHECK(find_unsafe_byte(c1) == std::string::npos);
+  CHECK(error_of("{\"a\":\"" + std::string(100000, 'a') + "\x01\"}").size() < 1024);
+  CHECK_THAT(error_of(R"({"format":"dropcheck-plan/1","sweep":"","description":"","engines":[],)"
+                      R"("measure":[],"axes":[{"key":"a\u001b[2J","values":[]}]})"),
+             Contains("axis 'a\\x1b[2J' has no values"));
+}
