@@ -8,26 +8,17 @@
 
 #include "harness/core/input_error.hpp"
 #include "harness/core/registry.hpp"
+#include "tests/engine_slots.hpp"
 
 using Catch::Matchers::Contains;
 using namespace dropcheck;
+
+using dropcheck::testing::slots;
 
 namespace {
 
 const std::string kTiny = DROPCHECK_SOURCE_DIR "/scenarios/extreme/tiny_step.toml";
 const std::string kSpring = DROPCHECK_SOURCE_DIR "/scenarios/extreme/stiff_spring.toml";
-
-// Engine slots for `names`, as the command line makes them (harness/cli/cmd_report.cpp).
-std::vector<EngineSlot> slots(const std::vector<std::string>& names) {
-  std::vector<EngineSlot> out;
-  for (const std::string& name : names) {
-    const std::string why = engine_unavailable_reason(name);
-    out.push_back(
-        {name, why.empty() ? EngineFactory([name] { return make_engine(name); }) : EngineFactory(),
-         why});
-  }
-  return out;
-}
 
 }  // namespace
 
