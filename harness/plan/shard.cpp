@@ -125,17 +125,16 @@ ShardSummary run_cells(const Plan& plan, const std::vector<std::size_t>& cells,
     progress << "cell " << s.cells << " of " << cells.size() << ": " << keys[at] << ": " << r.status
              << "\n";
   };
-  // A link at any depth of the cache is refused before any cell is read or run.
+  // Each cell's cache entry, and a link at any depth of the cache refused before any is read.
   if (!cache.empty())
-    for (std::size_t cell : cells)
-      check_no_links_below(cache, cache_entry(cache, plan, plan.cell(cell)), "--cache");
+    for (std::size_t at = 0; at < cells.size(); ++at) {
+      entries[at] = cache_entry(cache, plan, plan.cell(cells[at]));
+      check_no_links_below(cache, entries[at], "--cache");
+    }
   for (std::size_t at = 0; at < cells.size(); ++at) {
     const Cell c = plan.cell(cells[at]);
     keys.push_back(c.key);
-    if (!cache.empty()) {
-      entries[at] = cache_entry(cache, plan, c);
-      got[at] = cached(plan, c, entries[at]);
-    }
+    if (!cache.empty()) got[at] = cached(plan, c, entries[at]);
     if (got[at].line.empty()) {
       todo_at.push_back(at);
       todo.push_back(cells[at]);

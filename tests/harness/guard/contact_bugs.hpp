@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "harness/core/engine.hpp"
+#include "harness/core/registry.hpp"
 #include "ours/physics.hpp"
 
 namespace dropcheck::testing {
@@ -20,19 +21,8 @@ class BuggyContactOurs final : public Engine {
  public:
   explicit BuggyContactOurs(ContactBug bug) : bug_(bug) {}
 
-  // ours-f64's own declaration of its contacts (adapters/ours.cpp), whatever the bug.
-  EngineInfo info() const override {
-    EngineInfo i;
-    i.name = "ours-f64";
-    i.scalar = Scalar::f64;
-    i.capabilities = {.contacts = true, .friction = true, .restitution = true, .spheres = true};
-    i.law = DampingOrder::AfterForces;
-    i.arithmetic = DampingForm::phi_multiply;
-    i.friction_model = FrictionModel::cone;
-    i.bounce_law = {.erp = 1.0, .push_in_position = true, .touching = true};
-    i.stack_law = {.sink_bound = 1e-12, .drift_bound = 1e-12, .still_bound = 1e-12};
-    return i;
-  }
+  // ours-f64's own declaration (its adapter's), whatever the bug.
+  EngineInfo info() const override { return make_engine("ours-f64")->info(); }
 
   void load(const Scene& scene, double h) override {
     h_ = h;
