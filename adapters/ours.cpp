@@ -11,8 +11,10 @@
 //                         scene) -> World::friction, ::restitution (0 when unset)
 // Contacts (ours/collision.hpp): touching and overlapping pairs found at the step's start, resolved
 // from the floor up with a Coulomb cone clamp and the restitution of the step-start approach, the
-// overlap pushed out in position. Its impulses act through the centre of mass, so a contact scene
-// with a box that is turned or turning is refused (its landing on an edge is not modelled).
+// overlap pushed out in position. Impulses act through the centre of mass, except a turned or
+// turning box's, which act at the mean of its corners in the floor; such a box may share a contact
+// scene with static boxes only.
+#include <algorithm>
 #include <chrono>
 #include <vector>
 
@@ -45,27 +47,37 @@ class OursEngine final : public Engine {
     i.contact_settings =
         "touching and overlapping pairs at the step start, resolved from the floor up "
         "(each against the body under it as immovable); Coulomb cone clamp, restitution of the "
-        "step-start approach, the overlap pushed out in position; mu and e 0 unless set";
+        "step-start approach, the overlap pushed out in position; mu and e 0 unless set; a turned "
+        "or turning box's impulse at the mean of its corners in the floor";
     i.friction_model = FrictionModel::cone;  // ResolveContact: |v_t| clamped by mu*j_n
     // The ideal law with the whole step-start depth pushed out in position, a touch a contact.
     i.bounce_law = {.erp = 1.0, .push_in_position = true, .touching = true};
     i.stack_law = {.sink_bound = 1e-12, .drift_bound = 1e-12, .still_bound = 1e-12};  // rigid
+    i.turned_contact = TurnedContact::mean_corner;  // ResolvePointContact
     return i;
   }
 
-  // Contacts push through the centre of mass: a box that is turned or turning would land on an
-  // edge, which ours does not model.
+  // A turned or turning box collides at its corners against the faces of unturned boxes below it
+  // (ours/collision.hpp): with static boxes only, which are never turned.
   std::string cannot_run(const Scene& scene) const override {
     if (std::string why = Engine::cannot_run(scene); !why.empty()) return why;
     if (!scene.world.contacts) return {};
     for (const Body& b : scene.bodies)
-      if (b.shape == Shape::box && !b.is_static &&
-          (!b.orientation.isApprox(Quat::Identity(), 0.0) || !b.angular_velocity.isZero(0.0)))
-        return "a turned or turning box in contact: ours pushes through the centre of mass and "
-               "does not model a landing on an edge";
-    for (const Body& b : scene.bodies)
       if (b.shape == Shape::box && b.is_static && !b.orientation.isApprox(Quat::Identity(), 0.0))
-        return "a turned static box: ours collides axis-aligned boxes";
+        return "a turned static box: ours collides axis-aligned static boxes";
+    const auto turned = [](const Body& b) {
+      return b.shape == Shape::box && !b.is_static &&
+             (!b.orientation.isApprox(Quat::Identity(), 0.0) || !b.angular_velocity.isZero(0.0));
+    };
+    const auto dynamic = std::count_if(scene.bodies.begin(), scene.bodies.end(),
+                                       [](const Body& b) { return !b.is_static; });
+    const bool static_sphere =
+        std::any_of(scene.bodies.begin(), scene.bodies.end(),
+                    [](const Body& b) { return b.is_static && b.shape == Shape::sphere; });
+    for (const Body& b : scene.bodies)
+      if (turned(b) && (dynamic > 1 || static_sphere))
+        return "a turned or turning box beside another dynamic body or a static sphere: ours "
+               "collides a turned box only with static boxes (its corners against their faces)";
     return {};
   }
 

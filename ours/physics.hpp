@@ -29,7 +29,9 @@
 // on: Part III's step, as above, is then split around ResolveContacts, its arithmetic unchanged.
 #pragma once
 
+#include <cstddef>
 #include <span>
+#include <vector>
 
 #include "collision.hpp"
 #include "constants.hpp"
@@ -96,13 +98,18 @@ void IntegrateLinearForce(Model<T>* model, const World<T>& world, T deltaTime) {
   IntegratePosition(model, deltaTime);
 }
 
-// w += I_w^-1*(tau - w x (I_w*w))*h; tau = 0; w *= f_a; q = normalize(q + (h/2)*(0, w)*q).
-// A body that neither turns nor is twisted keeps its rotation exactly (no renormalisation).
+// Whether a body turns this step: it spins, or a torque twists it. A body that does neither keeps
+// its rotation exactly (no renormalisation).
 template <typename T>
-void IntegrateAngularForce(Model<T>* model, const World<T>& world, T deltaTime) {
+bool Turns(const Model<T>& model) {
+  return !model.rigidBody.angularVelocity.isZero(T(0)) || !model.rigidBody.torque.isZero(T(0));
+}
+
+// w += I_w^-1*(tau - w x (I_w*w))*h; tau = 0; w *= f_a
+template <typename T>
+void IntegrateAngularVelocity(Model<T>* model, const World<T>& world, T deltaTime) {
   RigidBody<T>& body = model->rigidBody;
   Vector3<T>& w = body.angularVelocity;
-  if (w.isZero(T(0)) && body.torque.isZero(T(0))) return;
   const Matrix3<T> R = model->rotation.toRotationMatrix();
   // In the body frame I is diagonal: I_w*w = R*(I .* (R^T*w)), I_w^-1*t = R*((R^T*t) ./ I).
   const Vector3<T> momentum = R * body.inertia.cwiseProduct(R.transpose() * w);
@@ -110,30 +117,51 @@ void IntegrateAngularForce(Model<T>* model, const World<T>& world, T deltaTime) 
   w += R * (R.transpose() * netTorque).cwiseQuotient(body.inertia) * deltaTime;
   body.torque = Vector3<T>::Zero();
   w *= world.angularDrag;
+}
+
+// q = normalize(q + (h/2)*(0, w)*q)
+template <typename T>
+void IntegrateRotation(Model<T>* model, T deltaTime) {
+  const Vector3<T>& w = model->rigidBody.angularVelocity;
   const Quaternion<T> spin(T(0), w.x(), w.y(), w.z());
   model->rotation.coeffs() += (spin * model->rotation).coeffs() * (deltaTime / T(2));
   model->rotation.normalize();
 }
 
+// w += I_w^-1*(tau - w x (I_w*w))*h; tau = 0; w *= f_a; q = normalize(q + (h/2)*(0, w)*q),
+// for a body that turns.
+template <typename T>
+void IntegrateAngularForce(Model<T>* model, const World<T>& world, T deltaTime) {
+  if (!Turns(*model)) return;
+  IntegrateAngularVelocity(model, world, deltaTime);
+  IntegrateRotation(model, deltaTime);
+}
+
 // One fixed step with collisions: contacts found where the last step left the bodies, the
-// velocities updated as in Part III, the contacts resolved, then the positions moved and the
-// overlaps pushed out (collision.hpp).
+// velocities (linear and angular) updated as in Part III, the contacts resolved, then the poses
+// moved and the overlaps pushed out (collision.hpp). A body whose contact made it turn is turned
+// by its new angular velocity in the same step.
 template <typename T>
 void ApplyPhysicsWithCollisions(std::span<Model<T>> models, const World<T>& world, T deltaTime) {
   std::vector<Contact<T>> contacts = FindContacts<T>(std::span<const Model<T>>(models));
-  for (Model<T>& model : models) {
+  std::vector<char> turns(models.size(), 0);
+  for (std::size_t i = 0; i < models.size(); ++i) {
+    Model<T>& model = models[i];
     if (model.rigidBody.isStatic) continue;
     ApplyGravity(&model, world, deltaTime);
     IntegrateLinearVelocity(&model, world, deltaTime);
+    turns[i] = Turns(model);
+    if (turns[i]) IntegrateAngularVelocity(&model, world, deltaTime);
   }
   ResolveContacts(models, contacts, world.friction, world.restitution);
-  for (Model<T>& model : models) {
+  for (std::size_t i = 0; i < models.size(); ++i) {
+    Model<T>& model = models[i];
     if (model.rigidBody.isStatic) continue;
     IntegratePosition(&model, deltaTime);
+    if (turns[i] || !model.rigidBody.angularVelocity.isZero(T(0)))
+      IntegrateRotation(&model, deltaTime);
   }
   PushOut(models, contacts);
-  for (Model<T>& model : models)
-    if (!model.rigidBody.isStatic) IntegrateAngularForce(&model, world, deltaTime);
 }
 
 // One fixed step for every model that is not static.

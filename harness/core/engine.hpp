@@ -18,6 +18,7 @@
 #include "harness/core/rotation_law.hpp"
 #include "harness/core/scene.hpp"
 #include "harness/core/stack_law.hpp"
+#include "harness/core/turned_contact.hpp"
 
 namespace dropcheck {
 
@@ -75,6 +76,8 @@ struct EngineInfo {
   BounceLaw bounce_law = kIdealBounce;
   // How its contacts hold a resting stack of boxes (harness/core/stack_law.hpp).
   StackLaw stack_law;
+  // Where its contact acts on a turned or turning box (harness/core/turned_contact.hpp).
+  TurnedContact turned_contact = TurnedContact::not_declared;
   // Landing on a static floor: where the centre of a resting box sits relative to the geometric
   // rest height (floor top + half extent), in m, and how far from that still counts as expected.
   // Documented per engine in docs/engines.md section 5 (Box2D: +0.015 from skin and slop).

@@ -82,6 +82,14 @@ BounceVerdict judge_bounce(const Trajectory& run, const BounceSetup& s, const Bo
     for (std::size_t n = 0; n < seen.v.size(); ++n)
       v.step_speed = std::max(v.step_speed, std::abs(seen.v[n] - ahead.v[n]));
     v.follows = local.worst <= tolerance::kBouncePath && v.step_speed <= tolerance::kStepSpeed;
+    const std::size_t n = std::min(seen.gap.size(), predicted.gap.size());
+    for (std::size_t i = 0; i < n && v.decided_step < 0; ++i)
+      if (bounce_contact(law, seen.gap[i], s.size) !=
+          bounce_contact(law, predicted.gap[i], s.size)) {
+        v.decided_step = static_cast<std::int64_t>(i);
+        v.run_gap_there = seen.gap[i];
+        v.law_gap_there = predicted.gap[i];
+      }
   }
   v.follows_ideal = path_gap(seen, ideal).worst <= tolerance::kBouncePath;
   v.law_to_ideal = path_gap(predicted, ideal).worst;
@@ -95,6 +103,20 @@ BounceVerdict judge_bounce(const Trajectory& run, const BounceSetup& s, const Bo
     before = a;
   }
   return v;
+}
+
+// Why a run that follows its law at every step parts from the law's path: where a contact is
+// decided on the other side (computed in judge_bounce), or the rounding alone.
+std::string BounceVerdict::parting_text() const {
+  const auto side = [](double gap) {
+    return gap < 0.0   ? printf_string("%.2g m into the floor", -gap)
+           : gap > 0.0 ? printf_string("%.2g m above it", gap)
+                       : std::string("touching it");
+  };
+  if (decided_step < 0) return "the run's rounding, amplified over the flight";
+  return printf_string("step %lld starts ", static_cast<long long>(decided_step + 1)) +
+         side(law_gap_there) + " in the law and " + side(run_gap_there) +
+         " in the run, so the two decide its contact on either side";
 }
 
 std::string BounceVerdict::sentence() const {
@@ -111,9 +133,10 @@ std::string BounceVerdict::sentence() const {
     text += printf_string("the same path to %.2g m", worst_gap);
   else if (follows)
     text += printf_string(
-        "every step as its law to %.2g m and %.2g m/s; the paths part at step %lld by %.3g m: "
-        "the run's rounding, amplified where a contact was decided on the other side",
-        step_gap, step_speed, static_cast<long long>(worst_step), worst_gap);
+                "every step as its law to %.2g m and %.2g m/s; the paths part at step %lld by "
+                "%.3g m: ",
+                step_gap, step_speed, static_cast<long long>(worst_step), worst_gap) +
+            parting_text();
   else
     text += printf_string(
         "DEPARTS at step %lld by %.3g m (one step from its own state: %.3g m at "

@@ -29,9 +29,14 @@ struct BounceVerdict {
   double step_gap = -1.0;       // m (-1: not needed, the path follows)
   std::int64_t step_worst = 0;  // where
   double step_speed = 0.0;      // m/s: the largest |v - the law's step| likewise
-  bool follows_ideal = false;   // the run is within that tolerance of the ideal law too
-  bool energy_rises = false;    // an apex above the height before it (h0 for the first)
-  double law_to_ideal = 0.0;    // m: the largest gap difference between its law and the ideal's
+  // Where the run and its law first decide a step's contact differently (bounce_contact): the step
+  // that starts from sample `decided_step`, and the gap each starts it with; -1 when every
+  // contact is decided alike.
+  std::int64_t decided_step = -1;
+  double run_gap_there = 0.0, law_gap_there = 0.0;  // m
+  bool follows_ideal = false;  // the run is within that tolerance of the ideal law too
+  bool energy_rises = false;   // an apex above the height before it (h0 for the first)
+  double law_to_ideal = 0.0;   // m: the largest gap difference between its law and the ideal's
   // The members of its law that move its path off the ideal one (each alone, the other removed):
   // "push-out 0.2*depth/h capped at 0.3 m/s", "restitution threshold 1 m/s".
   std::vector<std::string> causes;
@@ -39,6 +44,9 @@ struct BounceVerdict {
   // (restitution of ...): the same to 2e-08 m; the ideal law's apexes ...; continuous ...", with
   // " DEPARTS from its law at step N by X m" when it does not follow.
   std::string sentence() const;
+  // "step 56 starts 6e-16 m into the floor in the law and 1.8e-07 m above it in the run, so the
+  // two decide its contact on either side", or the rounding alone.
+  std::string parting_text() const;
 };
 
 BounceVerdict judge_bounce(const Trajectory& run, const BounceSetup& setup, const BounceLaw& law,

@@ -194,6 +194,11 @@ SlideObservation observe_slide(const SlidePath& path, double stopped_speed) {
 
 namespace {
 
+// The contact test of a bounce law, its reach (contact distance) already scaled.
+bool in_contact(const BounceLaw& law, double gap, double reach) {
+  return gap < reach || gap < 0.0 || (law.touching && gap == 0.0);
+}
+
 // One sphere over a floor under a bounce law (harness/core/bounce_law.hpp), a step at a time:
 // contacts found where the last step ended.
 class BounceStepper {
@@ -209,7 +214,7 @@ class BounceStepper {
   void step() {
     const double v_free = v_ - g_ * h_;
     double moved = 0.0;  // a push in position
-    if (gap_ < reach_ || gap_ < 0.0 || (law_.touching && gap_ == 0.0)) {
+    if (in_contact(law_, gap_, reach_)) {
       const double rest = -v_ > law_.threshold ? e_ * -v_ : 0.0;
       double target = rest - gap_ / h_;  // speculative: the gap may close this step
       if (gap_ < 0.0) {
@@ -282,6 +287,10 @@ BouncePath bounce_path(const BounceLaw& law, double h0, double e, double g, doub
     p.v.push_back(sphere.v());
   }
   return p;
+}
+
+bool bounce_contact(const BounceLaw& law, double gap, double size) {
+  return in_contact(law, gap, law.contact_distance + law.contact_distance_per_size * size);
 }
 
 BouncePath bounce_steps(const BounceLaw& law, const BouncePath& from, double e, double g, double h,

@@ -117,6 +117,10 @@ struct BouncePath {
 BouncePath bounce_path(const BounceLaw& law, double h0, double e, double g, double h,
                        std::int64_t steps, double size = 0.0);
 
+// Whether a step that starts with the sphere's lowest point `gap` above the floor (negative: in
+// it) meets a contact under `law` (its contact distance, and a touch when `touching`).
+bool bounce_contact(const BounceLaw& law, double gap, double size = 0.0);
+
 // The law one step ahead of a path (a run's), as slide_steps.
 BouncePath bounce_steps(const BounceLaw& law, const BouncePath& from, double e, double g, double h,
                         double size = 0.0);

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "harness/judge/turned_verdict.hpp"
 #include "harness/report/report_format.hpp"
 #include "harness/report/report_scene.hpp"
 
@@ -76,13 +77,52 @@ TunnelVerdict landing_tunnel_verdict(const SceneEvaluation& se, const EngineEval
   return judge_tunnelling(law, ev.info, st.run, l.setup);
 }
 
+namespace {
+
+// A turning landing: compared for every engine, and judged step by step for an engine that
+// declares where its contact acts on a turned box (harness/judge/turned_verdict.hpp).
+std::string turning_section(const SceneEvaluation& se) {
+  MarkdownTable t({"engine", "turned-box contact law", "steps", "starting in contact",
+                   "corner within rounding of the face", "worst |dx| (m)", "worst |dv| (m/s)",
+                   "worst angle (rad)", "worst |dw| (rad/s)", "follows"},
+                  "llr");
+  for (const EngineEvaluation& ev : se.engines) {
+    if (!ev.ran() || ev.info.turned_contact == TurnedContact::not_declared) continue;
+    const Trajectory& run = ev.at_default().run;
+    if (run.status != RunStatus::ok) continue;
+    const TurnedVerdict v = judge_turned_contact(se.scene, ev.info, run);
+    if (!v.not_judged.empty()) {
+      t.add({ev.name, describe(ev.info.turned_contact), "not judged: " + v.not_judged});
+      continue;
+    }
+    t.add({ev.name, describe(ev.info.turned_contact), std::to_string(v.steps),
+           std::to_string(v.contact_steps), std::to_string(v.undecided_steps), g3(v.worst.position),
+           g3(v.worst.velocity), g3(v.worst.angle), g3(v.worst.spin),
+           v.follows() ? "yes"
+                       : "**NO**, from step " + std::to_string(v.first_departure) + " (" +
+                             v.departure_quantity + ")"});
+  }
+  std::string out =
+      "#### Landing\n\nA turning body meets the floor with a corner or an edge, and from there "
+      "each engine's contact model decides: the flat-landing closed form does not apply, so the "
+      "landing is compared (trajectories and divergence below). The divergence is attributed over "
+      "the fall while the body's centre stays farther from the floor than its half-diagonal.\n\n";
+  if (t.empty()) return out;
+  return out +
+         "An engine that declares where its contact acts on a turned box is judged by that law at "
+         "every step of h = " +
+         se.scene.timestep.text +
+         ", each step taken from the run's own state the step before (a tumble amplifies rounding, "
+         "so a law replayed from the start would part from a float run without a fault); a corner "
+         "within rounding of the face is tried in contact and not (docs/contact.md, \"Tumbling "
+         "landings\"):\n\n" +
+         t.str() + "\n";
+}
+
+}  // namespace
+
 std::string landing_section(const SceneEvaluation& se) {
-  if (se.scene.world.contacts && needs_rotation(se.scene))
-    return "#### Landing\n\nA turning body meets the floor with a corner or an edge, and from "
-           "there each engine's contact model decides: the flat-landing closed form does not "
-           "apply, so the landing is compared (trajectories and divergence below), not judged. "
-           "The divergence is attributed over the fall while the body's centre stays farther "
-           "from the floor than its half-diagonal.\n\n";
+  if (se.scene.world.contacts && needs_rotation(se.scene)) return turning_section(se);
   MarkdownTable t(
       {"engine", "body", "first contact t (s)", "closed form t (s)", "own law t (s)", "deepest (m)",
        "rebound above own rest (m)", "rest offset (m)", "expected (m)", "as expected", "still"},

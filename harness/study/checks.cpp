@@ -15,6 +15,7 @@
 #include "harness/judge/slide_verdict.hpp"
 #include "harness/judge/stack_verdict.hpp"
 #include "harness/judge/tolerances.hpp"
+#include "harness/judge/turned_verdict.hpp"
 #include "harness/oracles/analytic.hpp"
 #include "harness/oracles/contact_laws.hpp"
 #include "harness/oracles/discrete_law.hpp"
@@ -245,11 +246,18 @@ CheckResult floor_held(const Scene& scene, const Trajectory& run, CheckResult& r
 }
 
 // A turning body meets the floor with a corner or an edge, and each engine's contact model decides
-// what follows: no closed form to judge the landing by.
-CheckResult turning_landing(const Scene& scene, const Trajectory& run, CheckResult& r) {
-  return floor_held(scene, run, r,
-                    "a turning body's landing has no closed form (corner or edge first, then each "
-                    "engine's contact model): compared in the report, not judged");
+// what follows: no closed form to judge the landing by. An engine that declares where its contact
+// acts on a turned box (EngineInfo::turned_contact) is judged by that law at every step.
+CheckResult turning_landing(const Scene& scene, const EngineInfo& info, const Trajectory& run,
+                            CheckResult& r) {
+  if (info.turned_contact == TurnedContact::not_declared)
+    return floor_held(scene, run, r,
+                      "a turning body's landing has no closed form (corner or edge first, then "
+                      "each engine's contact model): compared in the report, not judged");
+  const TurnedVerdict v = judge_turned_contact(scene, info, run);
+  floor_held(scene, run, r, v.sentence());
+  if (!v.follows()) r.passed = false;
+  return r;
 }
 
 }  // namespace
@@ -286,7 +294,7 @@ CheckResult check_landing(const Scene& scene, const EngineFactory& make, const T
   CheckResult& r = c.result;
   const EngineInfo& info = c.info;
   const Trajectory& run = *c.run;
-  if (needs_rotation(scene)) return turning_landing(scene, run, r);
+  if (needs_rotation(scene)) return turning_landing(scene, info, run, r);
   if (scene.world.gravity.x() != 0.0 || scene.world.gravity.z() != 0.0)
     return floor_held(scene, run, r,
                       "gravity has a part along the floor, so a landing body slides on (only "

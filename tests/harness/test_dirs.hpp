@@ -18,6 +18,11 @@ inline Scene shipped_scene(const std::string& stem) {
   return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + stem + ".toml");
 }
 
+// A contact scene ours cannot run (a turning cube beside another dynamic one), for the tests of a
+// skipped run: every shipped scene runs on ours.
+inline const std::string kTurnedPair =
+    std::string(DROPCHECK_SOURCE_DIR) + "/tests/scenes/ours_turned_pair.toml";
+
 // A fresh, empty directory under the system's temporary directory, removed again at scope exit.
 struct ScratchDir {
   std::filesystem::path path;

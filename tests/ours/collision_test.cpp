@@ -8,11 +8,17 @@
 // Bounce, from rest with the lowest point h0 above the floor: after n free steps the drop is
 // g*h^2*n*(n + 1)/2; the contact step c is the first whose drop exceeds h0; the next step leaves
 // at e*g*h*c (the step-start approach) and moves h*e*g*h*c plus the depth it started in.
+// Edge landing: a unit cube of 1 kg (I = 1/6 about every axis) turned by theta about z lands on its
+// lowest edge, whose midpoint sits at r = (r_x, r_y, 0) from its centre. Frictionless and with
+// e = 0 one impulse j along y stops that point: K_nn = 1 + 6*r_x^2, j = -u_n/K_nn, so
+//   v_y = u_n*6*r_x^2/(1 + 6*r_x^2),  w_z = 6*r_x*j = -6*r_x*u_n/(1 + 6*r_x^2)
+// with u_n = v_y0 - g*h, the speed the step's gravity left.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <vector>
 
 #include "ours/physics.hpp"
+#include "tests/ours/edge_landing.hpp"
 
 namespace {
 
@@ -150,4 +156,39 @@ TEST_CASE("with collisions off, the cubes fall through the floor as in Part III"
   CHECK(a[1].translation.y() < -1.0f);  // through the floor
   CHECK(a[1].translation == b[1].translation);
   CHECK(a[1].rigidBody.velocity == b[1].rigidBody.velocity);
+}
+
+TEST_CASE("a turned cube landing on an edge turns by the closed form of one impulse at the edge",
+          "[ours][collision]") {
+  using T = double;
+  const dropcheck::testing::EdgeLanding e;
+  std::vector<ours::Model<T>> models(2);
+  models[0] = floor_box<T>();
+  models[1].translation = e.centre();
+  models[1].rotation = e.rotation();
+  models[1].rigidBody.velocity = {0, e.v0, 0};
+  ours::ApplyPhysics<T>(models, world<T>(0, 0), e.h);
+  const ours::RigidBody<T>& b = models[1].rigidBody;
+  CHECK(b.velocity.y() == Approx(e.vy()).epsilon(1e-14));
+  CHECK(b.angularVelocity.z() == Approx(e.wz()).epsilon(1e-14));
+  CHECK(std::abs(b.velocity.x()) + std::abs(b.velocity.z()) < 1e-15);
+  CHECK(std::abs(b.angularVelocity.x()) + std::abs(b.angularVelocity.y()) < 1e-15);
+  // The edge's point no longer approaches: v_y + w_z*r_x = 0.
+  CHECK(std::abs(b.velocity.y() + b.angularVelocity.z() * e.arm().x()) < 1e-14);
+}
+
+TEST_CASE("a tumbling cube lands, turns and stays above the floor; unturned it lands flat",
+          "[ours][collision]") {
+  using T = double;
+  std::vector<ours::Model<T>> models(2);
+  models[0] = floor_box<T>();
+  models[1].translation = {0, 3, 0};
+  models[1].rigidBody.angularVelocity = {2, 3, 1};
+  const ours::World<T> w = world<T>(T(0.5), T(0));
+  for (int n = 0; n < 240; ++n) ours::ApplyPhysics<T>(models, w, T(1) / T(60));
+  // Its centre ends between the resting heights on a face (0.5 m) and on a corner (sqrt(3)/2 m),
+  // and it has turned away from its start.
+  CHECK(models[1].translation.y() > 0.5 - 1e-9);
+  CHECK(models[1].translation.y() < std::sqrt(3.0) / 2);
+  CHECK(models[1].rotation.w() < 0.99);
 }

@@ -105,14 +105,14 @@ TEST_CASE("A malformed baseline names the file, line and record", "[baseline]") 
 
 TEST_CASE("An engine that cannot run a scene leaves a skipped baseline with its reason",
           "[baseline]") {
-  const Scene scene = shipped_scene("tumble_drop");
+  const Scene scene = load_scene(kTurnedPair);
   const Baseline b = make_baseline(scene, factory("ours"));
   const std::string why =
-      "a turned or turning box in contact: ours pushes through the centre of mass and does not "
-      "model a landing on an edge";
+      "a turned or turning box beside another dynamic body or a static sphere: ours collides a "
+      "turned box only with static boxes (its corners against their faces)";
   CHECK(b.skipped == why);
   CHECK(b.analytic.rfind("none: contacts", 0) == 0);
-  const Baseline read = parse_baseline(baseline_to_text(b), "tumble_drop.ours.txt");
+  const Baseline read = parse_baseline(baseline_to_text(b), "ours_turned_pair.ours.txt");
   CHECK(read.skipped == why);
   CHECK(read.samples.samples() == 0);
 }
@@ -154,7 +154,7 @@ TEST_CASE("Bless writes every baseline and leaves unchanged data byte for byte",
   BlessOptions options;
   options.out_dir = dir.path.string();
   options.commit = "aaaaaaa 2026-01-01";
-  const std::vector<Scene> scenes = {shipped_scene("free_fall"), shipped_scene("tumble_drop")};
+  const std::vector<Scene> scenes = {shipped_scene("free_fall"), load_scene(kTurnedPair)};
   const std::vector<NamedFactory> engines = {{"ours", factory("ours")},
                                              {"ours-f64", factory("ours-f64")}};
   const BlessOutcome first = bless(scenes, engines, options);
@@ -163,7 +163,7 @@ TEST_CASE("Bless writes every baseline and leaves unchanged data byte for byte",
   CHECK_THAT(first.lines[0],
              Catch::StartsWith("new ") && Catch::Contains("free_fall.ours.txt (hash "));
   CHECK_THAT(first.lines[2],
-             Catch::Contains("tumble_drop.ours.txt (skipped: a turned or turning box"));
+             Catch::Contains("ours_turned_pair.ours.txt (skipped: a turned or turning box"));
   const std::string before = slurp(dir.file("free_fall.ours.txt"));
   CHECK_THAT(before, Catch::StartsWith("# dropcheck baseline: made by `dropcheck bless` with ") &&
                          Catch::Contains("on commit aaaaaaa 2026-01-01\n"));

@@ -4,6 +4,8 @@
 //   none                      the step of ours/physics.hpp (ApplyPhysicsWithCollisions)
 //   friction_after_position   the positions move before the contacts are resolved
 //   restitution_twice         the restitution impulse applied twice (e*(1 + e) of the approach)
+//   turned_through_centre     a turned box's impulse through its centre (its arm forgotten)
+//   turned_before_contact     the orientation turned by the angular velocity before the contacts
 #pragma once
 
 #include <memory>
@@ -15,7 +17,13 @@
 
 namespace dropcheck::testing {
 
-enum class ContactBug { none, friction_after_position, restitution_twice };
+enum class ContactBug {
+  none,
+  friction_after_position,
+  restitution_twice,
+  turned_through_centre,
+  turned_before_contact,
+};
 
 class BuggyContactOurs final : public Engine {
  public:
@@ -28,6 +36,7 @@ class BuggyContactOurs final : public Engine {
     h_ = h;
     world_.gravity = scene.world.gravity;
     world_.linearDrag = decay_per_step(scene, h);
+    world_.angularDrag = angular_decay_per_step(scene, h);
     world_.collisions = scene.world.contacts;
     world_.friction = scene_material(scene).friction.value_or(0.0);
     world_.restitution = scene_material(scene).restitution.value_or(0.0);
@@ -38,6 +47,9 @@ class BuggyContactOurs final : public Engine {
       models_[i].rigidBody.velocity = b.velocity;
       models_[i].rigidBody.mass = b.mass;
       models_[i].rigidBody.isStatic = b.is_static;
+      models_[i].rotation = b.orientation;
+      models_[i].rigidBody.angularVelocity = b.angular_velocity;
+      models_[i].rigidBody.inertia = inertia_of(b);
       models_[i].collider.shape = b.shape == Shape::sphere ? ours::Shape::Sphere : ours::Shape::Box;
       models_[i].collider.halfExtents = b.half_extents;
       models_[i].collider.radius = b.radius;
@@ -52,18 +64,25 @@ class BuggyContactOurs final : public Engine {
     std::span<ours::Model<double>> m(models_);
     std::vector<ours::Contact<double>> contacts =
         ours::FindContacts<double>(std::span<const ours::Model<double>>(m));
-    for (ours::Model<double>& model : m)
-      if (!model.rigidBody.isStatic) {
-        ours::ApplyGravity(&model, world_, h_);
-        ours::IntegrateLinearVelocity(&model, world_, h_);
+    if (bug_ == ContactBug::turned_through_centre)
+      for (ours::Contact<double>& c : contacts) c.atPoint = false;
+    std::vector<char> turns(m.size(), 0);
+    for (std::size_t i = 0; i < m.size(); ++i)
+      if (!m[i].rigidBody.isStatic) {
+        ours::ApplyGravity(&m[i], world_, h_);
+        ours::IntegrateLinearVelocity(&m[i], world_, h_);
+        turns[i] = ours::Turns(m[i]);
+        if (turns[i]) ours::IntegrateAngularVelocity(&m[i], world_, h_);
       }
     if (bug_ == ContactBug::friction_after_position) move(m);
+    if (bug_ == ContactBug::turned_before_contact) turn(m, turns);
     const double e = world_.restitution;
     ours::ResolveContacts(m, contacts, world_.friction, e);
     if (bug_ == ContactBug::restitution_twice)  // the rebound's impulse once more
       for (const ours::Contact<double>& c : contacts)
         if (c.approach > 0.0) m[c.body].rigidBody.velocity += e * c.approach * c.normal;
     if (bug_ != ContactBug::friction_after_position) move(m);
+    if (bug_ != ContactBug::turned_before_contact) turn(m, turns);
     ours::PushOut(m, contacts);
   }
 
@@ -72,10 +91,21 @@ class BuggyContactOurs final : public Engine {
       out[i] = {models_[i].translation, models_[i].rigidBody.velocity};
   }
 
+  void read_rotation(std::span<RotationState> out) const override {
+    for (std::size_t i = 0; i < models_.size(); ++i)
+      out[i] = {models_[i].rotation, models_[i].rigidBody.angularVelocity};
+  }
+
  private:
   void move(std::span<ours::Model<double>> m) const {
     for (ours::Model<double>& model : m)
       if (!model.rigidBody.isStatic) ours::IntegratePosition(&model, h_);
+  }
+
+  void turn(std::span<ours::Model<double>> m, const std::vector<char>& turns) const {
+    for (std::size_t i = 0; i < m.size(); ++i)
+      if (!m[i].rigidBody.isStatic && (turns[i] || !m[i].rigidBody.angularVelocity.isZero(0.0)))
+        ours::IntegrateRotation(&m[i], h_);
   }
 
   ContactBug bug_;

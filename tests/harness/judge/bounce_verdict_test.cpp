@@ -1,11 +1,14 @@
 // Tests harness/judge/bounce_verdict.cpp: a run is judged step by step against its engine's
 // bounce law; the members that move that law off the ideal one are named; a run that follows the
 // ideal law where its engine declares another, or that gains height, is caught. The runs are the
-// laws themselves, written as trajectories, so no engine is needed.
+// laws themselves, written as trajectories, so no engine is needed; the last test runs ours (f32),
+// whose path parts from its law's where a contact is decided within rounding of the floor.
 #include "harness/judge/bounce_verdict.hpp"
 
 #include <catch2/catch.hpp>
 
+#include "harness/core/registry.hpp"
+#include "harness/run/runner.hpp"
 #include "harness/scene/scene_loader.hpp"
 
 using namespace dropcheck;
@@ -94,4 +97,22 @@ TEST_CASE("a bounce that climbs above where it fell from is flagged: energy rise
   CHECK(v.energy_rises);
   CHECK_FALSE(v.follows);
   CHECK_THAT(v.sentence(), Contains("ENERGY RISES"));
+}
+
+TEST_CASE(
+    "a float run that parts from its law's path names the step whose contact it decides "
+    "on the other side",
+    "[contact][bounce]") {
+  const Scene scene = shipped("bounce_e05");
+  const BounceSetup s = bounce_setups(scene).at(0);
+  std::unique_ptr<Engine> ours = make_engine("ours");
+  const double h = scene.timestep.seconds;
+  const BounceVerdict v = judge_bounce(run_scene(*ours, scene, h), s, ours->info().bounce_law, h);
+  INFO(v.sentence());
+  CHECK(v.follows);
+  REQUIRE(v.step_gap >= 0.0);  // its path parts from the law's in double
+  REQUIRE(v.decided_step >= 0);
+  // One of the two starts that step in the floor (or touching it), the other above it.
+  CHECK((v.law_gap_there <= 0.0) != (v.run_gap_there <= 0.0));
+  CHECK_THAT(v.sentence(), Contains("decide its contact on either side"));
 }
