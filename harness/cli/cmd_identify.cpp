@@ -21,6 +21,7 @@
 #include "harness/oracles/contact_laws.hpp"
 #include "harness/scene/scene_loader.hpp"
 #include "harness/study/identify_analysis.hpp"
+#include "harness/study/identify_contact.hpp"
 #include "selection.hpp"
 
 namespace dropcheck {
@@ -36,7 +37,9 @@ const CommandSpec& identify_spec() {
       "fixed-step member: with --engine it gets its error against the closed form at accuracies "
       "1e-3 to 1e-12 instead, each against that accuracy's budget. On a slide to a stop (with "
       "--engine): the engine's friction model (cone, box pyramid or sum pyramid) from the ratio "
-      "of its stop distances at 45 and at 0 degrees.",
+      "of its stop distances at 45 and at 0 degrees. On a bounce or a tumbling landing (with "
+      "--engine): the member of the bounce law or the turned-box contact law its run follows, "
+      "tried against the ideal law and every member this build's adapters declare.",
       "scene FILE",
       "the scene file (.toml) the trajectory comes from",
       1,
@@ -410,6 +413,45 @@ int identify_trajectory(const Scene& scene, const IdentifyRequest& r, std::ostre
   return f.ok() ? kExitOk : kExitCheckFailed;
 }
 
+void print_contact_law(const ContactLawIdentity& c, std::ostream& out) {
+  if (c.failed) {
+    out << "identify " << c.scene << ": " << failure_text(*c.failed) << "\n";
+    return;
+  }
+  out << "identify " << c.scene << ": " << c.engine << "'s " << c.family
+      << " from its run at h = " << printf_string("%.6g", c.h) << " s\n";
+  for (const ContactMemberFit& f : c.fits) {
+    std::string by;
+    for (const std::string& e : f.declared_by) by += (by.empty() ? "" : ", ") + e;
+    out << (!f.judged   ? "  untried  "
+            : f.follows ? "  follows  "
+                        : "  departs  ")
+        << f.member << (by.empty() ? std::string() : " (declared by " + by + ")") << ": "
+        << f.detail << "\n";
+  }
+  if (c.undeclared)
+    out << "declared: none (its adapter declares no " << c.family
+        << "; its landing is compared, not judged)\n";
+  else
+    out << "declared " << c.declared << ": " << match_word(c.ok()) << "\n";
+}
+
+// A bounce or a tumbling landing: the member of the contact law family the engine's run follows.
+int identify_contact(const Scene& scene, const IdentifyRequest& r, std::ostream& out) {
+  if (r.engine.empty())
+    throw InputError("", 0, "--trajectory",
+                     "a contact law is identified from an engine's run: use --engine E");
+  std::vector<SelectedEngine> engines = select_engines({r.engine}, scene);
+  if (!engines[0].engine)
+    throw InputError("", 0, "--engine " + r.engine, engines[0].skipped_because);
+  const double h = step_from_flag(r.dt, scene).seconds;
+  const ContactLawIdentity c = bounce_setups(scene).empty()
+                                   ? identify_turned_contact(scene, *engines[0].engine, h)
+                                   : identify_bounce_law(scene, *engines[0].engine, h);
+  print_contact_law(c, out);
+  return c.ok() ? kExitOk : kExitCheckFailed;
+}
+
 int run_identify(const IdentifyRequest& r, std::ostream& out) {
   const Scene scene = load_scene(r.scene_file);
   if (r.combine && slide_setups(scene).empty())
@@ -420,6 +462,8 @@ int run_identify(const IdentifyRequest& r, std::ostream& out) {
     return std::max(rule, identify_friction(scene, r, out));
   }
   if (!slide_setups(scene).empty()) return identify_friction(scene, r, out);
+  if (!bounce_setups(scene).empty() || (scene.world.contacts && needs_rotation(scene)))
+    return identify_contact(scene, r, out);
   return r.engine.empty() ? identify_trajectory(scene, r, out) : identify_engine_law(scene, r, out);
 }
 

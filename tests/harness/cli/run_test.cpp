@@ -213,6 +213,26 @@ TEST_CASE("identify --trajectory names the rotational member of a run read back 
   CHECK_THAT(e.out, Contains("declared rotation explicit/exp-map: matches"));
 }
 
+TEST_CASE("identify on a bounce and a tumbling landing names the contact law member followed",
+          "[cli][identify][contact]") {
+  const Result b =
+      cli({"identify", DROPCHECK_SOURCE_DIR "/scenarios/bounce_e01.toml", "--engine", "ode"});
+  CHECK(b.code == 0);
+  CHECK_THAT(b.out, Contains("identify bounce_e01: ode's bounce law from its run at h = ") &&
+                        Contains("  follows  restitution of the step-start approach speed, "
+                                 "push-out 0.2*depth/h capped at 0.3 m/s (declared by ode)") &&
+                        Contains("  departs  ") && Contains(": matches"));
+  const Result t =
+      cli({"identify", DROPCHECK_SOURCE_DIR "/scenarios/tumble_drop.toml", "--engine", "ours-f64"});
+  CHECK(t.code == 0);
+  CHECK_THAT(t.out, Contains("  follows  one impulse at the mean of the corners in the floor "
+                             "(declared by ours, ours-f64)") &&
+                        Contains("declared one impulse at the mean of the corners in the floor: "
+                                 "matches"));
+  const Result n = cli({"identify", DROPCHECK_SOURCE_DIR "/scenarios/tumble_drop.toml"});
+  CHECK(n.code == 2);
+}
+
 TEST_CASE("identify --trajectory reads a Gazebo benchmark log and names its rotational member",
           "[cli][identify][rotation]") {
   // Bullet's run of Gazebo's complex case, written back into Gazebo's frame and log format.

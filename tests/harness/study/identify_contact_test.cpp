@@ -1,0 +1,58 @@
+// Tests harness/study/identify_contact.cpp: identify names the bounce law and the turned-box
+// contact law a run follows, among the ideal law and every member this build's adapters declare
+// (the printed lines are tested in tests/harness/cli/run_test.cpp).
+#include "harness/study/identify_contact.hpp"
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+
+#include "harness/core/registry.hpp"
+#include "harness/scene/scene_loader.hpp"
+
+using namespace dropcheck;
+using Catch::Contains;
+
+namespace {
+
+Scene shipped(const std::string& stem) {
+  return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + stem + ".toml");
+}
+
+}  // namespace
+
+TEST_CASE("identify on a bounce: the declared member follows, the others depart",
+          "[identify][contact]") {
+  const Scene scene = shipped("bounce_e05");
+  for (const char* name : {"ours-f64", "ode"}) {
+    const std::unique_ptr<Engine> engine = make_engine(name);
+    const ContactLawIdentity id = identify_bounce_law(scene, *engine, scene.timestep.seconds);
+    INFO(name);
+    CHECK(id.ok());
+    REQUIRE(id.fits.size() >= 3);  // its own, the ideal law, and at least one other adapter's
+    CHECK(id.fits.front().member == describe(engine->info().bounce_law));
+    CHECK(std::find(id.fits.front().declared_by.begin(), id.fits.front().declared_by.end(),
+                    name) != id.fits.front().declared_by.end());
+    for (std::size_t i = 1; i < id.fits.size(); ++i) {
+      CHECK_FALSE(id.fits[i].follows);
+      CHECK_THAT(id.fits[i].detail, Contains("departs at step"));
+    }
+  }
+}
+
+TEST_CASE("identify on a tumbling landing: ours follows its mean-corner law; ODE declares none",
+          "[identify][contact]") {
+  const Scene scene = shipped("tumble_drop");
+  const std::unique_ptr<Engine> ours = make_engine("ours");
+  const ContactLawIdentity o = identify_turned_contact(scene, *ours, scene.timestep.seconds);
+  CHECK(o.ok());
+  CHECK_FALSE(o.undeclared);
+  REQUIRE(o.fits.size() == 1);
+  CHECK(o.fits[0].follows);
+  const std::unique_ptr<Engine> ode = make_engine("ode");
+  const ContactLawIdentity d = identify_turned_contact(scene, *ode, scene.timestep.seconds);
+  CHECK(d.ok());  // nothing declared, nothing to match
+  CHECK(d.undeclared);
+  REQUIRE(d.fits.size() == 1);
+  CHECK_FALSE(d.fits[0].judged);  // ODE damps after the position update: the law's free step is
+                                  // not its own
+}
