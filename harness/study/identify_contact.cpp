@@ -34,9 +34,9 @@ std::optional<Trajectory> identity_run(ContactLawIdentity& id, const Scene& scen
 
 std::string bounce_detail(const BounceVerdict& v) {
   if (v.follows)
-    return v.step_gap < 0.0 ? printf_string("its path to %.2g m", v.worst_gap)
-                            : printf_string("every step to %.2g m and %.2g m/s", v.step_gap,
-                                            v.step_speed);
+    return v.step_gap < 0.0
+               ? printf_string("its path to %.2g m", v.worst_gap)
+               : printf_string("every step to %.2g m and %.2g m/s", v.step_gap, v.step_speed);
   return printf_string("departs at step %lld by %.3g m", static_cast<long long>(v.worst_step),
                        v.worst_gap);
 }

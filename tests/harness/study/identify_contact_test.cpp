@@ -30,8 +30,8 @@ TEST_CASE("identify on a bounce: the declared member follows, the others depart"
     CHECK(id.ok());
     REQUIRE(id.fits.size() >= 3);  // its own, the ideal law, and at least one other adapter's
     CHECK(id.fits.front().member == describe(engine->info().bounce_law));
-    CHECK(std::find(id.fits.front().declared_by.begin(), id.fits.front().declared_by.end(),
-                    name) != id.fits.front().declared_by.end());
+    CHECK(std::find(id.fits.front().declared_by.begin(), id.fits.front().declared_by.end(), name) !=
+          id.fits.front().declared_by.end());
     for (std::size_t i = 1; i < id.fits.size(); ++i) {
       CHECK_FALSE(id.fits[i].follows);
       CHECK_THAT(id.fits[i].detail, Contains("departs at step"));
