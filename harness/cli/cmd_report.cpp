@@ -1,4 +1,4 @@
-// dropcheck report [FILE|DIR]... [--out DIR] [--engine E]... [--no-timing]
+// dropcheck report [FILE|DIR]... [--out DIR] [--engine E]... [--reference E] [--no-timing]
 // Evaluates every scene on every engine (harness/study/evaluate.hpp) and writes DIR/README.md
 // plus SVG plots (harness/report/report.hpp). Default: every *.toml directly in scenarios/; scenes
 // in an extreme/ folder go to the stability section (harness/report/stability_report.hpp). Every
@@ -103,11 +103,12 @@ void describe_engines(const std::vector<EngineSlot>& slots, ReportInput& in) {
 // Evaluates each scene, with progress lines "[3/7] wind: bullet 1/120 ..." on `err`; then, unless
 // --no-timing, times them all as one schedule ("timing 61 cells: round 2 of 9 ...").
 void evaluate_all(const std::vector<Scene>& scenes, const std::vector<EngineSlot>& slots,
-                  std::size_t total, ReportInput& in, std::ostream& err) {
+                  const EvaluateOptions& options, std::size_t total, ReportInput& in,
+                  std::ostream& err) {
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     const std::string prefix =
         "[" + std::to_string(i + 1) + "/" + std::to_string(total) + "] " + scenes[i].name + ": ";
-    in.scenes.push_back(evaluate_scene(scenes[i], slots, {}, [&](const std::string& what) {
+    in.scenes.push_back(evaluate_scene(scenes[i], slots, options, [&](const std::string& what) {
       err << prefix << what << " ...\n" << std::flush;
     }));
   }
@@ -157,6 +158,9 @@ const CommandSpec& report_spec() {
       {{"--out", "DIR", "the report folder, replaced whole (default: reports)"},
        {"--engine", "E", "an engine to include (repeatable; default: every engine dropcheck knows)",
         true},
+       {"--reference", "E",
+        "the engine divergences are measured from (default: ours-f64; on a scene it does not run, "
+        "the first engine that ran it, named in that scene's section)"},
        {"--no-timing", "", "leave out the wall-clock timings"},
        {"--compare-timings", "FILE",
         "the timings.json the slowdown alert compares with (default: the one in --out)"},
@@ -208,6 +212,14 @@ int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ost
   for (const std::string& f : files.scenes) scenes.push_back(load_scene(f));
   for (const std::string& f : files.extreme) load_scene(f);  // validated now, run by the section
   const std::vector<EngineSlot> slots = engine_slots(args.values("--engine"));
+  EvaluateOptions options;
+  options.reference = args.value("--reference", options.reference);
+  if (args.has("--reference") && std::none_of(slots.begin(), slots.end(), [&](const EngineSlot& s) {
+        return s.name == options.reference && s.make;
+      }))
+    throw InputError("", 0, "--reference " + options.reference,
+                     "not one of the engines this report runs (give it with --engine too, or "
+                     "leave out --engine)");
 
   ReportInput in;
   in.timing = !args.has("--no-timing");
@@ -231,7 +243,7 @@ int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ost
       in.compare = {read_timing_record(args.value("--compare-timings")), "", ""};
   }
   const std::size_t total = scenes.size() + (files.extreme.empty() ? 0 : 1);
-  evaluate_all(scenes, slots, total, in, err);
+  evaluate_all(scenes, slots, options, total, in, err);
   if (!files.extreme.empty()) {
     err << "[" << total << "/" << total << "] stability: " << files.extreme.size()
         << " extreme scenes ...\n";

@@ -1,0 +1,44 @@
+// Tests `dropcheck report --reference E`: the divergences are measured from the engine asked for
+// and every header names it; an engine the report does not run is refused before any work.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <string>
+
+#include "cli_driver.hpp"
+#include "tests/harness/test_dirs.hpp"
+#include "tests/scene_texts.hpp"
+
+using Catch::Matchers::Contains;
+using dropcheck::testing::body_text;
+using dropcheck::testing::cli;
+using dropcheck::testing::kEarth;
+using dropcheck::testing::kZero;
+using dropcheck::testing::Result;
+using dropcheck::testing::scene_head;
+using dropcheck::testing::ScratchDir;
+using dropcheck::testing::slurp;
+
+TEST_CASE("report --reference measures the divergences from the engine asked for",
+          "[cli][report]") {
+  ScratchDir d("report-reference");
+  const std::string scene = d.write("fall.toml", scene_head("0.5", "1/60", kEarth) +
+                                                     body_text("cube", "[0.0, 10.0, 0.0]", kZero));
+  const Result r = cli({"report", scene, "--out", d.file("r"), "--engine", "ours-f64", "--engine",
+                        "ode", "--reference", "ode", "--no-timing"});
+  REQUIRE(r.code == 0);
+  const std::string md = slurp(d.file("r/README.md"));
+  CHECK_THAT(md, Contains("#### Divergence from ode at h = 1/60"));
+  CHECK_THAT(md, !Contains("Divergence from ours-f64"));
+}
+
+TEST_CASE("report --reference with an engine it does not run is refused before any work",
+          "[cli][report]") {
+  ScratchDir d("report-reference-bad");
+  const std::string scene = d.write("fall.toml", scene_head("0.5", "1/60", kEarth) +
+                                                     body_text("cube", "[0.0, 10.0, 0.0]", kZero));
+  const Result r = cli({"report", scene, "--out", d.file("r"), "--engine", "ours-f64",
+                        "--reference", "ode", "--no-timing"});
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Contains("--reference ode") && Contains("not one of the engines"));
+  CHECK(!std::filesystem::exists(d.file("r")));
+}
