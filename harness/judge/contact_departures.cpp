@@ -3,6 +3,7 @@
 #include "harness/judge/bounce_verdict.hpp"
 #include "harness/judge/slide_verdict.hpp"
 #include "harness/judge/stack_verdict.hpp"
+#include "harness/judge/turned_verdict.hpp"
 
 namespace dropcheck {
 
@@ -27,6 +28,13 @@ std::vector<ContactDeparture> contact_departures(const Scene& scene, const Traje
       if (!v.passes())
         out.push_back(
             {ContactLaw::stack, v.body, run.recorded.back(), "in a stack " + v.sentence()});
+  if (needs_rotation(scene) && info.turned_contact != TurnedContact::not_declared) {
+    const TurnedVerdict v = judge_turned_contact(scene, info, run);
+    if (v.not_judged.empty() && !v.follows())
+      for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+        if (!scene.bodies[b].is_static)
+          out.push_back({ContactLaw::turned, b, v.first_departure, "landing " + v.sentence()});
+  }
   return out;
 }
 

@@ -1,6 +1,7 @@
 // Where a run leaves its engine's contact laws (docs/contact.md): each slide off its friction
-// model's clamp law, each bounce off its bounce law, each stacked body off its stack law. One
-// place for the report's flags and the stability classifier.
+// model's clamp law, each bounce off its bounce law, each stacked body off its stack law, a
+// tumbling landing off its turned-box contact law. One place for the report's flags and the
+// stability classifier.
 #pragma once
 
 #include <cstdint>
@@ -13,13 +14,14 @@
 
 namespace dropcheck {
 
-enum class ContactLaw { slide, bounce, stack };
+enum class ContactLaw { slide, bounce, stack, turned };
 
 struct ContactDeparture {
   ContactLaw law = ContactLaw::slide;
   std::size_t body = 0;
   std::int64_t step = 0;  // where it showed: the slide's stop (or the run's end), the bounce's
-                          // largest departure, the run's end for a stack
+                          // largest departure, the run's end for a stack, a tumbling landing's
+                          // first step off its law
   std::string what;       // the verdict's sentence
 };
 

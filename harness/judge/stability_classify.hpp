@@ -21,8 +21,9 @@ enum class FailureMode {
   frozen,            // a coordinate constant over many steps while the physics says it moves
                      // by more than half a float spacing and the scene's tolerance
   clamped,           // the engine clamped a speed (Trajectory::clamped_steps > 0)
-  off_contact_law,   // a slide, bounce or stack left its engine's contact law (docs/contact.md):
-                     // the step no longer gives the physics the engine is judged by
+  off_contact_law,   // a slide, bounce, stack or tumbling landing left its contact law
+                     // (docs/contact.md): the step no longer gives the physics the engine is
+                     // judged by
 };
 
 // Short name of a failure mode ("NaN/Inf", "frozen", ...), as tables print it.

@@ -1,7 +1,8 @@
 // The contact laws as members of the stability classifier (stability_contact.cpp): a run that
-// leaves its engine's slide, bounce or stack law (docs/contact.md) is classified off_contact_law,
-// so the step search finds the largest step at which an engine still stops a slide as its friction
-// model's clamp law says, bounces as its bounce law says and holds its stacks.
+// leaves its engine's slide, bounce, stack or turned-box law (docs/contact.md) is classified
+// off_contact_law, so the step search finds the largest step at which an engine still stops a
+// slide as its friction model's clamp law says, bounces as its bounce law says, holds its stacks
+// and lands a tumbling box as its turned-box law says.
 #pragma once
 
 #include "harness/core/engine.hpp"

@@ -59,19 +59,20 @@ inline constexpr double kStackSink = 1.05;
 
 // A tumbling landing (harness/judge/turned_verdict.hpp): each step of a run against its engine's
 // turned-box contact law, taken from the run's state the step before. A corner within `decide` of
-// the face may be in contact or not in the engine's arithmetic, and both are tried. Measured with
-// tumble_drop, its variants with mu = 0.5, e = 0.4 and both, and a cube turned 30 degrees landing
-// on an edge while sliding at 1 m/s (mu = 0.5), each at h = 1/30, 1/60, 1/120, 1/240 (ours:
-// `dropcheck check`): ours-f64 worst 2.2e-16 m, 1.4e-15 m/s, 4.6e-16 rad, 5.4e-15 rad/s, no corner
-// within 1e-12 m of the face; ours (f32) worst 1.2e-7 m, 5.6e-7 m/s, 1.5e-7 rad, 2.9e-6 rad/s, up
-// to 28 steps of 720 with a corner within 4e-6 m of the face.
+// the face may be in contact or not in the engine's arithmetic, and both are tried. A step may be
+// off by kTurnedStepUlps units in the last place of the engine's scalar, of each quantity's size
+// in the law's state: |x| and |v| (at least 1 m, 1 m/s), the step's turn |w|*h (at least 1 rad)
+// and |w| (at least 1 rad/s). Measured with tumble_drop, its variants with mu = 0.5, e = 0.4 and
+// both, and a cube turned 30 degrees landing on an edge while sliding at 1 m/s (mu = 0.5), each at
+// h = 1/30, 1/60, 1/120, 1/240 (ours: `dropcheck check`): ours-f64 worst 2.2e-16 m, 1.4e-15 m/s,
+// 4.6e-16 rad, 5.4e-15 rad/s (at most 3 ulps of its size), no corner within 1e-12 m of the face;
+// ours (f32) worst 1.2e-7 m, 5.6e-7 m/s, 1.5e-7 rad, 2.9e-6 rad/s (3 ulps of |w| = 8 rad/s), up to
+// 28 steps of 720 with a corner within 4e-6 m of the face. At h = 0.2123 s (a stability probe),
+// ours (f32) turns by 1.7 rad a step and rounds its orientation 1.4e-6 rad off: 7 ulps of that
+// turn.
 inline constexpr double kTurnedDecideF64 = 1e-12;  // m
 inline constexpr double kTurnedDecideF32 = 4e-6;   // m
-struct TurnedStepTolerance {
-  double position, velocity, angle, spin;  // m, m/s, rad, rad/s
-};
-inline constexpr TurnedStepTolerance kTurnedStepF64{1e-12, 1e-11, 1e-12, 1e-11};
-inline constexpr TurnedStepTolerance kTurnedStepF32{1e-6, 1e-5, 1e-6, 3e-5};
+inline constexpr double kTurnedStepUlps = 32.0;
 
 // --- Orders of convergence, harness/study/sweep.hpp ------------------------------------------
 // A damping-order difference, or semi-implicit Euler against the analytic solution, shrinks at

@@ -32,6 +32,21 @@ const char* worst_quantity(const TurnedResidual& r, const TurnedResidual& t) {
   return names[std::max_element(q, q + 4) - q];
 }
 
+// The step's tolerance: kTurnedStepUlps units in the last place of the scalar, of each quantity's
+// size in the law's state (at least 1 m, 1 m/s, 1 rad, 1 rad/s): |x|, |v|, the turn |w|*h and |w|.
+// A step's rounding scales with the terms it adds, and a turn of |w|*h rad rounds like that angle.
+TurnedResidual step_tolerance(const TurnedCandidate& c, double h, double ulp) {
+  double x = 1.0, v = 1.0, turn = 1.0, w = 1.0;
+  for (std::size_t b = 0; b < c.linear.size(); ++b) {
+    x = std::max(x, c.linear[b].position.norm());
+    v = std::max(v, c.linear[b].velocity.norm());
+    turn = std::max(turn, c.rotation[b].angular_velocity.norm() * h);
+    w = std::max(w, c.rotation[b].angular_velocity.norm());
+  }
+  const double k = tolerance::kTurnedStepUlps * ulp;
+  return {k * x, k * v, k * turn, k * w};
+}
+
 std::string residual_text(const TurnedResidual& r) {
   return printf_string("|dx| %.2g m, |dv| %.2g m/s, %.2g rad, |dw| %.2g rad/s", r.position,
                        r.velocity, r.angle, r.spin);
@@ -60,9 +75,8 @@ TurnedVerdict judge_turned_contact(const Scene& scene, const EngineInfo& info,
     return v;
   }
   const bool f32 = info.scalar == Scalar::f32;
-  const tolerance::TurnedStepTolerance& t =
-      f32 ? tolerance::kTurnedStepF32 : tolerance::kTurnedStepF64;
-  v.tolerance = {t.position, t.velocity, t.angle, t.spin};
+  const double ulp =
+      f32 ? std::numeric_limits<float>::epsilon() : std::numeric_limits<double>::epsilon();
   const double decide = f32 ? tolerance::kTurnedDecideF32 : tolerance::kTurnedDecideF64;
   double worst_ratio = -1.0;
   const std::size_t n = run.bodies();
@@ -71,15 +85,17 @@ TurnedVerdict judge_turned_contact(const Scene& scene, const EngineInfo& info,
     const std::span<const RotationState> rotation(&run.rotation_at(k, 0), n);
     const std::vector<TurnedCandidate> candidates =
         turned_contact_step(scope.setup, linear, rotation, decide);
-    TurnedResidual best;
+    TurnedResidual best, best_tolerance;
     double best_ratio = std::numeric_limits<double>::infinity();
     bool touching = false;
     for (const TurnedCandidate& c : candidates) {
       const TurnedResidual r = residual(run, k + 1, c);
+      const TurnedResidual t = step_tolerance(c, run.h, ulp);
       touching = touching || c.contacts > 0;
-      if (const double q = r.ratio(v.tolerance); q < best_ratio) {
+      if (const double q = r.ratio(t); q < best_ratio) {
         best_ratio = q;
         best = r;
+        best_tolerance = t;
       }
     }
     ++v.steps;
@@ -92,11 +108,13 @@ TurnedVerdict judge_turned_contact(const Scene& scene, const EngineInfo& info,
     if (!(best_ratio <= worst_ratio)) {
       worst_ratio = best_ratio;
       v.worst_step = run.recorded[k + 1];
+      v.tolerance = best_tolerance;
     }
     if (v.first_departure < 0 && !(best_ratio <= 1.0)) {
       v.first_departure = run.recorded[k + 1];
-      v.departure_quantity = worst_quantity(best, v.tolerance);
+      v.departure_quantity = worst_quantity(best, best_tolerance);
       v.at_departure = best;
+      v.tolerance = best_tolerance;
     }
   }
   return v;

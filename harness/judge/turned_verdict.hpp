@@ -20,11 +20,13 @@ struct TurnedResidual {
 };
 
 struct TurnedVerdict {
-  std::string not_judged;             // why the law was not applied (empty when judged)
-  std::int64_t steps = 0;             // steps judged (every step of the run)
-  std::int64_t contact_steps = 0;     // of them, steps that start with a corner in contact
-  std::int64_t undecided_steps = 0;   // steps with a corner within rounding of the face
-  TurnedResidual tolerance;           // per step, for the engine's scalar (tolerances.hpp)
+  std::string not_judged;            // why the law was not applied (empty when judged)
+  std::int64_t steps = 0;            // steps judged (every step of the run)
+  std::int64_t contact_steps = 0;    // of them, steps that start with a corner in contact
+  std::int64_t undecided_steps = 0;  // steps with a corner within rounding of the face
+  // The step tolerance (tolerance::kTurnedStepUlps of each quantity's size) at the first
+  // departure, else at the step closest to it.
+  TurnedResidual tolerance;
   TurnedResidual worst;               // the largest of each over the run
   std::int64_t worst_step = -1;       // the step with the largest ratio
   std::int64_t first_departure = -1;  // first step over the tolerance; -1 none

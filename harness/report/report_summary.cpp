@@ -86,7 +86,8 @@ bool clamped(const EngineEvaluation& ev) {
 
 // "FAILED: box2d; UNEXPLAINED: ode", or "ok". Each flag names the engines it concerns.
 std::string verdict(const SceneEvaluation& se) {
-  std::string failed, clamps, unexp, offlaw, rest, moving, tunnels, slides, bounces, stacks;
+  std::string failed, clamps, unexp, offlaw, rest, moving, tunnels, slides, bounces, stacks,
+      landings;
   auto add = [](std::string& list, const std::string& name) {
     list += (list.empty() ? "" : ", ") + name;
   };
@@ -102,7 +103,8 @@ std::string verdict(const SceneEvaluation& se) {
     for (const ContactLaw law : departed_laws(se, ev))
       add(law == ContactLaw::slide    ? slides
           : law == ContactLaw::bounce ? bounces
-                                      : stacks,
+          : law == ContactLaw::stack  ? stacks
+                                      : landings,
           ev.name);
   }
   std::string v;
@@ -118,6 +120,7 @@ std::string verdict(const SceneEvaluation& se) {
   flag("**OFF SLIDE LAW**", slides);
   flag("**OFF BOUNCE LAW**", bounces);
   flag("**OFF STACK LAW**", stacks);
+  flag("**OFF TURNED-BOX LAW**", landings);
   flag("tunnelled, no continuous collision (a limit)", tunnels);
   if (se.reference.empty()) flag("**NOT RUN**", "every engine");
   return v.empty() ? "ok" : v;

@@ -1,12 +1,13 @@
 // Tests harness/judge/stability_contact.cpp: the contact laws as members of the stability
 // classifier. A resting stack lifted by its engine's own skins is not energy growth; a run that
-// leaves its slide or stack law is off_contact_law; the step search finds where an engine stops
-// holding its stack (MuJoCo: 0.0573 s, measured with `dropcheck stability`).
+// leaves its slide, stack or turned-box law is off_contact_law; the step search finds where an
+// engine stops holding its stack (MuJoCo: 0.0573 s, measured with `dropcheck stability`).
 #include "harness/judge/stability_contact.hpp"
 
 #include <catch2/catch.hpp>
 
 #include "harness/core/registry.hpp"
+#include "harness/run/runner.hpp"
 #include "harness/scene/scene_loader.hpp"
 #include "harness/study/stability_search.hpp"
 #include "tests/displaced_run.hpp"
@@ -69,4 +70,18 @@ TEST_CASE("the step search finds the largest step at which an engine holds its s
   CHECK(s.max_stable_dt < 0.08);
   REQUIRE(s.limit.has_value());
   CHECK(*s.limit == FailureMode::off_contact_law);
+}
+
+TEST_CASE("a tumbling landing off its turned-box law is off_contact_law at its first step off",
+          "[stability][contact]") {
+  const Scene scene = shipped("tumble_drop");
+  std::unique_ptr<Engine> ours = make_engine("ours-f64");
+  Trajectory run = run_scene(*ours, scene, scene.timestep.seconds);
+  CHECK(classify_engine_run(scene, run, ours->info()).failures.empty());
+  run.rotations[60 * run.bodies() + 1].angular_velocity.z() += 1e-6;  // a kick at step 60
+  const Verdict v = classify_engine_run(scene, run, ours->info());
+  REQUIRE_FALSE(v.failures.empty());
+  CHECK(v.failures[0].mode == FailureMode::off_contact_law);
+  CHECK(v.failures[0].step == 60);
+  CHECK_THAT(v.failures[0].what, Contains("DEPARTS at step 60: angular velocity off"));
 }
