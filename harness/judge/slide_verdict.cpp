@@ -38,7 +38,8 @@ struct LawFit {
 LawFit fit(const SlidePath& run, const SlideObservation& seen, const SlideSetup& s,
            FrictionModel model, double h) {
   const SlidePath law = slide_path(s, model, h, static_cast<std::int64_t>(run.s.size()) - 1);
-  LawFit f{observe_slide(law, tolerance::kStoppedSpeed), path_distance(run, law), false};
+  LawFit f{observe_slide(law, tolerance::kStoppedSpeed, tolerance::kSlideDistance),
+           path_distance(run, law), false};
   f.follows = f.seen.stop_step == seen.stop_step && f.off <= tolerance::kSlideDistance;
   return f;
 }
@@ -50,7 +51,7 @@ SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& s, FrictionMod
   SlideVerdict v;
   v.model = model;
   const SlidePath path = observed_slide_path(run, s);
-  v.seen = observe_slide(path, tolerance::kStoppedSpeed);
+  v.seen = observe_slide(path, tolerance::kStoppedSpeed, tolerance::kSlideDistance);
   v.exact = exact_slide_angle(model, s.angle);
   if (!v.exact) {
     v.not_judged =

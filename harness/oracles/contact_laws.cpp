@@ -178,11 +178,13 @@ SlidePath observed_slide_path(const Trajectory& run, const SlideSetup& setup) {
   return p;
 }
 
-SlideObservation observe_slide(const SlidePath& path, double stopped_speed) {
+SlideObservation observe_slide(const SlidePath& path, double stopped_speed, double settled) {
   SlideObservation o;
   if (path.s.empty()) return o;
-  std::size_t n = path.s.size();  // the first index from which the speed stays at most stopped
-  while (n > 0 && std::abs(path.v[n - 1]) <= stopped_speed) --n;
+  std::size_t n = path.s.size();  // the first index from which the body stays stopped
+  while (n > 0 && std::abs(path.v[n - 1]) <= stopped_speed &&
+         std::abs(path.s[n - 1] - path.s.back()) <= settled)
+    --n;
   if (n == path.s.size()) {
     o.distance = path.s.back();
     return o;

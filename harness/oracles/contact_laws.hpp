@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -97,14 +98,17 @@ SlidePath slide_steps(const SlideSetup& setup, FrictionModel model, double h,
 // A run's path of one slide (a run that keeps every step, as the checks' runs do).
 SlidePath observed_slide_path(const Trajectory& run, const SlideSetup& setup);
 
-// What a path shows: the first step from which its speed stays at most `stopped_speed` (0 for a
-// body that never moves; -1 when it is still moving at the end), and the distance along the slip
-// by then (by the end when it never stops).
+// What a path shows: the first step from which its speed stays at most `stopped_speed` and its
+// position within `settled` of where it ends (0 for a body that never moves; -1 when it is still
+// moving at the end), and the distance along the slip by then (by the end when it never stops).
+// The position counts as well as the speed: a run that reports no speed while it creeps has not
+// stopped.
 struct SlideObservation {
   std::int64_t stop_step = -1;
   double distance = 0.0;  // m
 };
-SlideObservation observe_slide(const SlidePath& path, double stopped_speed);
+SlideObservation observe_slide(const SlidePath& path, double stopped_speed,
+                               double settled = std::numeric_limits<double>::infinity());
 
 // A sphere's fall and bounces on a level floor under a bounce law (harness/core/bounce_law.hpp),
 // from rest with its lowest point h0 above the floor: after step n = 0..steps, gap[n] (m, the

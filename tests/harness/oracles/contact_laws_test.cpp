@@ -104,6 +104,15 @@ TEST_CASE("incline: a block holds when tan(theta) <= mu, and slides at g*(sin - 
   CHECK(free_path.s[180] == Approx(kH * kH * a30 * 180 * 181 / 2.0).epsilon(1e-12));
   CHECK(free_path.s[180] == Approx(2.970551734589528).epsilon(1e-12));
   CHECK(observe_slide(free_path, 1e-6).stop_step == -1);
+  // A path that reports no speed while its position creeps has not stopped where its speed did:
+  // the stop is the first step from which the position stays within `settled` too.
+  dropcheck::SlidePath creeping = path;
+  for (std::size_t n = 121; n < creeping.s.size(); ++n)
+    creeping.s[n] = path.s[120] + 1e-3 * (n - 120.0);
+  CHECK(observe_slide(creeping, 1e-6).stop_step == 120);  // the speed alone says stopped
+  const auto crept = observe_slide(creeping, 1e-6, 1e-6);
+  CHECK(crept.stop_step == 180);
+  CHECK(crept.distance == Approx(path.s[120] + 0.06).epsilon(1e-12));
   // Launched up the 30 degree slope at 2 m/s: it climbs at grip + pull = 9.1435 m/s^2 of
   // deceleration to v0^2/(2*9.1435), then slides back at pull - grip = 0.65648 m/s^2.
   const double up = 0.5 * g30 + pull30, t_up = 2.0 / up;
