@@ -11,16 +11,20 @@ namespace {
 struct PathGap {
   double worst = 0.0;
   std::int64_t step = 0;
+  std::int64_t first = -1;  // the first step over tolerance::kBouncePath; -1 none
 };
 
-// The largest |gap| difference between a run's path and a law's, over the steps both have.
+// The largest |gap| difference between a run's path and a law's, over the steps both have, and
+// the first step where it exceeds the path tolerance.
 PathGap path_gap(const BouncePath& run, const BouncePath& law) {
   PathGap p;
   const std::size_t n = std::min(run.gap.size(), law.gap.size());
   for (std::size_t i = 0; i < n; ++i) {
     const double d = std::abs(run.gap[i] - law.gap[i]);
-    if (std::isnan(d)) return {d, static_cast<std::int64_t>(i)};  // never "within" anything
-    if (d > p.worst) p = {d, static_cast<std::int64_t>(i)};
+    const auto step = static_cast<std::int64_t>(i);
+    if (p.first < 0 && !(d <= tolerance::kBouncePath)) p.first = step;
+    if (std::isnan(d)) return {d, step, p.first};  // never "within" anything
+    if (d > p.worst) p = {d, step, p.first};
   }
   return p;
 }
@@ -73,6 +77,7 @@ BounceVerdict judge_bounce(const Trajectory& run, const BounceSetup& s, const Bo
   const PathGap to_law = path_gap(seen, predicted);
   v.worst_gap = to_law.worst;
   v.worst_step = to_law.step;
+  v.first_step = to_law.first;
   v.follows = to_law.worst <= tolerance::kBouncePath;
   if (!v.follows) {
     const BouncePath ahead = bounce_steps(law, seen, s.e, s.g, h, s.size);
@@ -135,13 +140,14 @@ std::string BounceVerdict::sentence() const {
     text += printf_string(
                 "every step as its law to %.2g m and %.2g m/s; the paths part at step %lld by "
                 "%.3g m: ",
-                step_gap, step_speed, static_cast<long long>(worst_step), worst_gap) +
+                step_gap, step_speed, static_cast<long long>(first_step), worst_gap) +
             parting_text();
   else
     text += printf_string(
-        "DEPARTS at step %lld by %.3g m (one step from its own state: %.3g m at "
-        "step %lld, %.3g m/s)",
-        static_cast<long long>(worst_step), worst_gap, step_gap, static_cast<long long>(step_worst),
+        "DEPARTS at step %lld (first over %.2g m; the largest gap %.3g m at step %lld; one step "
+        "from its own state: %.3g m at step %lld, %.3g m/s)",
+        static_cast<long long>(first_step), tolerance::kBouncePath, worst_gap,
+        static_cast<long long>(worst_step), step_gap, static_cast<long long>(step_worst),
         step_speed);
   if (!follows && follows_ideal) text += ": it follows the ideal law instead";
   if (law_to_ideal > tolerance::kBouncePath) {

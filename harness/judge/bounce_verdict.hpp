@@ -14,14 +14,15 @@
 namespace dropcheck {
 
 struct BounceVerdict {
-  BounceLaw law;                // the engine's declared member
-  BounceObservation seen;       // the run's
-  BounceObservation predicted;  // its law's
-  BounceObservation ideal;      // the ideal law's (kIdealBounce)
-  Bounce closed;                // the continuous closed form
-  double worst_gap = 0.0;       // m: the largest |gap - its law's gap| over the run
-  std::int64_t worst_step = 0;  // where
-  bool follows = false;         // worst_gap, or else step_gap, <= tolerance::kBouncePath
+  BounceLaw law;                 // the engine's declared member
+  BounceObservation seen;        // the run's
+  BounceObservation predicted;   // its law's
+  BounceObservation ideal;       // the ideal law's (kIdealBounce)
+  Bounce closed;                 // the continuous closed form
+  double worst_gap = 0.0;        // m: the largest |gap - its law's gap| over the run
+  std::int64_t worst_step = 0;   // where
+  std::int64_t first_step = -1;  // the first step over tolerance::kBouncePath; -1 none
+  bool follows = false;          // worst_gap, or else step_gap, <= tolerance::kBouncePath
   // When the path leaves its law's: the largest |gap - the law's step from the run's own state
   // the step before| (bounce_steps), and where. A run that rounds otherwise than the law in double
   // meets a contact decided on a gap within rounding of 0 on the other side, and its path leaves

@@ -21,7 +21,7 @@ std::vector<ContactDeparture> contact_departures(const Scene& scene, const Traje
   for (const BounceSetup& s : bounce_setups(scene)) {
     const BounceVerdict v = judge_bounce(run, s, info.bounce_law, h);
     if (!v.follows)
-      out.push_back({ContactLaw::bounce, s.body, v.worst_step, "bounce " + v.sentence()});
+      out.push_back({ContactLaw::bounce, s.body, v.first_step, "bounce " + v.sentence()});
   }
   for (const StackSetup& s : stack_setups(scene))
     for (const StackBodyVerdict& v : judge_stack(run, s, info, h))

@@ -20,7 +20,7 @@ struct ContactDeparture {
   ContactLaw law = ContactLaw::slide;
   std::size_t body = 0;
   std::int64_t step = 0;  // where it showed: the slide's stop (or the run's end), the bounce's
-                          // largest departure, the run's end for a stack, a tumbling landing's
+                          // first step off its law, the run's end for a stack, a tumbling landing's
                           // first step off its law
   std::string what;       // the verdict's sentence
 };

@@ -99,7 +99,7 @@ std::string bounce_section(const SceneEvaluation& se) {
              v.follows ? "yes"
              : v.follows_ideal
                  ? std::string("**NO**: the ideal law's path")
-                 : printf_string("**NO**: step %lld", static_cast<long long>(v.worst_step))});
+                 : printf_string("**NO**: step %lld", static_cast<long long>(v.first_step))});
     }
   }
   return "#### Bounces at h = " + se.scene.timestep.text +
