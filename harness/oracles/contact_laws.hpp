@@ -107,8 +107,7 @@ struct SlideObservation {
   std::int64_t stop_step = -1;
   double distance = 0.0;  // m
 };
-SlideObservation observe_slide(const SlidePath& path, double stopped_speed,
-                               double settled = std::numeric_limits<double>::infinity());
+SlideObservation observe_slide(const SlidePath& path, double stopped_speed, double settled);
 
 // A sphere's fall and bounces on a level floor under a bounce law (harness/core/bounce_law.hpp),
 // from rest with its lowest point h0 above the floor: after step n = 0..steps, gap[n] (m, the

@@ -145,8 +145,10 @@ std::optional<double> slide_distance(const Scene& s, int angle, const IdentifySo
   // 9e-5 m/s); a slide still above 1 % of its launch speed at the end has no distance yet.
   const SlideSetup slide = slide_setups(s).at(0);
   const SlidePath path = observed_slide_path(run, slide);
-  const SlideObservation seen = observe_slide(path, tolerance::kStoppedSpeed);
-  if (observe_slide(path, 0.01 * slide.v0).stop_step < 0) {
+  const SlideObservation seen =
+      observe_slide(path, tolerance::kStoppedSpeed, tolerance::kSlideDistance);
+  // Still sliding is judged on the speed alone: a creep below 1 % of the launch speed is a stop.
+  if (observe_slide(path, 0.01 * slide.v0, std::numeric_limits<double>::infinity()).stop_step < 0) {
     f.engine = run.engine;
     f.still_sliding_angle = angle;
     f.still_sliding_distance = seen.distance;

@@ -37,8 +37,9 @@ std::string bounce_detail(const BounceVerdict& v) {
     return v.step_gap < 0.0
                ? printf_string("its path to %.2g m", v.worst_gap)
                : printf_string("every step to %.2g m and %.2g m/s", v.step_gap, v.step_speed);
-  return printf_string("departs at step %lld by %.3g m", static_cast<long long>(v.worst_step),
-                       v.worst_gap);
+  return printf_string("departs at step %lld (largest gap %.3g m at step %lld)",
+                       static_cast<long long>(v.first_step), v.worst_gap,
+                       static_cast<long long>(v.worst_step));
 }
 
 }  // namespace
@@ -50,20 +51,21 @@ ContactLawIdentity identify_bounce_law(const Scene& scene, Engine& engine, doubl
   id.declared = describe(own.bounce_law);
   if (!run) return id;
   const BounceSetup setup = bounce_setups(scene).at(0);
-  // The declared member first, then the ideal law, then every other adapter's.
-  std::vector<std::pair<BounceLaw, std::vector<std::string>>> members = {{own.bounce_law, {}},
-                                                                         {kIdealBounce, {}}};
-  for (const EngineInfo& info : declared_members()) {
-    if (!info.capabilities.restitution) continue;  // its default member declares nothing
-    auto same = std::find_if(members.begin(), members.end(), [&](const auto& m) {
-      return describe(m.first) == describe(info.bounce_law);
-    });
+  // The declared member first, then the ideal law, then every other adapter's, each once with
+  // the engines that declare it.
+  std::vector<std::pair<BounceLaw, std::vector<std::string>>> members;
+  const auto add = [&](const BounceLaw& law, const std::string& engine) {
+    auto same = std::find_if(members.begin(), members.end(),
+                             [&](const auto& m) { return describe(m.first) == describe(law); });
     if (same == members.end())
-      same = members.emplace(members.end(), info.bounce_law, std::vector<std::string>{});
-    same->second.push_back(info.name);
-  }
+      same = members.emplace(members.end(), law, std::vector<std::string>{});
+    if (!engine.empty()) same->second.push_back(engine);
+  };
+  add(own.bounce_law, "");
+  add(kIdealBounce, "");
+  for (const EngineInfo& info : declared_members())
+    if (info.capabilities.restitution) add(info.bounce_law, info.name);  // else: the default
   for (const auto& [law, engines] : members) {
-    if (&law != &members.front().first && describe(law) == id.declared) continue;
     const BounceVerdict v = judge_bounce(*run, setup, law, h);
     id.fits.push_back({describe(law), engines, true, v.follows, bounce_detail(v)});
   }

@@ -86,7 +86,7 @@ TEST_CASE("incline: a block holds when tan(theta) <= mu, and slides at g*(sin - 
   // The stepped law agrees with the closed-form step count, and holds the block after its stop.
   const SlideSetup launched{0, 2.5, {1.0, 0.0, 0.0}, 0.0, 0.5, g20, pull20};
   const auto path = slide_path(launched, cone, kH, 180);
-  const auto seen = observe_slide(path, 1e-6);
+  const auto seen = observe_slide(path, 1e-6, 1e-6);
   CHECK(seen.stop_step == 120);
   CHECK(seen.distance == Approx(down.step_distance).epsilon(1e-13));
   CHECK(path.s[180] == path.s[120]);
@@ -103,13 +103,13 @@ TEST_CASE("incline: a block holds when tan(theta) <= mu, and slides at g*(sin - 
   const auto free_path = slide_path(released, cone, kH, 180);
   CHECK(free_path.s[180] == Approx(kH * kH * a30 * 180 * 181 / 2.0).epsilon(1e-12));
   CHECK(free_path.s[180] == Approx(2.970551734589528).epsilon(1e-12));
-  CHECK(observe_slide(free_path, 1e-6).stop_step == -1);
+  CHECK(observe_slide(free_path, 1e-6, 1e-6).stop_step == -1);
   // A path that reports no speed while its position creeps has not stopped where its speed did:
   // the stop is the first step from which the position stays within `settled` too.
   dropcheck::SlidePath creeping = path;
   for (std::size_t n = 121; n < creeping.s.size(); ++n)
     creeping.s[n] = path.s[120] + 1e-3 * (n - 120.0);
-  CHECK(observe_slide(creeping, 1e-6).stop_step == 120);  // the speed alone says stopped
+  CHECK(observe_slide(creeping, 1e-6, INFINITY).stop_step == 120);  // the speed alone: stopped
   const auto crept = observe_slide(creeping, 1e-6, 1e-6);
   CHECK(crept.stop_step == 180);
   CHECK(crept.distance == Approx(path.s[120] + 0.06).epsilon(1e-12));
