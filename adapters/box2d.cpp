@@ -30,7 +30,8 @@
 // at 60 Hz) and stores the clamped v; speed_clamped() reports the steps where that happened, seen
 // before the step (Box2D's own velocity update, predicted: catches a clamp that continuous
 // collision then hides by stopping the body) or after it (|h*v| at the limit).
-// Contacts: polygon boxes, restitution 0, friction 0.5 (mixed as sqrt(f1*f2)); every polygon has a
+// Contacts: polygon boxes, restitution 0, the scene's friction on every fixture (0.5 unset; mixed
+// as sqrt(f1*f2), so every pair gets it): harness/core/box2d_world.hpp. Every polygon has a
 // b2_polygonRadius = 0.01 m skin and the solver keeps b2_linearSlop = 0.005 m of overlap, so a
 // resting box's centre sits about 0.015 m above the geometric rest height (docs/engines.md 5).
 #include <box2d/box2d.h>
@@ -42,6 +43,7 @@
 #include <vector>
 
 #include "adapters.hpp"
+#include "harness/core/box2d_world.hpp"
 
 namespace dropcheck {
 namespace {
@@ -49,7 +51,6 @@ namespace {
 // Box2D's recommended iteration counts (b2World::Step documentation).
 constexpr int32 kVelocityIterations = 8;
 constexpr int32 kPositionIterations = 3;
-constexpr float kFriction = 0.5f;
 
 // Resting centre above floor top + half extent: the two skins (2*0.01 m) less the allowed slop
 // (0.005 m) = 0.015 m; measured +0.0149996 m (unit cube dropped from 10 m on a box floor, with and
@@ -86,7 +87,7 @@ class Box2dEngine final : public Engine {
   float mass_of(std::size_t i) const { return bodies_.at(i)->GetMass(); }
 
  private:
-  b2Body* create_body(const Body& body, float damping, float angular_damping);
+  b2Body* create_body(const Body& body, const Box2dBox& box);
   void set_box_mass(b2Body* b, const Body& body, bool fixture);
   bool clamp_ahead() const;
   bool clamped_after() const;
@@ -112,14 +113,22 @@ EngineInfo Box2dEngine::info() const {
               std::to_string(b2_version.revision);
 #endif
   i.scalar = Scalar::f32;
-  i.capabilities = {.contacts = true, .planar_only = true, .rotation = Rotation::spin_z};
+  i.capabilities = {
+      .contacts = true, .planar_only = true, .rotation = Rotation::spin_z, .friction = true};
   i.law = DampingOrder::AfterForces;
   i.rotation_law = {Gyroscopic::none, OrientationUpdate::exponential_map};
   i.arithmetic = DampingForm::pade;  // b2Island::Solve's float order, copied by own_arithmetic.cpp
   i.damping_mapping = "SetLinearDamping(c), c = (exp(k*h) - 1)/h; v = (v + a*h)/(1 + h*c)";
   i.contact_settings =
-      "polygon boxes (0.01 m skin, 0.005 m slop), restitution 0, friction 0.5 (sqrt mix), "
-      "8 velocity / 3 position iterations, continuous collision on";
+      "polygon boxes (0.01 m skin, 0.005 m slop), restitution 0, the scene's friction on each "
+      "fixture (0.5 unset; sqrt mix), 8 velocity / 3 position iterations, continuous collision "
+      "on";
+  // Its contact solver, read in b2_contact_solver.cpp (b2ContactSolver::SolveVelocityConstraints:
+  // each point's friction clamped by mu times its accumulated normal impulse, then the normal
+  // block) and b2_island.cpp (b2Island::Solve): replayed by harness/oracles/box2d_step.hpp.
+  i.contact_solver = {.kind = ContactSolverKind::box2d_2_4,
+                      .velocity_iterations = kVelocityIterations,
+                      .position_iterations = kPositionIterations};
   i.rest_offset = kRestOffset;
   i.rest_tolerance = kRestTolerance;
   // A stack: 8 velocity iterations of sequential impulse (b2World::Step's velocityIterations).
@@ -139,50 +148,40 @@ void Box2dEngine::load(const Scene& scene, double h) {
   contacts_ = scene.world.contacts;
   clamped_ = false;
   bodies_.clear();  // bodies belong to the old world, destroyed next
-  world_ = std::make_unique<b2World>(to_b2(scene.world.gravity));
+  const Box2dWorld world = box2d_world(scene, h, body_materials_);
+  world_ = std::make_unique<b2World>(b2Vec2(world.gx, world.gy));
   world_->SetAllowSleeping(false);
   world_->SetAutoClearForces(true);
-  // dv/dt = -k*v: exact decay exp(-k*h) per step; Box2D's Pade step v/(1 + h*c) equals it for
-  // c = (exp(k*h) - 1)/h. Computed in double, rounded once to float. Box2D's float 1/(1 + h*c)
-  // can only take values 1.2e-7 apart (the ulp of 1 + h*c): it lands 1.9e-8 from exp(-k*h) at
-  // 1/60 and 4.0e-8 at 1/240, the closest reachable (no other float c does better).
-  const double k = scene.world.damping_rate, k_a = scene.world.angular_damping_rate;
-  const float c = static_cast<float>(std::expm1(k * h) / h);
-  const float c_a = static_cast<float>(std::expm1(k_a * h) / h);
+  // Box2D's float 1/(1 + h*c) (box2d_world's damping) can only take values 1.2e-7 apart (the ulp
+  // of 1 + h*c): it lands 1.9e-8 from exp(-k*h) at 1/60 and 4.0e-8 at 1/240, the closest
+  // reachable (no other float c does better).
   rotating_ = needs_rotation(scene);
-  for (const Body& b : scene.bodies) bodies_.push_back(create_body(b, c, c_a));
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+    bodies_.push_back(create_body(scene.bodies[i], world.bodies[i]));
   forces_.assign(bodies_.size(), b2Vec2(0.0f, 0.0f));
   torques_.assign(bodies_.size(), 0.0f);
 }
 
-b2Body* Box2dEngine::create_body(const Body& body, float damping, float angular_damping) {
+b2Body* Box2dEngine::create_body(const Body& body, const Box2dBox& box) {
   b2BodyDef def;
-  def.type = body.is_static ? b2_staticBody : b2_dynamicBody;
-  def.position = to_b2(body.position);
-  def.linearVelocity = body.is_static ? b2Vec2(0.0f, 0.0f) : to_b2(body.velocity);
-  def.linearDamping = damping;
-  def.angularDamping = angular_damping;
-  if (!body.is_static) {
-    const Quat& q = body.orientation;  // about z only (cannot_run)
-    def.angle = static_cast<float>(2.0 * std::atan2(q.z(), q.w()));
-    def.angularVelocity = static_cast<float>(body.angular_velocity.z());
-  }
+  def.type = box.is_static ? b2_staticBody : b2_dynamicBody;
+  def.position.Set(box.x, box.y);
+  def.linearVelocity.Set(box.vx, box.vy);
+  def.linearDamping = box.linear_damping;
+  def.angularDamping = box.angular_damping;
+  def.angle = box.angle;
+  def.angularVelocity = box.w;
   def.allowSleep = false;
   def.awake = true;
   b2Body* b = world_->CreateBody(&def);
   if (contacts_) {
-    b2PolygonShape box;
-    box.SetAsBox(static_cast<float>(body.half_extents.x()),
-                 static_cast<float>(body.half_extents.y()));
+    b2PolygonShape shape;
+    shape.SetAsBox(box.hx, box.hy);
     b2FixtureDef fixture;
-    fixture.shape = &box;
-    // Mass per unit depth m over the square's area 4*hx*hy.
-    fixture.density =
-        static_cast<float>(body.mass / (4.0 * body.half_extents.x() * body.half_extents.y()));
-    // identify --combine: the body's own coefficient, Box2D's sqrt(f1*f2) makes the pair's.
-    fixture.friction =
-        body_materials_ && body.friction ? static_cast<float>(*body.friction) : kFriction;
-    fixture.restitution = 0.0f;
+    fixture.shape = &shape;
+    fixture.density = box.density;
+    fixture.friction = box.friction;
+    fixture.restitution = box.restitution;
     b->CreateFixture(&fixture);
   }
   if (!body.is_static) set_box_mass(b, body, contacts_);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "harness/core/bounce_law.hpp"
+#include "harness/core/contact_solver.hpp"
 #include "harness/core/friction_model.hpp"
 #include "harness/core/law.hpp"
 #include "harness/core/rotation_law.hpp"
@@ -71,6 +72,9 @@ struct EngineInfo {
   std::string contact_settings;  // contact model and parameters used when contacts = true
   // How its contact solver bounds friction (docs/contact.md), for an engine that maps materials.
   FrictionModel friction_model = FrictionModel::cone;
+  // How its contact solver reaches a step's impulses (harness/core/contact_solver.hpp): exactly,
+  // or by a fixed number of iterations the harness replays.
+  ContactSolver contact_solver;
   // How its contact turns a falling body around (harness/core/bounce_law.hpp), for an engine that
   // maps restitution.
   BounceLaw bounce_law = kIdealBounce;

@@ -12,10 +12,12 @@ std::vector<ContactDeparture> contact_departures(const Scene& scene, const Traje
   std::vector<ContactDeparture> out;
   if (run.samples() == 0) return out;
   for (const SlideSetup& s : slide_setups(scene)) {
-    const SlideVerdict v = judge_slide(run, s, info.friction_model, h);
+    const SlideVerdict v = judge_slide(run, scene, s, info, h);
     if (v.exact && !v.follows)
       out.push_back({ContactLaw::slide, s.body,
-                     v.seen.stop_step >= 0 ? v.seen.stop_step : run.recorded.back(),
+                     v.first_off >= 0        ? v.first_off
+                     : v.seen.stop_step >= 0 ? v.seen.stop_step
+                                             : run.recorded.back(),
                      "slide " + v.sentence()});
   }
   for (const BounceSetup& s : bounce_setups(scene)) {

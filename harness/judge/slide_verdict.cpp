@@ -6,6 +6,7 @@
 
 #include "harness/core/number_format.hpp"
 #include "harness/judge/tolerances.hpp"
+#include "harness/oracles/replayed_slide.hpp"
 
 namespace dropcheck {
 namespace {
@@ -18,30 +19,83 @@ std::string stop_text(const SlideObservation& o) {
                        o.distance);
 }
 
+// The distance between the run's path and the law's after step n: along the slip, and in how far
+// each is off it (0 for a clamp law; a replay's skin lifts it as the run's does).
+double apart(const SlidePath& run, const SlidePath& law, std::size_t n) {
+  return std::hypot(run.s[n] - law.s[n], run.off[n] - law.off[n]);
+}
+
 // The largest distance between the run's path and the law's over the steps both have (a
 // non-finite run is infinitely far). The law's path is as long as the run's.
 double path_distance(const SlidePath& run, const SlidePath& law) {
   double worst = 0.0;
   for (std::size_t n = 0; n < std::min(run.s.size(), law.s.size()); ++n) {
-    const double d = std::hypot(run.s[n] - law.s[n], run.off[n]);
+    const double d = apart(run, law, n);
     worst = std::isfinite(d) ? std::max(worst, d) : INFINITY;
   }
   return worst;
 }
 
+// The first step at which the run is over tolerance::kSlideDistance from the law (-1: none).
+std::int64_t first_apart(const SlidePath& run, const SlidePath& law) {
+  for (std::size_t n = 0; n < std::min(run.s.size(), law.s.size()); ++n)
+    if (!(apart(run, law, n) <= tolerance::kSlideDistance)) return static_cast<std::int64_t>(n);
+  return -1;
+}
+
+SlideObservation observe(const SlidePath& path) {
+  return observe_slide(path, tolerance::kStoppedSpeed, tolerance::kSlideDistance);
+}
+
 struct LawFit {
   SlideObservation seen;
   double off = 0.0;
+  std::int64_t first_off = -1;
   bool follows = false;
 };
 
-LawFit fit(const SlidePath& run, const SlideObservation& seen, const SlideSetup& s,
-           FrictionModel model, double h) {
-  const SlidePath law = slide_path(s, model, h, static_cast<std::int64_t>(run.s.size()) - 1);
-  LawFit f{observe_slide(law, tolerance::kStoppedSpeed, tolerance::kSlideDistance),
-           path_distance(run, law), false};
+// How `run` (seen as `seen`) fits the path of its law.
+LawFit fit_path(const SlidePath& run, const SlideObservation& seen, const SlidePath& law) {
+  LawFit f{observe(law), path_distance(run, law), first_apart(run, law), false};
   f.follows = f.seen.stop_step == seen.stop_step && f.off <= tolerance::kSlideDistance;
   return f;
+}
+
+LawFit fit(const SlidePath& run, const SlideObservation& seen, const SlideSetup& s,
+           FrictionModel model, double h) {
+  return fit_path(run, seen, slide_path(s, model, h, static_cast<std::int64_t>(run.s.size()) - 1));
+}
+
+// The clamp law's closed forms of the verdict, for a path of `steps` steps.
+void clamp_figures(SlideVerdict& v, const SlideSetup& s, double h, std::size_t samples) {
+  v.law = slide_to_stop(s.v0, s.mu, s.g, h, v.model, s.angle, s.pull);
+  v.end_continuous = slide_distance_continuous(
+      s.v0, s.pull, slide_grip(s.mu, s.g, v.model, s.angle), h * static_cast<double>(samples - 1));
+}
+
+// Against the replay of the engine's solver; the clamp law and a replay at 4 times the velocity
+// iterations beside it.
+SlideVerdict judge_replayed(const SlidePath& path, const Scene& scene, const SlideSetup& s,
+                            const ContactSolver& solver, SlideVerdict v, double h) {
+  const auto steps = static_cast<std::int64_t>(path.s.size()) - 1;
+  v.solver = solver;
+  try {
+    const LawFit own = fit_path(path, v.seen, replayed_slide_path(scene, s, solver, h, steps));
+    v.law_seen = own.seen;
+    v.off_law = own.off;
+    v.first_off = own.first_off;
+    v.follows = own.follows;
+    ContactSolver more = solver;
+    more.velocity_iterations = v.more_iterations = 4 * solver.velocity_iterations;
+    v.more_seen = observe(replayed_slide_path(scene, s, more, h, steps));
+  } catch (const std::invalid_argument& e) {
+    v.exact = false;
+    v.not_judged = e.what();
+    return v;
+  }
+  clamp_figures(v, s, h, path.s.size());
+  v.clamp_seen = observe(slide_path(s, v.model, h, steps));
+  return v;
 }
 
 }  // namespace
@@ -63,12 +117,11 @@ SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& s, FrictionMod
     v.not_judged = "the run did not keep every step";
     return v;
   }
-  v.law = slide_to_stop(s.v0, s.mu, s.g, h, model, s.angle, s.pull);
-  v.end_continuous = slide_distance_continuous(s.v0, s.pull, slide_grip(s.mu, s.g, model, s.angle),
-                                               h * static_cast<double>(path.s.size() - 1));
+  clamp_figures(v, s, h, path.s.size());
   const LawFit own = fit(path, v.seen, s, model, h);
   v.law_seen = own.seen;
   v.off_law = own.off;
+  v.first_off = own.first_off;
   v.follows = own.follows;
   if (v.follows) return v;
   const SlidePath ahead = slide_steps(s, model, h, path);
@@ -85,13 +138,35 @@ SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& s, FrictionMod
   return v;
 }
 
+SlideVerdict judge_slide(const Trajectory& run, const Scene& scene, const SlideSetup& s,
+                         const EngineInfo& info, double h) {
+  if (!replayed(info.contact_solver)) return judge_slide(run, s, info.friction_model, h);
+  SlideVerdict v;
+  v.model = info.friction_model;
+  const SlidePath path = observed_slide_path(run, s);
+  v.seen = observe(path);
+  v.exact = exact_slide_angle(v.model, s.angle) && run.keeps_every_step();
+  if (!v.exact) {
+    v.not_judged = run.keeps_every_step()
+                       ? "the replay's clamp law is exact at 0 and 45 degrees only"
+                       : "the run did not keep every step";
+    return v;
+  }
+  return judge_replayed(path, scene, s, info.contact_solver, v, h);
+}
+
 std::string SlideVerdict::sentence() const {
   std::string text = stop_text(seen);
   if (!exact) return text + "; not judged: " + not_judged;
-  text += std::string("; its ") + to_string(model) + "'s clamp law: " + stop_text(law_seen);
-  text += law.stops && law.stop_step > 0
-              ? printf_string(" (continuous: %.5g s, %.5g m)", law.stop_time, law.distance)
-              : printf_string(" (continuous: %.7g m by the end)", end_continuous);
+  const std::string clamp = std::string(to_string(model)) + "'s clamp law: ";
+  const std::string continuous =
+      law.stops && law.stop_step > 0
+          ? printf_string(" (continuous: %.5g s, %.5g m)", law.stop_time, law.distance)
+          : printf_string(" (continuous: %.7g m by the end)", end_continuous);
+  if (solver)
+    text += "; its " + describe(*solver) + ", replayed: " + stop_text(law_seen);
+  else
+    text += "; its " + clamp + stop_text(law_seen) + continuous;
   text += printf_string(", %.2g m off it", off_law);
   if (off_steps >= 0.0)
     text += printf_string(
@@ -99,8 +174,20 @@ std::string SlideVerdict::sentence() const {
                   "rounding)"
                 : " (one step from its own state: %.2g m, %.2g m/s)",
         off_steps, off_steps_speed);
+  if (solver) {
+    // What the iterations leave: the clamp law, and the replay with more of them.
+    text += "; the " + clamp + stop_text(clamp_seen) + continuous;
+    text +=
+        printf_string(", %s at %d velocity iterations: ",
+                      more_seen.stop_step == clamp_seen.stop_step ? "as the replay" : "the replay",
+                      more_iterations) +
+        stop_text(more_seen);
+  }
   if (follows) return text;
   text += " DEPARTS";
+  if (first_off >= 0)
+    text += printf_string(" at step %lld (first over %.2g m)", static_cast<long long>(first_off),
+                          tolerance::kSlideDistance);
   if (instead) text += std::string(": it follows the ") + to_string(*instead) + "'s law instead";
   return text;
 }

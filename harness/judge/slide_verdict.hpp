@@ -1,10 +1,14 @@
-// A slide judged (harness/oracles/contact_laws.hpp): one run against the ideal clamp law of the
-// engine's friction model, step by step, computed in one place for `check` and `report`.
+// A slide judged (harness/oracles/contact_laws.hpp): one run against its engine's own law, step by
+// step, computed in one place for `check` and `report`. The law is the ideal clamp law of the
+// engine's friction model for an exact solver, and the replay of its own solver for one the
+// harness replays (harness/oracles/replayed_slide.hpp), with the clamp law beside it and the
+// replay at more iterations to show what the iterations leave.
 #pragma once
 
 #include <optional>
 #include <string>
 
+#include "harness/core/engine.hpp"
 #include "harness/core/friction_model.hpp"
 #include "harness/oracles/contact_laws.hpp"
 
@@ -17,10 +21,17 @@ struct SlideVerdict {
   // every step; not_judged says why not.
   bool exact = false;
   std::string not_judged;
-  SlideStop law;                // its clamp law and continuous closed form (when exact)
-  SlideObservation law_seen;    // the law's path read as the run's is
+  SlideStop law;              // its clamp law and continuous closed form (when exact)
+  SlideObservation law_seen;  // the own law's path (clamp or replay) read as the run's is
+  // A replayed solver (ContactSolver): the replay is the own law; the clamp law's path read as the
+  // run's, and the replay at `more_iterations` velocity iterations (4 times the engine's).
+  std::optional<ContactSolver> solver;
+  SlideObservation clamp_seen;
+  int more_iterations = 0;
+  SlideObservation more_seen;
   double end_continuous = 0.0;  // m along the slip at the run's end, continuous (exact only)
   double off_law = 0.0;         // m: the largest distance between the run and its law over the run
+  std::int64_t first_off = -1;  // the first step over tolerance::kSlideDistance from it (-1: none)
   bool follows = false;  // stop step equal and off_law within tolerance::kSlideDistance, or else
                          // off_steps within it
   // When the path leaves its law's: the largest distance between the run and its law one step
@@ -35,7 +46,13 @@ struct SlideVerdict {
   std::string sentence() const;
 };
 
+// Against the clamp law of `model`.
 SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& setup, FrictionModel model,
                          double h);
+
+// Against the engine's own law: its friction model's clamp law for an exact solver, the replay of
+// its solver (info.contact_solver) otherwise.
+SlideVerdict judge_slide(const Trajectory& run, const Scene& scene, const SlideSetup& setup,
+                         const EngineInfo& info, double h);
 
 }  // namespace dropcheck

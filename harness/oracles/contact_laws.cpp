@@ -159,12 +159,12 @@ SlidePath slide_steps(const SlideSetup& setup, FrictionModel model, double h,
   return p;
 }
 
-SlidePath observed_slide_path(const Trajectory& run, const SlideSetup& setup) {
+SlidePath slide_path_of(std::span<const BodyState> states, const SlideSetup& setup) {
   SlidePath p;
-  if (run.samples() == 0) return p;
-  const Vec3 start = run.at(0, setup.body).position;
-  for (std::size_t k = 0; k < run.samples(); ++k) {
-    const BodyState& b = run.at(k, setup.body);
+  if (states.empty()) return p;
+  const Vec3 start = states[0].position;
+  for (std::size_t k = 0; k < states.size(); ++k) {
+    const BodyState& b = states[k];
     const Vec3 moved(b.position.x() - start.x(), 0.0, b.position.z() - start.z());
     const Vec3 v(b.velocity.x(), 0.0, b.velocity.z());
     const double along = moved.dot(setup.direction);
@@ -172,10 +172,17 @@ SlidePath observed_slide_path(const Trajectory& run, const SlideSetup& setup) {
     p.v.push_back(std::copysign(v.norm(), v.dot(setup.direction)));  // across counts too
     // Across the slip, and up or down from where its contact put it after step 1 (an engine's
     // skin or sink sets that height): a slide that sinks, hops or tips on is off its law too.
-    const double settled = run.at(std::min<std::size_t>(k, 1), setup.body).position.y();
+    const double settled = states[std::min<std::size_t>(k, 1)].position.y();
     p.off.push_back(std::hypot((moved - along * setup.direction).norm(), b.position.y() - settled));
   }
   return p;
+}
+
+SlidePath observed_slide_path(const Trajectory& run, const SlideSetup& setup) {
+  std::vector<BodyState> states;
+  states.reserve(run.samples());
+  for (std::size_t k = 0; k < run.samples(); ++k) states.push_back(run.at(k, setup.body));
+  return slide_path_of(states, setup);
 }
 
 SlideObservation observe_slide(const SlidePath& path, double stopped_speed, double settled) {

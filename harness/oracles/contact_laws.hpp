@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -94,6 +95,9 @@ SlidePath slide_path(const SlideSetup& setup, FrictionModel model, double h, std
 // follow the law at every step.
 SlidePath slide_steps(const SlideSetup& setup, FrictionModel model, double h,
                       const SlidePath& from);
+
+// The path of the slide's body from its state after each step 0, 1, ... (a run's, a replay's).
+SlidePath slide_path_of(std::span<const BodyState> states, const SlideSetup& setup);
 
 // A run's path of one slide (a run that keeps every step, as the checks' runs do).
 SlidePath observed_slide_path(const Trajectory& run, const SlideSetup& setup);

@@ -40,18 +40,21 @@ std::string closed_form_cell(const SlideVerdict& v) {
 std::string slide_section(const SceneEvaluation& se) {
   const std::vector<SlideSetup> slides = slide_setups(se.scene);
   if (slides.empty()) return {};
-  MarkdownTable t(
-      {"engine", "body", "friction model", "stop step", "distance (m)", "clamp law: stop step",
-       "clamp law: distance (m)", "closed form", "off its law (m)", "follows its law"},
-      "lll");
+  MarkdownTable t({"engine", "body", "its law", "stop step", "distance (m)", "its law: stop step",
+                   "its law: distance (m)", "clamp law: stop step", "closed form",
+                   "off its law (m)", "follows its law"},
+                  "lll");
   const double h = se.scene.timestep.seconds;
   for (const EngineEvaluation& ev : se.engines) {
     if (!ev.ran() || ev.at_default().run.status != RunStatus::ok) continue;
     for (const SlideSetup& s : slides) {
-      const SlideVerdict v = judge_slide(ev.at_default().run, s, ev.info.friction_model, h);
-      t.add({ev.name, se.scene.bodies[s.body].name, to_string(v.model), stop_cell(v.seen),
+      const SlideVerdict v = judge_slide(ev.at_default().run, se.scene, s, ev.info, h);
+      const std::string law = v.solver ? describe(*v.solver) + ", replayed"
+                                       : std::string(to_string(v.model)) + "'s clamp law";
+      t.add({ev.name, se.scene.bodies[s.body].name, law, stop_cell(v.seen),
              printf_string("%.7g", v.seen.distance), v.exact ? stop_cell(v.law_seen) : kNone,
              v.exact ? printf_string("%.7g", v.law_seen.distance) : kNone,
+             v.exact ? stop_cell(v.solver ? v.clamp_seen : v.law_seen) : kNone,
              v.exact ? closed_form_cell(v) : kNone,
              v.exact ? printf_string("%.2g", v.off_law) : kNone,
              !v.exact    ? "not judged: " + v.not_judged
@@ -67,7 +70,11 @@ std::string slide_section(const SceneEvaluation& se) {
          "engine's friction model: per step v_free = v + pull*h (gravity's part along the floor), "
          "then the friction impulse cancels the slip if it can and otherwise takes grip*h off it "
          "(a cone grips mu*g, a box pyramid each tangent axis by mu*g, a sum pyramid shares mu*g "
-         "between them: docs/contact.md). The run is compared with it at every step, within " +
+         "between them: docs/contact.md). An engine whose solver takes a fixed number of "
+         "iterations "
+         "(Box2D) is judged against the replay of its own solver instead, in its own arithmetic; "
+         "the clamp law's stop beside it shows what the iterations leave. The run is compared "
+         "with its law at every step, within " +
          printf_string("%.0e", tolerance::kSlideDistance) + " m.\n\n" + t.str() + "\n";
 }
 

@@ -358,8 +358,7 @@ CheckResult check_contact_law(const Scene& scene, const EngineFactory& make, con
 CheckResult check_slide(const Scene& scene, const EngineFactory& make, const Timestep& h) {
   return check_contact_law(scene, make, h, "slide", slide_setups(scene),
                            [&](const Trajectory& run, const SlideSetup& s, const EngineInfo& i) {
-                             const SlideVerdict v =
-                                 judge_slide(run, s, i.friction_model, h.seconds);
+                             const SlideVerdict v = judge_slide(run, scene, s, i, h.seconds);
                              return std::pair(v.follows || !v.exact, v.sentence());
                            });
 }

@@ -1,0 +1,17 @@
+#include "harness/core/contact_solver.hpp"
+
+namespace dropcheck {
+
+std::string describe(const ContactSolver& solver) {
+  switch (solver.kind) {
+    case ContactSolverKind::exact:
+      return "solved exactly every step";
+    case ContactSolverKind::box2d_2_4:
+      return "Box2D 2.4 sequential impulses (" + std::to_string(solver.velocity_iterations) +
+             " velocity, " + std::to_string(solver.position_iterations) +
+             " position iterations, warm started)";
+  }
+  return "unknown";
+}
+
+}  // namespace dropcheck

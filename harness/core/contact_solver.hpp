@@ -1,0 +1,32 @@
+// How an engine's contact solver reaches a step's impulses (EngineInfo::contact_solver): the member
+// of the contact-law family a slide is judged against (harness/judge/slide_verdict.hpp,
+// docs/contact.md "Slides").
+//
+// exact       every step's contact problem is solved exactly (a pivoting LCP, a closed
+//             projection): friction takes min(slip, grip*h) off the slip, the clamp laws of
+//             harness/oracles/contact_laws.hpp.
+// box2d_2_4   Box2D 2.4's sequential impulses, in its float order (harness/oracles/box2d_step.hpp):
+//             per velocity iteration each point's friction, clamped by mu times that point's
+//             accumulated normal impulse, then the points' normal impulses as one block; warm
+//             started from the last step's impulses; then position iterations that push the
+//             overlap out beyond the linear slop. A finite number of iterations leaves part of the
+//             slip each step, so a slide runs on past the clamp law's stop: replayed, not bounded.
+#pragma once
+
+#include <string>
+
+namespace dropcheck {
+
+enum class ContactSolverKind { exact, box2d_2_4 };
+
+struct ContactSolver {
+  ContactSolverKind kind = ContactSolverKind::exact;
+  int velocity_iterations = 0;  // per step (0: solved exactly)
+  int position_iterations = 0;  // per step, after the positions are updated
+};
+
+// "solved exactly every step", "Box2D 2.4 sequential impulses (8 velocity, 3 position iterations,
+// warm started)".
+std::string describe(const ContactSolver& solver);
+
+}  // namespace dropcheck
