@@ -30,8 +30,9 @@
 // at 60 Hz) and stores the clamped v; speed_clamped() reports the steps where that happened, seen
 // before the step (Box2D's own velocity update, predicted: catches a clamp that continuous
 // collision then hides by stopping the body) or after it (|h*v| at the limit).
-// Contacts: polygon boxes, restitution 0, the scene's friction on every fixture (0.5 unset; mixed
-// as sqrt(f1*f2), so every pair gets it): harness/core/box2d_world.hpp. Every polygon has a
+// Contacts: polygon boxes or circles (spheres), the scene's friction (0.5 unset; mixed as
+// sqrt(f1*f2)) and restitution (0 unset; mixed as the larger) on every fixture, so every pair gets
+// them: harness/core/box2d_world.hpp. Every polygon has a
 // b2_polygonRadius = 0.01 m skin and the solver keeps b2_linearSlop = 0.005 m of overlap, so a
 // resting box's centre sits about 0.015 m above the geometric rest height (docs/engines.md 5).
 #include <box2d/box2d.h>
@@ -113,16 +114,20 @@ EngineInfo Box2dEngine::info() const {
               std::to_string(b2_version.revision);
 #endif
   i.scalar = Scalar::f32;
-  i.capabilities = {
-      .contacts = true, .planar_only = true, .rotation = Rotation::spin_z, .friction = true};
+  i.capabilities = {.contacts = true,
+                    .planar_only = true,
+                    .rotation = Rotation::spin_z,
+                    .friction = true,
+                    .restitution = true,
+                    .spheres = true};
   i.law = DampingOrder::AfterForces;
   i.rotation_law = {Gyroscopic::none, OrientationUpdate::exponential_map};
   i.arithmetic = DampingForm::pade;  // b2Island::Solve's float order, copied by own_arithmetic.cpp
   i.damping_mapping = "SetLinearDamping(c), c = (exp(k*h) - 1)/h; v = (v + a*h)/(1 + h*c)";
   i.contact_settings =
-      "polygon boxes (0.01 m skin, 0.005 m slop), restitution 0, the scene's friction on each "
-      "fixture (0.5 unset; sqrt mix), 8 velocity / 3 position iterations, continuous collision "
-      "on";
+      "polygon boxes (0.01 m skin, 0.005 m slop) or circles, the scene's friction (0.5 unset; "
+      "sqrt mix) and restitution (0 unset; max mix, threshold 1 m/s) on each fixture, 8 "
+      "velocity / 3 position iterations, continuous collision on";
   // Its contact solver, read in b2_contact_solver.cpp (b2ContactSolver::SolveVelocityConstraints:
   // each point's friction clamped by mu times its accumulated normal impulse, then the normal
   // block) and b2_island.cpp (b2Island::Solve): replayed by harness/oracles/box2d_step.hpp.
@@ -175,10 +180,12 @@ b2Body* Box2dEngine::create_body(const Body& body, const Box2dBox& box) {
   def.awake = true;
   b2Body* b = world_->CreateBody(&def);
   if (contacts_) {
-    b2PolygonShape shape;
-    shape.SetAsBox(box.hx, box.hy);
+    b2PolygonShape polygon;
+    polygon.SetAsBox(box.hx, box.hy);
+    b2CircleShape circle;
+    circle.m_radius = box.radius;  // centred on the body (m_p = 0)
     b2FixtureDef fixture;
-    fixture.shape = &shape;
+    fixture.shape = box.radius > 0.0f ? static_cast<const b2Shape*>(&circle) : &polygon;
     fixture.density = box.density;
     fixture.friction = box.friction;
     fixture.restitution = box.restitution;

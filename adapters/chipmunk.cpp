@@ -34,14 +34,18 @@
 //                          set explicitly.
 //   one step            -> one cpSpaceStep(space, h) (10 solver iterations, Chipmunk's default;
 //                          no effect on free bodies).
-// Contacts: not mapped (boxes against a floor with Chipmunk's 0.1 m default collision slop): a
-// scene with contacts is not run.
-// Debian builds Chipmunk with its debug checks on: the first cpSpaceNew of a process prints two
-// lines to stdout ("Initializing cpSpace ... (Debug Enabled)", cpSpace.c), which would land inside
-// dropcheck's own output (its tables on stdout). The adapter makes that first call once per process
-// with stdout pointed at /dev/null (quiet_first_space); forked runs inherit the flag Chipmunk
-// keeps. Errors: Chipmunk's hard assertions (a non-positive mass or moment, a non-finite state in a
-// debug build) print and abort(); the isolated run reports that as a crash.
+// Contacts (harness/core/chipmunk_world.hpp, built once for the adapter and its replay): a
+// cpBoxShapeNew box per body (no radius) or a cpCircleShapeNew circle per sphere, friction sqrt(mu)
+// and elasticity sqrt(e) per shape (Chipmunk multiplies the two: cpArbiterUpdate), 10 iterations,
+// collision slop 0.005 m instead of the 0.1 meant for pixels. A resting box sits a slop into its
+// floor. Its solver is judged by harness/oracles/chipmunk_step.hpp, a port of cpSpaceStep in
+// Chipmunk's own arithmetic. Debian builds Chipmunk with its debug checks on: the first cpSpaceNew
+// of a process prints two lines to stdout ("Initializing cpSpace ... (Debug Enabled)", cpSpace.c),
+// which would land inside dropcheck's own output (its tables on stdout). The adapter makes that
+// first call once per process with stdout pointed at /dev/null (quiet_first_space); forked runs
+// inherit the flag Chipmunk keeps. Errors: Chipmunk's hard assertions (a non-positive mass or
+// moment, a non-finite state in a debug build) print and abort(); the isolated run reports that as
+// a crash.
 #include <chipmunk/chipmunk.h>
 #include <chipmunk/chipmunk_structs.h>
 #include <fcntl.h>
@@ -55,6 +59,7 @@
 #include <vector>
 
 #include "adapters.hpp"
+#include "harness/core/chipmunk_world.hpp"
 #include "harness/core/engine_writer.hpp"
 
 namespace dropcheck {
@@ -88,11 +93,16 @@ cpVect to_cp(const Vec3& v) {
 struct Space {
   cpSpace* space = nullptr;
   std::vector<cpBody*> bodies;  // indexed like Scene::bodies
+  std::vector<cpShape*> shapes;
 
   Space() : space((quiet_first_space(), cpSpaceNew())) {}
   Space(const Space&) = delete;
   Space& operator=(const Space&) = delete;
   ~Space() {
+    for (cpShape* s : shapes) {
+      cpSpaceRemoveShape(space, s);
+      cpShapeFree(s);
+    }
     for (cpBody* b : bodies) {
       cpSpaceRemoveBody(space, b);
       cpBodyFree(b);
@@ -100,6 +110,19 @@ struct Space {
     cpSpaceFree(space);
   }
 };
+
+// A resting box sinks until its overlap is the collision slop: the bias impulse pushes out only
+// the overlap beyond it (cpArbiterPreStep). Measured on drop_on_floor(_undamped) at 1/60: -0.005 m.
+constexpr double kRestOffset = -0.005;
+constexpr double kRestTolerance = 1e-4;
+// A stack that starts resting settles anywhere within the slop of each contact under it: Chipmunk
+// pushes out only the overlap beyond the slop, so nothing lifts a body that creeps into it. The
+// bound is the slop of stack_rest's two contacts under its top box, 2*0.005 m, from the rest
+// offset either way. Measured on stack_rest at 1/60 after 5 s: medium 1.23e-3 m and small
+// 2.49e-3 m into their floors (3.77e-3 and 7.51e-3 m above a slop per contact), drifting sideways
+// 8.8e-4 and 1.6e-3 m (the bound 2e-3 m), still to 1e-16 m/s.
+constexpr StackLaw kStackLaw = {
+    .iterations = 10, .sink_bound = 2 * 0.005, .drift_bound = 2e-3, .still_bound = 1e-3};
 
 class ChipmunkEngine final : public Engine {
  public:
@@ -109,17 +132,37 @@ class ChipmunkEngine final : public Engine {
     i.version = std::to_string(CP_VERSION_MAJOR) + "." + std::to_string(CP_VERSION_MINOR) + "." +
                 std::to_string(CP_VERSION_RELEASE);
     i.scalar = sizeof(cpFloat) == sizeof(double) ? Scalar::f64 : Scalar::f32;
-    i.capabilities = {.contacts = false, .planar_only = true, .rotation = Rotation::spin_z};
+    i.capabilities = {.contacts = true,
+                      .planar_only = true,
+                      .rotation = Rotation::spin_z,
+                      .friction = true,
+                      .restitution = true,
+                      .spheres = true};
     i.law = Law{DampingOrder::BeforeForces, PositionUpdate::Explicit};
     i.rotation_law = {Gyroscopic::none, OrientationUpdate::exponential_map};
     i.damping_mapping =
         "cpSpaceSetDamping(exp(-k)) per second, one for v and w; v = v*exp(-k)^h + a*h";
+    const ChipmunkWorld defaults;
+    i.contact_settings =
+        "cpBoxShapeNew boxes (no radius) or cpCircleShapeNew circles, friction sqrt(mu) each "
+        "(product: mu, 0.5 unset), elasticity sqrt(e) each (product: e, 0 unset), " +
+        std::to_string(defaults.iterations) +
+        " iterations, collision slop 0.005 m, bias and "
+        "persistence Chipmunk's defaults";
+    // Its contact solver, read in Chipmunk 7.0.3's src/cpSpaceStep.c (cpSpaceStep) and
+    // src/cpArbiter.c (cpArbiterApplyImpulse: the bias, normal, then friction clamped by u*jn):
+    // replayed by harness/oracles/chipmunk_step.hpp.
+    i.contact_solver = {.kind = ContactSolverKind::chipmunk_7,
+                        .velocity_iterations = defaults.iterations};
+    i.rest_offset = kRestOffset;
+    i.rest_tolerance = kRestTolerance;
+    i.stack_law = kStackLaw;
     return i;
   }
 
   std::string cannot_run(const Scene& scene) const override {
     if (std::string why = Engine::cannot_run(scene); !why.empty()) return why;
-    if (needs_rotation(scene) && moves_along_a_line(scene) &&
+    if (needs_rotation(scene) && chipmunk_moves_along_a_line(scene) &&
         scene.world.damping_rate != scene.world.angular_damping_rate)
       return "damping: Chipmunk damps v and w by one space damping, and this scene's k and k_a "
              "differ";
@@ -130,12 +173,16 @@ class ChipmunkEngine final : public Engine {
     if (!is_planar(scene)) throw EngineError("not planar");
     h_ = h;
     w_ = std::make_unique<Space>();
-    cpSpaceSetGravity(w_->space, to_cp(scene.world.gravity));
-    const bool linear = !needs_rotation(scene) || moves_along_a_line(scene);
-    cpSpaceSetDamping(w_->space, std::exp(-(linear ? scene.world.damping_rate
-                                                   : scene.world.angular_damping_rate)));
+    const ChipmunkWorld world = chipmunk_world(scene, body_materials_);
+    cpSpaceSetGravity(w_->space, cpv(world.gx, world.gy));
+    cpSpaceSetDamping(w_->space, world.damping);
     cpSpaceSetSleepTimeThreshold(w_->space, INFINITY);
-    for (const Body& b : scene.bodies) w_->bodies.push_back(add_body(b));
+    cpSpaceSetIterations(w_->space, world.iterations);
+    cpSpaceSetCollisionSlop(w_->space, world.collision_slop);
+    // Chipmunk's own defaults, set from the world the replay reads, so that both use one value.
+    cpSpaceSetCollisionBias(w_->space, world.collision_bias);
+    cpSpaceSetCollisionPersistence(w_->space, world.collision_persistence);
+    for (const ChipmunkBox& b : world.bodies) w_->bodies.push_back(add_body(b, world.contacts));
   }
 
   void set_forces(std::span<const Vec3> forces) override {
@@ -151,6 +198,8 @@ class ChipmunkEngine final : public Engine {
   }
 
   void step() override { cpSpaceStep(w_->space, h_); }
+
+  bool use_body_materials() override { return body_materials_ = true; }
 
   // Seconds of `steps` calls of cpSpaceStep alone (bare_step_loop in adapters.hpp).
   double bare_seconds(std::int64_t steps) {
@@ -174,24 +223,24 @@ class ChipmunkEngine final : public Engine {
   }
 
  private:
-  // True when some body moves along a line: a start velocity, gravity, or a force.
-  static bool moves_along_a_line(const Scene& scene) {
-    if (!scene.world.gravity.isZero(0.0) || !scene.forces.empty()) return true;
-    for (const Body& b : scene.bodies)
-      if (!b.is_static && !b.velocity.isZero(0.0)) return true;
-    return false;
-  }
-
-  cpBody* add_body(const Body& b) {
-    cpBody* body = b.is_static ? cpBodyNewStatic() : cpBodyNew(b.mass, inertia_of(b).z());
-    cpBodySetPosition(body, to_cp(b.position));
+  cpBody* add_body(const ChipmunkBox& b, bool contacts) {
+    cpBody* body = b.is_static ? cpBodyNewStatic() : cpBodyNew(b.mass, b.moment);
+    cpBodySetPosition(body, cpv(b.x, b.y));
     if (!b.is_static) {
-      cpBodySetVelocity(body, to_cp(b.velocity));
-      const Quat& q = b.orientation;  // about z only (cannot_run)
-      cpBodySetAngle(body, 2.0 * std::atan2(q.z(), q.w()));
-      cpBodySetAngularVelocity(body, b.angular_velocity.z());
+      cpBodySetVelocity(body, cpv(b.vx, b.vy));
+      cpBodySetAngle(body, b.angle);
+      cpBodySetAngularVelocity(body, b.w);
     }
-    return cpSpaceAddBody(w_->space, body);
+    cpSpaceAddBody(w_->space, body);
+    if (contacts) {
+      cpShape* shape = cpSpaceAddShape(
+          w_->space, b.radius > 0.0 ? cpCircleShapeNew(body, b.radius, cpvzero)
+                                    : cpBoxShapeNew(body, 2.0 * b.hx, 2.0 * b.hy, 0.0));
+      cpShapeSetFriction(shape, b.friction);
+      cpShapeSetElasticity(shape, b.elasticity);
+      w_->shapes.push_back(shape);
+    }
+    return body;
   }
 
   // Puts every body's state in order into `w` (z = 0); true when all are finite. Read from the
@@ -207,6 +256,7 @@ class ChipmunkEngine final : public Engine {
 
   double h_ = 1.0 / 60.0;
   std::unique_ptr<Space> w_;
+  bool body_materials_ = false;  // Engine::use_body_materials
 };
 
 }  // namespace

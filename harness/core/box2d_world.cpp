@@ -1,11 +1,12 @@
 #include "harness/core/box2d_world.hpp"
 
 #include <cmath>
+#include <numbers>
 
 namespace dropcheck {
 namespace {
 
-Box2dBox box_of(const Body& body, float c, float c_a, float friction) {
+Box2dBox box_of(const Body& body, float c, float c_a, float friction, float restitution) {
   Box2dBox b;
   b.is_static = body.is_static;
   b.hx = static_cast<float>(body.half_extents.x());
@@ -19,8 +20,15 @@ Box2dBox box_of(const Body& body, float c, float c_a, float friction) {
     b.vy = static_cast<float>(body.velocity.y());
     b.w = static_cast<float>(body.angular_velocity.z());
   }
-  b.density = static_cast<float>(body.mass / (4.0 * body.half_extents.x() * body.half_extents.y()));
+  if (body.shape == Shape::sphere) {
+    b.radius = static_cast<float>(body.radius);
+    b.density = static_cast<float>(body.mass / (std::numbers::pi * body.radius * body.radius));
+  } else {
+    b.density =
+        static_cast<float>(body.mass / (4.0 * body.half_extents.x() * body.half_extents.y()));
+  }
   b.friction = friction;
+  b.restitution = restitution;
   b.linear_damping = c;
   b.angular_damping = c_a;
   return b;
@@ -36,10 +44,12 @@ Box2dWorld box2d_world(const Scene& scene, double h, bool body_materials) {
   // c = expm1(k*h)/h, computed in double and rounded once to float.
   const float c = static_cast<float>(std::expm1(scene.world.damping_rate * h) / h);
   const float c_a = static_cast<float>(std::expm1(scene.world.angular_damping_rate * h) / h);
-  const double mu = scene_material(scene).friction.value_or(kBox2dDefaultFriction);
+  const Material material = scene_material(scene);
+  const double mu = material.friction.value_or(kBox2dDefaultFriction);
+  const auto e = static_cast<float>(material.restitution.value_or(0.0));
   for (const Body& body : scene.bodies) {
     const double own = body_materials && body.friction ? *body.friction : mu;
-    w.bodies.push_back(box_of(body, c, c_a, static_cast<float>(own)));
+    w.bodies.push_back(box_of(body, c, c_a, static_cast<float>(own), e));
   }
   return w;
 }

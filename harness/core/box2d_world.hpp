@@ -6,9 +6,11 @@
 //   angle               2*atan2(q_z, q_w) (turns about z only)
 //   box                 b2PolygonShape::SetAsBox(hx, hy), density m/(4*hx*hy): the scene's mass
 //                       per unit depth over the square's area
+//   sphere              b2CircleShape of the radius, density m/(pi*r^2)
 //   damping             c = (exp(k*h) - 1)/h, so that Box2D's v/(1 + h*c) is exp(-k*h)
 //   friction            the scene's mu on every fixture (0.5 unset): Box2D mixes sqrt(f1*f2)
-//   restitution         0 on every fixture
+//   restitution         the scene's e on every fixture (0 unset): Box2D takes the larger of the
+//                       two, so every pair gets e; restitutionThreshold Box2D's default 1 m/s
 #pragma once
 
 #include <vector>
@@ -17,10 +19,12 @@
 
 namespace dropcheck {
 
-// One body: a b2BodyDef and, with contacts, one fixture holding a SetAsBox(hx, hy) polygon.
+// One body: a b2BodyDef and, with contacts, one fixture holding a SetAsBox(hx, hy) polygon, or a
+// circle of `radius` when it is positive.
 struct Box2dBox {
   bool is_static = false;
   float hx = 0.0f, hy = 0.0f;
+  float radius = 0.0f;  // > 0: a b2CircleShape (m_radius) at the body's origin instead of a box
   float x = 0.0f, y = 0.0f, angle = 0.0f;
   float vx = 0.0f, vy = 0.0f, w = 0.0f;
   float density = 0.0f;

@@ -10,6 +10,9 @@ std::string describe(const ContactSolver& solver) {
       return "Box2D 2.4 sequential impulses (" + std::to_string(solver.velocity_iterations) +
              " velocity, " + std::to_string(solver.position_iterations) +
              " position iterations, warm started)";
+    case ContactSolverKind::chipmunk_7:
+      return "Chipmunk 7 sequential impulses (" + std::to_string(solver.velocity_iterations) +
+             " iterations, cached impulses)";
   }
   return "unknown";
 }

@@ -11,18 +11,23 @@
 //             started from the last step's impulses; then position iterations that push the
 //             overlap out beyond the linear slop. A finite number of iterations leaves part of the
 //             slip each step, so a slide runs on past the clamp law's stop: replayed, not bounded.
+// chipmunk_7  Chipmunk 7's sequential impulses, in its double order
+//             (harness/oracles/chipmunk_step.hpp): the bodies move first, then collide; per
+//             iteration each contact's bias impulse (the overlap beyond the collision slop), its
+//             normal impulse, then its friction clamped by mu times that normal impulse; cached
+//             impulses carried to the next step. Replayed, not bounded.
 #pragma once
 
 #include <string>
 
 namespace dropcheck {
 
-enum class ContactSolverKind { exact, box2d_2_4 };
+enum class ContactSolverKind { exact, box2d_2_4, chipmunk_7 };
 
 struct ContactSolver {
   ContactSolverKind kind = ContactSolverKind::exact;
   int velocity_iterations = 0;  // per step (0: solved exactly)
-  int position_iterations = 0;  // per step, after the positions are updated
+  int position_iterations = 0;  // per step, after the positions are updated (Box2D)
 };
 
 // "solved exactly every step", "Box2D 2.4 sequential impulses (8 velocity, 3 position iterations,

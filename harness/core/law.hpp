@@ -36,8 +36,8 @@ enum class DampingOrder {
 
 // Which velocity the position update uses.
 enum class PositionUpdate {
-  SemiImplicit,  // x += h*v_{n+1}: every engine shipped with dropcheck
-  Explicit,      // x += h*v_n: forward Euler
+  SemiImplicit,  // x += h*v_{n+1}: every engine shipped with dropcheck but Chipmunk
+  Explicit,      // x += h*v_n: forward Euler (Chipmunk)
 };
 
 // How many times a step evaluates the forces.

@@ -1,9 +1,11 @@
 #include "harness/judge/bounce_verdict.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "harness/core/number_format.hpp"
 #include "harness/judge/tolerances.hpp"
+#include "harness/oracles/replayed_contact.hpp"
 
 namespace dropcheck {
 namespace {
@@ -62,13 +64,14 @@ std::string apex_text(const std::vector<double>& apexes) {
   return text + " m";
 }
 
-BounceVerdict judge_bounce(const Trajectory& run, const BounceSetup& s, const BounceLaw& law,
-                           double h) {
+namespace {
+
+// The verdict of the run's path `seen` against its law's path `predicted`.
+BounceVerdict judge_paths(const BouncePath& seen, const BouncePath& predicted, const BounceSetup& s,
+                          const BounceLaw& law, double h) {
   BounceVerdict v;
   v.law = law;
-  const BouncePath seen = observed_path(run, s);
   const auto steps = static_cast<std::int64_t>(seen.gap.size()) - 1;
-  const BouncePath predicted = bounce_path(law, s.h0, s.e, s.g, h, steps, s.size);
   const BouncePath ideal = bounce_path(kIdealBounce, s.h0, s.e, s.g, h, steps);
   v.seen = observe_bounce(seen.gap, seen.v, s.g, h);
   v.predicted = observe_bounce(predicted.gap, predicted.v, s.g, h);
@@ -79,6 +82,24 @@ BounceVerdict judge_bounce(const Trajectory& run, const BounceSetup& s, const Bo
   v.worst_step = to_law.step;
   v.first_step = to_law.first;
   v.follows = to_law.worst <= tolerance::kBouncePath;
+  v.follows_ideal = path_gap(seen, ideal).worst <= tolerance::kBouncePath;
+  v.law_to_ideal = path_gap(predicted, ideal).worst;
+  double before = s.h0;
+  for (double a : v.seen.apexes) {
+    v.energy_rises = v.energy_rises || a > before + tolerance::kBouncePath;
+    before = a;
+  }
+  return v;
+}
+
+}  // namespace
+
+BounceVerdict judge_bounce(const Trajectory& run, const BounceSetup& s, const BounceLaw& law,
+                           double h) {
+  const BouncePath seen = observed_path(run, s);
+  const auto steps = static_cast<std::int64_t>(seen.gap.size()) - 1;
+  const BouncePath predicted = bounce_path(law, s.h0, s.e, s.g, h, steps, s.size);
+  BounceVerdict v = judge_paths(seen, predicted, s, law, h);
   if (!v.follows) {
     const BouncePath ahead = bounce_steps(law, seen, s.e, s.g, h, s.size);
     const PathGap local = path_gap(seen, ahead);
@@ -96,17 +117,33 @@ BounceVerdict judge_bounce(const Trajectory& run, const BounceSetup& s, const Bo
         v.law_gap_there = predicted.gap[i];
       }
   }
-  v.follows_ideal = path_gap(seen, ideal).worst <= tolerance::kBouncePath;
-  v.law_to_ideal = path_gap(predicted, ideal).worst;
   if (v.law_to_ideal > tolerance::kBouncePath) {
-    v.causes = departing_members(law, s, h, ideal);
+    v.causes = departing_members(law, s, h, bounce_path(kIdealBounce, s.h0, s.e, s.g, h, steps));
     if (v.causes.empty()) v.causes.push_back("its members together (none alone)");
   }
-  double before = s.h0;
-  for (double a : v.seen.apexes) {
-    v.energy_rises = v.energy_rises || a > before + tolerance::kBouncePath;
-    before = a;
+  return v;
+}
+
+BounceVerdict judge_bounce(const Trajectory& run, const Scene& scene, const BounceSetup& s,
+                           const EngineInfo& info, double h) {
+  if (!replayed(info.contact_solver)) return judge_bounce(run, s, info.bounce_law, h);
+  const BouncePath seen = observed_path(run, s);
+  const auto steps = static_cast<std::int64_t>(seen.gap.size()) - 1;
+  BouncePath predicted;
+  try {
+    predicted = replayed_bounce_path(scene, s, info.contact_solver, h, steps);
+  } catch (const std::invalid_argument& e) {
+    BounceVerdict v;
+    v.solver = info.contact_solver;
+    v.not_judged = e.what();
+    v.follows = true;
+    return v;
   }
+  BounceVerdict v = judge_paths(seen, predicted, s, info.bounce_law, h);
+  v.solver = info.contact_solver;
+  // The replay is the engine's whole step: what moves it off the ideal law is its solver.
+  if (v.law_to_ideal > tolerance::kBouncePath)
+    v.causes.push_back("its solver's own step (" + describe(info.contact_solver) + ")");
   return v;
 }
 
@@ -125,6 +162,7 @@ std::string BounceVerdict::parting_text() const {
 }
 
 std::string BounceVerdict::sentence() const {
+  if (!not_judged.empty()) return "not judged: " + not_judged;
   std::string text =
       seen.contact_step < 0
           ? std::string("never reaches the floor")
@@ -133,7 +171,7 @@ std::string BounceVerdict::sentence() const {
                           seen.speed_out) +
                 apex_text(seen.apexes);
   if (energy_rises) text += " (ENERGY RISES)";
-  text += "; its law (" + describe(law) + "): ";
+  text += "; its law (" + (solver ? describe(*solver) + ", replayed" : describe(law)) + "): ";
   if (step_gap < 0.0)
     text += printf_string("the same path to %.2g m", worst_gap);
   else if (follows)

@@ -4,17 +4,23 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "harness/core/bounce_law.hpp"
+#include "harness/core/engine.hpp"
 #include "harness/core/trajectory.hpp"
 #include "harness/oracles/contact_laws.hpp"
 
 namespace dropcheck {
 
 struct BounceVerdict {
-  BounceLaw law;                 // the engine's declared member
+  BounceLaw law;  // the engine's declared member
+  // A replayed solver (harness/core/contact_solver.hpp): its replay is the law instead; empty
+  // not_judged unless the scene lies outside the replay's scope (then nothing else is set).
+  std::optional<ContactSolver> solver;
+  std::string not_judged;
   BounceObservation seen;        // the run's
   BounceObservation predicted;   // its law's
   BounceObservation ideal;       // the ideal law's (kIdealBounce)
@@ -52,6 +58,11 @@ struct BounceVerdict {
 
 BounceVerdict judge_bounce(const Trajectory& run, const BounceSetup& setup, const BounceLaw& law,
                            double h);
+
+// Against the engine's own law: its bounce law, or the replay of its solver (info.contact_solver)
+// when the harness replays it.
+BounceVerdict judge_bounce(const Trajectory& run, const Scene& scene, const BounceSetup& setup,
+                           const EngineInfo& info, double h);
 
 // "0.2378, 0.05942, 0.01482 m" or "none".
 std::string apex_text(const std::vector<double>& apexes);

@@ -21,7 +21,7 @@ std::vector<ContactDeparture> contact_departures(const Scene& scene, const Traje
                      "slide " + v.sentence()});
   }
   for (const BounceSetup& s : bounce_setups(scene)) {
-    const BounceVerdict v = judge_bounce(run, s, info.bounce_law, h);
+    const BounceVerdict v = judge_bounce(run, scene, s, info, h);
     if (!v.follows)
       out.push_back({ContactLaw::bounce, s.body, v.first_step, "bounce " + v.sentence()});
   }

@@ -6,7 +6,7 @@
 
 #include "harness/core/number_format.hpp"
 #include "harness/judge/tolerances.hpp"
-#include "harness/oracles/replayed_slide.hpp"
+#include "harness/oracles/replayed_contact.hpp"
 
 namespace dropcheck {
 namespace {
@@ -62,8 +62,9 @@ LawFit fit_path(const SlidePath& run, const SlideObservation& seen, const SlideP
 }
 
 LawFit fit(const SlidePath& run, const SlideObservation& seen, const SlideSetup& s,
-           FrictionModel model, double h) {
-  return fit_path(run, seen, slide_path(s, model, h, static_cast<std::int64_t>(run.s.size()) - 1));
+           FrictionModel model, double h, PositionUpdate position) {
+  const auto steps = static_cast<std::int64_t>(run.s.size()) - 1;
+  return fit_path(run, seen, slide_path(s, model, h, steps, position));
 }
 
 // The clamp law's closed forms of the verdict, for a path of `steps` steps.
@@ -76,7 +77,8 @@ void clamp_figures(SlideVerdict& v, const SlideSetup& s, double h, std::size_t s
 // Against the replay of the engine's solver; the clamp law and a replay at 4 times the velocity
 // iterations beside it.
 SlideVerdict judge_replayed(const SlidePath& path, const Scene& scene, const SlideSetup& s,
-                            const ContactSolver& solver, SlideVerdict v, double h) {
+                            const EngineInfo& info, SlideVerdict v, double h) {
+  const ContactSolver& solver = info.contact_solver;
   const auto steps = static_cast<std::int64_t>(path.s.size()) - 1;
   v.solver = solver;
   try {
@@ -94,14 +96,14 @@ SlideVerdict judge_replayed(const SlidePath& path, const Scene& scene, const Sli
     return v;
   }
   clamp_figures(v, s, h, path.s.size());
-  v.clamp_seen = observe(slide_path(s, v.model, h, steps));
+  v.clamp_seen = observe(slide_path(s, v.model, h, steps, info.law.position));
   return v;
 }
 
 }  // namespace
 
-SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& s, FrictionModel model,
-                         double h) {
+SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& s, FrictionModel model, double h,
+                         PositionUpdate position) {
   SlideVerdict v;
   v.model = model;
   const SlidePath path = observed_slide_path(run, s);
@@ -118,13 +120,13 @@ SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& s, FrictionMod
     return v;
   }
   clamp_figures(v, s, h, path.s.size());
-  const LawFit own = fit(path, v.seen, s, model, h);
+  const LawFit own = fit(path, v.seen, s, model, h, position);
   v.law_seen = own.seen;
   v.off_law = own.off;
   v.first_off = own.first_off;
   v.follows = own.follows;
   if (v.follows) return v;
-  const SlidePath ahead = slide_steps(s, model, h, path);
+  const SlidePath ahead = slide_steps(s, model, h, path, position);
   v.off_steps = path_distance(path, ahead);
   for (std::size_t n = 0; n < path.v.size(); ++n)
     v.off_steps_speed = std::max(v.off_steps_speed, std::abs(path.v[n] - ahead.v[n]));
@@ -133,14 +135,15 @@ SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& s, FrictionMod
   if (v.follows) return v;
   for (FrictionModel other : kFrictionModels)
     if (other != model && exact_slide_angle(other, s.angle) &&
-        fit(path, v.seen, s, other, h).follows)
+        fit(path, v.seen, s, other, h, position).follows)
       v.instead = other;
   return v;
 }
 
 SlideVerdict judge_slide(const Trajectory& run, const Scene& scene, const SlideSetup& s,
                          const EngineInfo& info, double h) {
-  if (!replayed(info.contact_solver)) return judge_slide(run, s, info.friction_model, h);
+  if (!replayed(info.contact_solver))
+    return judge_slide(run, s, info.friction_model, h, info.law.position);
   SlideVerdict v;
   v.model = info.friction_model;
   const SlidePath path = observed_slide_path(run, s);
@@ -152,7 +155,7 @@ SlideVerdict judge_slide(const Trajectory& run, const Scene& scene, const SlideS
                        : "the run did not keep every step";
     return v;
   }
-  return judge_replayed(path, scene, s, info.contact_solver, v, h);
+  return judge_replayed(path, scene, s, info, v, h);
 }
 
 std::string SlideVerdict::sentence() const {

@@ -1,7 +1,7 @@
 // A slide judged (harness/oracles/contact_laws.hpp): one run against its engine's own law, step by
 // step, computed in one place for `check` and `report`. The law is the ideal clamp law of the
 // engine's friction model for an exact solver, and the replay of its own solver for one the
-// harness replays (harness/oracles/replayed_slide.hpp), with the clamp law beside it and the
+// harness replays (harness/oracles/replayed_contact.hpp), with the clamp law beside it and the
 // replay at more iterations to show what the iterations leave.
 #pragma once
 
@@ -46,9 +46,9 @@ struct SlideVerdict {
   std::string sentence() const;
 };
 
-// Against the clamp law of `model`.
+// Against the clamp law of `model`, the position moved as `position` says.
 SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& setup, FrictionModel model,
-                         double h);
+                         double h, PositionUpdate position = PositionUpdate::SemiImplicit);
 
 // Against the engine's own law: its friction model's clamp law for an exact solver, the replay of
 // its solver (info.contact_solver) otherwise.

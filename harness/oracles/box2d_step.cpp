@@ -1,11 +1,12 @@
-// Box2D 2.4.1's step for one dynamic and one static box, in its own float order
-// (harness/oracles/box2d_step.hpp). The algorithm follows Box2D 2.4.1 (MIT license, Erin Catto).
+// Box2D 2.4.1's step for one dynamic and one static body, each a box or a circle, in its own float
+// order (harness/oracles/box2d_step.hpp). The algorithm follows Box2D 2.4.1 (MIT license, Erin
+// Catto).
 //
 // Every expression keeps Box2D's operand order and grouping, its float types and its constants
 // (built from the same float literals), so that the compiler rounds the same operations the same
 // way; the file must be built without floating-point contraction (-ffp-contract=off), as Box2D's
-// own x86-64 build has none. What cannot happen between two boxes is left out and said so where it
-// would have been: circles and edges, joints, sensors, bullets, sleeping, listeners.
+// own x86-64 build has none. What cannot happen between two such bodies is left out and said so
+// where it would have been: edges and chains, joints, sensors, bullets, sleeping, listeners.
 #include "harness/oracles/box2d_step.hpp"
 
 #include <cfloat>
@@ -105,12 +106,16 @@ float clamp(float a, float low, float high) {
   return max_f(low, min_f(a, high));
 }
 
-// b2_math.h, b2Vec2::Length (sqrtf) and b2Distance
+// b2_math.h, b2Vec2::Length (sqrtf), b2Distance and b2DistanceSquared
 float length(Vec2 a) {
   return std::sqrt(a.x * a.x + a.y * a.y);
 }
 float distance(Vec2 a, Vec2 b) {
   return length(a - b);
+}
+float distance_squared(Vec2 a, Vec2 b) {
+  const Vec2 c = a - b;
+  return dot(c, c);
 }
 
 // b2_math.h, b2Vec2::Normalize: unit length, unless shorter than epsilon (then left as is, 0).
@@ -234,7 +239,8 @@ struct Sweep {
 };
 
 // ---------------------------------------------------------------------------------------------
-// b2_polygon_shape.cpp and b2_collision.h: the box, its mass and its bounding boxes.
+// b2_polygon_shape.cpp, b2_circle_shape.cpp and b2_collision.h: the shapes, their mass and their
+// bounding boxes.
 
 struct Polygon {
   Vec2 vertices[4];
@@ -296,6 +302,37 @@ MassData compute_mass(const Polygon& p, float density) {
   return m;
 }
 
+// b2_circle_shape.h, b2CircleShape: the centre m_p in the body frame (the body's origin here) and
+// b2Shape::m_radius, for a circle its whole radius rather than a skin.
+struct Circle {
+  Vec2 p;
+  float radius = 0.0f;
+};
+
+// b2_circle_shape.cpp, b2CircleShape::ComputeMass: a disc, I = m (r^2/2 + |p|^2) about the origin.
+MassData compute_mass(const Circle& c, float density) {
+  MassData m;
+  m.mass = density * kPi * c.radius * c.radius;
+  m.center = c.p;
+  m.I = m.mass * (0.5f * c.radius * c.radius + dot(c.p, c.p));
+  return m;
+}
+
+// b2_shape.h, b2Shape: the fixture's shape, a box or a circle by m_type (e_polygon, e_circle).
+struct Shape {
+  bool is_circle = false;
+  Polygon polygon;
+  Circle circle;
+
+  // b2Shape::m_radius: the polygon skin or the circle's radius.
+  float radius() const { return is_circle ? circle.radius : polygon.radius; }
+};
+
+// b2_shape.h, b2Shape::ComputeMass (virtual)
+MassData compute_mass(const Shape& s, float density) {
+  return s.is_circle ? compute_mass(s.circle, density) : compute_mass(s.polygon, density);
+}
+
 // b2_collision.h, b2AABB
 struct Aabb {
   Vec2 lower, upper;
@@ -312,6 +349,17 @@ Aabb compute_aabb(const Polygon& p, const Xf& xf) {
   }
   const Vec2 r{p.radius, p.radius};
   return {lower - r, upper + r};
+}
+
+// b2_circle_shape.cpp, b2CircleShape::ComputeAABB: the centre's square of half side r.
+Aabb compute_aabb(const Circle& c, const Xf& xf) {
+  const Vec2 p = xf.p + mul(xf.q, c.p);
+  return {{p.x - c.radius, p.y - c.radius}, {p.x + c.radius, p.y + c.radius}};
+}
+
+// b2_shape.h, b2Shape::ComputeAABB (virtual)
+Aabb compute_aabb(const Shape& s, const Xf& xf) {
+  return s.is_circle ? compute_aabb(s.circle, xf) : compute_aabb(s.polygon, xf);
 }
 
 // b2_collision.h, b2AABB::Combine, GetCenter, Contains and b2TestOverlap.
@@ -338,7 +386,7 @@ bool test_overlap(const Aabb& a, const Aabb& b) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// b2_collision.h/.cpp and b2_collide_polygon.cpp: the contact manifold of two polygons.
+// b2_collision.h/.cpp, b2_collide_polygon.cpp and b2_collide_circle.cpp: the contact manifold.
 
 // b2_collision.h, b2ContactFeature / b2ContactID: which features (vertex 0, face 1) of A and B
 // make a point; equal ids (b2ContactID::key) mark the same point across steps.
@@ -357,9 +405,10 @@ struct ManifoldPoint {
   ContactId id;
 };
 
-// b2_collision.h, b2Manifold: face_a: the normal and plane point in A's frame, the points in B's;
-// face_b the other way round. (e_circles needs a circle.)
-enum class ManifoldType { face_a, face_b };
+// b2_collision.h, b2Manifold: circles: A's centre in A's frame, B's centre (the one point) in B's,
+// no normal; face_a: the normal and plane point in A's frame, the points in B's; face_b the other
+// way round.
+enum class ManifoldType { circles, face_a, face_b };
 struct Manifold {
   ManifoldPoint points[2];
   Vec2 local_normal, local_point;
@@ -503,6 +552,86 @@ void collide_polygons(Manifold& manifold, const Polygon& poly_a, const Xf& xf_a,
   manifold.point_count = point_count;
 }
 
+// b2_collide_circle.cpp, b2CollideCircles: one point (id 0) when the centres are within rA + rB;
+// the normal is left to the world manifold (centre A to centre B).
+void collide_circles(Manifold& manifold, const Circle& circle_a, const Xf& xf_a,
+                     const Circle& circle_b, const Xf& xf_b) {
+  manifold.point_count = 0;
+  const Vec2 p_a = mul(xf_a, circle_a.p);
+  const Vec2 p_b = mul(xf_b, circle_b.p);
+  const Vec2 d = p_b - p_a;
+  const float dist_sqr = dot(d, d);
+  const float radius = circle_a.radius + circle_b.radius;
+  if (dist_sqr > radius * radius) return;
+  manifold.type = ManifoldType::circles;
+  manifold.local_point = circle_a.p;
+  manifold.local_normal = {0.0f, 0.0f};
+  manifold.point_count = 1;
+  manifold.points[0].local_point = circle_b.p;
+  manifold.points[0].id = {};
+}
+
+// b2_collide_circle.cpp, b2CollidePolygonAndCircle: in A's frame, the face of largest separation
+// of the circle's centre (none beyond rA + rB); a centre behind every face takes that face's
+// normal; else the centre's projection on the face picks a region: past an end vertex the normal
+// runs from that vertex to the centre (within rA + rB), between them it is the face's normal.
+// Always one point (id 0, e_faceA), the circle's centre.
+void collide_polygon_and_circle(Manifold& manifold, const Polygon& polygon_a, const Xf& xf_a,
+                                const Circle& circle_b, const Xf& xf_b) {
+  manifold.point_count = 0;
+  const Vec2 c = mul(xf_b, circle_b.p);
+  const Vec2 c_local = mul_t(xf_a, c);
+  int normal_index = 0;
+  float separation = -kMaxFloat;
+  const float radius = polygon_a.radius + circle_b.radius;
+  const int vertex_count = polygon_a.count;
+  const Vec2* vertices = polygon_a.vertices;
+  const Vec2* normals = polygon_a.normals;
+  for (int i = 0; i < vertex_count; ++i) {
+    const float s = dot(normals[i], c_local - vertices[i]);
+    if (s > radius) return;
+    if (s > separation) {
+      separation = s;
+      normal_index = i;
+    }
+  }
+  const int vert_index1 = normal_index;
+  const int vert_index2 = vert_index1 + 1 < vertex_count ? vert_index1 + 1 : 0;
+  const Vec2 v1 = vertices[vert_index1];
+  const Vec2 v2 = vertices[vert_index2];
+  Vec2 local_normal, local_point;
+  if (separation < kEpsilon) {  // the centre inside the polygon
+    local_normal = normals[normal_index];
+    local_point = 0.5f * (v1 + v2);
+  } else {
+    const float u1 = dot(c_local - v1, v2 - v1);
+    const float u2 = dot(c_local - v2, v1 - v2);
+    if (u1 <= 0.0f) {  // beyond v1
+      if (distance_squared(c_local, v1) > radius * radius) return;
+      local_normal = c_local - v1;
+      normalize(local_normal);
+      local_point = v1;
+    } else if (u2 <= 0.0f) {  // beyond v2
+      if (distance_squared(c_local, v2) > radius * radius) return;
+      local_normal = c_local - v2;
+      normalize(local_normal);
+      local_point = v2;
+    } else {  // over the face
+      const Vec2 face_center = 0.5f * (v1 + v2);
+      const float s = dot(c_local - face_center, normals[vert_index1]);
+      if (s > radius) return;
+      local_normal = normals[vert_index1];
+      local_point = face_center;
+    }
+  }
+  manifold.point_count = 1;
+  manifold.type = ManifoldType::face_a;
+  manifold.local_normal = local_normal;
+  manifold.local_point = local_point;
+  manifold.points[0].local_point = circle_b.p;
+  manifold.points[0].id = {};
+}
+
 // b2_collision.h, b2WorldManifold: the world normal (A to B) and each point midway between the
 // two skins' surfaces.
 struct WorldManifold {
@@ -510,12 +639,24 @@ struct WorldManifold {
   Vec2 points[2];
 };
 
-// b2_collision.cpp, b2WorldManifold::Initialize (face_a and face_b)
+// b2_collision.cpp, b2WorldManifold::Initialize; for circles the normal joins the centres ((1, 0)
+// if they coincide within epsilon) and the point lies midway between the two surfaces on it.
 WorldManifold world_manifold(const Manifold& m, const Xf& xf_a, float radius_a, const Xf& xf_b,
                              float radius_b) {
   WorldManifold wm;
   if (m.point_count == 0) return wm;
-  if (m.type == ManifoldType::face_a) {
+  if (m.type == ManifoldType::circles) {
+    wm.normal = {1.0f, 0.0f};
+    const Vec2 point_a = mul(xf_a, m.local_point);
+    const Vec2 point_b = mul(xf_b, m.points[0].local_point);
+    if (distance_squared(point_a, point_b) > kEpsilon * kEpsilon) {
+      wm.normal = point_b - point_a;
+      normalize(wm.normal);
+    }
+    const Vec2 c_a = point_a + radius_a * wm.normal;
+    const Vec2 c_b = point_b - radius_b * wm.normal;
+    wm.points[0] = 0.5f * (c_a + c_b);
+  } else if (m.type == ManifoldType::face_a) {
     wm.normal = mul(xf_a.q, m.local_normal);
     const Vec2 plane_point = mul(xf_a, m.local_point);
     for (int i = 0; i < m.point_count; ++i) {
@@ -541,9 +682,9 @@ WorldManifold world_manifold(const Manifold& m, const Xf& xf_a, float radius_a, 
 }
 
 // ---------------------------------------------------------------------------------------------
-// b2_distance.h/.cpp: GJK distance between the two boxes' cores (radii not applied).
+// b2_distance.h/.cpp: GJK distance between the two shapes' cores (radii not applied).
 
-// b2_distance.h, b2DistanceProxy (a polygon: its vertices and skin)
+// b2_distance.h, b2DistanceProxy: a polygon's vertices and skin, or a circle's centre and radius
 struct DistanceProxy {
   const Vec2* vertices = nullptr;
   int count = 0;
@@ -564,9 +705,10 @@ struct DistanceProxy {
   }
 };
 
-// b2_distance.cpp, b2DistanceProxy::Set (the polygon case)
-DistanceProxy proxy_of(const Polygon& p) {
-  return {p.vertices, p.count, p.radius};
+// b2_distance.cpp, b2DistanceProxy::Set (the circle and polygon cases)
+DistanceProxy proxy_of(const Shape& s) {
+  if (s.is_circle) return {&s.circle.p, 1, s.circle.radius};
+  return {s.polygon.vertices, s.polygon.count, s.polygon.radius};
 }
 
 // b2_distance.h, b2SimplexCache: the last simplex's vertex indices and size metric.
@@ -818,6 +960,10 @@ struct SeparationFunction {
                    const DistanceProxy& pb, const Sweep& sb, float t1);
   float find_min_separation(int& index_a, int& index_b, float t) const;
   float evaluate(int index_a, int index_b, float t) const;
+
+ private:
+  float face_separation(const DistanceProxy& face, const Xf& xf_face, const int* i, Vec2 other,
+                        const Xf& xf_other);
 };
 
 // b2_time_of_impact.cpp, b2SeparationFunction::Initialize: the axis at t1 and the separation on it.
@@ -839,31 +985,27 @@ float SeparationFunction::initialize(const SimplexCache& cache, const DistancePr
   }
   if (cache.index_a[0] == cache.index_a[1]) {  // two points on B, one on A: B's face normal
     type = Type::face_b;
-    const Vec2 local_b1 = pb.vertices[cache.index_b[0]];
-    const Vec2 local_b2 = pb.vertices[cache.index_b[1]];
-    axis = cross(local_b2 - local_b1, 1.0f);
-    normalize(axis);
-    const Vec2 normal = mul(xf_b.q, axis);
-    local_point = 0.5f * (local_b1 + local_b2);
-    const Vec2 point_b = mul(xf_b, local_point);
-    const Vec2 point_a = mul(xf_a, pa.vertices[cache.index_a[0]]);
-    float s = dot(point_a - point_b, normal);
-    if (s < 0.0f) {
-      axis = -axis;
-      s = -s;
-    }
-    return s;
+    return face_separation(pb, xf_b, cache.index_b, pa.vertices[cache.index_a[0]], xf_a);
   }
   type = Type::face_a;  // two points on A: A's face normal
-  const Vec2 local_a1 = pa.vertices[cache.index_a[0]];
-  const Vec2 local_a2 = pa.vertices[cache.index_a[1]];
-  axis = cross(local_a2 - local_a1, 1.0f);
+  return face_separation(pa, xf_a, cache.index_a, pb.vertices[cache.index_b[0]], xf_b);
+}
+
+// The face case of Initialize, for the face on `face` (its vertices i[0], i[1]) and the point
+// `other` of the other proxy: the axis is the face's normal (in the face's frame), local_point
+// the face's midpoint, and the separation the other point's distance from it, the axis flipped to
+// make it positive.
+float SeparationFunction::face_separation(const DistanceProxy& face, const Xf& xf_face,
+                                          const int* i, Vec2 other, const Xf& xf_other) {
+  const Vec2 local_1 = face.vertices[i[0]];
+  const Vec2 local_2 = face.vertices[i[1]];
+  axis = cross(local_2 - local_1, 1.0f);
   normalize(axis);
-  const Vec2 normal = mul(xf_a.q, axis);
-  local_point = 0.5f * (local_a1 + local_a2);
-  const Vec2 point_a = mul(xf_a, local_point);
-  const Vec2 point_b = mul(xf_b, pb.vertices[cache.index_b[0]]);
-  float s = dot(point_b - point_a, normal);
+  const Vec2 normal = mul(xf_face.q, axis);
+  local_point = 0.5f * (local_1 + local_2);
+  const Vec2 point_face = mul(xf_face, local_point);
+  const Vec2 point_other = mul(xf_other, other);
+  float s = dot(point_other - point_face, normal);
   if (s < 0.0f) {
     axis = -axis;
     s = -s;
@@ -1050,7 +1192,7 @@ struct Body {
   float mass = 0.0f, inv_mass = 0.0f, I = 0.0f, inv_I = 0.0f;
   float linear_damping = 0.0f, angular_damping = 0.0f;
   // The one fixture.
-  Polygon shape;
+  Shape shape;
   float friction = 0.0f, restitution = 0.0f, restitution_threshold = kRestitutionThreshold;
   // Its broad-phase proxy: the fat AABB in the tree and whether it is in the move buffer.
   Aabb fat;
@@ -1114,10 +1256,15 @@ void reset_mass_data(Body& b, float density) {
 }
 
 // b2_body.cpp, b2Body::CreateFixture with b2_fixture.cpp, b2Fixture::CreateProxies and
-// b2_dynamic_tree.cpp, b2DynamicTree::CreateProxy: the box, its fattened AABB now, in the move
-// buffer; the mass set-up when the fixture has density.
+// b2_dynamic_tree.cpp, b2DynamicTree::CreateProxy: the box or circle, its fattened AABB now, in
+// the move buffer; the mass set-up when the fixture has density.
 void create_fixture(Body& b, const Box2dBox& def) {
-  b.shape = set_as_box(def.hx, def.hy);
+  b.shape.is_circle = def.radius > 0.0f;
+  if (b.shape.is_circle) {
+    b.shape.circle = {{0.0f, 0.0f}, def.radius};
+  } else {
+    b.shape.polygon = set_as_box(def.hx, def.hy);
+  }
   b.friction = def.friction;
   b.restitution = def.restitution;
   const Aabb aabb = compute_aabb(b.shape, b.xf);
@@ -1182,7 +1329,7 @@ void synchronize_fixtures(Body& b) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// b2_contact.h/.cpp: the one contact between the two fixtures (A: body 0's, B: body 1's).
+// b2_contact.h/.cpp: the one contact between the two fixtures (A and B as World::body_a/body_b).
 
 struct Contact {
   Manifold manifold;
@@ -1207,12 +1354,26 @@ Contact make_contact(const Body& a, const Body& b) {
   return c;
 }
 
+// b2_polygon_contact.cpp, b2_polygon_circle_contact.cpp, b2_circle_contact.cpp, the contacts'
+// Evaluate: the manifold function of the two shapes (a polygon with a circle: A is the polygon).
+void evaluate(Manifold& manifold, const Shape& a, const Xf& xf_a, const Shape& b, const Xf& xf_b) {
+  if (!a.is_circle && !b.is_circle) {
+    collide_polygons(manifold, a.polygon, xf_a, b.polygon, xf_b);
+  } else if (!a.is_circle) {
+    collide_polygon_and_circle(manifold, a.polygon, xf_a, b.circle, xf_b);
+  } else if (b.is_circle) {
+    collide_circles(manifold, a.circle, xf_a, b.circle, xf_b);
+  } else {
+    throw std::logic_error("box2d_replay: a circle as fixture A of a polygon");
+  }
+}
+
 // b2_contact.cpp, b2Contact::Update: the new manifold at the bodies' frames; a point whose
 // feature id was in the old manifold takes over its impulses (warm starting), others start at 0.
 void update_contact(Contact& c, const Body& a, const Body& b) {
   const Manifold old = c.manifold;
   c.enabled = true;
-  collide_polygons(c.manifold, a.shape, a.xf, b.shape, b.xf);
+  evaluate(c.manifold, a.shape, a.xf, b.shape, b.xf);
   for (int i = 0; i < c.manifold.point_count; ++i) {
     ManifoldPoint& mp2 = c.manifold.points[i];
     mp2.normal_impulse = 0.0f;
@@ -1358,8 +1519,8 @@ ContactSolver::ContactSolver(const TimeStep& step, Contact* contact, const Body&
   pc_.local_normal = m.local_normal;
   pc_.local_point = m.local_point;
   pc_.point_count = m.point_count;
-  pc_.radius_a = a.shape.radius;
-  pc_.radius_b = b.shape.radius;
+  pc_.radius_a = a.shape.radius();
+  pc_.radius_b = b.shape.radius();
   pc_.type = m.type;
   for (int j = 0; j < m.point_count; ++j) {
     VelocityPoint& vcp = vc_.points[j];
@@ -1577,7 +1738,8 @@ void ContactSolver::store_impulses() {
 }
 
 // b2_contact_solver.cpp, b2PositionSolverManifold::Initialize: point `index`'s current normal
-// (A to B), position (on the incident body) and separation beyond both skins.
+// (A to B), position (on the incident body; for circles midway between the centres) and
+// separation beyond both skins (or radii).
 struct PositionManifold {
   Vec2 normal, point;
   float separation = 0.0f;
@@ -1586,7 +1748,14 @@ struct PositionManifold {
 PositionManifold position_manifold(const PositionConstraint& pc, const Xf& xf_a, const Xf& xf_b,
                                    int index) {
   PositionManifold out;
-  if (pc.type == ManifoldType::face_a) {
+  if (pc.type == ManifoldType::circles) {
+    const Vec2 point_a = mul(xf_a, pc.local_point);
+    const Vec2 point_b = mul(xf_b, pc.local_points[0]);
+    out.normal = point_b - point_a;
+    normalize(out.normal);
+    out.point = 0.5f * (point_a + point_b);
+    out.separation = dot(point_b - point_a, out.normal) - pc.radius_a - pc.radius_b;
+  } else if (pc.type == ManifoldType::face_a) {
     out.normal = mul(xf_a.q, pc.local_normal);
     const Vec2 plane_point = mul(xf_a, pc.local_point);
     const Vec2 clip_point = mul(xf_b, pc.local_points[index]);
@@ -1725,13 +1894,13 @@ void integrate_position(float h, Position& p, Velocity& u) {
 // b2_island.cpp, b2Island::Solve (no joints, no listener, sleeping off): velocities, the contact
 // solver's warm start and velocity iterations, positions, position iterations with early exit,
 // and the result written back to the bodies.
-void solve_island(Island& island, Body* bodies, const TimeStep& step, Vec2 gravity) {
+void solve_island(Island& island, const Body& body_a, const Body& body_b, const TimeStep& step,
+                  Vec2 gravity) {
   const float h = step.dt;
   for (int i = 0; i < island.body_count; ++i) {
     integrate_velocity(*island.bodies[i], h, gravity, island.positions[i], island.velocities[i]);
   }
-  ContactSolver solver(step, island.contact, bodies[0], bodies[1], island.positions,
-                       island.velocities);
+  ContactSolver solver(step, island.contact, body_a, body_b, island.positions, island.velocities);
   solver.initialize_velocity_constraints();
   if (step.warm_starting) solver.warm_start();
   for (int i = 0; i < step.velocity_iterations; ++i) solver.solve_velocity_constraints();
@@ -1755,14 +1924,14 @@ void solve_island(Island& island, Body* bodies, const TimeStep& step, Vec2 gravi
 // b2_island.cpp, b2Island::SolveTOI: push the TOI bodies apart (TOI position iterations), take that
 // as the sweeps' new start, solve the contact's velocities without warm start and integrate the
 // rest of the step; the impulses are not stored.
-void solve_island_toi(Island& island, Body* bodies, const TimeStep& sub_step, int toi_index_a,
-                      int toi_index_b) {
+void solve_island_toi(Island& island, const Body& body_a, const Body& body_b,
+                      const TimeStep& sub_step, int toi_index_a, int toi_index_b) {
   for (int i = 0; i < island.body_count; ++i) {
     const Body& b = *island.bodies[i];
     island.positions[i] = {b.sweep.c, b.sweep.a};
     island.velocities[i] = {b.v, b.w};
   }
-  ContactSolver solver(sub_step, island.contact, bodies[0], bodies[1], island.positions,
+  ContactSolver solver(sub_step, island.contact, body_a, body_b, island.positions,
                        island.velocities);
   for (int i = 0; i < sub_step.position_iterations; ++i) {
     if (solver.solve_toi_position_constraints(toi_index_a, toi_index_b)) break;
@@ -1792,7 +1961,8 @@ void solve_island_toi(Island& island, Body* bodies, const TimeStep& sub_step, in
 
 struct World {
   Vec2 gravity;
-  Body bodies[2];  // creation order; fixture A of the contact is bodies[0]'s (proxy id 0)
+  Body bodies[2];   // creation order: body i's fixture has proxy id i
+  int index_a = 0;  // the body of the contact's fixture A (b2Contact::Create)
   std::optional<Contact> contact;
   float inv_dt0 = 0.0f;
   bool step_complete = true;
@@ -1800,7 +1970,18 @@ struct World {
 
   Body& dynamic_body() { return bodies[0].is_static ? bodies[1] : bodies[0]; }
   Body& static_body() { return bodies[0].is_static ? bodies[0] : bodies[1]; }
+  Body& body_a() { return bodies[index_a]; }
+  Body& body_b() { return bodies[1 - index_a]; }
 };
+
+// b2_contact.cpp, b2Contact::Create with b2Contact::AddType's registers: the broad-phase pair
+// comes as (lower proxy id, higher), body 0's fixture first; the register of (circle, polygon) is
+// not primary and swaps the fixtures, so that a polygon and a circle make the polygon fixture A
+// (b2PolygonAndCircleContact); two polygons or two circles keep the pair's order.
+int fixture_a_body(const Body bodies[2]) {
+  const bool swap = bodies[0].shape.is_circle && !bodies[1].shape.is_circle;
+  return swap ? 1 : 0;
+}
 
 // b2_broad_phase.h, b2BroadPhase::UpdatePairs with b2_contact_manager.cpp,
 // b2ContactManager::AddPair: each proxy in the move buffer queries the tree with its fat AABB;
@@ -1809,7 +1990,7 @@ struct World {
 void find_new_contacts(World& w) {
   const bool moved = w.bodies[0].moved || w.bodies[1].moved;
   if (moved && !w.contact && test_overlap(w.bodies[0].fat, w.bodies[1].fat)) {
-    w.contact = make_contact(w.bodies[0], w.bodies[1]);
+    w.contact = make_contact(w.body_a(), w.body_b());
   }
   w.bodies[0].moved = false;
   w.bodies[1].moved = false;
@@ -1819,11 +2000,11 @@ void find_new_contacts(World& w) {
 // is destroyed, else its manifold is updated (the dynamic body is always awake).
 void collide(World& w) {
   if (!w.contact) return;
-  if (!test_overlap(w.bodies[0].fat, w.bodies[1].fat)) {
+  if (!test_overlap(w.body_a().fat, w.body_b().fat)) {
     w.contact.reset();
     return;
   }
-  update_contact(*w.contact, w.bodies[0], w.bodies[1]);
+  update_contact(*w.contact, w.body_a(), w.body_b());
 }
 
 // b2_world.cpp, b2World::Solve: the island grown from the dynamic body over its touching contact
@@ -1847,7 +2028,7 @@ void world_solve(World& w, const TimeStep& step) {
       island.add(other);  // popped from the search stack next; a static body ends the search
     }
   }
-  solve_island(island, w.bodies, step, w.gravity);
+  solve_island(island, w.body_a(), w.body_b(), step, w.gravity);
   w.static_body().island = false;
   for (Body& b : w.bodies) {
     if (b.island && !b.is_static) synchronize_fixtures(b);
@@ -1859,8 +2040,8 @@ void world_solve(World& w, const TimeStep& step) {
 // later start alpha0, b2TimeOfImpact over the rest of the step, alpha = its time mapped back onto
 // the step (1 when not touching), cached on the contact.
 float contact_toi(World& w, Contact& c) {
-  Body& ba = w.bodies[0];
-  Body& bb = w.bodies[1];
+  Body& ba = w.body_a();
+  Body& bb = w.body_b();
   // activeA || activeB and collideA || collideB: the dynamic body is awake, the other static.
   float alpha0 = ba.sweep.alpha0;
   if (ba.sweep.alpha0 < bb.sweep.alpha0) {
@@ -1885,8 +2066,8 @@ float contact_toi(World& w, Contact& c) {
 // the step and resynchronize the proxy, else restore the sweeps and disable the contact for the
 // rest of this step.
 void solve_toi_event(World& w, Contact& c, float min_alpha, const TimeStep& step) {
-  Body& ba = w.bodies[0];
-  Body& bb = w.bodies[1];
+  Body& ba = w.body_a();
+  Body& bb = w.body_b();
   const Sweep backup1 = ba.sweep;
   const Sweep backup2 = bb.sweep;
   advance_body(ba, min_alpha);
@@ -1918,7 +2099,7 @@ void solve_toi_event(World& w, Contact& c, float min_alpha, const TimeStep& step
   sub_step.position_iterations = 20;
   sub_step.velocity_iterations = step.velocity_iterations;
   sub_step.warm_starting = false;
-  solve_island_toi(island, w.bodies, sub_step, ba.island_index, bb.island_index);
+  solve_island_toi(island, ba, bb, sub_step, ba.island_index, bb.island_index);
   for (int i = 0; i < island.body_count; ++i) {
     Body& b = *island.bodies[i];
     b.island = false;
@@ -2005,11 +2186,15 @@ void check_scope(std::span<const Box2dBox> bodies, float gx, float gy, float h,
   if (bodies.size() != 2) fail("needs exactly two bodies");
   if (bodies[0].is_static == bodies[1].is_static) fail("needs one dynamic and one static body");
   for (const Box2dBox& b : bodies) {
-    for (float v : {b.hx, b.hy, b.x, b.y, b.angle, b.vx, b.vy, b.w, b.density, b.friction,
+    for (float v : {b.radius, b.x, b.y, b.angle, b.vx, b.vy, b.w, b.density, b.friction,
                     b.restitution, b.linear_damping, b.angular_damping}) {
       if (!finite(v)) fail("a body parameter is not finite");
     }
-    if (!(b.hx > 0.0f && b.hy > 0.0f)) fail("a half extent is not positive");
+    if (b.radius < 0.0f) fail("a negative radius");
+    if (b.radius == 0.0f) {  // a box: its half extents
+      if (!finite(b.hx) || !finite(b.hy)) fail("a body parameter is not finite");
+      if (!(b.hx > 0.0f && b.hy > 0.0f)) fail("a half extent is not positive");
+    }
     if (!b.is_static && !(b.density > 0.0f)) fail("the dynamic body needs a positive density");
     if (b.friction < 0.0f || b.restitution < 0.0f) fail("negative friction or restitution");
     if (b.linear_damping < 0.0f || b.angular_damping < 0.0f) fail("negative damping");
@@ -2030,6 +2215,7 @@ World create_world(std::span<const Box2dBox> bodies, float gx, float gy) {
     w.bodies[i] = create_body(bodies[static_cast<std::size_t>(i)]);
     create_fixture(w.bodies[i], bodies[static_cast<std::size_t>(i)]);
   }
+  w.index_a = fixture_a_body(w.bodies);
   w.new_contacts = true;
   return w;
 }

@@ -123,21 +123,25 @@ std::vector<SlideSetup> slide_setups(const Scene& scene) {
 
 namespace {
 
-// One step of the clamp law from (s, v).
-void slide_step(const SlideSetup& setup, double grip_h, double h, double& s, double& v) {
+// One step of the clamp law from (s, v): the position moves with the new speed (semi-implicit) or
+// with the step-start speed (explicit).
+void slide_step(const SlideSetup& setup, double grip_h, double h, PositionUpdate position,
+                double& s, double& v) {
+  const double v_start = v;
   const double v_free = v + setup.pull * h;
   v = std::abs(v_free) <= grip_h ? 0.0 : v_free - std::copysign(grip_h, v_free);
-  s += h * v;
+  s += h * (position == PositionUpdate::Explicit ? v_start : v);
 }
 
 }  // namespace
 
-SlidePath slide_path(const SlideSetup& setup, FrictionModel model, double h, std::int64_t steps) {
+SlidePath slide_path(const SlideSetup& setup, FrictionModel model, double h, std::int64_t steps,
+                     PositionUpdate position) {
   const double grip_h = slide_grip(setup.mu, setup.g, model, setup.angle) * h;
   SlidePath p;
   double s = 0.0, v = setup.v0;
   for (std::int64_t n = 0; n <= steps; ++n) {
-    if (n > 0) slide_step(setup, grip_h, h, s, v);
+    if (n > 0) slide_step(setup, grip_h, h, position, s, v);
     p.s.push_back(s);
     p.v.push_back(v);
     p.off.push_back(0.0);
@@ -145,13 +149,13 @@ SlidePath slide_path(const SlideSetup& setup, FrictionModel model, double h, std
   return p;
 }
 
-SlidePath slide_steps(const SlideSetup& setup, FrictionModel model, double h,
-                      const SlidePath& from) {
+SlidePath slide_steps(const SlideSetup& setup, FrictionModel model, double h, const SlidePath& from,
+                      PositionUpdate position) {
   const double grip_h = slide_grip(setup.mu, setup.g, model, setup.angle) * h;
   SlidePath p;
   for (std::size_t n = 0; n < from.s.size(); ++n) {
     double s = n == 0 ? 0.0 : from.s[n - 1], v = n == 0 ? setup.v0 : from.v[n - 1];
-    if (n > 0) slide_step(setup, grip_h, h, s, v);
+    if (n > 0) slide_step(setup, grip_h, h, position, s, v);
     p.s.push_back(s);
     p.v.push_back(v);
     p.off.push_back(0.0);
@@ -380,14 +384,20 @@ std::vector<BounceSetup> bounce_setups(const Scene& scene) {
   return out;
 }
 
-BouncePath observed_path(const Trajectory& run, const BounceSetup& setup) {
+BouncePath bounce_path_of(std::span<const BodyState> states, const BounceSetup& setup) {
   BouncePath p;
-  for (std::size_t s = 0; s < run.samples(); ++s) {
-    const BodyState& b = run.at(s, setup.body);
+  for (const BodyState& b : states) {
     p.gap.push_back(b.position.y() - setup.radius - setup.floor_top);
     p.v.push_back(b.velocity.y());
   }
   return p;
+}
+
+BouncePath observed_path(const Trajectory& run, const BounceSetup& setup) {
+  std::vector<BodyState> states;
+  states.reserve(run.samples());
+  for (std::size_t k = 0; k < run.samples(); ++k) states.push_back(run.at(k, setup.body));
+  return bounce_path_of(states, setup);
 }
 
 }  // namespace dropcheck

@@ -12,6 +12,7 @@
 
 #include "harness/core/bounce_law.hpp"
 #include "harness/core/friction_model.hpp"
+#include "harness/core/law.hpp"
 #include "harness/core/scene.hpp"
 #include "harness/core/trajectory.hpp"
 
@@ -86,15 +87,18 @@ struct SlidePath {
 };
 
 // The ideal discrete law of `model`: per step v_free = v + pull*h; the friction impulse cancels the
-// slip when it can (|v_free| <= grip*h gives v = 0) and otherwise takes grip*h off it; x += h*v.
-SlidePath slide_path(const SlideSetup& setup, FrictionModel model, double h, std::int64_t steps);
+// slip when it can (|v_free| <= grip*h gives v = 0) and otherwise takes grip*h off it; x += h*v
+// with the new v, or with the step-start v for an engine whose position update is explicit
+// (Chipmunk: the slide runs one step of h*v0 further).
+SlidePath slide_path(const SlideSetup& setup, FrictionModel model, double h, std::int64_t steps,
+                     PositionUpdate position = PositionUpdate::SemiImplicit);
 
 // The law one step ahead of a path (a run's): step n + 1 of the result is the law's step from
 // `from`'s state after step n. A run that rounds differently from the law in double (a float
 // engine) can leave the law's whole path where a contact decision lies within rounding, and still
 // follow the law at every step.
-SlidePath slide_steps(const SlideSetup& setup, FrictionModel model, double h,
-                      const SlidePath& from);
+SlidePath slide_steps(const SlideSetup& setup, FrictionModel model, double h, const SlidePath& from,
+                      PositionUpdate position = PositionUpdate::SemiImplicit);
 
 // The path of the slide's body from its state after each step 0, 1, ... (a run's, a replay's).
 SlidePath slide_path_of(std::span<const BodyState> states, const SlideSetup& setup);
@@ -182,6 +186,9 @@ struct BounceSetup {
 // nor under another dynamic body (landing_exclusions), no force on them, gravity straight down
 // (-y), no damping, contacts on and the scene's restitution set.
 std::vector<BounceSetup> bounce_setups(const Scene& scene);
+
+// The path of the bounce's sphere from its state after each step 0, 1, ... (a run's, a replay's).
+BouncePath bounce_path_of(std::span<const BodyState> states, const BounceSetup& setup);
 
 // A run's path of one bounce: the gaps and vertical velocities of its samples (a run that keeps
 // every step, as the checks' runs do).

@@ -95,7 +95,7 @@ std::string bounce_section(const SceneEvaluation& se) {
   for (const EngineEvaluation& ev : se.engines) {
     if (!ev.ran() || ev.at_default().run.status != RunStatus::ok) continue;
     for (const BounceSetup& s : bounces) {
-      const BounceVerdict v = judge_bounce(ev.at_default().run, s, ev.info.bounce_law, h);
+      const BounceVerdict v = judge_bounce(ev.at_default().run, se.scene, s, ev.info, h);
       std::string why = v.law_to_ideal > tolerance::kBouncePath ? "" : kNone;
       for (std::size_t i = 0; i < v.causes.size(); ++i) why += (i ? " and " : "") + v.causes[i];
       t.add({ev.name, se.scene.bodies[s.body].name,

@@ -366,7 +366,7 @@ CheckResult check_slide(const Scene& scene, const EngineFactory& make, const Tim
 CheckResult check_bounce(const Scene& scene, const EngineFactory& make, const Timestep& h) {
   return check_contact_law(scene, make, h, "bounce", bounce_setups(scene),
                            [&](const Trajectory& run, const BounceSetup& s, const EngineInfo& i) {
-                             const BounceVerdict v = judge_bounce(run, s, i.bounce_law, h.seconds);
+                             const BounceVerdict v = judge_bounce(run, scene, s, i, h.seconds);
                              return std::pair(v.follows, v.sentence());
                            });
 }

@@ -6,6 +6,7 @@
 #include "harness/core/registry.hpp"
 #include "harness/judge/bounce_verdict.hpp"
 #include "harness/judge/turned_verdict.hpp"
+#include "harness/oracles/replayed_contact.hpp"
 #include "harness/run/runner.hpp"
 
 namespace dropcheck {
@@ -51,6 +52,12 @@ ContactLawIdentity identify_bounce_law(const Scene& scene, Engine& engine, doubl
   id.declared = describe(own.bounce_law);
   if (!run) return id;
   const BounceSetup setup = bounce_setups(scene).at(0);
+  if (replayed(own.contact_solver)) {
+    // Its own solver, replayed, is its declared member.
+    const BounceVerdict v = judge_bounce(*run, scene, setup, own, h);
+    id.declared = describe(own.contact_solver) + ", replayed";
+    id.fits.push_back({id.declared, {own.name}, true, v.follows, bounce_detail(v)});
+  }
   // The declared member first, then the ideal law, then every other adapter's, each once with
   // the engines that declare it.
   std::vector<std::pair<BounceLaw, std::vector<std::string>>> members;

@@ -16,6 +16,7 @@
 #include "harness/core/registry.hpp"
 #include "harness/core/trajectory.hpp"
 #include "harness/judge/bounce_verdict.hpp"
+#include "harness/judge/slide_verdict.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/run/runner.hpp"
 #include "harness/scene/scene_loader.hpp"
@@ -209,6 +210,91 @@ inline void check_bounces(Engine& engine, std::initializer_list<BounceCase> case
     CHECK(v.seen.speed_in == Approx(4.41).epsilon(1e-12));
     CHECK(v.seen.speed_out == Approx(c.speed_out).epsilon(1e-7));
     if (c.apex > -1.0) CHECK(v.seen.apexes.at(0) == Approx(c.apex).epsilon(1e-6));
+  }
+}
+
+// A slide run by engine `name` on `scene` and judged against its own law for `judged_as` (the
+// scene itself, or the scene a mistaken run should have followed).
+struct JudgedSlide {
+  Trajectory run;
+  SlideVerdict verdict;
+};
+
+inline JudgedSlide judged_slide(const std::string& name, const Scene& scene,
+                                const Scene& judged_as) {
+  std::unique_ptr<Engine> engine = required_engine(name);
+  const double h = scene.timestep.seconds;
+  JudgedSlide j{run_scene(*engine, scene, h), {}};
+  REQUIRE(j.run.status == RunStatus::ok);
+  j.verdict = judge_slide(j.run, judged_as, slide_setups(judged_as).at(0), engine->info(), h);
+  return j;
+}
+
+// Checks that engine `name` (a replayed solver) slides on each planar shipped slide as its replay
+// does, bit for bit, and departs from it by step 2 when the friction is 2 % off.
+inline void check_replayed_slides(const std::string& name) {
+  // incline_hold's second cube slides beside the first at z = 3: not planar.
+  for (const char* scene_name : {"slide_stop", "incline_slide"}) {
+    const Scene scene = scenario(scene_name);
+    const SlideVerdict v = judged_slide(name, scene, scene).verdict;
+    INFO(scene_name << ": " << v.sentence());
+    CHECK(v.exact);
+    CHECK(v.solver.has_value());
+    CHECK(v.follows);
+    CHECK(v.off_law == 0.0);  // the same operations in the same order
+    Scene off = scene;
+    for (Body& b : off.bodies)
+      if (b.friction) *b.friction *= 1.02;
+    const SlideVerdict d = judged_slide(name, off, scene).verdict;
+    INFO("mu 2 % off: " << d.sentence());
+    CHECK_FALSE(d.follows);
+    CHECK(d.first_off >= 1);
+    CHECK(d.first_off <= 2);  // the first steps with friction already differ
+    CHECK_THAT(d.sentence(), Catch::Contains("DEPARTS at step"));
+  }
+}
+
+// The slide of slide_stop run by engine `name` with each body's friction given by `friction` (its
+// own material: the engine's combine rule makes the pair's), judged against the shipped scene.
+inline SlideVerdict slide_with_materials(const std::string& name,
+                                         const std::function<double(const Body&)>& friction) {
+  const Scene scene = scenario("slide_stop");
+  Scene materials = scene;
+  for (Body& b : materials.bodies) b.friction = friction(b);
+  std::unique_ptr<Engine> engine = required_engine(name);
+  REQUIRE(engine->use_body_materials());
+  const double h = scene.timestep.seconds;
+  const Trajectory run = run_scene(*engine, materials, h);
+  return judge_slide(run, scene, slide_setups(scene).at(0), engine->info(), h);
+}
+
+// A bounce run by engine `name` on `scene`, judged against its own law for `judged_as`.
+inline BounceVerdict judged_bounce(const std::string& name, const Scene& scene,
+                                   const Scene& judged_as) {
+  std::unique_ptr<Engine> engine = required_engine(name);
+  const double h = scene.timestep.seconds;
+  const Trajectory run = run_scene(*engine, scene, h);
+  REQUIRE(run.status == RunStatus::ok);
+  return judge_bounce(run, judged_as, bounce_setups(judged_as).at(0), engine->info(), h);
+}
+
+// Checks that engine `name` (a replayed solver) bounces on each shipped bounce scene as its replay
+// does, bit for bit, and departs from it when the restitution is 2 % off.
+inline void check_replayed_bounces(const std::string& name) {
+  for (const char* scene_name : {"bounce_e01", "bounce_e05", "bounce_e09"}) {
+    const Scene scene = scenario(scene_name);
+    const BounceVerdict v = judged_bounce(name, scene, scene);
+    INFO(scene_name << ": " << v.sentence());
+    CHECK(v.solver.has_value());
+    CHECK(v.not_judged.empty());
+    CHECK(v.follows);
+    CHECK(v.worst_gap == 0.0);  // the same operations in the same order
+    Scene off = scene;
+    for (Body& b : off.bodies)
+      if (b.restitution) *b.restitution *= 1.02;
+    const BounceVerdict d = judged_bounce(name, off, scene);
+    INFO("e 2 % off: " << d.sentence());
+    CHECK_FALSE(d.follows);
   }
 }
 

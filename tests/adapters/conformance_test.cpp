@@ -311,7 +311,11 @@ TEST_CASE("On the thin floor, Box2D's continuous collision lands and the others 
       CHECK_THAT(r.message, Catch::Contains("stillness not judged: the run ends 0.483 s after "
                                             "first contact (window 2 s)"));
     } else {
-      CHECK_THAT(r.limit, Catch::StartsWith("tunnels: it travels 3.34 m per step at contact"));
+      // An explicit position update (Chipmunk) moves with the step-start speed, a step slower.
+      const bool explicit_update = engine->info().law.position == PositionUpdate::Explicit;
+      CHECK_THAT(r.limit,
+                 Catch::StartsWith(std::string("tunnels: it travels ") +
+                                   (explicit_update ? "3.33" : "3.34") + " m per step at contact"));
     }
   }
 }

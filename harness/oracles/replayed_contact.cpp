@@ -1,0 +1,71 @@
+#include "harness/oracles/replayed_contact.hpp"
+
+#include <stdexcept>
+#include <vector>
+
+#include "harness/core/box2d_world.hpp"
+#include "harness/core/chipmunk_world.hpp"
+#include "harness/oracles/box2d_step.hpp"
+#include "harness/oracles/chipmunk_step.hpp"
+
+namespace dropcheck {
+
+bool replayed(const ContactSolver& solver) {
+  return solver.kind != ContactSolverKind::exact;
+}
+
+namespace {
+
+// The body's states under Box2D's replay.
+std::vector<BodyState> box2d_states(const Scene& scene, std::size_t body,
+                                    const ContactSolver& solver, double h, std::int64_t steps) {
+  const Box2dWorld world = box2d_world(scene, h);
+  const std::vector<Box2dState> states =
+      box2d_replay(world.bodies, world.gx, world.gy, static_cast<float>(h),
+                   {.velocity_iterations = solver.velocity_iterations,
+                    .position_iterations = solver.position_iterations},
+                   steps);
+  std::vector<BodyState> out;
+  for (std::size_t k = body; k < states.size(); k += world.bodies.size())
+    out.push_back({Vec3(states[k].x, states[k].y, 0.0), Vec3(states[k].vx, states[k].vy, 0.0)});
+  return out;
+}
+
+// The body's states under Chipmunk's replay.
+std::vector<BodyState> chipmunk_states(const Scene& scene, std::size_t body,
+                                       const ContactSolver& solver, double h, std::int64_t steps) {
+  ChipmunkWorld world = chipmunk_world(scene);
+  world.iterations = solver.velocity_iterations;
+  const std::vector<ChipmunkState> states = chipmunk_replay(world, h, steps);
+  std::vector<BodyState> out;
+  for (std::size_t k = body; k < states.size(); k += world.bodies.size())
+    out.push_back({Vec3(states[k].x, states[k].y, 0.0), Vec3(states[k].vx, states[k].vy, 0.0)});
+  return out;
+}
+
+}  // namespace
+
+std::vector<BodyState> replayed_states(const Scene& scene, std::size_t body,
+                                       const ContactSolver& solver, double h, std::int64_t steps) {
+  switch (solver.kind) {
+    case ContactSolverKind::box2d_2_4:
+      return box2d_states(scene, body, solver, h, steps);
+    case ContactSolverKind::chipmunk_7:
+      return chipmunk_states(scene, body, solver, h, steps);
+    case ContactSolverKind::exact:
+      break;
+  }
+  throw std::invalid_argument("replayed_states: the solver is not replayed");
+}
+
+SlidePath replayed_slide_path(const Scene& scene, const SlideSetup& setup,
+                              const ContactSolver& solver, double h, std::int64_t steps) {
+  return slide_path_of(replayed_states(scene, setup.body, solver, h, steps), setup);
+}
+
+BouncePath replayed_bounce_path(const Scene& scene, const BounceSetup& setup,
+                                const ContactSolver& solver, double h, std::int64_t steps) {
+  return bounce_path_of(replayed_states(scene, setup.body, solver, h, steps), setup);
+}
+
+}  // namespace dropcheck

@@ -1,0 +1,32 @@
+// Contact as an engine's own solver makes it, where the harness replays that solver
+// (harness/core/contact_solver.hpp): the member a slide or a bounce on that engine is judged
+// against, beside the ideal laws of contact_laws.hpp whose difference the replay explains.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "harness/core/contact_solver.hpp"
+#include "harness/core/scene.hpp"
+#include "harness/oracles/contact_laws.hpp"
+
+namespace dropcheck {
+
+// True for a solver the harness replays (every kind but exact).
+bool replayed(const ContactSolver& solver);
+
+// The state of body `body` after steps 0..steps at step h under `solver`, as the engine reports it.
+// Throws std::invalid_argument for an exact solver or a scene outside the replay's scope (one
+// dynamic body on one static box: harness/oracles/box2d_step.hpp, chipmunk_step.hpp).
+std::vector<BodyState> replayed_states(const Scene& scene, std::size_t body,
+                                       const ContactSolver& solver, double h, std::int64_t steps);
+
+// The path of `setup`'s slide, read as observed_slide_path reads a run.
+SlidePath replayed_slide_path(const Scene& scene, const SlideSetup& setup,
+                              const ContactSolver& solver, double h, std::int64_t steps);
+
+// The path of `setup`'s bounce, read as observed_path reads a run.
+BouncePath replayed_bounce_path(const Scene& scene, const BounceSetup& setup,
+                                const ContactSolver& solver, double h, std::int64_t steps);
+
+}  // namespace dropcheck
