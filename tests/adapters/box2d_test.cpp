@@ -179,3 +179,10 @@ TEST_CASE("Box2D bounces as the replay of its own solver, bit for bit, on every 
   // after the step's gravity, so each rebound is e*(v + g*h).
   check_replayed_bounces("box2d");
 }
+
+TEST_CASE("Box2D moves as its replay, bit for bit, in random contact scenes",
+          "[box2d][contacts][replay]") {
+  // Thrown boxes and balls with any friction and restitution at 1/30, 1/60 and 1/240: landings,
+  // bounces, slides and continuous collision.
+  check_replay_on_random_scenes("box2d", 40);
+}

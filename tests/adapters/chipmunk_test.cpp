@@ -147,3 +147,9 @@ TEST_CASE("Chipmunk bounces as the replay of its own solver, bit for bit, on eve
   // back out of its penetration beyond the slop.
   check_replayed_bounces("chipmunk");
 }
+
+TEST_CASE("Chipmunk moves as its replay, bit for bit, in random contact scenes",
+          "[chipmunk][contacts][replay]") {
+  // Thrown boxes and balls with any friction and restitution at 1/30, 1/60 and 1/240.
+  check_replay_on_random_scenes("chipmunk", 40);
+}
