@@ -127,17 +127,22 @@ BounceVerdict judge_bounce(const Trajectory& run, const BounceSetup& s, const Bo
 BounceVerdict judge_bounce(const Trajectory& run, const Scene& scene, const BounceSetup& s,
                            const EngineInfo& info, double h) {
   if (!replayed(info.contact_solver)) return judge_bounce(run, s, info.bounce_law, h);
+  const auto not_judged = [&](const std::string& why) {
+    BounceVerdict v;
+    v.solver = info.contact_solver;
+    v.not_judged = why;
+    v.follows = true;
+    return v;
+  };
+  // The replay's path is step by step: a run that skipped steps cannot be laid beside it.
+  if (!run.keeps_every_step()) return not_judged("the run did not keep every step");
   const BouncePath seen = observed_path(run, s);
   const auto steps = static_cast<std::int64_t>(seen.gap.size()) - 1;
   BouncePath predicted;
   try {
     predicted = replayed_bounce_path(scene, s, info.contact_solver, h, steps);
   } catch (const std::invalid_argument& e) {
-    BounceVerdict v;
-    v.solver = info.contact_solver;
-    v.not_judged = e.what();
-    v.follows = true;
-    return v;
+    return not_judged(e.what());
   }
   BounceVerdict v = judge_paths(seen, predicted, s, info.bounce_law, h);
   v.solver = info.contact_solver;
@@ -172,7 +177,7 @@ std::string BounceVerdict::sentence() const {
                 apex_text(seen.apexes);
   if (energy_rises) text += " (ENERGY RISES)";
   text += "; its law (" + (solver ? describe(*solver) + ", replayed" : describe(law)) + "): ";
-  if (step_gap < 0.0)
+  if (follows && step_gap < 0.0)
     text += printf_string("the same path to %.2g m", worst_gap);
   else if (follows)
     text += printf_string(
@@ -181,12 +186,18 @@ std::string BounceVerdict::sentence() const {
                 step_gap, step_speed, static_cast<long long>(first_step), worst_gap) +
             parting_text();
   else
-    text += printf_string(
-        "DEPARTS at step %lld (first over %.2g m; the largest gap %.3g m at step %lld; one step "
-        "from its own state: %.3g m at step %lld, %.3g m/s)",
-        static_cast<long long>(first_step), tolerance::kBouncePath, worst_gap,
-        static_cast<long long>(worst_step), step_gap, static_cast<long long>(step_worst),
-        step_speed);
+    // A replay is not stepped from the run's own state (its solver carries impulses between
+    // steps): no one-step figure then.
+    text +=
+        printf_string(
+            "DEPARTS at step %lld (first over %.2g m; the largest gap %.3g m at step "
+            "%lld",
+            static_cast<long long>(first_step), tolerance::kBouncePath, worst_gap,
+            static_cast<long long>(worst_step)) +
+        (step_gap < 0.0 ? std::string(")")
+                        : printf_string("; one step from its own state: %.3g m at step %lld, "
+                                        "%.3g m/s)",
+                                        step_gap, static_cast<long long>(step_worst), step_speed));
   if (!follows && follows_ideal) text += ": it follows the ideal law instead";
   if (law_to_ideal > tolerance::kBouncePath) {
     text += printf_string("; its law is %.3g m off the ideal law (apexes ", law_to_ideal) +

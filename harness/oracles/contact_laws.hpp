@@ -89,7 +89,7 @@ struct SlidePath {
 // The ideal discrete law of `model`: per step v_free = v + pull*h; the friction impulse cancels the
 // slip when it can (|v_free| <= grip*h gives v = 0) and otherwise takes grip*h off it; x += h*v
 // with the new v, or with the step-start v for an engine whose position update is explicit
-// (Chipmunk: the slide runs one step of h*v0 further).
+// (Chipmunk: by step n it has moved h*(v0 - v_n) further, h*v0 for a slide that has stopped).
 SlidePath slide_path(const SlideSetup& setup, FrictionModel model, double h, std::int64_t steps,
                      PositionUpdate position = PositionUpdate::SemiImplicit);
 

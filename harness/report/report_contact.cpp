@@ -72,7 +72,8 @@ std::string slide_section(const SceneEvaluation& se) {
          "(a cone grips mu*g, a box pyramid each tangent axis by mu*g, a sum pyramid shares mu*g "
          "between them: docs/contact.md). An engine whose solver takes a fixed number of "
          "iterations "
-         "(Box2D) is judged against the replay of its own solver instead, in its own arithmetic; "
+         "(Box2D, Chipmunk) is judged against the replay of its own solver instead, in its own "
+         "arithmetic; "
          "the clamp law's stop beside it shows what the iterations leave. The run is compared "
          "with its law at every step, within " +
          printf_string("%.0e", tolerance::kSlideDistance) + " m.\n\n" + t.str() + "\n";
@@ -103,7 +104,8 @@ std::string bounce_section(const SceneEvaluation& se) {
              printf_string("%.4g", v.seen.speed_in), printf_string("%.4g", v.seen.speed_out),
              apex_text(v.seen.apexes), apex_text(v.predicted.apexes), apex_text(v.ideal.apexes),
              printf_string("%.2g", v.worst_gap), why,
-             v.follows ? "yes"
+             !v.not_judged.empty() ? "not judged: " + v.not_judged
+             : v.follows           ? "yes"
              : v.follows_ideal
                  ? std::string("**NO**: the ideal law's path")
                  : printf_string("**NO**: step %lld", static_cast<long long>(v.first_step))});

@@ -56,7 +56,7 @@ ContactLawIdentity identify_bounce_law(const Scene& scene, Engine& engine, doubl
     // Its own solver, replayed, is its declared member.
     const BounceVerdict v = judge_bounce(*run, scene, setup, own, h);
     id.declared = describe(own.contact_solver) + ", replayed";
-    id.fits.push_back({id.declared, {own.name}, true, v.follows, bounce_detail(v)});
+    id.fits.push_back({id.declared, {own.name}, v.not_judged.empty(), v.follows, bounce_detail(v)});
   }
   // The declared member first, then the ideal law, then every other adapter's, each once with
   // the engines that declare it.

@@ -297,6 +297,7 @@ inline void check_replayed_bounces(const std::string& name) {
     const BounceVerdict d = judged_bounce(name, off, scene);
     INFO("e 2 % off: " << d.sentence());
     CHECK_FALSE(d.follows);
+    CHECK_THAT(d.sentence(), Catch::Contains("DEPARTS at step"));
   }
 }
 
