@@ -19,6 +19,13 @@ namespace {
 // The body's states under Box2D's replay.
 std::vector<BodyState> box2d_states(const Scene& scene, std::size_t body,
                                     const ContactSolver& solver, double h, std::int64_t steps) {
+  // The replay builds each body's mass from its fixture; the adapter sets the scene's moment over
+  // it when the scene turns, and builds no fixture without contacts.
+  if (!scene.world.contacts)
+    throw std::invalid_argument("Box2D's replay needs contacts (the adapter builds no fixture)");
+  if (needs_rotation(scene))
+    throw std::invalid_argument(
+        "Box2D's replay takes each fixture's own moment, and a turning scene sets the scene's");
   const Box2dWorld world = box2d_world(scene, h);
   const std::vector<Box2dState> states =
       box2d_replay(world.bodies, world.gx, world.gy, static_cast<float>(h),

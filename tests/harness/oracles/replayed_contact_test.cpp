@@ -71,4 +71,10 @@ TEST_CASE("the replays refuse what they do not replay", "[replay]") {
   CHECK_THROWS_AS(replayed_states(stack, 0, kChipmunk, 1.0 / 60.0, 10), std::invalid_argument);
   CHECK_THROWS_AS(replayed_states(shipped("slide_stop"), 0, ContactSolver{}, 1.0 / 60.0, 10),
                   std::invalid_argument);
+  Scene turning = shipped("slide_stop");
+  turning.bodies.at(0).angular_velocity = Vec3(0.0, 0.0, 1.0);
+  CHECK_THROWS_AS(replayed_states(turning, 0, kBox2d, 1.0 / 60.0, 10), std::invalid_argument);
+  Scene apart = shipped("slide_stop");
+  apart.world.contacts = false;
+  CHECK_THROWS_AS(replayed_states(apart, 0, kBox2d, 1.0 / 60.0, 10), std::invalid_argument);
 }
