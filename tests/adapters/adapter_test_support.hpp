@@ -222,9 +222,10 @@ struct JudgedSlide {
   SlideVerdict verdict;
 };
 
-inline JudgedSlide judged_slide(const std::string& name, const Scene& scene,
-                                const Scene& judged_as) {
+inline JudgedSlide judged_slide(const std::string& name, const Scene& scene, const Scene& judged_as,
+                                bool body_materials = false) {
   std::unique_ptr<Engine> engine = required_engine(name);
+  if (body_materials) REQUIRE(engine->use_body_materials());
   const double h = scene.timestep.seconds;
   JudgedSlide j{run_scene(*engine, scene, h), {}};
   REQUIRE(j.run.status == RunStatus::ok);
@@ -263,11 +264,7 @@ inline SlideVerdict slide_with_materials(const std::string& name,
   const Scene scene = scenario("slide_stop");
   Scene materials = scene;
   for (Body& b : materials.bodies) b.friction = friction(b);
-  std::unique_ptr<Engine> engine = required_engine(name);
-  REQUIRE(engine->use_body_materials());
-  const double h = scene.timestep.seconds;
-  const Trajectory run = run_scene(*engine, materials, h);
-  return judge_slide(run, scene, slide_setups(scene).at(0), engine->info(), h);
+  return judged_slide(name, materials, scene, true).verdict;
 }
 
 // A bounce run by engine `name` on `scene`, judged against its own law for `judged_as`.

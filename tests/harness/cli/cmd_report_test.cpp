@@ -9,14 +9,7 @@
 #include "tests/scene_texts.hpp"
 
 using Catch::Matchers::Contains;
-using dropcheck::testing::body_text;
-using dropcheck::testing::cli;
-using dropcheck::testing::kEarth;
-using dropcheck::testing::kZero;
-using dropcheck::testing::Result;
-using dropcheck::testing::scene_head;
-using dropcheck::testing::ScratchDir;
-using dropcheck::testing::slurp;
+using namespace dropcheck::testing;
 
 TEST_CASE("report --reference measures the divergences from the engine asked for",
           "[cli][report]") {
