@@ -35,14 +35,15 @@
 // warning: ...". The warning handler only records the text: throwing from it would leave mj_step
 // half done. Contacts (soft, docs/engines.md 5): box geoms, solimp "0.9999 0.9999 0.001" (impedance
 // ~1: stiff), solref "2h 1" (time constant 2h, the smallest MuJoCo accepts without disabling
-// refsafe; critically damped), friction 0.5 (MuJoCo mixes by max). Landing, measured (unit cube
-// from 10 m onto a box floor, no drag, 60 Hz): collisions are found at the start of a step (no
-// continuous collision), so the step that crosses the floor ends 0.218 m inside it (step 84, t_c
-// = 1.392 s) and the contact acts from step 85. The penetration then shrinks by a factor 1 -
-// h^2*k/2 = 0.875 per step (k = 1/(2h)^2; the box-box collider reports half the depth), with no
-// rebound (highest 0.49999993 m); still (|v| <= 1e-3 m/s) from t = 2.38 s (1.82 s at 1/120, 3.43 s
-// at 1/30). A dampratio below 1 recovers faster but pops the cube up: 0.14 m at 0.8, 2 m at 0.5.
-// Rest offset -7.9e-8 m.
+// refsafe; critically damped), the scene's friction on every geom (MuJoCo mixes by max), all
+// declared once in harness/core/mujoco_world.hpp, where the re-solve of the step reads them.
+// Landing, measured (unit cube from 10 m onto a box floor, no drag, 60 Hz): collisions are found at
+// the start of a step (no continuous collision), so the step that crosses the floor ends 0.218 m
+// inside it (step 84, t_c = 1.392 s) and the contact acts from step 85. The penetration then
+// shrinks by a factor 1 - h^2*k/2 = 0.875 per step (k = 1/(2h)^2; the box-box collider reports half
+// the depth), with no rebound (highest 0.49999993 m); still (|v| <= 1e-3 m/s) from t = 2.38 s (1.82
+// s at 1/120, 3.43 s at 1/30). A dampratio below 1 recovers faster but pops the cube up: 0.14 m at
+// 0.8, 2 m at 0.5. Rest offset -7.9e-8 m.
 #include <mujoco/mujoco.h>
 
 #include <array>
@@ -51,10 +52,12 @@
 #include <cstring>
 #include <locale>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <vector>
 
 #include "adapters.hpp"
+#include "harness/core/mujoco_world.hpp"
 
 namespace dropcheck {
 namespace {
@@ -104,13 +107,6 @@ std::string vec(const Vec3& v) {
   return num(v.x()) + " " + num(v.y()) + " " + num(v.z());
 }
 
-std::string geom_defaults(const Scene& scene, double h) {
-  if (!scene.world.contacts) return R"(<default><geom contype="0" conaffinity="0"/></default>)";
-  // solref (timeconst, dampratio) = (2h, 1); solimp (dmin, dmax, width) near 1: stiff, inelastic.
-  return R"(<default><geom friction="0.5 0.005 0.0001" solimp="0.9999 0.9999 0.001" solref=")" +
-         num(2.0 * h) + R"( 1"/></default>)";
-}
-
 // A name as an XML attribute value (scene names are free text).
 std::string xml_escaped(const std::string& text) {
   std::string out;
@@ -135,33 +131,45 @@ std::string xml_escaped(const std::string& text) {
   return out;
 }
 
-// A static body is a box geom of the worldbody; a dynamic one a body with a free joint, its exact
-// inertial and a box geom. Both are named after the scene's body (MuJoCo's messages name them).
-// With `own_friction` (identify --combine) the geom carries the body's own sliding friction, and
-// MuJoCo's max of the two makes the pair's; otherwise the defaults' 0.5.
-std::string body_xml(const Body& b, double damping, bool own_friction) {
-  const std::string name = R"( name=")" + xml_escaped(b.name) + R"(")";
-  const std::string friction = own_friction && b.friction
-                                   ? R"( friction=")" + num(*b.friction) + R"( 0.005 0.0001")"
-                                   : std::string();
-  if (b.is_static)
-    return "<geom" + name + friction + R"( type="box" pos=")" + vec(b.position) + R"(" size=")" +
-           vec(b.half_extents) + R"("/>)";
-  // b = m*(exp(k*h) - 1)/h on the free joint (all six dofs; load() zeroes the rotational three).
-  return "<body" + name + R"( pos=")" + vec(b.position) + R"(">)" +
-         R"(<joint type="free" damping=")" + num(b.mass * damping) + R"("/>)" +
-         R"(<inertial pos="0 0 0" mass=")" + num(b.mass) + R"(" diaginertia=")" +
-         vec(inertia_of(b)) + R"("/>)" + "<geom" + friction + R"( type="box" size=")" +
-         vec(b.half_extents) + R"("/></body>)";
+// The geoms' defaults: no collision at all without contacts; else the world's soft contact
+// (harness/core/mujoco_world.hpp).
+std::string geom_defaults(const MujocoWorld& w) {
+  if (!w.contacts) return R"(<default><geom contype="0" conaffinity="0"/></default>)";
+  const MujocoSoftContact& c = w.contact;
+  return R"(<default><geom solimp=")" + num(c.solimp[0]) + " " + num(c.solimp[1]) + " " +
+         num(c.solimp[2]) + " " + num(c.solimp[3]) + " " + num(c.solimp[4]) + R"(" solref=")" +
+         num(c.timeconst) + " " + num(c.dampratio) + R"("/></default>)";
 }
 
-// The scene as MJCF. damping is (exp(k*h) - 1)/h per unit mass.
-std::string model_xml(const Scene& scene, double h, bool own_friction) {
-  const double damping = std::expm1(scene.world.damping_rate * h) / h;
-  std::string xml = R"(<mujoco model="dropcheck"><option timestep=")" + num(h) + R"(" gravity=")" +
-                    vec(scene.world.gravity) + R"(" integrator="Euler"/>)" +
-                    geom_defaults(scene, h) + "<worldbody>";
-  for (const Body& b : scene.bodies) xml += body_xml(b, damping, own_friction);
+// A geom's friction: its sliding value and MuJoCo's default torsional and rolling ones.
+std::string friction_xml(const MujocoBody& b) {
+  return R"( friction=")" + num(b.friction) + " " + num(kMujocoTorsionalFriction) + " " +
+         num(kMujocoRollingFriction) + R"(")";
+}
+
+// A static body is a box geom of the worldbody; a dynamic one a body with a free joint, its exact
+// inertial and a box geom. Both are named after the scene's body (MuJoCo's messages name them).
+std::string body_xml(const MujocoBody& b) {
+  const std::string name = R"( name=")" + xml_escaped(b.name) + R"(")";
+  if (b.is_static)
+    return "<geom" + name + friction_xml(b) + R"( type="box" pos=")" + vec(b.position) +
+           R"(" size=")" + vec(b.half_extents) + R"("/>)";
+  // The free joint's damping b on all six dofs; load() sets the rotational three's.
+  return "<body" + name + R"( pos=")" + vec(b.position) + R"(">)" +
+         R"(<joint type="free" damping=")" + num(b.damping) + R"("/>)" +
+         R"(<inertial pos="0 0 0" mass=")" + num(b.mass) + R"(" diaginertia=")" + vec(b.inertia) +
+         R"("/>)" + "<geom" + friction_xml(b) + R"( type="box" size=")" + vec(b.half_extents) +
+         R"("/></body>)";
+}
+
+// The world as MJCF.
+std::string model_xml(const MujocoWorld& w) {
+  std::string xml = R"(<mujoco model="dropcheck"><option timestep=")" + num(w.h) +
+                    R"(" gravity=")" + vec(w.gravity) + R"(" integrator="Euler" tolerance=")" +
+                    num(w.tolerance) + R"(" impratio=")" + num(w.contact.impratio) + R"(" cone=")" +
+                    (w.contact.pyramidal ? "pyramidal" : "elliptic") + R"("/>)" + geom_defaults(w) +
+                    "<worldbody>";
+  for (const MujocoBody& b : w.bodies) xml += body_xml(b);
   return xml + "</worldbody></mujoco>";
 }
 
@@ -195,6 +203,12 @@ ModelPtr load_xml(const std::string& xml) {
 class MujocoEngine final : public Engine {
  public:
   MujocoEngine() { install_handlers(); }
+  // For tests: every load() builds its contacts with `contact` and its solver's `tolerance` instead
+  // of the adapter's.
+  MujocoEngine(const MujocoSoftContact& contact, double tolerance)
+      : contact_(contact), tolerance_(tolerance) {
+    install_handlers();
+  }
 
   EngineInfo info() const override;
   void load(const Scene& scene, double h) override;
@@ -216,7 +230,7 @@ class MujocoEngine final : public Engine {
   double mass_of(std::size_t i) const { return m_->body_mass[m_->jnt_bodyid[joint_.at(i)]]; }
 
  private:
-  static std::vector<int> free_joints(mjModel& m, const Scene& scene, double h);
+  static std::vector<int> free_joints(mjModel& m, const MujocoWorld& w);
   void check_warnings();
 
   ModelPtr m_{nullptr, mj_deleteModel};
@@ -224,7 +238,9 @@ class MujocoEngine final : public Engine {
   std::vector<int> joint_;        // free joint of each scene body; -1 for static bodies
   std::vector<Vec3> static_pos_;  // static bodies do not move
   std::array<int, mjNWARNING> warnings_{};
-  bool body_materials_ = false;  // Engine::use_body_materials
+  bool body_materials_ = false;               // Engine::use_body_materials
+  std::optional<MujocoSoftContact> contact_;  // a test's soft contact, instead of the adapter's
+  std::optional<double> tolerance_;           // a test's solver tolerance
 };
 
 EngineInfo MujocoEngine::info() const {
@@ -232,14 +248,19 @@ EngineInfo MujocoEngine::info() const {
   i.name = "mujoco";
   i.version = mj_versionString();
   i.scalar = Scalar::f64;
-  i.capabilities = {.contacts = true, .planar_only = false, .rotation = Rotation::full};
+  i.capabilities = {
+      .contacts = true, .planar_only = false, .rotation = Rotation::full, .friction = true};
   i.law = DampingOrder::AfterForces;
   i.rotation_law = {Gyroscopic::explicit_term, OrientationUpdate::exponential_map};
   i.damping_mapping =
       "free joint damping b = m*(exp(k*h) - 1)/h, rotational dofs I_i*(exp(k_a*h) - 1)/h; Euler";
   i.contact_settings =
       "box geoms, solimp 0.9999 0.9999 0.001, solref 2h 1 (soft, critically damped), "
-      "friction 0.5 (max mix)";
+      "friction mu on every geom (max mix; 0.5 unset), pyramidal cone, impratio 1";
+  // The pyramid's edges are n +- mu*t_i on the contact frame's two tangents
+  // (engine_core_constraint.c mj_instantiateContact): |f_1| + |f_2| <= mu*N.
+  i.friction_model = FrictionModel::sum_pyramid;
+  i.contact_solver = {.kind = ContactSolverKind::mujoco_2_2};
   i.rest_offset = kRestOffset;
   i.rest_tolerance = kRestTolerance;
   // A stack: the soft contact's steady sag (1 - d)*tau^2*A*f per pyramid edge, with d = 0.9999,
@@ -261,8 +282,11 @@ void MujocoEngine::load(const Scene& scene, double h) {
   d_.reset();  // a failed load leaves no engine behind, not a half-built one
   m_.reset();
   t_last_warning.clear();
-  ModelPtr m = load_xml(model_xml(scene, h, body_materials_));
-  joint_ = free_joints(*m, scene, h);
+  MujocoWorld world = mujoco_world(scene, h, body_materials_);
+  if (contact_) world.contact = *contact_;
+  if (tolerance_) world.tolerance = *tolerance_;
+  ModelPtr m = load_xml(model_xml(world));
+  joint_ = free_joints(*m, world);
   DataPtr d(mj_makeData(m.get()), mj_deleteData);
   if (!d) throw EngineError("MuJoCo: mj_makeData failed");
   static_pos_.clear();
@@ -285,18 +309,17 @@ void MujocoEngine::load(const Scene& scene, double h) {
 }
 
 // The free joint of each dynamic body (-1 for static ones), found through the body's name; its
-// rotational dofs damped by I_i*c_a, c_a = (exp(k_a*h) - 1)/h (0 without angular damping).
-std::vector<int> MujocoEngine::free_joints(mjModel& m, const Scene& scene, double h) {
-  const double c_a = std::expm1(scene.world.angular_damping_rate * h) / h;
-  std::vector<int> joints(scene.bodies.size(), -1);
-  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    if (scene.bodies[i].is_static) continue;
-    const int body = mj_name2id(&m, mjOBJ_BODY, scene.bodies[i].name.c_str());
+// rotational dofs damped as the world says (I_i*(exp(k_a*h) - 1)/h).
+std::vector<int> MujocoEngine::free_joints(mjModel& m, const MujocoWorld& w) {
+  std::vector<int> joints(w.bodies.size(), -1);
+  for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+    if (w.bodies[i].is_static) continue;
+    const int body = mj_name2id(&m, mjOBJ_BODY, w.bodies[i].name.c_str());
     if (body < 0 || m.body_jntnum[body] != 1)
-      throw EngineError("MuJoCo: no free joint for body '" + scene.bodies[i].name + "'");
+      throw EngineError("MuJoCo: no free joint for body '" + w.bodies[i].name + "'");
     joints[i] = m.body_jntadr[body];
     const int dof = m.jnt_dofadr[joints[i]];
-    for (int r = 3; r < 6; ++r) m.dof_damping[dof + r] = inertia_of(scene.bodies[i])[r - 3] * c_a;
+    for (int r = 3; r < 6; ++r) m.dof_damping[dof + r] = w.bodies[i].angular_damping[r - 3];
   }
   return joints;
 }
@@ -390,6 +413,13 @@ double bare_seconds_mujoco(const Scene& scene, double h) {
 // For tests (tests/adapters/mujoco_test.cpp): body_mass of scene body i of a loaded mujoco engine.
 double mujoco_body_mass(const Engine& engine, std::size_t body) {
   return dynamic_cast<const MujocoEngine&>(engine).mass_of(body);
+}
+
+// For tests: a mujoco engine whose contacts are `contact` (another cone, impratio, solref) and
+// whose solver stops at `tolerance`.
+std::unique_ptr<Engine> make_mujoco_with_contact(const MujocoSoftContact& contact,
+                                                 double tolerance) {
+  return std::make_unique<MujocoEngine>(contact, tolerance);
 }
 
 // For tests: raises mju_error(msg) through the adapter's handler (it must throw, not exit).

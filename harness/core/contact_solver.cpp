@@ -13,6 +13,8 @@ std::string describe(const ContactSolver& solver) {
     case ContactSolverKind::chipmunk_7:
       return "Chipmunk 7 sequential impulses (" + std::to_string(solver.velocity_iterations) +
              " iterations, cached impulses)";
+    case ContactSolverKind::mujoco_2_2:
+      return "MuJoCo 2.2 soft contact (pyramidal cone, its convex step problem re-solved)";
   }
   return "unknown";
 }

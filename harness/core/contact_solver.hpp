@@ -16,17 +16,23 @@
 //             iteration each contact's bias impulse (the overlap beyond the collision slop), its
 //             normal impulse, then its friction clamped by mu times that normal impulse; cached
 //             impulses carried to the next step. Replayed, not bounded.
+// mujoco_2_2  MuJoCo 2.2's soft contact (harness/oracles/mujoco_step.hpp): each step one convex
+//             problem over the accelerations, each contact four pyramid edges n +- mu*t_i whose
+//             cost pulls toward a reference acceleration that removes the overlap over a time
+//             constant; its Newton solver converges to the problem's minimum, which the harness
+//             re-solves exactly from the same collisions. The softness lets a sliding box lift off
+//             its leading edge and a held box creep: re-solved, not bounded.
 #pragma once
 
 #include <string>
 
 namespace dropcheck {
 
-enum class ContactSolverKind { exact, box2d_2_4, chipmunk_7 };
+enum class ContactSolverKind { exact, box2d_2_4, chipmunk_7, mujoco_2_2 };
 
 struct ContactSolver {
   ContactSolverKind kind = ContactSolverKind::exact;
-  int velocity_iterations = 0;  // per step (0: solved exactly)
+  int velocity_iterations = 0;  // per step (0: solved or re-solved exactly)
   int position_iterations = 0;  // per step, after the positions are updated (Box2D)
 };
 

@@ -74,22 +74,24 @@ void clamp_figures(SlideVerdict& v, const SlideSetup& s, double h, std::size_t s
       s.v0, s.pull, slide_grip(s.mu, s.g, v.model, s.angle), h * static_cast<double>(samples - 1));
 }
 
-// Against the replay of the engine's solver; the clamp law and a replay at 4 times the velocity
-// iterations beside it.
-SlideVerdict judge_replayed(const SlidePath& path, const Scene& scene, const SlideSetup& s,
-                            const EngineInfo& info, SlideVerdict v, double h) {
+// Against the replay of the engine's solver; the clamp law and, for an iterative solver, a replay
+// at 4 times the velocity iterations beside it.
+SlideVerdict judge_replayed(const Trajectory& run, const SlidePath& path, const Scene& scene,
+                            const SlideSetup& s, const EngineInfo& info, SlideVerdict v, double h) {
   const ContactSolver& solver = info.contact_solver;
   const auto steps = static_cast<std::int64_t>(path.s.size()) - 1;
   v.solver = solver;
   try {
-    const LawFit own = fit_path(path, v.seen, replayed_slide_path(scene, s, solver, h, steps));
+    const LawFit own =
+        fit_path(path, v.seen, replayed_slide_path(scene, s, solver, h, steps, &run));
     v.law_seen = own.seen;
     v.off_law = own.off;
     v.first_off = own.first_off;
     v.follows = own.follows;
     ContactSolver more = solver;
     more.velocity_iterations = v.more_iterations = 4 * solver.velocity_iterations;
-    v.more_seen = observe(replayed_slide_path(scene, s, more, h, steps));
+    if (more.velocity_iterations > 0)
+      v.more_seen = observe(replayed_slide_path(scene, s, more, h, steps));
   } catch (const std::invalid_argument& e) {
     v.exact = false;
     v.not_judged = e.what();
@@ -155,7 +157,7 @@ SlideVerdict judge_slide(const Trajectory& run, const Scene& scene, const SlideS
                        : "the run did not keep every step";
     return v;
   }
-  return judge_replayed(path, scene, s, info, v, h);
+  return judge_replayed(run, path, scene, s, info, v, h);
 }
 
 std::string SlideVerdict::sentence() const {
@@ -167,7 +169,8 @@ std::string SlideVerdict::sentence() const {
           ? printf_string(" (continuous: %.5g s, %.5g m)", law.stop_time, law.distance)
           : printf_string(" (continuous: %.7g m by the end)", end_continuous);
   if (solver)
-    text += "; its " + describe(*solver) + ", replayed: " + stop_text(law_seen);
+    text += "; its " + describe(*solver) +
+            (solver->velocity_iterations > 0 ? ", replayed: " : ": ") + stop_text(law_seen);
   else
     text += "; its " + clamp + stop_text(law_seen) + continuous;
   text += printf_string(", %.2g m off it", off_law);
@@ -178,13 +181,14 @@ std::string SlideVerdict::sentence() const {
                 : " (one step from its own state: %.2g m, %.2g m/s)",
         off_steps, off_steps_speed);
   if (solver) {
-    // What the iterations leave: the clamp law, and the replay with more of them.
+    // What the solver leaves: the clamp law, and the replay with more iterations.
     text += "; the " + clamp + stop_text(clamp_seen) + continuous;
-    text +=
-        printf_string(", %s at %d velocity iterations: ",
-                      more_seen.stop_step == clamp_seen.stop_step ? "as the replay" : "the replay",
-                      more_iterations) +
-        stop_text(more_seen);
+    if (more_iterations > 0)
+      text += printf_string(
+                  ", %s at %d velocity iterations: ",
+                  more_seen.stop_step == clamp_seen.stop_step ? "as the replay" : "the replay",
+                  more_iterations) +
+              stop_text(more_seen);
   }
   if (follows) return text;
   text += " DEPARTS";

@@ -24,7 +24,8 @@ struct SlideVerdict {
   SlideStop law;              // its clamp law and continuous closed form (when exact)
   SlideObservation law_seen;  // the own law's path (clamp or replay) read as the run's is
   // A replayed solver (ContactSolver): the replay is the own law; the clamp law's path read as the
-  // run's, and the replay at `more_iterations` velocity iterations (4 times the engine's).
+  // run's, and for an iterative solver the replay at `more_iterations` velocity iterations (4 times
+  // the engine's; 0 for a re-solved one).
   std::optional<ContactSolver> solver;
   SlideObservation clamp_seen;
   int more_iterations = 0;

@@ -1,12 +1,15 @@
 #include "harness/oracles/replayed_contact.hpp"
 
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
 #include "harness/core/box2d_world.hpp"
 #include "harness/core/chipmunk_world.hpp"
+#include "harness/core/mujoco_world.hpp"
 #include "harness/oracles/box2d_step.hpp"
 #include "harness/oracles/chipmunk_step.hpp"
+#include "harness/oracles/mujoco_step.hpp"
 
 namespace dropcheck {
 
@@ -50,15 +53,37 @@ std::vector<BodyState> chipmunk_states(const Scene& scene, std::size_t body,
   return out;
 }
 
+// The body's states under MuJoCo's re-solved step, steered through undecided collisions by `run`.
+std::vector<BodyState> mujoco_states(const Scene& scene, std::size_t body, double h,
+                                     std::int64_t steps, const Trajectory* run) {
+  if (has_spheres(scene))
+    throw std::invalid_argument(
+        "MuJoCo's re-solve collides boxes only (the adapter builds no spheres)");
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+    if (pushed(scene, i))
+      throw std::invalid_argument("MuJoCo's re-solve takes no forces of the scene");
+  const MujocoWorld world = mujoco_world(scene, h);
+  std::optional<MujocoSteer> steer;
+  if (run && run->keeps_every_step()) steer = MujocoSteer{run->states};
+  const std::vector<MujocoState> states = mujoco_replay(world, steps, steer ? &*steer : nullptr);
+  std::vector<BodyState> out{{scene.bodies[body].position, scene.bodies[body].velocity}};
+  for (std::size_t k = body; k < states.size(); k += world.bodies.size())
+    out.push_back({states[k].position, states[k].velocity});
+  return out;
+}
+
 }  // namespace
 
 std::vector<BodyState> replayed_states(const Scene& scene, std::size_t body,
-                                       const ContactSolver& solver, double h, std::int64_t steps) {
+                                       const ContactSolver& solver, double h, std::int64_t steps,
+                                       const Trajectory* run) {
   switch (solver.kind) {
     case ContactSolverKind::box2d_2_4:
       return box2d_states(scene, body, solver, h, steps);
     case ContactSolverKind::chipmunk_7:
       return chipmunk_states(scene, body, solver, h, steps);
+    case ContactSolverKind::mujoco_2_2:
+      return mujoco_states(scene, body, h, steps, run);
     case ContactSolverKind::exact:
       break;
   }
@@ -66,13 +91,15 @@ std::vector<BodyState> replayed_states(const Scene& scene, std::size_t body,
 }
 
 SlidePath replayed_slide_path(const Scene& scene, const SlideSetup& setup,
-                              const ContactSolver& solver, double h, std::int64_t steps) {
-  return slide_path_of(replayed_states(scene, setup.body, solver, h, steps), setup);
+                              const ContactSolver& solver, double h, std::int64_t steps,
+                              const Trajectory* run) {
+  return slide_path_of(replayed_states(scene, setup.body, solver, h, steps, run), setup);
 }
 
 BouncePath replayed_bounce_path(const Scene& scene, const BounceSetup& setup,
-                                const ContactSolver& solver, double h, std::int64_t steps) {
-  return bounce_path_of(replayed_states(scene, setup.body, solver, h, steps), setup);
+                                const ContactSolver& solver, double h, std::int64_t steps,
+                                const Trajectory* run) {
+  return bounce_path_of(replayed_states(scene, setup.body, solver, h, steps, run), setup);
 }
 
 }  // namespace dropcheck

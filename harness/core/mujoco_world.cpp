@@ -1,0 +1,38 @@
+#include "harness/core/mujoco_world.hpp"
+
+#include <cmath>
+
+namespace dropcheck {
+
+MujocoWorld mujoco_world(const Scene& scene, double h, bool body_materials) {
+  MujocoWorld w;
+  w.h = h;
+  w.gravity = scene.world.gravity;
+  w.contacts = scene.world.contacts;
+  w.contact.timeconst = 2.0 * h;
+  const double mu = scene_material(scene).friction.value_or(kMujocoDefaultFriction);
+  // (exp(k*h) - 1)/h per unit mass (per unit moment for the rotational dofs).
+  const double c = std::expm1(scene.world.damping_rate * h) / h;
+  const double c_a = std::expm1(scene.world.angular_damping_rate * h) / h;
+  for (const Body& b : scene.bodies) {
+    MujocoBody m;
+    m.name = b.name;
+    m.is_static = b.is_static;
+    m.half_extents = b.half_extents;
+    m.position = b.position;
+    m.orientation = b.orientation;
+    m.friction = body_materials && b.friction ? *b.friction : mu;
+    if (!b.is_static) {
+      m.velocity = b.velocity;
+      m.angular_velocity_body = b.orientation.conjugate() * b.angular_velocity;
+      m.mass = b.mass;
+      m.inertia = inertia_of(b);
+      m.damping = b.mass * c;
+      m.angular_damping = m.inertia * c_a;
+    }
+    w.bodies.push_back(m);
+  }
+  return w;
+}
+
+}  // namespace dropcheck
