@@ -777,17 +777,27 @@ struct Rows {
   Eigen::MatrixXd J;     // rows x nv
   Eigen::VectorXd D;     // 1/R
   Eigen::VectorXd aref;  // reference acceleration
+  // The elliptic cone: three rows per contact (normal, two tangents), each contact's regularised
+  // mu (contact.mu = mu*sqrt(R_1/R_0)) and its friction.
+  bool elliptic = false;
+  std::vector<double> mu_reg, friction;
 };
 
-// mj_instantiateContact, mj_diagApprox, mj_makeImpedance and mj_referenceConstraint for the
-// pyramidal cone: per contact four edges J_n +- mu*J_t, all with R = 2*mu_r^2*R_0.
+// mj_instantiateContact, mj_diagApprox, mj_makeImpedance and mj_referenceConstraint. The
+// pyramidal cone: per contact four edges J_n +- mu*J_t, all with R = 2*mu_r^2*R_0. The elliptic
+// cone: per contact the rows J_n, J_t1, J_t2 with R_0 = (1 - imp)/imp*A on the normal and
+// R_0/impratio on the tangents, whose reference has no stiffness (aref = -B*(J_t*v)).
 Rows rows_of(const MujocoWorld& w, const std::vector<PairContact>& contacts,
              const std::vector<Geom>& geoms, const std::vector<double>& inv_mass,
              const Eigen::VectorXd& qvel) {
   const auto nv = qvel.size();
   const MujocoSoftContact& s = w.contact;
-  Rows rows{Eigen::MatrixXd::Zero(4 * static_cast<Eigen::Index>(contacts.size()), nv),
-            Eigen::VectorXd(4 * contacts.size()), Eigen::VectorXd(4 * contacts.size())};
+  const std::size_t per = s.pyramidal ? 4 : 3;
+  Rows rows;
+  rows.J = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(per * contacts.size()), nv);
+  rows.D.resize(static_cast<Eigen::Index>(per * contacts.size()));
+  rows.aref.resize(static_cast<Eigen::Index>(per * contacts.size()));
+  rows.elliptic = !s.pyramidal;
   // getsolparam: refsafe keeps the time constant at 2h at least; solimp clamped; flat impedance.
   const double tc = std::max(s.timeconst, 2 * w.h);
   const double dmin = std::clamp(s.solimp[0], 0.0001, 0.9999);
@@ -814,6 +824,20 @@ Rows rows_of(const MujocoWorld& w, const std::vector<PairContact>& contacts,
     double tran = 0;
     for (const int body : {pc.body1, pc.body2})
       if (body >= 0) tran += inv_mass[static_cast<std::size_t>(body)];
+    if (rows.elliptic) {
+      const double r0 = std::max(kMinVal, (1 - imp) * tran / imp);
+      const double r1 = r0 / std::max(kMinVal, s.impratio);
+      rows.mu_reg.push_back(pc.mu * std::sqrt(r1 / r0));
+      rows.friction.push_back(pc.mu);
+      for (int k = 0; k < 3; ++k) {
+        const auto row = static_cast<Eigen::Index>(3 * c + static_cast<std::size_t>(k));
+        rows.J.row(row) = jac.row(k);
+        rows.D(row) = 1 / (k == 0 ? r0 : r1);
+        const double vel = rows.J.row(row).dot(qvel);
+        rows.aref(row) = k == 0 ? -B * vel - K * imp * pc.c.dist : -B * vel;
+      }
+      continue;
+    }
     const double diag = tran + pc.mu * pc.mu * tran;
     const double r0 = std::max(kMinVal, (1 - imp) * diag / imp);
     const double r1 = r0 / std::max(kMinVal, s.impratio);
@@ -906,9 +930,125 @@ Solution solve(const Eigen::MatrixXd& M, const Eigen::VectorXd& a0, const Rows& 
   return s;
 }
 
-void check_scope(const MujocoWorld& w) {
-  if (!w.contact.pyramidal)
-    throw std::invalid_argument("MuJoCo's re-solve takes the pyramidal cone only");
+// One elliptic contact's cost s(jar) as mj_constraintUpdate zones it, with its gradient and
+// Hessian in jar. U = (mu_r*jar_n, f*jar_t1, f*jar_t2), N = U_0, T = |U_1..2|: nothing above the
+// cone (N >= mu_r*T), the rows' quadratic below its dual (mu_r*N + T <= 0), and in between
+// 1/2 Dm (N - mu_r*T)^2 with Dm = D_0/(mu_r^2 (1 + mu_r^2)).
+struct ConeCost {
+  double cost = 0.0;
+  Eigen::Vector3d grad = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d hess = Eigen::Matrix3d::Zero();
+};
+
+ConeCost cone_cost(const Eigen::Vector3d& jar, const Eigen::Vector3d& D, double mu, double f) {
+  ConeCost c;
+  const double N = jar(0) * mu, u1 = jar(1) * f, u2 = jar(2) * f;
+  const double T = std::hypot(u1, u2);
+  if (N >= mu * T || (T <= 0 && N >= 0)) return c;
+  if (mu * N + T <= 0 || (T <= 0 && N < 0)) {
+    c.cost = 0.5 * (D.array() * jar.array() * jar.array()).sum();
+    c.grad = D.cwiseProduct(jar);
+    c.hess = D.asDiagonal();
+    return c;
+  }
+  const double Dm = D(0) / (mu * mu * (1 + mu * mu));
+  const double sN = N - mu * T;
+  const Eigen::Vector3d ds(mu, -mu * f * u1 / T, -mu * f * u2 / T);
+  Eigen::Matrix3d hs = Eigen::Matrix3d::Zero();
+  const Eigen::Vector2d u(u1, u2);
+  hs.block<2, 2>(1, 1) =
+      -mu * f * f * (Eigen::Matrix2d::Identity() / T - u * u.transpose() / (T * T * T));
+  c.cost = 0.5 * Dm * sN * sN;
+  c.grad = Dm * sN * ds;
+  c.hess = Dm * (ds * ds.transpose() + sN * hs);
+  return c;
+}
+
+// The elliptic problem's cost, gradient and Hessian at a.
+struct Objective {
+  double cost = 0.0;
+  Eigen::VectorXd grad;
+  Eigen::MatrixXd hess;
+};
+
+Objective elliptic_objective(const Eigen::MatrixXd& M, const Eigen::VectorXd& a0, const Rows& rows,
+                             const Eigen::VectorXd& a, bool with_hessian) {
+  const Eigen::VectorXd d = a - a0;
+  Objective o{0.5 * d.dot(M * d), M * d, with_hessian ? M : Eigen::MatrixXd()};
+  const Eigen::VectorXd jar = rows.J * a - rows.aref;
+  for (std::size_t c = 0; c < rows.mu_reg.size(); ++c) {
+    const auto r = static_cast<Eigen::Index>(3 * c);
+    const ConeCost k =
+        cone_cost(jar.segment<3>(r), rows.D.segment<3>(r), rows.mu_reg[c], rows.friction[c]);
+    const auto Jc = rows.J.middleRows(r, 3);
+    o.cost += k.cost;
+    o.grad += Jc.transpose() * k.grad;
+    if (with_hessian) o.hess += Jc.transpose() * k.hess * Jc;
+  }
+  return o;
+}
+
+// The elliptic cost's first and second derivatives along p at a + alpha*p.
+std::pair<double, double> along(const Eigen::MatrixXd& M, const Eigen::VectorXd& a0,
+                                const Rows& rows, const Eigen::VectorXd& a,
+                                const Eigen::VectorXd& p, double alpha) {
+  const Eigen::VectorXd x = a + alpha * p;
+  const Eigen::VectorXd Mp = M * p;
+  double slope = Mp.dot(x - a0), curvature = Mp.dot(p);
+  const Eigen::VectorXd jar = rows.J * x - rows.aref;
+  const Eigen::VectorXd jp = rows.J * p;
+  for (std::size_t c = 0; c < rows.mu_reg.size(); ++c) {
+    const auto r = static_cast<Eigen::Index>(3 * c);
+    const ConeCost k =
+        cone_cost(jar.segment<3>(r), rows.D.segment<3>(r), rows.mu_reg[c], rows.friction[c]);
+    slope += k.grad.dot(jp.segment<3>(r));
+    curvature += jp.segment<3>(r).dot(k.hess * jp.segment<3>(r));
+  }
+  return {slope, curvature};
+}
+
+// The minimiser of the cost along a + alpha*p (alpha >= 0): the root of its increasing slope, by
+// Newton steps kept inside a bracket that bisection shrinks when a step would leave it.
+double line_search(const Eigen::MatrixXd& M, const Eigen::VectorXd& a0, const Rows& rows,
+                   const Eigen::VectorXd& a, const Eigen::VectorXd& p) {
+  double lo = 0.0, hi = 1.0;
+  while (along(M, a0, rows, a, p, hi).first < 0 && hi < 1e6) hi *= 2;
+  double alpha = std::min(1.0, hi);
+  for (int k = 0; k < 100; ++k) {
+    const auto [slope, curvature] = along(M, a0, rows, a, p, alpha);
+    if (slope == 0) return alpha;
+    (slope < 0 ? lo : hi) = alpha;
+    const double newton = alpha - slope / curvature;
+    const double next = newton > lo && newton < hi ? newton : 0.5 * (lo + hi);
+    if (std::abs(next - alpha) <= 1e-16 * std::max(alpha, 1e-300)) return next;
+    alpha = next;
+  }
+  return alpha;
+}
+
+// Newton's method on the elliptic cost (convex, its gradient continuous across the zones), each
+// step's length the root of the cost's slope along it.
+Solution solve_elliptic(const Eigen::MatrixXd& M, const Eigen::VectorXd& a0, const Rows& rows) {
+  Solution s{a0, Eigen::VectorXd::Zero(rows.J.rows())};
+  for (s.iterations = 1; s.iterations <= 100; ++s.iterations) {
+    const Objective o = elliptic_objective(M, a0, rows, s.qacc, true);
+    const Eigen::VectorXd p = -o.hess.ldlt().solve(o.grad);
+    if (!(p.cwiseAbs().maxCoeff() > 0.0)) break;
+    const double alpha = line_search(M, a0, rows, s.qacc, p);
+    s.qacc += alpha * p;
+    if ((alpha * p).cwiseAbs().maxCoeff() <=
+        kStepRounding * std::max(1.0, s.qacc.cwiseAbs().maxCoeff()))
+      break;
+  }
+  if (s.iterations > 100) throw std::runtime_error("MuJoCo's re-solve did not converge");
+  // efc_force = -ds/djar, per contact.
+  const Eigen::VectorXd jar = rows.J * s.qacc - rows.aref;
+  for (std::size_t c = 0; c < rows.mu_reg.size(); ++c) {
+    const auto r = static_cast<Eigen::Index>(3 * c);
+    s.force.segment<3>(r) =
+        -cone_cost(jar.segment<3>(r), rows.D.segment<3>(r), rows.mu_reg[c], rows.friction[c]).grad;
+  }
+  return s;
 }
 
 // The world's constant parts: the dof blocks, masses and damping.
@@ -985,11 +1125,12 @@ StepResult step_once(const Model& model, const std::vector<Pose>& poses,
     out.info.contacts = static_cast<int>(contacts.size());
     if (!contacts.empty()) {
       const Rows rows = rows_of(world, contacts, geoms, model.inv_mass, qvel);
-      const Solution s = solve(model.M, a0, rows);
+      const Solution s =
+          rows.elliptic ? solve_elliptic(model.M, a0, rows) : solve(model.M, a0, rows);
       qacc = s.qacc;
       qfrc_constraint = rows.J.transpose() * s.force;
       out.info.newton_iterations = s.iterations;
-      out.info.active_rows = static_cast<int>((s.force.array() > 0).count());
+      out.info.active_rows = static_cast<int>((s.force.array() != 0).count());
     }
   }
   // mj_Euler with damping: (M + h*B) qacc = qfrc_smooth + qfrc_constraint.
@@ -1048,7 +1189,6 @@ StepResult steered_step(const Model& model, const std::vector<Pose>& poses,
 std::vector<MujocoState> mujoco_replay(const MujocoWorld& world, std::int64_t steps,
                                        const MujocoSteer* steer,
                                        std::vector<MujocoStepInfo>* info) {
-  check_scope(world);
   if (steer && steer->run.size() % std::max<std::size_t>(world.bodies.size(), 1) != 0)
     throw std::invalid_argument("MuJoCo's re-solve: the run's states are not whole steps");
   const Model model = model_of(world);
