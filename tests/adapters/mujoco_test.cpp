@@ -173,26 +173,27 @@ double worst_step_velocity(const Scene& scene, double h) {
   return worst;
 }
 
-// A one-cube scene held on incline_hold's 20 degree slope: its resting cube alone.
+// A one-cube scene held on incline_hold's 20 degree slope: its resting cube alone, for 1.5 s.
 Scene held_cube() {
   Scene scene = scenario("incline_hold");
   scene.bodies.erase(scene.bodies.begin() + 1);  // the launched cube
+  scene.duration = 1.5;
   return scene;
 }
 
-// The cube's speed along the slope over the last second of a run at step h: the steady creep once
-// the landing's transient has gone.
+// The cube's speed along the slope over the last half second of a run at step h: the steady creep
+// once the landing's transient has gone.
 double creep_speed(const Trajectory& run, double h) {
   const std::size_t last = run.samples() - 1;
-  const std::size_t before = last - static_cast<std::size_t>(std::lround(1.0 / h));
-  return run.at(last, 0).position.x() - run.at(before, 0).position.x();
+  const std::size_t before = last - static_cast<std::size_t>(std::lround(0.5 / h));
+  return (run.at(last, 0).position.x() - run.at(before, 0).position.x()) / 0.5;
 }
 
 // The same for a re-solve's states (after steps 1, 2, ...; `bodies` per step).
 double creep_speed(const std::vector<MujocoState>& states, std::size_t bodies, double h) {
   const std::size_t last = states.size() / bodies - 1;
-  const std::size_t before = last - static_cast<std::size_t>(std::lround(1.0 / h));
-  return states[last * bodies].position.x() - states[before * bodies].position.x();
+  const std::size_t before = last - static_cast<std::size_t>(std::lround(0.5 / h));
+  return (states[last * bodies].position.x() - states[before * bodies].position.x()) / 0.5;
 }
 
 // A random box thrown over a static floor under a tilted gravity, in 3-D, with any friction, at
@@ -283,10 +284,10 @@ TEST_CASE("A held box creeps as MuJoCo's re-solved step predicts, any cone, impr
   // on the pyramid the creep falls as 1/impratio (to 1 %). With a time constant of 0.02 s at both
   // steps it hardly depends on h. With the solver run to rounding (tolerance 1e-15) the re-solve
   // predicts it to 1e-6 on both cones (measured: equal to the last digit printed); at MuJoCo's
-  // default tolerance 1e-8 the solver's early stops add up to 6e-5 of the slowest creep (impratio
-  // 100: 1.7e-8 m/s), the bound checked there. On the elliptic cone with impratio 100 MuJoCo
-  // 2.2.2 itself stops, at both tolerances and both steps: "Linesearch objective is not convex",
-  // an engine error the adapter reports.
+  // default tolerance 1e-8 the solver's early stops add up to 6.9e-5 of the slowest creep
+  // (impratio 100: 1.7e-8 m/s); 2e-4 is checked there. On the elliptic cone with impratio 100
+  // MuJoCo 2.2.2 itself stops, at both tolerances and both steps: "Linesearch objective is not
+  // convex", an engine error the adapter reports.
   const Scene scene = held_cube();
   for (const bool pyramidal : {true, false})
     for (const double tolerance : {1e-15, 1e-8}) {
@@ -317,7 +318,7 @@ TEST_CASE("A held box creeps as MuJoCo's re-solved step predicts, any cone, impr
           INFO(seen << " m/s, re-solved " << predicted << " (relative "
                     << std::abs(seen / predicted - 1) << ")");
           CHECK(seen > 0.0);
-          CHECK(seen == Approx(predicted).epsilon(tolerance < 1e-12 ? 1e-6 : 1e-4));
+          CHECK(seen == Approx(predicted).epsilon(tolerance < 1e-12 ? 1e-6 : 2e-4));
           if (impratio == 1.0) creep_at_impratio_1 = seen;
           if (pyramidal) CHECK(seen == Approx(creep_at_impratio_1 / impratio).epsilon(0.01));
         }
