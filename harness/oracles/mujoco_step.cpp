@@ -151,6 +151,28 @@ struct GeomPose {
   const double* size;
 };
 
+// mjc_BoxBox's clipping of segments against a face's rectangle (half sizes half[0], half[1]):
+// for segment i (from lines[i][0..2] along lines[i][3..5]) and each rectangle axis q, where it
+// crosses x_q = -+half[q] at a parameter t in [0, 1] with its other coordinate inside the
+// rectangle, visit(i, q, -+half[q], t, that coordinate).
+template <typename Visit>
+void clip_segments(const double (*lines)[6], int count, const double* half, Visit visit) {
+  for (int i = 0; i < count; ++i)
+    for (int q = 0; q < 2; ++q) {
+      const double a = lines[i][0 + q], b = lines[i][3 + q];
+      const double c = lines[i][1 - q], d = lines[i][4 - q];
+      if (!(std::fabs(b) > kMinVal)) continue;
+      for (int j = -1; j <= 1; j += 2) {
+        const double l = half[q] * j;
+        const double t = (l - a) * (1 / b);
+        if (t < 0 || t > 1) continue;
+        const double other = c + d * t;
+        if (std::fabs(other) > half[1 - q]) continue;
+        visit(i, q, l, t, other);
+      }
+    }
+}
+
 // The axis of the deepest edge pair: which corner of each edge, the normal, and its side.
 struct EdgeAxis {
   int cle1 = 0, cle2 = 0;
@@ -213,7 +235,7 @@ int edge_edge(int code, const EdgeAxis& e, const double* pos1, const double* mat
   double rottabs[9], p[3], r[9], rt[9], s[3], tmp1[3], tmp2[3], rnorm[3];
   double points[kMaxConPair][3], depth[kMaxConPair], pts[6][3], ppts2[4][2], pu[4][3], axi[3][3];
   double lines[4][6], linesu[4][6];
-  double a, b, c, d, c1, c2, l, x, y, u, v, llx, lly;
+  double a, b, c, d, c1, x, y, u, v, llx, lly;
   for (int i = 0; i < 9; ++i) rottabs[i] = std::fabs(rott[i]);
   const int q1 = code / 3, q2 = code % 3;
   int ax1 = 0, ax2 = 0, pax1 = 0, pax2 = 0;
@@ -302,32 +324,15 @@ int edge_edge(int code, const EdgeAxis& e, const double* pos1, const double* mat
   copy3(lines[k] + 3, pts[1]);
   copy3(linesu[k++] + 3, axi[1]);
 
-  for (int i = 0; i < k; ++i) {
-    for (int q = 0; q < 2; ++q) {
-      a = lines[i][0 + q];
-      b = lines[i][3 + q];
-      c = lines[i][1 - q];
-      d = lines[i][4 - q];
-      if (std::fabs(b) > kMinVal) {
-        for (int j = -1; j <= 1; j += 2) {
-          if (n < kMaxConPair) {
-            l = s[q] * j;
-            c1 = (l - a) * (1 / b);
-            if (c1 < 0 || c1 > 1) continue;
-            c2 = c + d * c1;
-            if (std::fabs(c2) > s[1 - q]) continue;
-            if ((linesu[i][2] + linesu[i][5] * c1) * innorm > margin) continue;
-            scl3(points[n], linesu[i], 0.5);
-            add_to_scl3(points[n], linesu[i] + 3, 0.5 * c1);
-            points[n][0 + q] += 0.5 * l;
-            points[n][1 - q] += 0.5 * c2;
-            depth[n] = points[n][2] * innorm * 2;
-            n++;
-          }
-        }
-      }
-    }
-  }
+  clip_segments(lines, k, s, [&](int i, int q, double l, double t, double other) {
+    if (n >= kMaxConPair || (linesu[i][2] + linesu[i][5] * t) * innorm > margin) return;
+    scl3(points[n], linesu[i], 0.5);
+    add_to_scl3(points[n], linesu[i] + 3, 0.5 * t);
+    points[n][0 + q] += 0.5 * l;
+    points[n][1 - q] += 0.5 * other;
+    depth[n] = points[n][2] * innorm * 2;
+    n++;
+  });
   const int nl = n;
   a = pts[1][0];
   b = pts[2][0];
@@ -427,7 +432,7 @@ int box_box(const GeomPose& g1, const GeomPose& g2, Contact* con, Branch branch,
   double pos12[3], pos21[3], rot[9], rott[9], rotabs[9], tmp1[3], tmp2[3], plen1[3], plen2[3];
   double rotmore[9], p[3], r[9], s[3], ss[3], lp[3], rt[9], points[kMaxConPair][3];
   double pts[6][3], lines[4][6];
-  double penetration, c1, c2, c3, a, b, c, d, lx, ly, hz, l, x, y, u, v, llx, lly;
+  double penetration, c1, c2, c3, a, b, c, d, lx, ly, hz, x, y, u, v, llx, lly;
   int code = -1, n = 0;
   EdgeAxis edge;
 
@@ -602,25 +607,10 @@ int box_box(const GeomPose& g1, const GeomPose& g2, Contact* con, Branch branch,
     line(pts[3], pts[2]);
     line(pts[4], pts[1]);
   }
-  for (int i = 0; i < k; ++i) {
-    for (int q = 0; q < 2; ++q) {
-      a = lines[i][0 + q];
-      b = lines[i][3 + q];
-      c = lines[i][1 - q];
-      d = lines[i][4 - q];
-      if (std::fabs(b) > kMinVal) {
-        for (int j = -1; j <= 1; j += 2) {
-          l = ss[q] * j;
-          c1 = (l - a) * (1 / b);
-          if (c1 < 0 || c1 > 1) continue;
-          c2 = c + d * c1;
-          if (std::fabs(c2) > ss[1 - q]) continue;
-          copy3(points[n], lines[i]);
-          add_to_scl3(points[n++], lines[i] + 3, c1);
-        }
-      }
-    }
-  }
+  clip_segments(lines, k, ss, [&](int i, int, double, double t, double) {
+    copy3(points[n], lines[i]);
+    add_to_scl3(points[n++], lines[i] + 3, t);
+  });
   a = pts[1][0];
   b = pts[2][0];
   c = pts[1][1];
