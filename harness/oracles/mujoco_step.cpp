@@ -430,7 +430,7 @@ int box_box(const GeomPose& g1, const GeomPose& g2, Contact* con, Branch branch,
   const double *pos1 = g1.pos, *mat1 = g1.mat, *size1 = g1.size;
   const double *pos2 = g2.pos, *mat2 = g2.mat, *size2 = g2.size;
   double pos12[3], pos21[3], rot[9], rott[9], rotabs[9], tmp1[3], tmp2[3], plen1[3], plen2[3];
-  double rotmore[9], p[3], r[9], s[3], ss[3], lp[3], rt[9], points[kMaxConPair][3];
+  double p[3], r[9], s[3], ss[3], lp[3], rt[9], points[kMaxConPair][3];
   double pts[6][3], lines[4][6];
   double penetration, c1, c2, c3, a, b, c, d, lx, ly, hz, x, y, u, v, llx, lly;
   int code = -1, n = 0;
@@ -530,47 +530,16 @@ int box_box(const GeomPose& g1, const GeomPose& g2, Contact* con, Branch branch,
     return edge_edge(code - 12, edge, pos1, mat1, size1, pos21, size2, rot, rotabs, rott, con);
 
   const int q1 = code % 6, q2 = code / 6;
-  std::fill(rotmore, rotmore + 9, 0.0);
-  int i0 = 0, i1 = 1, i2 = 2;
-  double f0 = 1, f1 = 1, f2 = 1;
-  switch (q1) {
-    case 0:
-      rotmore[2] = -1, rotmore[4] = +1, rotmore[6] = +1;
-      i0 = 2, f0 = -1, i2 = 0;
-      break;
-    case 1:
-      rotmore[0] = +1, rotmore[5] = -1, rotmore[7] = +1;
-      i1 = 2, f1 = -1, i2 = 1;
-      break;
-    case 2:
-      rotmore[0] = +1, rotmore[4] = +1, rotmore[8] = +1;
-      break;
-    case 3:
-      rotmore[2] = +1, rotmore[4] = +1, rotmore[6] = -1;
-      i0 = 2, i2 = 0, f2 = -1;
-      break;
-    case 4:
-      rotmore[0] = +1, rotmore[5] = +1, rotmore[7] = -1;
-      i1 = 2, i2 = 1, f2 = -1;
-      break;
-    default:
-      rotmore[0] = -1, rotmore[4] = +1, rotmore[8] = -1;
-      f0 = -1, f2 = -1;
-  }
-  const auto rotaxis = [&](double* res, const double* in) {
-    res[0] = in[i0] * f0, res[1] = in[i1] * f1, res[2] = in[i2] * f2;
-  };
+  const FaceTurn turn = face_turn(q1);
   if (q2) {
-    mul_mat_mat_t(r, rotmore, rot);
-    rotaxis(p, pos12);
-    rotaxis(tmp1, size2);
+    mul_mat_mat_t(r, turn.rotmore, rot);
+    turn.axis(p, pos12);
+    turn.axis(tmp1, size2);
     copy3(s, size1);
   } else {
-    scl3(r + 0, rot + i0 * 3, f0);
-    scl3(r + 3, rot + i1 * 3, f1);
-    scl3(r + 6, rot + i2 * 3, f2);
-    rotaxis(p, pos21);
-    rotaxis(tmp1, size1);
+    turn.rows(r, rot);
+    turn.axis(p, pos21);
+    turn.axis(tmp1, size1);
     copy3(s, size2);
   }
   for (int i = 0; i < 3; ++i)
@@ -645,7 +614,7 @@ int box_box(const GeomPose& g1, const GeomPose& g2, Contact* con, Branch branch,
     points[n][2] *= 0.5;  // the contact sits halfway: dist is half the depth
     n++;
   }
-  mul_mat_mat_t(r, q2 ? mat2 : mat1, rotmore);
+  mul_mat_mat_t(r, q2 ? mat2 : mat1, turn.rotmore);
   copy3(p, q2 ? pos2 : pos1);
   const double sign = q2 ? -1 : 1;
   tmp2[0] = sign * r[2], tmp2[1] = sign * r[5], tmp2[2] = sign * r[8];
