@@ -173,6 +173,20 @@ void clip_segments(const double (*lines)[6], int count, const double* half, Visi
     }
 }
 
+// Corner i of the face rectangle (-+lx, -+ly) and its coordinates (u, v) in the parallelogram
+// pts[0] + u*pts[1] + v*pts[2] (x and y only), det = pts[1] x pts[2]: mjc_BoxBox's test of which
+// rectangle corners lie on the other box's face. `det` is passed in because the edge branch, as
+// MuJoCo's, overwrites it between corners.
+void corner_in_parallelogram(int i, double lx, double ly, const double (*pts)[3], double det,
+                             double& cx, double& cy, double& u, double& v) {
+  cx = i / 2 ? lx : -lx;
+  cy = i % 2 ? ly : -ly;
+  const double x = cx - pts[0][0], y = cy - pts[0][1];
+  const double a = pts[1][0], b = pts[2][0], c = pts[1][1], d = pts[2][1];
+  u = (x * d - y * b) * (1 / det);
+  v = (y * a - x * c) * (1 / det);
+}
+
 // The axis of the deepest edge pair: which corner of each edge, the normal, and its side.
 struct EdgeAxis {
   int cle1 = 0, cle2 = 0;
@@ -341,12 +355,7 @@ int edge_edge(int code, const EdgeAxis& e, const double* pos1, const double* mat
   c1 = a * d - b * c;
   for (int i = 0; i < 4; ++i) {
     if (n >= kMaxConPair) continue;
-    llx = i / 2 ? lx : -lx;
-    lly = i % 2 ? ly : -ly;
-    x = llx - pts[0][0];
-    y = lly - pts[0][1];
-    u = (x * d - y * b) * (1 / c1);
-    v = (y * a - x * c) * (1 / c1);
+    corner_in_parallelogram(i, lx, ly, pts, c1, llx, lly, u, v);
     if (nl == 0) {
       if ((u < 0 || u > 1) && (v < 0 || v > 1)) continue;
     } else if (u < 0 || u > 1 || v < 0 || v > 1) {
@@ -432,7 +441,7 @@ int box_box(const GeomPose& g1, const GeomPose& g2, Contact* con, Branch branch,
   double pos12[3], pos21[3], rot[9], rott[9], rotabs[9], tmp1[3], tmp2[3], plen1[3], plen2[3];
   double p[3], r[9], s[3], ss[3], lp[3], rt[9], points[kMaxConPair][3];
   double pts[6][3], lines[4][6];
-  double penetration, c1, c2, c3, a, b, c, d, lx, ly, hz, x, y, u, v, llx, lly;
+  double penetration, c1, c2, c3, a, b, c, d, lx, ly, hz, u, v, llx, lly;
   int code = -1, n = 0;
   EdgeAxis edge;
 
@@ -587,12 +596,7 @@ int box_box(const GeomPose& g1, const GeomPose& g2, Contact* con, Branch branch,
   c1 = a * d - b * c;
   if (m > 2) {
     for (int i = 0; i < 4; ++i) {
-      llx = i / 2 ? lx : -lx;
-      lly = i % 2 ? ly : -ly;
-      x = llx - pts[0][0];
-      y = lly - pts[0][1];
-      u = (x * d - y * b) * (1 / c1);
-      v = (y * a - x * c) * (1 / c1);
+      corner_in_parallelogram(i, lx, ly, pts, c1, llx, lly, u, v);
       if (u <= 0 || v <= 0 || u >= 1 || v >= 1) continue;
       points[n][0] = llx;
       points[n][1] = lly;
