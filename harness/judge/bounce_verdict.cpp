@@ -126,16 +126,16 @@ BounceVerdict judge_bounce(const Trajectory& run, const BounceSetup& s, const Bo
 
 BounceVerdict judge_bounce(const Trajectory& run, const Scene& scene, const BounceSetup& s,
                            const EngineInfo& info, double h) {
-  if (!replayed(info.contact_solver)) return judge_bounce(run, s, info.bounce_law, h);
   const auto not_judged = [&](const std::string& why) {
     BounceVerdict v;
-    v.solver = info.contact_solver;
+    if (replayed(info.contact_solver)) v.solver = info.contact_solver;
     v.not_judged = why;
     v.follows = true;
     return v;
   };
-  // The replay's path is step by step: a run that skipped steps cannot be laid beside it.
+  // Every law's path is step by step: a run that skipped steps cannot be laid beside it.
   if (!run.keeps_every_step()) return not_judged("the run did not keep every step");
+  if (!replayed(info.contact_solver)) return judge_bounce(run, s, info.bounce_law, h);
   const BouncePath seen = observed_path(run, s);
   const auto steps = static_cast<std::int64_t>(seen.gap.size()) - 1;
   BouncePath predicted;

@@ -121,3 +121,30 @@ TEST_CASE(
   CHECK((v.law_gap_there <= 0.0) != (v.run_gap_there <= 0.0));
   CHECK_THAT(v.sentence(), Contains("decide its contact on either side"));
 }
+
+TEST_CASE("a bounce whose run skipped steps is not judged, whatever its engine's solver",
+          "[contact][bounce]") {
+  // Every bounce law is a path step by step: samples every other step cannot be laid beside it.
+  const Scene scene = shipped("bounce_e05");
+  const BounceSetup s = bounce_setups(scene).at(0);
+  const double h = scene.timestep.seconds;
+  Trajectory run = law_run(scene, s, kOde);
+  Trajectory sparse = run;
+  sparse.recorded.clear();
+  sparse.states.clear();
+  for (std::size_t i = 0; i < run.recorded.size(); i += 2) {
+    sparse.recorded.push_back(run.recorded[i]);
+    for (std::size_t b = 0; b < run.bodies(); ++b) sparse.states.push_back(run.at(i, b));
+  }
+  EngineInfo exact;
+  exact.bounce_law = kOde;
+  EngineInfo replayed_solver = exact;
+  replayed_solver.contact_solver = {
+      .kind = ContactSolverKind::box2d_2_4, .velocity_iterations = 8, .position_iterations = 3};
+  CHECK(judge_bounce(run, scene, s, exact, h).follows);
+  for (const EngineInfo& info : {exact, replayed_solver}) {
+    const BounceVerdict v = judge_bounce(sparse, scene, s, info, h);
+    CHECK(v.not_judged == "the run did not keep every step");
+    CHECK_THAT(v.sentence(), Contains("not judged"));
+  }
+}
