@@ -11,6 +11,7 @@ namespace {
 
 constexpr double kMinVal = 1e-15;  // mjMINVAL
 constexpr int kMaxConPair = 50;    // mjMAXCONPAIR
+constexpr double kMinMu = 1e-5;    // mjMINMU
 
 using Mat9 = std::array<double, 9>;  // row-major 3x3, as MuJoCo's mjtNum[9]
 
@@ -713,7 +714,9 @@ std::vector<PairContact> collide(const std::vector<Geom>& geoms, const std::vect
                      con[i].pos[2] == con[j].pos[2];
         // Excluded "in the gap": only a contact closer than includemargin (0) makes rows.
         if (repeated || !(con[i].dist < 0)) continue;
-        PairContact pc{con[i], g1.body, g2.body, std::max(g1.friction, g2.friction)};
+        // The larger of the two geoms' frictions, at least mjMINMU.
+        PairContact pc{con[i], g1.body, g2.body,
+                       std::max(kMinMu, std::max(g1.friction, g2.friction))};
         make_frame(pc.c.frame);
         out.push_back(pc);
       }

@@ -302,10 +302,17 @@ inline void check_replayed_bounces(const std::string& name) {
   }
 }
 
-// A random planar contact scene within a replay's scope: one dynamic box or sphere thrown over a
-// static floor box, its friction and restitution, and a step of 1/30, 1/60 or 1/240 s (seeded:
-// the same scenes every run).
-inline Scene random_contact_scene(std::mt19937& rng) {
+// What a random contact scene may hold: the default is a replay's planar scope.
+struct RandomContact {
+  bool planar = true;       // x-y only; else gravity, size and velocity along z too
+  bool spheres = true;      // half the bodies are spheres
+  bool restitution = true;  // a random restitution
+};
+
+// A random contact scene: one dynamic box or sphere thrown over a static floor box under a tilted
+// gravity, its friction (and restitution), and a step of 1/30, 1/60 or 1/240 s (seeded: the same
+// scenes every run).
+inline Scene random_contact_scene(std::mt19937& rng, RandomContact what = {}) {
   const auto uniform = [&](double lo, double hi) {
     return std::uniform_real_distribution<double>(lo, hi)(rng);
   };
@@ -316,20 +323,24 @@ inline Scene random_contact_scene(std::mt19937& rng) {
   const int n = per_second[std::uniform_int_distribution<int>(0, 2)(rng)];
   s.timestep = {1.0 / n, "1/" + std::to_string(n)};
   s.timesteps = {s.timestep};
-  s.world.gravity = Vec3(uniform(-3.0, 3.0), -9.8, 0.0);
+  s.world.gravity = Vec3(uniform(-3.0, 3.0), -9.8, what.planar ? 0.0 : uniform(-3.0, 3.0));
   s.world.contacts = true;
   Body body{.name = "body", .mass = uniform(0.2, 5.0)};
-  if (uniform(0.0, 1.0) < 0.5) {
+  if (what.spheres && uniform(0.0, 1.0) < 0.5) {
     body.shape = Shape::sphere;
     body.radius = uniform(0.1, 1.0);
     body.half_extents = Vec3::Constant(body.radius);
   } else {
-    body.half_extents = Vec3(uniform(0.1, 1.0), uniform(0.1, 1.0), 0.5);
+    body.half_extents.x() = uniform(0.1, 1.0);
+    body.half_extents.y() = uniform(0.1, 1.0);
+    body.half_extents.z() = what.planar ? 0.5 : uniform(0.1, 1.0);
   }
   body.position = Vec3(uniform(-2.0, 2.0), body.half_extents.y() + uniform(0.0, 3.0), 0.0);
-  body.velocity = Vec3(uniform(-6.0, 6.0), uniform(-6.0, 3.0), 0.0);
+  body.velocity.x() = uniform(-6.0, 6.0);
+  body.velocity.y() = uniform(-6.0, 3.0);
+  body.velocity.z() = what.planar ? 0.0 : uniform(-6.0, 6.0);
   body.friction = uniform(0.0, 1.0);
-  body.restitution = uniform(0.0, 1.0);
+  if (what.restitution) body.restitution = uniform(0.0, 1.0);
   s.bodies.push_back(body);
   s.bodies.push_back({.name = "floor",
                       .half_extents = {20.0, 0.5, 20.0},

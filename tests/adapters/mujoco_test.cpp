@@ -196,35 +196,6 @@ double creep_speed(const std::vector<MujocoState>& states, std::size_t bodies, d
   return (states[last * bodies].position.x() - states[before * bodies].position.x()) / 0.5;
 }
 
-// A random box thrown over a static floor under a tilted gravity, in 3-D, with any friction, at
-// 1/30, 1/60 or 1/240 s (seeded): within the re-solve's scope (boxes, no forces).
-Scene random_box_throw(std::mt19937& rng) {
-  const auto uniform = [&](double lo, double hi) {
-    return std::uniform_real_distribution<double>(lo, hi)(rng);
-  };
-  Scene s;
-  s.name = "random box";
-  s.duration = 2.0;
-  const int per_second[] = {30, 60, 240};
-  const int n = per_second[std::uniform_int_distribution<int>(0, 2)(rng)];
-  s.timestep = {1.0 / n, "1/" + std::to_string(n)};
-  s.timesteps = {s.timestep};
-  s.world.gravity = Vec3(uniform(-3.0, 3.0), -9.8, uniform(-3.0, 3.0));
-  s.world.contacts = true;
-  Body body{.name = "box", .mass = uniform(0.2, 5.0)};
-  body.half_extents = Vec3(uniform(0.1, 1.0), uniform(0.1, 1.0), uniform(0.1, 1.0));
-  body.position = Vec3(uniform(-2.0, 2.0), body.half_extents.y() + uniform(0.0, 2.0), 0.0);
-  body.velocity = Vec3(uniform(-6.0, 6.0), uniform(-6.0, 3.0), uniform(-6.0, 6.0));
-  body.friction = uniform(0.05, 1.0);
-  s.bodies.push_back(body);
-  s.bodies.push_back({.name = "floor",
-                      .half_extents = {20.0, 0.5, 20.0},
-                      .position = {0.0, -0.5, 0.0},
-                      .is_static = true,
-                      .friction = body.friction});
-  return s;
-}
-
 }  // namespace
 
 TEST_CASE("MuJoCo's post-step velocity is the re-solve of its step to 1e-12, at every step",
@@ -331,7 +302,8 @@ TEST_CASE("MuJoCo moves as its re-solve in random contact scenes", "[mujoco][con
   // short of the minimum each step; 1.2e-11 m with its tolerance at 1e-15).
   std::mt19937 rng(20261127);
   for (int k = 0; k < 40; ++k) {
-    const Scene scene = random_box_throw(rng);
+    const Scene scene =
+        random_contact_scene(rng, {.planar = false, .spheres = false, .restitution = false});
     std::unique_ptr<Engine> engine = required_engine("mujoco");
     const double h = scene.timestep.seconds;
     const Trajectory run = run_scene(*engine, scene, h);
