@@ -1,6 +1,7 @@
 #include "harness/judge/bounce_verdict.hpp"
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "harness/core/number_format.hpp"
@@ -66,6 +67,18 @@ std::string apex_text(const std::vector<double>& apexes) {
 
 namespace {
 
+// Every law's path is step by step: a run that skipped steps cannot be laid beside it.
+constexpr const char* kSkippedSteps = "the run did not keep every step";
+
+// A verdict that judges nothing, saying why (`follows` so that it raises no failure).
+BounceVerdict unjudged(const std::string& why, std::optional<ContactSolver> solver) {
+  BounceVerdict v;
+  v.solver = solver;
+  v.not_judged = why;
+  v.follows = true;
+  return v;
+}
+
 // The verdict of the run's path `seen` against its law's path `predicted`.
 BounceVerdict judge_paths(const BouncePath& seen, const BouncePath& predicted, const BounceSetup& s,
                           const BounceLaw& law, double h) {
@@ -96,6 +109,7 @@ BounceVerdict judge_paths(const BouncePath& seen, const BouncePath& predicted, c
 
 BounceVerdict judge_bounce(const Trajectory& run, const BounceSetup& s, const BounceLaw& law,
                            double h) {
+  if (!run.keeps_every_step()) return unjudged(kSkippedSteps, std::nullopt);
   const BouncePath seen = observed_path(run, s);
   const auto steps = static_cast<std::int64_t>(seen.gap.size()) - 1;
   const BouncePath predicted = bounce_path(law, s.h0, s.e, s.g, h, steps, s.size);
@@ -126,16 +140,11 @@ BounceVerdict judge_bounce(const Trajectory& run, const BounceSetup& s, const Bo
 
 BounceVerdict judge_bounce(const Trajectory& run, const Scene& scene, const BounceSetup& s,
                            const EngineInfo& info, double h) {
-  const auto not_judged = [&](const std::string& why) {
-    BounceVerdict v;
-    if (replayed(info.contact_solver)) v.solver = info.contact_solver;
-    v.not_judged = why;
-    v.follows = true;
-    return v;
-  };
-  // Every law's path is step by step: a run that skipped steps cannot be laid beside it.
-  if (!run.keeps_every_step()) return not_judged("the run did not keep every step");
   if (!replayed(info.contact_solver)) return judge_bounce(run, s, info.bounce_law, h);
+  const auto not_judged = [&](const std::string& why) {
+    return unjudged(why, info.contact_solver);
+  };
+  if (!run.keeps_every_step()) return not_judged(kSkippedSteps);
   const BouncePath seen = observed_path(run, s);
   const auto steps = static_cast<std::int64_t>(seen.gap.size()) - 1;
   BouncePath predicted;

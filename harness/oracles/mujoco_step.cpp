@@ -653,7 +653,8 @@ struct Pose {
 // A contact between geoms, as mj_collideGeoms leaves it.
 struct PairContact {
   Contact c;
-  int body1, body2;  // -1: static
+  const Geom* geom1;  // the normal points from geom1 to geom2
+  const Geom* geom2;
   double mu;
 };
 
@@ -715,8 +716,7 @@ std::vector<PairContact> collide(const std::vector<Geom>& geoms, const std::vect
         // Excluded "in the gap": only a contact closer than includemargin (0) makes rows.
         if (repeated || !(con[i].dist < 0)) continue;
         // The larger of the two geoms' frictions, at least mjMINMU.
-        PairContact pc{con[i], g1.body, g2.body,
-                       std::max(kMinMu, std::max(g1.friction, g2.friction))};
+        PairContact pc{con[i], &g1, &g2, std::max(kMinMu, std::max(g1.friction, g2.friction))};
         make_frame(pc.c.frame);
         out.push_back(pc);
       }
@@ -724,10 +724,10 @@ std::vector<PairContact> collide(const std::vector<Geom>& geoms, const std::vect
   return out;
 }
 
-// The point Jacobian of body block `blk` at `point`: d(velocity of the point)/d(qvel) for the free
-// joint's 6 dofs, (I | (R e_k) x (point - x)).
-void add_point_jacobian(Eigen::MatrixXd& J, int blk, const double point[3], const Geom& g,
-                        double sign) {
+// Adds sign times the point Jacobian of geom g's body at `point`: d(velocity of the point)/d(qvel)
+// for its free joint's 6 dofs, (I | (R e_k) x (point - x)).
+void add_point_jacobian(Eigen::MatrixXd& J, const double point[3], const Geom& g, double sign) {
+  const int blk = g.body;
   double offset[3];
   for (int k = 0; k < 3; ++k) offset[k] = point[k] - g.pos[k];
   for (int k = 0; k < 3; ++k) {
@@ -754,8 +754,7 @@ struct Rows {
 // cone: per contact the rows J_n, J_t1, J_t2 with R_0 = (1 - imp)/imp*A on the normal and
 // R_0/impratio on the tangents, whose reference has no stiffness (aref = -B*(J_t*v)).
 Rows rows_of(const MujocoWorld& w, const std::vector<PairContact>& contacts,
-             const std::vector<Geom>& geoms, const std::vector<double>& inv_mass,
-             const Eigen::VectorXd& qvel) {
+             const std::vector<double>& inv_mass, const Eigen::VectorXd& qvel) {
   const auto nv = qvel.size();
   const MujocoSoftContact& s = w.contact;
   const std::size_t per = s.pyramidal ? 4 : 3;
@@ -776,20 +775,16 @@ Rows rows_of(const MujocoWorld& w, const std::vector<PairContact>& contacts,
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const PairContact& pc = contacts[c];
     Eigen::MatrixXd jac = Eigen::MatrixXd::Zero(3, nv), dif = Eigen::MatrixXd::Zero(3, nv);
-    for (const int body : {pc.body1, pc.body2}) {
-      if (body < 0) continue;
-      const Geom* g = nullptr;
-      for (const Geom& x : geoms)
-        if (x.body == body) g = &x;
-      add_point_jacobian(dif, body, pc.c.pos, *g, body == pc.body2 ? 1.0 : -1.0);
+    double tran = 0;  // the bodies' translational invweight0: 1/m each, a static body none
+    for (const Geom* g : {pc.geom1, pc.geom2}) {
+      if (g->body < 0) continue;
+      add_point_jacobian(dif, pc.c.pos, *g, g == pc.geom2 ? 1.0 : -1.0);
+      tran += inv_mass[static_cast<std::size_t>(g->body)];
     }
     for (int r = 0; r < 3; ++r)
       for (Eigen::Index col = 0; col < nv; ++col)
         jac(r, col) = pc.c.frame[3 * r + 0] * dif(0, col) + pc.c.frame[3 * r + 1] * dif(1, col) +
                       pc.c.frame[3 * r + 2] * dif(2, col);
-    double tran = 0;
-    for (const int body : {pc.body1, pc.body2})
-      if (body >= 0) tran += inv_mass[static_cast<std::size_t>(body)];
     if (rows.elliptic) {
       const double r0 = std::max(kMinVal, (1 - imp) * tran / imp);
       const double r1 = r0 / std::max(kMinVal, s.impratio);
@@ -1090,7 +1085,7 @@ StepResult step_once(const Model& model, const std::vector<Pose>& poses,
     const std::vector<PairContact> contacts = collide(geoms, flip, &out.undecided);
     out.info.contacts = static_cast<int>(contacts.size());
     if (!contacts.empty()) {
-      const Rows rows = rows_of(world, contacts, geoms, model.inv_mass, qvel);
+      const Rows rows = rows_of(world, contacts, model.inv_mass, qvel);
       const Solution s =
           rows.elliptic ? solve_elliptic(model.M, a0, rows) : solve(model.M, a0, rows);
       qacc = s.qacc;
