@@ -10,13 +10,16 @@
 
 namespace dropcheck::testing {
 
+// The registry's factory for `name`.
+inline EngineFactory factory(const std::string& name) {
+  return [name] { return make_engine(name); };
+}
+
 inline std::vector<EngineSlot> slots(const std::vector<std::string>& names) {
   std::vector<EngineSlot> out;
   for (const std::string& name : names) {
     const std::string why = engine_unavailable_reason(name);
-    out.push_back(
-        {name, why.empty() ? EngineFactory([name] { return make_engine(name); }) : EngineFactory(),
-         why});
+    out.push_back({name, why.empty() ? factory(name) : EngineFactory(), why});
   }
   return out;
 }

@@ -74,11 +74,11 @@ TierResult run_tier(Tier tier, const Scene& scene, const NamedFactory& engine,
   }
   const std::string name = scene.name + " / " + engine.first + " / " + to_string(tier) + ": ";
   if (!now->skipped.empty())
-    return {Verdict::skipped, name + "the engine cannot run this scene: " + now->skipped};
+    return {TierVerdict::skipped, name + "the engine cannot run this scene: " + now->skipped};
   const std::optional<Baseline> expected = read_baseline_if_present(path);
   if (!expected)
-    return {Verdict::failed, name + "no baseline " + path + "; run `dropcheck bless " +
-                                 scene.source + "` to make one"};
+    return {TierVerdict::failed, name + "no baseline " + path + "; run `dropcheck bless " +
+                                     scene.source + "` to make one"};
   check_baseline_claims(*expected, *now, path);
   return tier == Tier::bits ? check_bits(*expected, *now) : check_tolerance(*expected, *now);
 }
@@ -117,9 +117,9 @@ int check(const Args& args, const std::vector<Scene>& scenes, std::ostream& out)
       for (Tier tier : tiers) {
         const TierResult r = run_tier(tier, scene, engine, dir, now);
         out << to_string(r.verdict) << ": " << r.message << "\n";
-        failed += r.verdict == Verdict::failed;
-        physics_failed += r.verdict == Verdict::failed && tier == Tier::physics;
-        skipped += r.verdict == Verdict::skipped;
+        failed += r.verdict == TierVerdict::failed;
+        physics_failed += r.verdict == TierVerdict::failed && tier == Tier::physics;
+        skipped += r.verdict == TierVerdict::skipped;
         ++total;
       }
     }

@@ -59,6 +59,14 @@ Vec3 sphere_inertia(double mass, double radius);
 // body built in code without them). What every adapter and oracle uses.
 Vec3 inertia_of(const Body& b);
 
+// Heights (y) of the top and bottom of the body's bounding box, as placed in the scene.
+inline double top_of(const Body& b) {
+  return b.position.y() + b.half_extents.y();
+}
+inline double bottom_of(const Body& b) {
+  return b.position.y() - b.half_extents.y();
+}
+
 // F = constant (N), every step.
 struct ConstantForce {
   Vec3 force = Vec3::Zero();

@@ -85,7 +85,7 @@ BlessOutcome bless(const std::vector<Scene>& scenes, const std::vector<NamedFact
       const TierResult physics =
           check_physics(b, baseline ? &*baseline : nullptr,
                         core_checks(scene, engine.second, options.reference), scene.world.contacts);
-      if (physics.verdict == Verdict::failed) {
+      if (physics.verdict == TierVerdict::failed) {
         out.refused.push_back(physics.message);
         b.failed_tiers = "physics: " + physics.message;
       }

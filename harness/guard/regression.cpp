@@ -16,7 +16,7 @@ std::string prefix(const Baseline& b, Tier tier) {
   return b.scene + " / " + b.engine + " / " + to_string(tier) + ": ";
 }
 
-TierResult result(Verdict v, std::string message) {
+TierResult result(TierVerdict v, std::string message) {
   return {v, std::move(message)};
 }
 
@@ -123,13 +123,13 @@ SampleDiff diff_samples(const Trajectory& before, const Trajectory& after, doubl
 TierResult check_bits(const Baseline& expected, const Baseline& now) {
   const std::string p = prefix(now, Tier::bits);
   if (!now.skipped.empty())
-    return result(Verdict::skipped, p + "the engine cannot run this scene: " + now.skipped);
+    return result(TierVerdict::skipped, p + "the engine cannot run this scene: " + now.skipped);
   if (expected.build_key != now.build_key)
-    return result(Verdict::skipped, p + "the baseline was made by [" + expected.build_key +
-                                        "], this build is [" + now.build_key +
-                                        "]; bits may differ, tier 2 compares at tolerance");
+    return result(TierVerdict::skipped, p + "the baseline was made by [" + expected.build_key +
+                                            "], this build is [" + now.build_key +
+                                            "]; bits may differ, tier 2 compares at tolerance");
   if (expected.hash == now.hash && expected.status == now.status)
-    return result(Verdict::passed, p + "hash " + now.hash + " identical to the baseline's");
+    return result(TierVerdict::passed, p + "hash " + now.hash + " identical to the baseline's");
   const SampleDiff d = diff_samples(expected.samples, now.samples, 0.0);
   std::string where = !d.incomparable.empty() ? d.incomparable
                       : d.first_step >= 0     ? first_difference_text(d, 0.0, now.record_every)
@@ -137,49 +137,51 @@ TierResult check_bits(const Baseline& expected, const Baseline& now) {
                           ? "positions and velocities are identical at every sampled step: the "
                             "change is in the rotation (the hash covers it) or between samples"
                           : "every sampled step is identical; the change lies between samples";
-  return result(Verdict::failed, p + "hash " + now.hash + " != baseline " + expected.hash +
-                                     " on the same build key [" + now.build_key + "]: " + where);
+  return result(TierVerdict::failed, p + "hash " + now.hash + " != baseline " + expected.hash +
+                                         " on the same build key [" + now.build_key +
+                                         "]: " + where);
 }
 
 TierResult check_tolerance(const Baseline& expected, const Baseline& now) {
   const std::string p = prefix(now, Tier::tolerance);
   if (!now.skipped.empty())
-    return result(Verdict::skipped, p + "the engine cannot run this scene: " + now.skipped);
+    return result(TierVerdict::skipped, p + "the engine cannot run this scene: " + now.skipped);
   if (!expected.skipped.empty())
-    return result(Verdict::failed,
+    return result(TierVerdict::failed,
                   p + "the baseline says skipped (" + expected.skipped + ") but it ran now");
   const double tol = regression_tolerance(now.scalar);
   if (expected.status != now.status)
-    return result(Verdict::failed,
+    return result(TierVerdict::failed,
                   p + "the run was '" + expected.status + "', now '" + now.status + "'");
   const SampleDiff d = diff_samples(expected.samples, now.samples, tol);
-  if (!d.incomparable.empty()) return result(Verdict::failed, p + d.incomparable);
+  if (!d.incomparable.empty()) return result(TierVerdict::failed, p + d.incomparable);
   if (d.first_step >= 0)
-    return result(Verdict::failed, p + first_difference_text(d, tol, now.record_every));
+    return result(TierVerdict::failed, p + first_difference_text(d, tol, now.record_every));
   if (std::string s = sweep_problem(expected, now, tol); !s.empty())
-    return result(Verdict::failed, p + s);
-  return result(Verdict::passed, p + "max |dx| " + g3(d.max_dx) + " m over " +
-                                     std::to_string(now.samples.samples()) +
-                                     " samples (tolerance " + g3(tol) + " m for " +
-                                     to_string(now.scalar) + ")");
+    return result(TierVerdict::failed, p + s);
+  return result(TierVerdict::passed, p + "max |dx| " + g3(d.max_dx) + " m over " +
+                                         std::to_string(now.samples.samples()) +
+                                         " samples (tolerance " + g3(tol) + " m for " +
+                                         to_string(now.scalar) + ")");
 }
 
 TierResult check_determinism(const Scene& scene, const EngineFactory& make) {
   std::unique_ptr<Engine> first = make();
   const std::string p = scene.name + " / " + first->info().name + " / determinism: ";
   if (std::string why = first->cannot_run(scene); !why.empty())
-    return result(Verdict::skipped, p + "the engine cannot run this scene: " + why);
+    return result(TierVerdict::skipped, p + "the engine cannot run this scene: " + why);
   const Trajectory a = run_scene(*first, scene, scene.timestep.seconds);
   const Trajectory b = run_scene(*make(), scene, scene.timestep.seconds);
   const std::string csv_a = trajectories_to_csv({&a, 1}), csv_b = trajectories_to_csv({&b, 1});
   const std::string hash_a = trajectory_hash_hex(a), hash_b = trajectory_hash_hex(b);
   if (csv_a == csv_b && hash_a == hash_b)
-    return result(Verdict::passed, p + "two runs gave identical CSV (" +
-                                       std::to_string(csv_a.size()) + " bytes) and hash " + hash_a);
+    return result(TierVerdict::passed, p + "two runs gave identical CSV (" +
+                                           std::to_string(csv_a.size()) + " bytes) and hash " +
+                                           hash_a);
   std::size_t i = 0;
   while (i < csv_a.size() && i < csv_b.size() && csv_a[i] == csv_b[i]) ++i;
   const std::size_t line_start = csv_a.rfind('\n', i) + 1;
-  return result(Verdict::failed,
+  return result(TierVerdict::failed,
                 p + "two runs differ (hash " + hash_a + " vs " + hash_b +
                     "); first differing CSV line: '" +
                     csv_a.substr(line_start, csv_a.find('\n', i) - line_start) + "' vs '" +
@@ -206,13 +208,13 @@ std::optional<Tier> parse_tier(const std::string& name) {
   return std::nullopt;
 }
 
-const char* to_string(Verdict verdict) {
+const char* to_string(TierVerdict verdict) {
   switch (verdict) {
-    case Verdict::passed:
+    case TierVerdict::passed:
       return "passed";
-    case Verdict::failed:
+    case TierVerdict::failed:
       return "FAILED";
-    case Verdict::skipped:
+    case TierVerdict::skipped:
       return "skipped";
   }
   return "?";

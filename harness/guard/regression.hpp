@@ -20,11 +20,11 @@ namespace dropcheck {
 // The four checks; each is its own ctest entry per scene and engine.
 enum class Tier { bits, tolerance, physics, determinism };
 // Outcome of one tier; skipped maps to exit code 77 (ctest SKIP_RETURN_CODE).
-enum class Verdict { passed, failed, skipped };
+enum class TierVerdict { passed, failed, skipped };
 
 // A verdict with the sentence a person reads in the ctest output.
 struct TierResult {
-  Verdict verdict = Verdict::passed;
+  TierVerdict verdict = TierVerdict::passed;
   std::string message;  // "scene / engine / tier: ..." with the measured figures
 };
 
@@ -63,6 +63,6 @@ const char* to_string(Tier tier);
 std::optional<Tier> parse_tier(const std::string& name);
 
 // "passed", "FAILED", "skipped".
-const char* to_string(Verdict verdict);
+const char* to_string(TierVerdict verdict);
 
 }  // namespace dropcheck

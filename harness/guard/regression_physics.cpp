@@ -146,15 +146,15 @@ std::string order_problem(const Baseline& b, std::string& summary) {
 // The tier's verdict when the stored sweep failed with `why`: a pass when every check of the core
 // passes (the failure was a limit of the engine's law, which `dropcheck check` names), else `why`.
 TierResult ask_core(const std::string& p, const std::string& why, const CoreChecks& core) {
-  if (!core) return {Verdict::failed, p + why};
+  if (!core) return {TierVerdict::failed, p + why};
   std::string limits;
   for (const CheckResult& r : core()) {
-    if (!r.passed) return {Verdict::failed, p + why};
+    if (!r.passed) return {TierVerdict::failed, p + why};
     if (!r.limit.empty()) limits += (limits.empty() ? "" : "; ") + r.check + ": " + r.limit;
   }
-  return {Verdict::passed, p + "the checks of `dropcheck check` pass" +
-                               (limits.empty() ? std::string() : ", with LIMITs: " + limits) +
-                               " (the stored sweep alone fails: " + why + ")"};
+  return {TierVerdict::passed, p + "the checks of `dropcheck check` pass" +
+                                   (limits.empty() ? std::string() : ", with LIMITs: " + limits) +
+                                   " (the stored sweep alone fails: " + why + ")"};
 }
 
 // A contact scene has no free-flight law to store: its laws (landing, slide, bounce, stack) are
@@ -162,14 +162,15 @@ TierResult ask_core(const std::string& p, const std::string& why, const CoreChec
 // leaves its engine's law.
 TierResult contact_laws(const std::string& p, const CoreChecks& core) {
   if (!core)
-    return {Verdict::skipped, p + "a contact scene: its laws are judged by the checks of "
-                                  "`dropcheck check`, and no reference engine was given"};
+    return {TierVerdict::skipped, p + "a contact scene: its laws are judged by the checks of "
+                                      "`dropcheck check`, and no reference engine was given"};
   std::string passed;
   for (const CheckResult& r : core()) {
-    if (!r.passed) return {Verdict::failed, p + "contact: " + r.check + ": " + r.message};
+    if (!r.passed) return {TierVerdict::failed, p + "contact: " + r.check + ": " + r.message};
     passed += (passed.empty() ? "" : "; ") + r.check;
   }
-  return {Verdict::passed, p + "contact: the checks of `dropcheck check` pass (" + passed + ")"};
+  return {TierVerdict::passed,
+          p + "contact: the checks of `dropcheck check` pass (" + passed + ")"};
 }
 
 }  // namespace
@@ -184,7 +185,7 @@ TierResult check_physics(const Baseline& now, const Baseline* baseline, const Co
                          bool contacts) {
   const std::string p = now.scene + " / " + now.engine + " / physics: ";
   if (!now.skipped.empty())
-    return {Verdict::skipped, p + "the engine cannot run this scene: " + now.skipped};
+    return {TierVerdict::skipped, p + "the engine cannot run this scene: " + now.skipped};
   if (now.status != "ok")
     return ask_core(p, "the run at h = " + now.dt.text + " ended: " + now.status, core);
   if (contacts) return contact_laws(p, core);
@@ -192,7 +193,7 @@ TierResult check_physics(const Baseline& now, const Baseline* baseline, const Co
   if (std::string why = law_problem(now, baseline, law); !why.empty())
     return ask_core(p, why, core);
   if (std::string why = order_problem(now, order); !why.empty()) return ask_core(p, why, core);
-  return {Verdict::passed, p + law + "; " + order};
+  return {TierVerdict::passed, p + law + "; " + order};
 }
 
 }  // namespace dropcheck

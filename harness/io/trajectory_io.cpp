@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "harness/core/number_format.hpp"
+#include "harness/io/json_text.hpp"
 
 namespace dropcheck {
 namespace {
@@ -27,7 +28,7 @@ std::string csv_field(const std::string& s) {
 // JSON has no NaN or Inf: nlohmann writes null for them. Names are escaped by construction, and a
 // byte that is not UTF-8 becomes U+FFFD instead of breaking the document.
 std::string dump(const Json& j) {
-  return j.dump(-1, ' ', false, Json::error_handler_t::replace);
+  return json_text(j, -1, BadUtf8::replace);
 }
 
 Json json_vec(const Vec3& v) {

@@ -18,7 +18,7 @@
 
 namespace dropcheck {
 namespace {
-namespace replay {  // apart from dropcheck's own World, Body, ...
+namespace box2d {  // apart from dropcheck's own World, Body, ...
 
 // ---------------------------------------------------------------------------------------------
 // b2_common.h: the constants, as Box2D's macros build them (lengths in meters, 1 unit per meter).
@@ -2224,20 +2224,20 @@ Box2dState state_of(const Body& b) {
   return {b.xf.p.x, b.xf.p.y, b.sweep.a, b.v.x, b.v.y, b.w};
 }
 
-}  // namespace replay
+}  // namespace box2d
 }  // namespace
 
 std::vector<Box2dState> box2d_replay(std::span<const Box2dBox> bodies, float gx, float gy, float h,
                                      const Box2dSolver& solver, std::int64_t steps) {
-  replay::check_scope(bodies, gx, gy, h, solver, steps);
-  replay::World w = replay::create_world(bodies, gx, gy);
+  box2d::check_scope(bodies, gx, gy, h, solver, steps);
+  box2d::World w = box2d::create_world(bodies, gx, gy);
   std::vector<Box2dState> out;
   out.reserve(static_cast<std::size_t>(steps + 1) * 2);
   for (std::int64_t n = 0;; ++n) {
-    out.push_back(replay::state_of(w.bodies[0]));
-    out.push_back(replay::state_of(w.bodies[1]));
+    out.push_back(box2d::state_of(w.bodies[0]));
+    out.push_back(box2d::state_of(w.bodies[1]));
     if (n == steps) break;
-    replay::world_step(w, h, solver.velocity_iterations, solver.position_iterations);
+    box2d::world_step(w, h, solver.velocity_iterations, solver.position_iterations);
   }
   return out;
 }

@@ -27,7 +27,7 @@
 
 namespace dropcheck {
 namespace {
-namespace replay {  // apart from dropcheck's own Body, ...
+namespace chipmunk {  // apart from dropcheck's own Body, ...
 
 // ---------------------------------------------------------------------------------------------
 // chipmunk_types.h and chipmunk_private.h: scalars, hashes and the handful of constants.
@@ -1119,20 +1119,20 @@ ChipmunkState state_of(const Body& b) {
   return {p.x, p.y, b.a, b.v.x, b.v.y, b.w};
 }
 
-}  // namespace replay
+}  // namespace chipmunk
 }  // namespace
 
 std::vector<ChipmunkState> chipmunk_replay(const ChipmunkWorld& world, double h,
                                            std::int64_t steps) {
-  replay::check_scope(world, h, steps);
-  replay::Space s;
-  replay::create_space(world, s);
+  chipmunk::check_scope(world, h, steps);
+  chipmunk::Space s;
+  chipmunk::create_space(world, s);
   std::vector<ChipmunkState> out;
   out.reserve(static_cast<std::size_t>(steps + 1) * s.bodies.size());
   for (std::int64_t n = 0;; ++n) {
-    for (const replay::Body& b : s.bodies) out.push_back(replay::state_of(b));
+    for (const chipmunk::Body& b : s.bodies) out.push_back(chipmunk::state_of(b));
     if (n == steps) break;
-    replay::space_step(s, h);
+    chipmunk::space_step(s, h);
   }
   return out;
 }

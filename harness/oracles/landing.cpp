@@ -14,17 +14,10 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-double top(const Body& b) {
-  return b.position.y() + b.half_extents.y();
-}
-double bottom(const Body& b) {
-  return b.position.y() - b.half_extents.y();
-}
-
 // Static box `f` (a box: a sphere is no floor) holds body `b`: f's top is at or below b's bottom
 // and b's centre lies over f's footprint in the x-z plane.
 bool holds(const Body& f, const Body& b) {
-  return f.is_static && f.shape == Shape::box && top(f) <= bottom(b) &&
+  return f.is_static && f.shape == Shape::box && top_of(f) <= bottom_of(b) &&
          std::abs(b.position.x() - f.position.x()) <= f.half_extents.x() &&
          std::abs(b.position.z() - f.position.z()) <= f.half_extents.z();
 }
@@ -34,7 +27,7 @@ long floor_under(const Scene& scene, std::size_t i) {
   long best = -1;
   for (std::size_t j = 0; j < scene.bodies.size(); ++j) {
     if (!holds(scene.bodies[j], scene.bodies[i])) continue;
-    if (best < 0 || top(scene.bodies[j]) > top(scene.bodies[static_cast<std::size_t>(best)]))
+    if (best < 0 || top_of(scene.bodies[j]) > top_of(scene.bodies[static_cast<std::size_t>(best)]))
       best = static_cast<long>(j);
   }
   return best;
@@ -44,7 +37,7 @@ long floor_under(const Scene& scene, std::size_t i) {
 // touch at an edge do not stack) and reaches above the floor top `floor_top`: a dynamic body
 // stacked with b, or a static one (not b's floor) in its way.
 bool stacked_with(const Body& b, const Body& o, double floor_top) {
-  return top(o) > floor_top &&
+  return top_of(o) > floor_top &&
          std::abs(b.position.x() - o.position.x()) < b.half_extents.x() + o.half_extents.x() &&
          std::abs(b.position.z() - o.position.z()) < b.half_extents.z() + o.half_extents.z();
 }
@@ -147,8 +140,8 @@ std::vector<LandingSetup> landing_setups(const Scene& scene) {
     const long f = b.is_static ? -1 : floor_under(scene, i);
     if (f < 0) continue;
     LandingSetup s{.body = i, .floor = static_cast<std::size_t>(f)};
-    s.floor_top = top(scene.bodies[s.floor]);
-    s.floor_bottom = bottom(scene.bodies[s.floor]);
+    s.floor_top = top_of(scene.bodies[s.floor]);
+    s.floor_bottom = bottom_of(scene.bodies[s.floor]);
     s.half_height = b.half_extents.y();
     s.rest_height = s.floor_top + s.half_height;
     s.contact_time =
@@ -225,9 +218,9 @@ std::string Tunnelling::sentence() const {
 Tunnelling discrete_tunnelling(Law law, const Scene& scene, double h, const LandingSetup& setup) {
   Tunnelling t;
   const Body& floor = scene.bodies[setup.floor];
-  const double slab_top = top(floor) + setup.half_height;
-  const double slab_bottom = bottom(floor) - setup.half_height;
-  t.floor_thickness = top(floor) - bottom(floor);
+  const double slab_top = top_of(floor) + setup.half_height;
+  const double slab_bottom = bottom_of(floor) - setup.half_height;
+  t.floor_thickness = top_of(floor) - bottom_of(floor);
   t.height = 2.0 * setup.half_height;
   const Trajectory law_run = predict_discrete(law, scene, h);
   for (std::size_t s = 0; s < law_run.samples(); ++s) {

@@ -9,10 +9,6 @@
 namespace dropcheck {
 namespace {
 
-double top(const Body& b) {
-  return b.position.y() + b.half_extents.y();
-}
-
 // `upper`'s centre lies strictly inside `lower`'s top face (x-z): a centre on an edge balances
 // between two columns, and neither carries its load alone.
 bool over(const Body& upper, const Body& lower) {
@@ -29,9 +25,9 @@ bool overlaps(const Body& a, const Body& b) {
 // Every body that shares a member's footprint above the floor is a member: no load the column does
 // not count rests on it, and nothing else stands in its way.
 bool closed(const Scene& scene, const StackSetup& s) {
-  const double floor_top = top(scene.bodies[s.floor]);
+  const double floor_top = top_of(scene.bodies[s.floor]);
   for (std::size_t j = 0; j < scene.bodies.size(); ++j) {
-    if (j == s.floor || top(scene.bodies[j]) <= floor_top) continue;
+    if (j == s.floor || top_of(scene.bodies[j]) <= floor_top) continue;
     const bool member = std::any_of(s.levels.begin(), s.levels.end(),
                                     [&](const StackLevel& l) { return l.body == j; });
     if (member) continue;
@@ -70,9 +66,7 @@ std::vector<StackSetup> stack_setups(const Scene& scene) {
       long next = -1;
       for (std::size_t j = 0; j < scene.bodies.size(); ++j) {
         const Body& b = scene.bodies[j];
-        if (!stackable(scene, j) || !over(b, under) ||
-            b.position.y() - b.half_extents.y() < top(under))
-          continue;
+        if (!stackable(scene, j) || !over(b, under) || bottom_of(b) < top_of(under)) continue;
         if (next < 0 || b.position.y() < scene.bodies[static_cast<std::size_t>(next)].position.y())
           next = static_cast<long>(j);
       }

@@ -33,7 +33,7 @@ struct Face {
 };
 
 // One contact as the law resolves it (a Face with its corners decided).
-struct Contact {
+struct FaceContact {
   V normal = V::Zero();
   Real depth = 0;
   V arm = V::Zero();  // 0: through the centre
@@ -104,9 +104,9 @@ std::optional<Face> face_of(const Box& b, std::size_t other, const V& c, const V
 
 // The contact of `f` with the corners chosen by `bits` (one bit per ambiguous corner, from
 // `next`), or nothing when no corner is in it.
-std::optional<Contact> decide_contact(const Box& b, const Face& f, unsigned bits, int& next,
-                                      int& count) {
-  Contact c;
+std::optional<FaceContact> decide_contact(const Box& b, const Face& f, unsigned bits, int& next,
+                                          int& count) {
+  FaceContact c;
   c.normal = f.normal;
   V sum = V::Zero();
   int in = 0;
@@ -125,7 +125,7 @@ std::optional<Contact> decide_contact(const Box& b, const Face& f, unsigned bits
 }
 
 // The normal impulse, then friction against the slip, at the contact's point (the header's K).
-void resolve(Box& b, const Contact& c, Real mu, Real e) {
+void resolve(Box& b, const FaceContact& c, Real mu, Real e) {
   const M3 R = b.q.toRotationMatrix();
   const auto turn_per = [&](const V& j) -> V {
     return R * (R.transpose() * c.arm.cross(j)).cwiseQuotient(b.inertia);
@@ -215,7 +215,7 @@ std::vector<TurnedCandidate> turned_contact_step(const TurnedContactSetup& setup
   for (unsigned bits = 0; bits < (1u << tried); ++bits) {
     Box b = start;
     TurnedCandidate c;
-    std::vector<Contact> contacts;
+    std::vector<FaceContact> contacts;
     int next = 0;
     for (const Face& f : faces)
       if (auto k = decide_contact(b, f, bits, next, c.contacts)) contacts.push_back(*k);
@@ -225,11 +225,11 @@ std::vector<TurnedCandidate> turned_contact_step(const TurnedContactSetup& setup
     if (turns)
       b.w = Real(setup.phi_a) *
             rotation_detail::gyroscopic_update(setup.rotation.gyroscopic, R, b.inertia, h, b.w);
-    for (const Contact& k : contacts) resolve(b, k, setup.friction, setup.restitution);
+    for (const FaceContact& k : contacts) resolve(b, k, setup.friction, setup.restitution);
     b.x += h * b.v;
     if (turns || !b.w.isZero(0))
       b.q = rotation_detail::orientation_update(setup.rotation.orientation, b.q, b.w, h);
-    for (const Contact& k : contacts) b.x += k.depth * k.normal;
+    for (const FaceContact& k : contacts) b.x += k.depth * k.normal;
     c.linear.assign(linear.begin(), linear.end());
     c.rotation.assign(rotation.begin(), rotation.end());
     c.linear[dyn] = {b.x.cast<double>(), b.v.cast<double>()};

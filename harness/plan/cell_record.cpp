@@ -11,7 +11,7 @@
 #include "harness/core/registry.hpp"
 #include "harness/core/rotation_law.hpp"
 #include "harness/core/trajectory_hash.hpp"
-#include "harness/io/json_reader.hpp"
+#include "harness/io/json_text.hpp"
 #include "harness/judge/law_stability.hpp"
 #include "harness/judge/metrics.hpp"
 #include "harness/judge/own_law.hpp"
@@ -93,7 +93,7 @@ void measure_timing(const Scene& scene, const Trajectory& run, Json& r) {
 CellRecord finish(Json& r, const std::string& status, const std::string& reason) {
   r["status"] = status;
   if (!reason.empty()) r["reason"] = reason;
-  return {status, r.dump()};
+  return {status, json_text(r)};
 }
 
 Json build_json() {
@@ -106,7 +106,7 @@ Json build_json() {
 std::string cell_identity(const Plan& plan, const Cell& cell) {
   std::string id = cell.key + "\n" + plan.scenes[cell.scene].text + "\n";
   for (Measure m : plan.measures) id += std::string(to_string(m)) + ",";
-  return fnv1a_hex(id + "\n" + build_json().dump());
+  return fnv1a_hex(id + "\n" + json_text(build_json()));
 }
 
 CellRecord adopt_record(const Plan& plan, const Cell& cell, const std::string& line) {
@@ -121,7 +121,7 @@ CellRecord adopt_record(const Plan& plan, const Cell& cell, const std::string& l
       !r["status"].is_string())
     return {};
   r["plan"] = plan.hash;
-  return {r["status"].get<std::string>(), r.dump()};
+  return {r["status"].get<std::string>(), json_text(r)};
 }
 
 CellRecord run_cell(const Plan& plan, const Cell& cell, Isolation isolation,
@@ -167,11 +167,11 @@ CellRecord run_cell(const Plan& plan, const Cell& cell, Isolation isolation,
     // limit and leaves out the step and every measure of the samples it reached, so it stays the
     // same bytes on every run.
     r["reason"] = run.failure.substr(0, run.failure.find(';'));
-    return {status, r.dump()};
+    return {status, json_text(r)};
   }
   if (run.status == RunStatus::refused) {  // over a run limit: nothing ran, nothing to measure
     r["reason"] = run.failure;
-    return {status, r.dump()};
+    return {status, json_text(r)};
   }
   if (run.status != RunStatus::ok) {
     r["reason"] = run.failure;
@@ -182,7 +182,7 @@ CellRecord run_cell(const Plan& plan, const Cell& cell, Isolation isolation,
   if (plan.has(Measure::stability)) measure_stability(info, c.scene, c.h, run, r);
   if (plan.has(Measure::hash)) r["hash"] = trajectory_hash_hex(run);
   if (plan.has(Measure::timing)) measure_timing(c.scene, run, r);
-  return {status, r.dump()};
+  return {status, json_text(r)};
 }
 
 }  // namespace dropcheck

@@ -10,7 +10,7 @@
 #include "harness/core/input_error.hpp"
 #include "harness/io/atomic_file.hpp"
 #include "harness/io/bounded_read.hpp"
-#include "harness/io/json_reader.hpp"
+#include "harness/io/json_text.hpp"
 #include "harness/plan/cell_record.hpp"
 
 namespace dropcheck {

@@ -7,7 +7,7 @@
 #include "harness/core/input_error.hpp"
 #include "harness/core/trajectory_hash.hpp"
 #include "harness/io/bounded_read.hpp"
-#include "harness/io/json_reader.hpp"
+#include "harness/io/json_text.hpp"
 #include "harness/plan/axes.hpp"
 #include "harness/run/run_limits.hpp"
 #include "harness/scene/scene_loader.hpp"
@@ -74,7 +74,7 @@ Json content(const Plan& p, bool paths = true) {
 }
 
 std::string hash_of(const Plan& p) {
-  return fnv1a_hex(content(p, false).dump());
+  return fnv1a_hex(json_text(content(p, false)));
 }
 
 // What a plan read back must hold, however its hash was made: each scene a valid scene of its name,
@@ -206,7 +206,7 @@ Plan make_plan(const SweepSpec& sweep, std::span<const EngineInfo> engines) {
 std::string plan_text(const Plan& plan) {
   Json j = content(plan);
   j["hash"] = plan.hash;
-  return j.dump(1) + "\n";
+  return json_text(j, 1) + "\n";
 }
 
 Plan read_plan(const std::string& path) {

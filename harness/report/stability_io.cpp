@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/core/number_format.hpp"
+#include "harness/io/json_text.hpp"
 #include "harness/io/trajectory_io.hpp"
 #include "harness/study/stability_study.hpp"
 
@@ -21,7 +22,7 @@ Json json_number(std::optional<double> v) {
 
 // Escaped by construction; a byte that is not UTF-8 becomes U+FFFD instead of breaking the file.
 std::string dump(const Json& j) {
-  return j.dump(-1, ' ', false, Json::error_handler_t::replace);
+  return json_text(j, -1, BadUtf8::replace);
 }
 
 Json failures_json(const Verdict& v) {

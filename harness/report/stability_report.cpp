@@ -64,7 +64,7 @@ std::string step_cell(const EngineStability* e) {
   return out;
 }
 
-std::string error_cell(const EngineStability* e) {
+std::string analytic_error_cell(const EngineStability* e) {
   if (!e || !e->ran()) return skipped_cell(e);
   return e->vs_analytic ? printf_string("%.2e", e->vs_analytic->max_dx) : std::string("-");
 }
@@ -148,7 +148,7 @@ std::string stability_report_section(const std::vector<std::string>& extreme_sce
       "\n### Largest stable step h (s): measured (what failed above it) / theory for springs\n\n" +
       table(studies, step_cell, false);
   out += "\n### Error at the scene's step against the analytic solution: max |dx| (m)\n\n" +
-         table(studies, error_cell, false);
+         table(studies, analytic_error_cell, false);
   out += "\n### What failed at each scene's step\n\n" + failure_list(studies);
   return out;
 }

@@ -7,12 +7,12 @@
 
 #include "harness/core/input_error.hpp"
 #include "harness/io/bounded_read.hpp"
-#include "harness/io/json_reader.hpp"
+#include "harness/io/json_text.hpp"
 
 namespace dropcheck {
 namespace {
 
-using Json = nlohmann::json;
+using Json = nlohmann::ordered_json;
 
 std::optional<double> number(const Json& j) {
   if (j.is_number()) return j.get<double>();

@@ -11,7 +11,7 @@
 #include "harness/core/engine_listing.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/io/bounded_read.hpp"
-#include "harness/io/json_reader.hpp"
+#include "harness/io/json_text.hpp"
 
 namespace dropcheck {
 namespace {
@@ -48,7 +48,7 @@ Json cell_json(const TimedCell& c) {
 }
 
 // Reads the typed values of a parsed record, naming the key of the first that is wrong.
-struct Reader {
+struct JsonReader {
   const std::string& file;
 
   [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
@@ -162,15 +162,15 @@ TimingRecord timing_record(const std::vector<SceneEvaluation>& scenes, const Pro
 }
 
 std::string timing_json(const TimingRecord& record) {
-  std::string out = "{\n  \"commit\": " + Json(record.commit).dump() +
-                    ",\n  \"cpu\": " + Json(record.cpu).dump() + ",\n  \"cells\": [";
+  std::string out = "{\n  \"commit\": " + json_text(Json(record.commit)) +
+                    ",\n  \"cpu\": " + json_text(Json(record.cpu)) + ",\n  \"cells\": [";
   for (std::size_t i = 0; i < record.cells.size(); ++i)
-    out += (i ? ",\n    " : "\n    ") + cell_json(record.cells[i]).dump();
+    out += (i ? ",\n    " : "\n    ") + json_text(cell_json(record.cells[i]));
   return out + (record.cells.empty() ? "]\n}\n" : "\n  ]\n}\n");
 }
 
 TimingRecord parse_timing_record(const std::string& text, const std::string& file) {
-  const Reader r{file};
+  const JsonReader r{file};
   Json root;
   try {
     root = parse_json<Json>(text);

@@ -234,7 +234,7 @@ CheckResult floor_held(const Scene& scene, const Trajectory& run, CheckResult& r
     double floor_top = -INFINITY;
     for (const Body& s : scene.bodies)
       if (s.is_static && s.position.y() < b.position.y())
-        floor_top = std::max(floor_top, s.position.y() + s.half_extents.y());
+        floor_top = std::max(floor_top, top_of(s));
     const double y = run.final_state(i).position.y();
     r.message += "; " + b.name + fmt(" ends at y = %.6g m", y);
     if (y < floor_top) {

@@ -18,18 +18,12 @@
 #include "harness/scene/scene_loader.hpp"
 #include "harness/study/checks.hpp"
 #include "harness/study/sweep.hpp"
+#include "tests/engine_slots.hpp"
+#include "tests/shipped_scenes.hpp"
 
 using namespace dropcheck;
 
 namespace {
-
-Scene shipped(const std::string& stem) {
-  return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + stem + ".toml");
-}
-
-EngineFactory factory(const std::string& name) {
-  return [name] { return make_engine(name); };
-}
 
 const char* const kFreeFlight[] = {"free_fall", "free_fall_drag", "seed_part3",
                                    "throw_up",  "throw_3d",       "wind"};
@@ -80,7 +74,7 @@ TEST_CASE("Every compiled engine follows its own law at every step of every free
           "[conformance][reference]") {
   for (const std::string& name : available_engine_names()) {
     for (const char* stem : kFreeFlight) {
-      const Scene scene = shipped(stem);
+      const Scene scene = testing::shipped(stem);
       std::unique_ptr<Engine> engine = make_engine(name);
       if (!engine->cannot_run(scene).empty()) continue;
       const EngineInfo info = engine->info();
@@ -102,7 +96,7 @@ TEST_CASE("Box2D at 150 m/s and h = 1/120 follows its float law to the bit",
   if (!make_engine("box2d")) return;  // not compiled in
   // 1.25 m per step: below Box2D's 2 m clamp; the old long-double check saw 6.3e-4 m/s of float
   // rounding in its 1/(1 + h*c) and failed it.
-  Scene scene = shipped("throw_up");
+  Scene scene = testing::shipped("throw_up");
   scene.bodies[0].velocity = {150.0, 0.0, 0.0};
   const Trajectory run = run_scene(*make_engine("box2d"), scene, 1.0 / 120.0);
   REQUIRE(run.clamped_steps == 0);
@@ -116,7 +110,7 @@ TEST_CASE("Box2D at 150 m/s and h = 1/120 follows its float law to the bit",
 TEST_CASE("A speed clamp the engine reports is named, not called a departure",
           "[conformance][box2d]") {
   if (!make_engine("box2d")) return;  // not compiled in
-  Scene scene = shipped("throw_up");
+  Scene scene = testing::shipped("throw_up");
   scene.bodies[0].velocity = {300.0, 0.0, 0.0};  // 5 m per step at 1/60: clamped from step 1
   const Trajectory run = run_scene(*make_engine("box2d"), scene, 1.0 / 60.0);
   const OwnLawVerdict v = judge_own_law(make_engine("box2d")->info(), scene, run);
@@ -130,9 +124,9 @@ TEST_CASE("Every compiled engine with contacts lands as the core's landing check
           "[conformance][landing]") {
   for (const std::string& name : available_engine_names()) {
     for (const char* stem : kContacts) {
-      const Scene scene = shipped(stem);
+      const Scene scene = testing::shipped(stem);
       if (!make_engine(name)->cannot_run(scene).empty()) continue;
-      const CheckResult r = check_landing(scene, factory(name), scene.timestep);
+      const CheckResult r = check_landing(scene, testing::factory(name), scene.timestep);
       INFO(name << " on " << stem << ": " << r.message);
       CHECK(r.passed);
     }
@@ -141,7 +135,7 @@ TEST_CASE("Every compiled engine with contacts lands as the core's landing check
 
 TEST_CASE("The own-law check catches every adapter that misreports its law or its damping",
           "[conformance][law]") {
-  const Scene scene = shipped("free_fall_drag");
+  const Scene scene = testing::shipped("free_fall_drag");
   using Fault = MisreportingEngine::Fault;
   for (const std::string& name : available_engine_names()) {
     if (!make_engine(name)->cannot_run(scene).empty()) continue;
@@ -156,7 +150,7 @@ TEST_CASE("The own-law check catches every adapter that misreports its law or it
       CHECK_THAT(r.message, Catch::Contains("worst at body 'cube' step") &&
                                 Catch::Contains("engine x = (") && Catch::Contains("law x = ("));
     }
-    const CheckResult honest = check_own_law(scene, factory(name), scene.timestep);
+    const CheckResult honest = check_own_law(scene, testing::factory(name), scene.timestep);
     INFO(name << ": " << honest.message);
     CHECK(honest.passed);
   }
@@ -164,7 +158,7 @@ TEST_CASE("The own-law check catches every adapter that misreports its law or it
 
 TEST_CASE("Every engine applies a force for one step only and divides it by the mass",
           "[conformance][mass]") {
-  Scene scene = shipped("free_fall");  // no drag
+  Scene scene = testing::shipped("free_fall");  // no drag
   scene.world.gravity = Vec3::Zero();
   scene.bodies[0].mass = 3.375;
   for (const std::string& name : available_engine_names()) {
@@ -195,7 +189,8 @@ TEST_CASE("Every engine applies a force for one step only and divides it by the 
 
 TEST_CASE("Every engine reloads cleanly: a second load on one engine replays the first run exactly",
           "[conformance]") {
-  const Scene wind = shipped("wind"), floor = shipped("drop_on_floor"), up = shipped("throw_up");
+  const Scene wind = testing::shipped("wind"), floor = testing::shipped("drop_on_floor"),
+              up = testing::shipped("throw_up");
   for (const std::string& name : available_engine_names()) {
     std::unique_ptr<Engine> engine = make_engine(name);
     if (!engine->cannot_run(wind).empty()) continue;
@@ -216,7 +211,7 @@ TEST_CASE("Every engine reads a static body back at its fixed position with zero
           "[conformance]") {
   for (const std::string& name : available_engine_names()) {
     for (const char* stem : {"seed_part3", "drop_on_floor"}) {  // contacts off and on
-      const Scene scene = shipped(stem);
+      const Scene scene = testing::shipped(stem);
       REQUIRE(scene.bodies[0].is_static);
       std::unique_ptr<Engine> engine = make_engine(name);
       if (!engine->cannot_run(scene).empty()) continue;
@@ -236,7 +231,7 @@ TEST_CASE("A cube dropped on a floor lands on time, does not bounce and rests at
     std::unique_ptr<Engine> engine = make_engine(name);
     const EngineInfo info = engine->info();
     for (const char* stem : kContacts) {
-      const Scene scene = shipped(stem);
+      const Scene scene = testing::shipped(stem);
       if (!engine->cannot_run(scene).empty() || name == "mujoco" || name == "box2d") continue;
       const double h = scene.timestep.seconds;
       const std::vector<LandingSetup> setups = landing_setups(scene);
@@ -278,7 +273,7 @@ TEST_CASE("No engine's landing rebounds at any step of the sweep", "[conformance
     std::unique_ptr<Engine> engine = make_engine(name);
     const EngineInfo info = engine->info();
     for (const char* stem : kContacts) {
-      const Scene scene = shipped(stem);
+      const Scene scene = testing::shipped(stem);
       if (!engine->cannot_run(scene).empty()) continue;
       for (const Timestep& h : scene.timesteps) {
         const LandingSetup s = landing_setups(scene).at(0);
@@ -299,11 +294,11 @@ TEST_CASE("No engine's landing rebounds at any step of the sweep", "[conformance
 
 TEST_CASE("On the thin floor, Box2D's continuous collision lands and the others tunnel as a limit",
           "[conformance][landing]") {
-  const Scene scene = shipped("extreme/thin_floor");
+  const Scene scene = testing::shipped("extreme/thin_floor");
   for (const std::string& name : available_engine_names()) {
     std::unique_ptr<Engine> engine = make_engine(name);
     if (!engine->cannot_run(scene).empty()) continue;
-    const CheckResult r = check_landing(scene, factory(name), scene.timestep);
+    const CheckResult r = check_landing(scene, testing::factory(name), scene.timestep);
     INFO(name << ": " << r.limit << " | " << r.message);
     CHECK(r.passed);
     if (engine->info().continuous_collision) {
@@ -322,10 +317,10 @@ TEST_CASE("On the thin floor, Box2D's continuous collision lands and the others 
 
 TEST_CASE("On the mass-ratio stacks no contact engine is judged by the single-body oracle",
           "[conformance][landing]") {
-  const Scene scene = shipped("extreme/mass_ratio");
+  const Scene scene = testing::shipped("extreme/mass_ratio");
   for (const std::string& name : available_engine_names()) {
     if (!make_engine(name)->cannot_run(scene).empty()) continue;
-    const CheckResult r = check_landing(scene, factory(name), scene.timestep);
+    const CheckResult r = check_landing(scene, testing::factory(name), scene.timestep);
     INFO(name << ": " << r.message);
     CHECK(r.passed);
     CHECK_THAT(r.message, Catch::Contains("'heavy_1e5' not judged: lands on dynamic body "
@@ -339,7 +334,7 @@ TEST_CASE("On the mass-ratio stacks no contact engine is judged by the single-bo
 // under 1e5 kg), MuJoCo 1.000 (5.317e-4 m); MuJoCo's 1000 kg cube above is still settling after 5 s
 // (8.956e-6 m of its law's 1.064e-5).
 TEST_CASE("ODE and MuJoCo sink under a stack as their stack laws predict", "[conformance][stack]") {
-  const Scene scene = shipped("extreme/mass_ratio");
+  const Scene scene = testing::shipped("extreme/mass_ratio");
   const double h = 1.0 / 240.0;
   for (const char* name : {"ode", "mujoco"}) {
     if (!make_engine(name)) continue;

@@ -34,7 +34,7 @@ namespace {
 
 // Free flight follows the law to 1e-13 (measured 2.8e-14 before contact): a state departs from it
 // when its height differs by more than this.
-constexpr double kDeparts = 1e-9;
+constexpr double kLandingDeparts = 1e-9;
 
 }  // namespace
 
@@ -58,7 +58,7 @@ TEST_CASE("MuJoCo gives a body exactly the scene's mass", "[mujoco][mass]") {
 
 TEST_CASE("A cube dropped on a floor lands, does not rebound and rests at MuJoCo's declared offset",
           "[mujoco][contacts]") {
-  const auto [info, h, t_c, l] = land_drop_on_floor(*required_engine("mujoco"), kDeparts);
+  const auto [info, h, t_c, l] = land_drop_on_floor(*required_engine("mujoco"), kLandingDeparts);
   // Measured: the state of step 84 (t = 1.4000, 0.46 step after t_c) is 0.218 m inside the floor.
   CHECK(std::abs(static_cast<double>(l.touch_step) * h - t_c) <= h);
   // MuJoCo collides the positions at the start of a step (no continuous collision): the contact

@@ -13,7 +13,6 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <string>
@@ -23,6 +22,7 @@
 #include "../test_dirs.hpp"
 #include "cli_driver.hpp"
 #include "harness/cli/cli.hpp"
+#include "harness/io/json_text.hpp"
 #include "harness/io/output_dir.hpp"
 #include "harness/process/signal_cleanup.hpp"
 
@@ -797,7 +797,7 @@ TEST_CASE("run --json with hostile scene and body names is valid JSON that reads
       "\"1/10\"\n[world]\ngravity = [0.0, -9.8, 0.0]\n[[body]]\n"
       "name = \"b}],\\\"x\\\":[{\"\nposition = [0.0, 1.0, 0.0]\n");
   REQUIRE(run_tiny(d.file("s.toml"), {"--json", d.file("o.json")}).code == 0);
-  const nlohmann::json j = nlohmann::json::parse(slurp(d.file("o.json")));
+  const nlohmann::json j = dropcheck::parse_json<nlohmann::json>(slurp(d.file("o.json")));
   CHECK(j["runs"][0]["scene"] == "q\"uote\\ \xc3\xa9");
   CHECK(j["runs"][0]["bodies"][0]["name"] == "b}],\"x\":[{");
 }
@@ -809,7 +809,7 @@ TEST_CASE("stability --json with a hostile scene name is valid JSON", "[cli][hos
       "-9.8, 0.0]\n[[body]]\nname = \"c\"\nposition = [0.0, 1.0, 0.0]\n");
   REQUIRE(cli({"stability", d.file("s.toml"), "--engine", "ours-f64", "--json", d.file("o.json")})
               .code == 0);
-  const nlohmann::json j = nlohmann::json::parse(slurp(d.file("o.json")));
+  const nlohmann::json j = dropcheck::parse_json<nlohmann::json>(slurp(d.file("o.json")));
   CHECK(j["scene"] == "\"}");
   CHECK(j["engines"][0]["engine"] == "ours-f64");
 }

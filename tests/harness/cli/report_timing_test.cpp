@@ -4,10 +4,10 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
 #include <string>
 
 #include "cli_driver.hpp"
+#include "harness/io/json_text.hpp"
 #include "harness/report/timing_record.hpp"
 #include "tests/harness/test_dirs.hpp"
 #include "tests/scene_texts.hpp"
@@ -26,10 +26,10 @@ namespace {
 
 // `record` with every engine sample of every cell scaled by `factor` (the calibration kept).
 std::string scaled(const std::string& record, double factor) {
-  nlohmann::ordered_json j = nlohmann::ordered_json::parse(record);
+  nlohmann::ordered_json j = dropcheck::parse_json<nlohmann::ordered_json>(record);
   for (auto& cell : j["cells"])
     for (auto& x : cell["samples_ms"]) x = x.get<double>() * factor;
-  return j.dump();
+  return dropcheck::json_text(j);
 }
 
 }  // namespace
@@ -64,9 +64,9 @@ TEST_CASE("report --fail-on-slowdown exits 1 naming the cells that slowed, 0 whe
   CHECK_THAT(slurp(d.file("r/README.md")), Contains("No cell is flagged"));
   CHECK_THAT(fine.err, Contains("slowdown alert: 3 of 3 cells judged, 0 flagged"));
   // A record none of whose cells match (another scene): the gate judged nothing, and says so.
-  nlohmann::ordered_json other = nlohmann::ordered_json::parse(record);
+  nlohmann::ordered_json other = dropcheck::parse_json<nlohmann::ordered_json>(record);
   for (auto& cell : other["cells"]) cell["scene"] = "another";
-  std::ofstream(d.file("other.json")) << other.dump();
+  std::ofstream(d.file("other.json")) << dropcheck::json_text(other);
   args[args.size() - 2] = d.file("other.json");
   const Result none = cli(args);
   CHECK(none.code == 2);

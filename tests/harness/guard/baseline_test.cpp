@@ -15,6 +15,7 @@
 #include "harness/guard/baseline_parse.hpp"
 #include "harness/guard/bless.hpp"
 #include "harness/scene/scene_loader.hpp"
+#include "tests/engine_slots.hpp"
 
 using namespace dropcheck;
 using namespace dropcheck::testing;
@@ -23,10 +24,6 @@ namespace {
 
 std::uint64_t bits(double v) {
   return std::bit_cast<std::uint64_t>(v);
-}
-
-EngineFactory factory(const std::string& name) {
-  return [name] { return make_engine(name); };
 }
 
 // Every number of the two baselines, compared as bit patterns (NaN included).
@@ -63,7 +60,7 @@ BlessOutcome bless_moved_drag(const ScratchDir& dir, bool refuse_failed) {
 }  // namespace
 
 TEST_CASE("A baseline written as text reads back to the bit", "[baseline]") {
-  const Baseline made = make_baseline(shipped_scene("wind"), factory("ours-f64"));
+  const Baseline made = make_baseline(shipped_scene("wind"), testing::factory("ours-f64"));
   const std::string text = baseline_to_text(made);
   const Baseline read = parse_baseline(text, "wind.ours-f64.txt");
   require_same_bits(made, read);
@@ -75,7 +72,7 @@ TEST_CASE("A baseline written as text reads back to the bit", "[baseline]") {
 }
 
 TEST_CASE("Awkward numbers survive the text format exactly", "[baseline]") {
-  Baseline b = make_baseline(shipped_scene("free_fall"), factory("ours"));
+  Baseline b = make_baseline(shipped_scene("free_fall"), testing::factory("ours"));
   BodyState& s = b.samples.states[1];
   s.position = Vec3(-0.0, 4.9406564584124654e-324, 0.1);  // negative zero, smallest denormal
   s.velocity = Vec3(1.0 / 3.0, -1.7976931348623157e308, 2.2250738585072014e-308);
@@ -92,7 +89,7 @@ TEST_CASE("Awkward numbers survive the text format exactly", "[baseline]") {
 
 TEST_CASE("A malformed baseline names the file, line and record", "[baseline]") {
   const std::string good =
-      baseline_to_text(make_baseline(shipped_scene("free_fall"), factory("ours-f64")));
+      baseline_to_text(make_baseline(shipped_scene("free_fall"), testing::factory("ours-f64")));
   std::string bad = good;
   bad.replace(bad.find("sample 10 cube 0 "), 17, "sample 10 cube 0x ");
   REQUIRE_THROWS_WITH(parse_baseline(bad, "x.txt"),
@@ -106,7 +103,7 @@ TEST_CASE("A malformed baseline names the file, line and record", "[baseline]") 
 TEST_CASE("An engine that cannot run a scene leaves a skipped baseline with its reason",
           "[baseline]") {
   const Scene scene = load_scene(kTurnedPair);
-  const Baseline b = make_baseline(scene, factory("ours"));
+  const Baseline b = make_baseline(scene, testing::factory("ours"));
   const std::string why =
       "a turned or turning box beside another dynamic body or a static sphere: ours collides a "
       "turned box only with static boxes (its corners against their faces)";
@@ -155,8 +152,8 @@ TEST_CASE("Bless writes every baseline and leaves unchanged data byte for byte",
   options.out_dir = dir.path.string();
   options.commit = "aaaaaaa 2026-01-01";
   const std::vector<Scene> scenes = {shipped_scene("free_fall"), load_scene(kTurnedPair)};
-  const std::vector<NamedFactory> engines = {{"ours", factory("ours")},
-                                             {"ours-f64", factory("ours-f64")}};
+  const std::vector<NamedFactory> engines = {{"ours", testing::factory("ours")},
+                                             {"ours-f64", testing::factory("ours-f64")}};
   const BlessOutcome first = bless(scenes, engines, options);
   REQUIRE(first.refused.empty());
   REQUIRE(first.lines.size() == 4);

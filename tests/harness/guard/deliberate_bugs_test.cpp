@@ -15,16 +15,13 @@
 #include "harness/guard/regression.hpp"
 #include "harness/guard/regression_physics.hpp"
 #include "harness/study/checks.hpp"
+#include "tests/engine_slots.hpp"
 
 using namespace dropcheck;
 using namespace dropcheck::testing;
 using Catch::Matchers::Contains;
 
 namespace {
-
-EngineFactory factory(const std::string& name) {
-  return [name] { return make_engine(name); };
-}
 
 struct Case {
   Bug bug;
@@ -47,12 +44,13 @@ const Case kCases[] = {
 
 TEST_CASE("Every deliberate bug in ours is caught by tier 3 with its cause", "[regression][bugs]") {
   const Scene scene = shipped_scene("throw_3d");
-  REQUIRE(check_physics(make_baseline(scene, buggy_ours(Bug::none))).verdict == Verdict::passed);
+  REQUIRE(check_physics(make_baseline(scene, buggy_ours(Bug::none))).verdict ==
+          TierVerdict::passed);
   for (const Case& c : kCases) {
     const TierResult r = check_physics(make_baseline(scene, buggy_ours(c.bug)));
     std::cout << c.name << ":\n  " << r.message << "\n";
     INFO(c.name << ": " << r.message);
-    CHECK(r.verdict == Verdict::failed);
+    CHECK(r.verdict == TierVerdict::failed);
     CHECK_THAT(r.message, Contains("throw_3d / ours / physics: oracle 2 (own discrete law"));
     CHECK_THAT(r.message, Contains(c.cause));
   }
@@ -80,7 +78,7 @@ TEST_CASE("A consistent new scheme's message says how far it is from the baselin
   REQUIRE(d.max_dx > 1e-4);  // explicit Euler moves the drop measurably
   const TierResult r = check_physics(euler, &golden);
   INFO(r.message);
-  CHECK(r.verdict == Verdict::failed);
+  CHECK(r.verdict == TierVerdict::failed);
   CHECK_THAT(r.message, Contains("first-order, follows explicit Euler") &&
                             Contains("; differs from the baseline by " + format_length(d.max_dx) +
                                      " at h = " + euler.dt.text));
@@ -98,7 +96,8 @@ TEST_CASE(
   const Scene scene = shipped_scene("throw_3d");
   for (const Case& c : kCases) {
     // ours (buggy) against the reference ours-f64 (correct).
-    const CheckResult as_engine = check_divergence(scene, buggy_ours(c.bug), factory("ours-f64"));
+    const CheckResult as_engine =
+        check_divergence(scene, buggy_ours(c.bug), testing::factory("ours-f64"));
     INFO(c.name << ": " << as_engine.message);
     CHECK_FALSE(as_engine.passed);
     CHECK_THAT(as_engine.message, Contains("UNEXPLAINED") &&
@@ -106,7 +105,7 @@ TEST_CASE(
                                       Contains("ours-f64 follows its own law to 0 m"));
     // A correct engine (ours, f32) against a buggy reference: the reference is blamed.
     const CheckResult as_reference =
-        check_divergence(scene, factory("ours"), buggy_ours_f64(c.bug));
+        check_divergence(scene, testing::factory("ours"), buggy_ours_f64(c.bug));
     INFO(as_reference.message);
     CHECK_FALSE(as_reference.passed);
     CHECK_THAT(as_reference.message, Contains("ours-f64 departs from its own law") &&
@@ -119,13 +118,14 @@ TEST_CASE("Tier 3 asks the measurement core when the stored sweep fails, and no 
   // A limit of the law the stored sweep cannot see: ours's law is unstable at stiff_spring's
   // 1/25 (omega*h = 2.4 > 2), so the run ends in NaN; `dropcheck check` names it a LIMIT.
   const Scene stiff = shipped_scene("extreme/stiff_spring");
-  const Baseline b = make_baseline(stiff, factory("ours"));
-  const CoreChecks core = core_checks(stiff, factory("ours"), factory("ours-f64"));
-  CHECK(check_physics(b).verdict == Verdict::failed);
-  CHECK(!core_checks(stiff, factory("ours"), {}));  // no reference: nothing to ask
+  const Baseline b = make_baseline(stiff, testing::factory("ours"));
+  const CoreChecks core =
+      core_checks(stiff, testing::factory("ours"), testing::factory("ours-f64"));
+  CHECK(check_physics(b).verdict == TierVerdict::failed);
+  CHECK(!core_checks(stiff, testing::factory("ours"), {}));  // no reference: nothing to ask
   const TierResult r = check_physics(b, nullptr, core);
   INFO(r.message);
-  CHECK(r.verdict == Verdict::passed);
+  CHECK(r.verdict == TierVerdict::passed);
   CHECK_THAT(r.message, Contains("the checks of `dropcheck check` pass, with LIMITs: own law at "
                                  "h = 1/25: its law (semi-implicit Euler") &&
                             Contains("unstable at h = 1/25: omega*h = 2.4 > 2") &&
@@ -135,9 +135,9 @@ TEST_CASE("Tier 3 asks the measurement core when the stored sweep fails, and no 
   for (const Bug bug : {Bug::drag_twice, Bug::explicit_euler}) {
     const Baseline broken = make_baseline(scene, buggy_ours(bug));
     const TierResult alone = check_physics(broken);
-    const TierResult asked =
-        check_physics(broken, nullptr, core_checks(scene, buggy_ours(bug), factory("ours-f64")));
-    CHECK(asked.verdict == Verdict::failed);
+    const TierResult asked = check_physics(
+        broken, nullptr, core_checks(scene, buggy_ours(bug), testing::factory("ours-f64")));
+    CHECK(asked.verdict == TierVerdict::failed);
     CHECK(asked.message == alone.message);
   }
 }

@@ -8,12 +8,12 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
-#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "harness/core/number_format.hpp"
+#include "harness/io/json_text.hpp"
 
 using Catch::Matchers::Contains;
 
@@ -266,10 +266,10 @@ TEST_CASE("the streamed JSON has the bytes nlohmann writes for the whole documen
   std::ostringstream streamed;
   dropcheck::write_trajectories_json(streamed, runs);
   // Read back and written again whole, each run on its own line, as the old writer did.
-  const auto doc = nlohmann::ordered_json::parse(streamed.str());
+  const auto doc = dropcheck::parse_json<nlohmann::ordered_json>(streamed.str());
   std::string whole = "{\"runs\":[";
   for (std::size_t r = 0; r < doc["runs"].size(); ++r)
-    whole += (r ? ",\n" : "\n") + doc["runs"][r].dump();
+    whole += (r ? ",\n" : "\n") + dropcheck::json_text(doc["runs"][r]);
   whole += "\n]}\n";
   CHECK(streamed.str() == whole);
   CHECK(doc["runs"][0]["bodies"][1]["name"] == "bad \xef\xbf\xbd byte, \"quoted\"");

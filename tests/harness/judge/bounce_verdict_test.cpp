@@ -10,15 +10,12 @@
 #include "harness/core/registry.hpp"
 #include "harness/run/runner.hpp"
 #include "harness/scene/scene_loader.hpp"
+#include "tests/shipped_scenes.hpp"
 
 using namespace dropcheck;
 using Catch::Matchers::Contains;
 
 namespace {
-
-Scene shipped(const std::string& stem) {
-  return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + stem + ".toml");
-}
 
 constexpr BounceLaw kOde{.erp = 0.2, .max_push = 0.3};
 
@@ -45,7 +42,7 @@ Trajectory law_run(const Scene& scene, const BounceSetup& s, const BounceLaw& la
 
 TEST_CASE("a bounce following its engine's law passes, with the members that move it named",
           "[contact][bounce]") {
-  const Scene scene = shipped("bounce_e01");
+  const Scene scene = testing::shipped("bounce_e01");
   const std::vector<BounceSetup> setups = bounce_setups(scene);
   REQUIRE(setups.size() == 1);
   CHECK(setups[0].h0 == 1.0);
@@ -64,7 +61,7 @@ TEST_CASE("a bounce following its engine's law passes, with the members that mov
 
 TEST_CASE("a bounce that follows the ideal law where its engine declares a push-out departs",
           "[contact][bounce]") {
-  const Scene scene = shipped("bounce_e01");
+  const Scene scene = testing::shipped("bounce_e01");
   const BounceSetup s = bounce_setups(scene)[0];
   const double h = scene.timestep.seconds;
   const BounceVerdict v = judge_bounce(law_run(scene, s, kIdealBounce), s, kOde, h);
@@ -86,7 +83,7 @@ TEST_CASE("a bounce that follows the ideal law where its engine declares a push-
 
 TEST_CASE("a bounce that climbs above where it fell from is flagged: energy rises",
           "[contact][bounce]") {
-  const Scene scene = shipped("bounce_e09");
+  const Scene scene = testing::shipped("bounce_e09");
   const BounceSetup s = bounce_setups(scene)[0];
   const double h = scene.timestep.seconds;
   // The law of e = 0.9 judged as e = 0.9 passes, apexes falling (0.8081, 0.6469, 0.5215 m).
@@ -108,7 +105,7 @@ TEST_CASE(
     "a float run that parts from its law's path names the step whose contact it decides "
     "on the other side",
     "[contact][bounce]") {
-  const Scene scene = shipped("bounce_e05");
+  const Scene scene = testing::shipped("bounce_e05");
   const BounceSetup s = bounce_setups(scene).at(0);
   std::unique_ptr<Engine> ours = make_engine("ours");
   const double h = scene.timestep.seconds;
@@ -125,7 +122,7 @@ TEST_CASE(
 TEST_CASE("a bounce whose run skipped steps is not judged, whatever its engine's solver",
           "[contact][bounce]") {
   // Every bounce law is a path step by step: samples every other step cannot be laid beside it.
-  const Scene scene = shipped("bounce_e05");
+  const Scene scene = testing::shipped("bounce_e05");
   const BounceSetup s = bounce_setups(scene).at(0);
   const double h = scene.timestep.seconds;
   Trajectory run = law_run(scene, s, kOde);

@@ -8,14 +8,11 @@
 #include <numbers>
 
 #include "harness/scene/scene_loader.hpp"
+#include "tests/shipped_scenes.hpp"
 
 using namespace dropcheck;
 
 namespace {
-
-Scene shipped(const std::string& stem) {
-  return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + stem + ".toml");
-}
 
 // The clamp law of `model` on `scene`'s slide, every step recorded: per tangent axis
 // v <- max(v - a_i*h, 0), x += h*v (a_i as contact_laws.cpp: mu*g along the slip for the cone).
@@ -52,7 +49,7 @@ Trajectory clamp_run(const Scene& scene, const SlideSetup& s, FrictionModel mode
 
 TEST_CASE("a slide following its model's clamp law passes; another model's is named",
           "[contact][slide]") {
-  const Scene scene = shipped("slide_diagonal");
+  const Scene scene = testing::shipped("slide_diagonal");
   const std::vector<SlideSetup> slides = slide_setups(scene);
   REQUIRE(slides.size() == 1);
   CHECK(slides[0].angle == Approx(std::numbers::pi / 4.0).margin(1e-15));
@@ -107,7 +104,7 @@ Trajectory path_run(const Scene& scene, const std::vector<SlideSetup>& setups,
 
 TEST_CASE("an incline: the held block must not creep, the launched one stops at its step",
           "[contact][slide]") {
-  const Scene scene = shipped("incline_hold");
+  const Scene scene = testing::shipped("incline_hold");
   const std::vector<SlideSetup> slides = slide_setups(scene);
   REQUIRE(slides.size() == 2);
   CHECK(slides[0].v0 == 0.0);
@@ -139,7 +136,7 @@ TEST_CASE("an incline: the held block must not creep, the launched one stops at 
 
 TEST_CASE("a slide's height is judged from where its contact put it after step 1",
           "[contact][slide]") {
-  const Scene scene = shipped("slide_stop");
+  const Scene scene = testing::shipped("slide_stop");
   const std::vector<SlideSetup> slides = slide_setups(scene);
   const double h = scene.timestep.seconds;
   const SlidePath law = slide_path(slides[0], FrictionModel::cone, h, step_count(scene, h));
@@ -158,7 +155,7 @@ TEST_CASE("a slide's height is judged from where its contact put it after step 1
 
 TEST_CASE("an incline steeper than the friction: the block slides at g*(sin - mu*cos)",
           "[contact][slide]") {
-  const Scene scene = shipped("incline_slide");
+  const Scene scene = testing::shipped("incline_slide");
   const std::vector<SlideSetup> slides = slide_setups(scene);
   REQUIRE(slides.size() == 1);
   const double h = scene.timestep.seconds;
@@ -182,7 +179,7 @@ TEST_CASE("an incline steeper than the friction: the block slides at g*(sin - mu
 
 TEST_CASE("a slide that is not free is not judged by the slide law", "[contact][slide]") {
   // Another cube on the slider: its normal force is 2*m*g, not m*g.
-  Scene loaded = shipped("slide_stop");
+  Scene loaded = testing::shipped("slide_stop");
   Body top = loaded.bodies[0];
   top.name = "load";
   top.position.y() = 1.5;
@@ -190,13 +187,13 @@ TEST_CASE("a slide that is not free is not judged by the slide law", "[contact][
   loaded.bodies.push_back(top);
   CHECK(slide_setups(loaded).empty());
   // Drag takes speed off too.
-  Scene damped = shipped("slide_stop");
+  Scene damped = testing::shipped("slide_stop");
   damped.world.damping_rate = 0.1;
   CHECK(slide_setups(damped).empty());
   // A slide that would leave its floor: incline_slide's cube goes 2.970552 m in 180 steps (along
   // an axis every model grips mu*g; 3.0003 m with the 1 % margin): a floor 2.99 m long each way
   // cannot hold it, one 3.01 m long can.
-  Scene short_floor = shipped("incline_slide");
+  Scene short_floor = testing::shipped("incline_slide");
   short_floor.bodies[1].half_extents.x() = 2.99;
   CHECK(slide_setups(short_floor).empty());
   short_floor.bodies[1].half_extents.x() = 3.01;
@@ -204,12 +201,12 @@ TEST_CASE("a slide that is not free is not judged by the slide law", "[contact][
 }
 
 TEST_CASE("only a box launched along a floor it rests on is a slide", "[contact][slide]") {
-  Scene scene = shipped("slide_stop");
+  Scene scene = testing::shipped("slide_stop");
   CHECK(slide_setups(scene).size() == 1);
   scene.bodies[0].position.y() += 0.01;  // hovering: a landing, not a slide
   CHECK(slide_setups(scene).empty());
-  scene = shipped("slide_stop");
+  scene = testing::shipped("slide_stop");
   scene.bodies[0].friction.reset();  // no friction set: the engines' defaults, no closed form
   CHECK(slide_setups(scene).empty());
-  CHECK(slide_setups(shipped("drop_on_floor")).empty());
+  CHECK(slide_setups(testing::shipped("drop_on_floor")).empty());
 }

@@ -11,15 +11,12 @@
 #include "harness/scene/scene_loader.hpp"
 #include "harness/study/stability_search.hpp"
 #include "tests/displaced_run.hpp"
+#include "tests/shipped_scenes.hpp"
 
 using Catch::Matchers::Contains;
 using namespace dropcheck;
 
 namespace {
-
-Scene shipped(const std::string& stem) {
-  return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + stem + ".toml");
-}
 
 // Every body still, body i raised by lift[i] from step 1 on.
 Trajectory lifted_run(const Scene& scene, std::int64_t steps, const std::vector<double>& lift) {
@@ -31,7 +28,7 @@ Trajectory lifted_run(const Scene& scene, std::int64_t steps, const std::vector<
 }  // namespace
 
 TEST_CASE("a stack resting on its engine's skins is not energy growth", "[stability][contact]") {
-  const Scene scene = shipped("stack_rest");  // floor, medium, small
+  const Scene scene = testing::shipped("stack_rest");  // floor, medium, small
   // Box2D's skins lift the two cubes 0.015 and 0.03 m in the first step: 0.441 J of potential
   // energy with no kinetic energy to compare it with.
   const Trajectory run = lifted_run(scene, 300, {0.0, 0.015, 0.03});
@@ -61,7 +58,7 @@ TEST_CASE("a stack resting on its engine's skins is not energy growth", "[stabil
 TEST_CASE("the step search finds the largest step at which an engine holds its stack",
           "[stability][contact]") {
   if (!make_engine("mujoco")) return;
-  const Scene scene = shipped("stack_rest");
+  const Scene scene = testing::shipped("stack_rest");
   // Measured: MuJoCo holds the seed's stack within its soft sag up to 0.0573 s; at 0.0574 s the
   // medium cube is still settling after 5 s, 1.14 times its steady-state sink (band 0.8-1.05).
   const StepSearch s =
@@ -74,7 +71,7 @@ TEST_CASE("the step search finds the largest step at which an engine holds its s
 
 TEST_CASE("a tumbling landing off its turned-box law is off_contact_law at its first step off",
           "[stability][contact]") {
-  const Scene scene = shipped("tumble_drop");
+  const Scene scene = testing::shipped("tumble_drop");
   std::unique_ptr<Engine> ours = make_engine("ours-f64");
   Trajectory run = run_scene(*ours, scene, scene.timestep.seconds);
   CHECK(classify_engine_run(scene, run, ours->info()).failures.empty());

@@ -7,15 +7,12 @@
 
 #include "harness/scene/scene_loader.hpp"
 #include "tests/displaced_run.hpp"
+#include "tests/shipped_scenes.hpp"
 
 using namespace dropcheck;
 using Catch::Contains;
 
 namespace {
-
-Scene scenario(const std::string& name) {
-  return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + name + ".toml");
-}
 
 // Every body still, body `moved` displaced by `by` from step `from` on.
 Trajectory still_run(const Scene& scene, std::int64_t steps, std::size_t moved = 0,
@@ -29,7 +26,7 @@ Trajectory still_run(const Scene& scene, std::int64_t steps, std::size_t moved =
 
 TEST_CASE("a stack that sinks as its law says holds; more, a drift or a jitter fails",
           "[contact][stack]") {
-  const Scene scene = scenario("stack_rest");
+  const Scene scene = testing::shipped("stack_rest");
   const StackSetup s = stack_setups(scene).at(0);
   const double h = scene.timestep.seconds;
   const std::int64_t steps = 300;
@@ -55,7 +52,7 @@ TEST_CASE("a stack that sinks as its law says holds; more, a drift or a jitter f
   CHECK_THAT(sunk[1].sentence(), Contains("(level 2) sinks 1e-06 m") && Contains("OUT OF BOUNDS"));
   // A soft contact that does not sink at all fails too: MuJoCo's law puts the 1 kg cube under
   // 1e5 kg 8.507e-3 m down at 1/60, and a run that stays at the geometry is 100 % short.
-  const Scene ratio = scenario("extreme/mass_ratio");
+  const Scene ratio = testing::shipped("extreme/mass_ratio");
   EngineInfo soft;
   soft.stack_law = {.soft = 1e-4 * 1.25 / 16.0, .tau_steps = 2.0, .sink_bound = 1e-12};
   const auto unsunk = judge_stack(still_run(ratio, 300), stack_setups(ratio).at(1), soft, h);
@@ -69,7 +66,7 @@ TEST_CASE("a stack that sinks as its law says holds; more, a drift or a jitter f
 
 TEST_CASE("a load an iterative solver cannot hold is a limit for the whole column",
           "[contact][stack]") {
-  const Scene scene = scenario("extreme/mass_ratio");
+  const Scene scene = testing::shipped("extreme/mass_ratio");
   const StackSetup s = stack_setups(scene).at(0);  // 1000 kg on 1 kg
   EngineInfo gs;
   gs.stack_law = {.iterations = 10};

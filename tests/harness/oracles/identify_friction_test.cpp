@@ -8,20 +8,13 @@
 #include "harness/core/input_error.hpp"
 #include "harness/oracles/contact_laws.hpp"
 #include "harness/scene/scene_loader.hpp"
+#include "tests/shipped_scenes.hpp"
 
 using namespace dropcheck;
 using Catch::Matchers::Contains;
 
-namespace {
-
-Scene shipped(const std::string& stem) {
-  return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + stem + ".toml");
-}
-
-}  // namespace
-
 TEST_CASE("each friction model's slides at 0 and 45 degrees name it", "[contact][identify]") {
-  const Scene scene = shipped("slide_diagonal");
+  const Scene scene = testing::shipped("slide_diagonal");
   const double h = scene.timestep.seconds;
   for (FrictionModel m :
        {FrictionModel::cone, FrictionModel::box_pyramid, FrictionModel::sum_pyramid}) {
@@ -48,9 +41,9 @@ TEST_CASE("each friction model's slides at 0 and 45 degrees name it", "[contact]
 TEST_CASE(
     "the slide pair turns the scene's slide to 0 and 45 degrees; a scene without one is refused",
     "[contact][identify]") {
-  const SlidePair pair = slide_pair(shipped("slide_stop"));
+  const SlidePair pair = slide_pair(testing::shipped("slide_stop"));
   CHECK(slide_setups(pair.along_axis).at(0).angle == 0.0);
   CHECK(slide_setups(pair.diagonal).at(0).angle == Approx(std::numbers::pi / 4.0).epsilon(1e-15));
   CHECK(slide_setups(pair.diagonal).at(0).v0 == Approx(5.0).epsilon(1e-15));
-  CHECK_THROWS_AS(slide_pair(shipped("free_fall")), InputError);
+  CHECK_THROWS_AS(slide_pair(testing::shipped("free_fall")), InputError);
 }

@@ -10,14 +10,11 @@
 #include <string>
 
 #include "harness/scene/scene_loader.hpp"
+#include "tests/shipped_scenes.hpp"
 
 using namespace dropcheck;
 
 namespace {
-
-Scene scenario(const std::string& name) {
-  return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + name + ".toml");
-}
 
 // Continuous model, docs/engines.md section 1, in long double: x(t) = x0 + (g/k)*t +
 // (v0 - g/k)*(1 - exp(-k*t))/k.
@@ -110,7 +107,7 @@ TEST_CASE("The landing contact time with damping is found to the last bits", "[l
 }
 
 TEST_CASE("landing_setups finds each dynamic body over a static floor box", "[landing]") {
-  const Scene scene = scenario("drop_on_floor");
+  const Scene scene = testing::shipped("drop_on_floor");
   const std::vector<LandingSetup> drop = landing_setups(scene);
   REQUIRE(drop.size() == 1);
   CHECK(drop[0].body == 1);
@@ -121,21 +118,21 @@ TEST_CASE("landing_setups finds each dynamic body over a static floor box", "[la
         contact_time_continuous(10.0, 0.0, -9.8, scene.world.damping_rate, 0.5));
 
   // The seed's scene: both cubes are over the 10 m wide floor (top at 0).
-  const std::vector<LandingSetup> seed = landing_setups(scenario("seed_part3"));
+  const std::vector<LandingSetup> seed = landing_setups(testing::shipped("seed_part3"));
   REQUIRE(seed.size() == 2);
   CHECK(seed[0].rest_height == 0.75);  // medium: half extent 0.75
   CHECK(seed[1].rest_height == 0.5);
 
-  CHECK(landing_setups(scenario("free_fall")).empty());  // no floor
-  Scene beside = scenario("drop_on_floor");
+  CHECK(landing_setups(testing::shipped("free_fall")).empty());  // no floor
+  Scene beside = testing::shipped("drop_on_floor");
   beside.bodies[1].position.x() = 10.5;  // the floor reaches x = 10
   CHECK(landing_setups(beside).empty());
 }
 
 TEST_CASE("Every law's first landing contact is its discrete twin's, within two steps of t_c",
           "[landing][law]") {
-  const Scene undamped = scenario("drop_on_floor_undamped");
-  const Scene damped = scenario("drop_on_floor");
+  const Scene undamped = testing::shipped("drop_on_floor_undamped");
+  const Scene damped = testing::shipped("drop_on_floor");
   const LandingSetup su = landing_setups(undamped).at(0), sd = landing_setups(damped).at(0);
   for (const DampingOrder law :
        {DampingOrder::AfterForces, DampingOrder::BeforeForces, DampingOrder::AfterPosition}) {
@@ -193,7 +190,7 @@ TEST_CASE("observe_landing reads first contact, depth, rebound, rest offset and 
 
 TEST_CASE("A stacked body is not judged by the landing oracle, and the reason names the other body",
           "[landing]") {
-  const Scene stacks = scenario("extreme/mass_ratio");
+  const Scene stacks = testing::shipped("extreme/mass_ratio");
   const std::vector<LandingExclusion> out = landing_exclusions(stacks);
   REQUIRE(out.size() == 4);  // light_1e3, heavy_1e3, light_1e5, heavy_1e5: both stacks
   CHECK(out[0].sentence(stacks) ==
@@ -219,17 +216,18 @@ TEST_CASE("A stacked body is not judged by the landing oracle, and the reason na
   EngineInfo skin;
   skin.rest_offset = 0.015;
   skin.rest_tolerance = 1e-4;
-  const std::vector<LandingSetup> drop = engine_landing_setups(scenario("drop_on_floor"), skin);
+  const std::vector<LandingSetup> drop =
+      engine_landing_setups(testing::shipped("drop_on_floor"), skin);
   REQUIRE(drop.size() == 1);
   CHECK(drop[0].floor_top == Approx(0.0151).epsilon(0).margin(1e-15));
-  CHECK(landing_exclusions(scenario("drop_on_floor")).empty());
+  CHECK(landing_exclusions(testing::shipped("drop_on_floor")).empty());
   // A slide or a bounce is judged by its own contact law, not as a landing: a cube sliding on at
   // the end of incline_slide is not "not still".
-  CHECK(landing_setups(scenario("incline_slide")).size() == 1);
-  CHECK(engine_landing_setups(scenario("incline_slide"), EngineInfo{}).empty());
-  CHECK(engine_landing_setups(scenario("bounce_e05"), EngineInfo{}).empty());
-  CHECK(landing_setups(scenario("slide_stop")).size() == 1);
-  CHECK(engine_landing_setups(scenario("slide_stop"), EngineInfo{}).empty());
+  CHECK(landing_setups(testing::shipped("incline_slide")).size() == 1);
+  CHECK(engine_landing_setups(testing::shipped("incline_slide"), EngineInfo{}).empty());
+  CHECK(engine_landing_setups(testing::shipped("bounce_e05"), EngineInfo{}).empty());
+  CHECK(landing_setups(testing::shipped("slide_stop")).size() == 1);
+  CHECK(engine_landing_setups(testing::shipped("slide_stop"), EngineInfo{}).empty());
 }
 
 TEST_CASE("Stillness is judged only over a window that lies wholly after first contact",
@@ -252,7 +250,7 @@ TEST_CASE("Stillness is judged only over a window that lies wholly after first c
 }
 
 TEST_CASE("The law tunnels when no end-of-step position overlaps the floor slab", "[landing]") {
-  const Scene thin = scenario("extreme/thin_floor");
+  const Scene thin = testing::shipped("extreme/thin_floor");
   const LandingSetup setup = landing_setups(thin).at(0);
   CHECK(setup.floor_bottom == Approx(-0.01).epsilon(0).margin(1e-15));
   // h = 1/60, after forces: v1 = -200 - 9.8/60, y1 = 2 + v1/60 = -1.33606 m, below the widened
@@ -269,14 +267,14 @@ TEST_CASE("The law tunnels when no end-of-step position overlaps the floor slab"
   CHECK_FALSE(fine.tunnels);
   CHECK(fine.step >= 0);
   // A 10 m drop at 1/60 moves at most 0.23 m per step: it never jumps the 1 m floor.
-  const Scene drop = scenario("drop_on_floor");
+  const Scene drop = testing::shipped("drop_on_floor");
   CHECK_FALSE(
       discrete_tunnelling(DampingOrder::AfterForces, drop, 1.0 / 60.0, landing_setups(drop).at(0))
           .tunnels);
 }
 
 TEST_CASE("Tunnelling is a limit without continuous collision and a fault with it", "[landing]") {
-  const Scene thin = scenario("extreme/thin_floor");
+  const Scene thin = testing::shipped("extreme/thin_floor");
   const LandingSetup setup = landing_setups(thin).at(0);
   const Tunnelling law = discrete_tunnelling(DampingOrder::AfterForces, thin, 1.0 / 60.0, setup);
   // One-body runs (body 0) over the same floor.

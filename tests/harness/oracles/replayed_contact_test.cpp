@@ -11,14 +11,11 @@
 
 #include "harness/core/scene.hpp"
 #include "harness/scene/scene_loader.hpp"
+#include "tests/shipped_scenes.hpp"
 
 using namespace dropcheck;
 
 namespace {
-
-Scene shipped(const std::string& stem) {
-  return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + stem + ".toml");
-}
 
 constexpr ContactSolver kBox2d{
     .kind = ContactSolverKind::box2d_2_4, .velocity_iterations = 8, .position_iterations = 3};
@@ -27,7 +24,8 @@ constexpr ContactSolver kChipmunk{.kind = ContactSolverKind::chipmunk_7, .veloci
 }  // namespace
 
 TEST_CASE("a replayed ball falls freely until it nears the floor: v = -g*n*h", "[replay]") {
-  const Scene scene = shipped("bounce_e05");  // lowest point 1 m up: contact in step 27 at 1/60
+  const Scene scene =
+      testing::shipped("bounce_e05");  // lowest point 1 m up: contact in step 27 at 1/60
   const double h = scene.timestep.seconds;
   for (const ContactSolver& solver : {kBox2d, kChipmunk}) {
     const std::vector<BodyState> states = replayed_states(scene, 0, solver, h, 20);
@@ -41,7 +39,7 @@ TEST_CASE("a replayed ball falls freely until it nears the floor: v = -g*n*h", "
 
 TEST_CASE("with enough iterations Box2D's replayed slide stops at the clamp law's step",
           "[replay]") {
-  const Scene scene = shipped("slide_stop");
+  const Scene scene = testing::shipped("slide_stop");
   const SlideSetup setup = slide_setups(scene).at(0);
   const double h = scene.timestep.seconds;
   const SlideStop law = slide_to_stop(setup.v0, setup.mu, setup.g, h, FrictionModel::cone, 0.0);
@@ -56,7 +54,7 @@ TEST_CASE("with enough iterations Box2D's replayed slide stops at the clamp law'
 }
 
 TEST_CASE("Chipmunk's replayed incline slide is its explicit clamp law to 1e-6 m", "[replay]") {
-  const Scene scene = shipped("incline_slide");
+  const Scene scene = testing::shipped("incline_slide");
   const SlideSetup setup = slide_setups(scene).at(0);
   const double h = scene.timestep.seconds;
   const SlidePath replay = replayed_slide_path(scene, setup, kChipmunk, h, 180);
@@ -66,15 +64,16 @@ TEST_CASE("Chipmunk's replayed incline slide is its explicit clamp law to 1e-6 m
 }
 
 TEST_CASE("the replays refuse what they do not replay", "[replay]") {
-  const Scene stack = shipped("stack_rest");  // three bodies
+  const Scene stack = testing::shipped("stack_rest");  // three bodies
   CHECK_THROWS_AS(replayed_states(stack, 0, kBox2d, 1.0 / 60.0, 10), std::invalid_argument);
   CHECK_THROWS_AS(replayed_states(stack, 0, kChipmunk, 1.0 / 60.0, 10), std::invalid_argument);
-  CHECK_THROWS_AS(replayed_states(shipped("slide_stop"), 0, ContactSolver{}, 1.0 / 60.0, 10),
-                  std::invalid_argument);
-  Scene turning = shipped("slide_stop");
+  CHECK_THROWS_AS(
+      replayed_states(testing::shipped("slide_stop"), 0, ContactSolver{}, 1.0 / 60.0, 10),
+      std::invalid_argument);
+  Scene turning = testing::shipped("slide_stop");
   turning.bodies.at(0).angular_velocity = Vec3(0.0, 0.0, 1.0);
   CHECK_THROWS_AS(replayed_states(turning, 0, kBox2d, 1.0 / 60.0, 10), std::invalid_argument);
-  Scene apart = shipped("slide_stop");
+  Scene apart = testing::shipped("slide_stop");
   apart.world.contacts = false;
   CHECK_THROWS_AS(replayed_states(apart, 0, kBox2d, 1.0 / 60.0, 10), std::invalid_argument);
 }

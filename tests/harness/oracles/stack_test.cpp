@@ -7,14 +7,11 @@
 #include <cmath>
 
 #include "harness/scene/scene_loader.hpp"
+#include "tests/shipped_scenes.hpp"
 
 using namespace dropcheck;
 
 namespace {
-
-Scene scenario(const std::string& name) {
-  return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + name + ".toml");
-}
 
 constexpr double kG = 9.8, kH = 1.0 / 60.0;
 const StackLaw kOde{.compliance = 1e-10 / 0.2, .points = 4};
@@ -23,7 +20,7 @@ const StackLaw kMujoco{.soft = 1e-4 * 1.25 / 16.0, .tau_steps = 2.0};
 }  // namespace
 
 TEST_CASE("a stack is a column of resting boxes over a floor, bottom up", "[contact][stack]") {
-  const std::vector<StackSetup> seed = stack_setups(scenario("stack_rest"));
+  const std::vector<StackSetup> seed = stack_setups(testing::shipped("stack_rest"));
   REQUIRE(seed.size() == 1);
   REQUIRE(seed[0].levels.size() == 2);
   // The medium cube (1.5 m) on the floor, the small one (1 m) on it: centres at 0.75 and 2 m.
@@ -32,25 +29,25 @@ TEST_CASE("a stack is a column of resting boxes over a floor, bottom up", "[cont
   CHECK(seed[0].levels[0].load == 2.0);  // kg: itself and the small cube
   CHECK(seed[0].levels[1].mass_below == 1.0);
   // mass_ratio: each heavy cube is dropped from 1 m above its light one: two columns.
-  const std::vector<StackSetup> ratio = stack_setups(scenario("extreme/mass_ratio"));
+  const std::vector<StackSetup> ratio = stack_setups(testing::shipped("extreme/mass_ratio"));
   REQUIRE(ratio.size() == 2);
   CHECK(ratio[1].levels[0].load == 100001.0);
   CHECK(ratio[1].levels[1].rest_height == 1.5);
   // A third cube beside the small one, overlapping the medium's footprint: its load would go
   // uncounted, so the column is not a stack the law can judge.
-  Scene crowded = scenario("stack_rest");
+  Scene crowded = testing::shipped("stack_rest");
   Body extra = crowded.bodies[2];
   extra.name = "extra";
   extra.position = {1.0, 2.0, 0.0};  // over the medium cube's edge (half extent 0.75)
   crowded.bodies.push_back(extra);
   CHECK(stack_setups(crowded).empty());
   // A centre exactly on the edge of the face below balances: not carried by that column alone.
-  Scene edge = scenario("stack_rest");
+  Scene edge = testing::shipped("stack_rest");
   edge.bodies[2].position.x() = 0.75;
   CHECK(stack_setups(edge).empty());
   // One body alone is a landing; a slide is not at rest.
-  CHECK(stack_setups(scenario("drop_on_floor")).empty());
-  CHECK(stack_setups(scenario("slide_stop")).empty());
+  CHECK(stack_setups(testing::shipped("drop_on_floor")).empty());
+  CHECK(stack_setups(testing::shipped("slide_stop")).empty());
 }
 
 TEST_CASE("stack laws: ODE's constraint force mixing and MuJoCo's soft sag", "[contact][stack]") {
@@ -67,7 +64,7 @@ TEST_CASE("stack laws: ODE's constraint force mixing and MuJoCo's soft sag", "[c
   CHECK(contact_sink(kMujoco, kG, 1.0, 1.0, kH) ==
         Approx(contact_sink(kMujoco, 2 * kG, 1.0, 0.0, kH)));
   // Predicted per level: the sinks of every contact under it, summed.
-  const StackSetup s = stack_setups(scenario("extreme/mass_ratio"))[1];
+  const StackSetup s = stack_setups(testing::shipped("extreme/mass_ratio"))[1];
   EngineInfo ode;
   ode.stack_law = kOde;
   const double bottom = contact_sink(kOde, 100001.0 * kG, 1.0, 0.0, kH);
@@ -85,7 +82,7 @@ TEST_CASE("an iterative solver's sweeps: the residual L/(L + m) per sweep", "[co
   CHECK(sweep_residual(bullet, 1000.0, 1.0) > kUnheldResidual);          // 0.990: cannot hold
   CHECK(sweep_residual(bullet, 1.0, 1.0) == Approx(std::pow(0.5, 10)));  // the seed's: holds
   CHECK(sweep_residual(StackLaw{}, 1000.0, 1.0) == 0.0);
-  const StackSetup s = stack_setups(scenario("extreme/mass_ratio"))[0];
+  const StackSetup s = stack_setups(testing::shipped("extreme/mass_ratio"))[0];
   EngineInfo box2d;
   box2d.stack_law = {.iterations = 8};
   const StackPrediction p = predict_stack(s, 1, box2d, kH);

@@ -15,6 +15,7 @@
 #include "harness/plan/worker.hpp"
 #include "harness/run/isolated_run.hpp"
 #include "tests/harness/test_dirs.hpp"
+#include "tests/shipped_scenes.hpp"
 
 using namespace dropcheck;
 using Catch::Matchers::Contains;
@@ -27,8 +28,6 @@ SweepSpec load_sweep_known(const std::string& path) {
   return load_sweep(path, known_engine_names());
 }
 
-const std::string kSpring =
-    std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/extreme/stiff_spring.toml";
 const std::string kFall = std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/free_fall.toml";
 
 std::string sweep_text(const std::string& scenes, const std::string& axes) {
@@ -49,7 +48,7 @@ std::string refusal(const ScratchDir& d, const std::string& text) {
 
 TEST_CASE("a bad sweep file is refused naming the file, line, key and problem", "[plan]") {
   ScratchDir d("sweep-refusals");
-  const std::string spring = "\"" + kSpring + "\"";
+  const std::string spring = "\"" + kStiffSpringScene + "\"";
   CHECK_THAT(refusal(d, sweep_text(spring, "colour = 1\n")),
              Contains("s.toml:3: colour: unknown key"));
   CHECK_THAT(refusal(d, sweep_text(spring, "[[axis]]\nname = \"wind\"\nvalues = [1]\n")),
@@ -88,7 +87,7 @@ TEST_CASE("a bad sweep file is refused naming the file, line, key and problem", 
 TEST_CASE("a plan is the same bytes from the same inputs, and its hash follows the scenes' text",
           "[plan]") {
   ScratchDir d("plan-hash");
-  std::filesystem::copy_file(kSpring, d.file("spring.toml"));
+  std::filesystem::copy_file(kStiffSpringScene, d.file("spring.toml"));
   const std::string axes = "[[axis]]\nname = \"timestep\"\nvalues = [\"1/60\", \"1/30\"]\n";
   const std::string sweep = d.write("s.toml", sweep_text("\"spring.toml\"", axes));
   const Plan a = make_plan(load_sweep(sweep, known_engine_names())),
@@ -98,7 +97,7 @@ TEST_CASE("a plan is the same bytes from the same inputs, and its hash follows t
   CHECK(a.cell(0).key == "spring|ours|timestep=1/60");  // named by its file
   CHECK(a.cell(3).key == "spring|ours-f64|timestep=1/30");
   // One byte more in the scene: another plan.
-  d.write("spring.toml", slurp(kSpring) + "\n");
+  d.write("spring.toml", slurp(kStiffSpringScene) + "\n");
   CHECK(make_plan(load_sweep(sweep, known_engine_names())).hash != a.hash);
   // Read back: the same plan; edited: refused.
   const std::string file = d.write("a.plan", plan_text(a));
@@ -113,7 +112,7 @@ TEST_CASE("a plan is the same bytes from the same inputs, and its hash follows t
 
 TEST_CASE("a cell's shard depends on its key alone: a larger sweep moves no cell", "[plan]") {
   ScratchDir d("plan-shards");
-  const std::string spring = "\"" + kSpring + "\"";
+  const std::string spring = "\"" + kStiffSpringScene + "\"";
   const Plan small = make_plan(load_sweep_known(d.write(
       "a.toml",
       sweep_text(spring, "[[axis]]\nname = \"timestep\"\nvalues = [\"1/60\", \"1/30\"]\n"))));
@@ -136,7 +135,7 @@ TEST_CASE("a range's values end where they were asked, in the shortest text", "[
   ScratchDir d("plan-range");
   const SweepSpec s = load_sweep_known(d.write(
       "s.toml",
-      sweep_text("\"" + kSpring + "\"",
+      sweep_text("\"" + kStiffSpringScene + "\"",
                  "[[axis]]\nname = \"spring_stiffness\"\nfrom = 100.0\nto = 10000.0\ncount = 3\n"
                  "scale = \"log\"\n[[axis]]\nname = \"damping_rate\"\nfrom = 0.0\nto = 1.0\n"
                  "count = 3\n")));
@@ -147,7 +146,7 @@ TEST_CASE("a range's values end where they were asked, in the shortest text", "[
 TEST_CASE("a plan read back is checked whatever its hash says", "[plan]") {
   ScratchDir d("plan-crafted");
   const Plan good = make_plan(load_sweep_known(
-      d.write("s.toml", sweep_text("\"" + kSpring + "\"",
+      d.write("s.toml", sweep_text("\"" + kStiffSpringScene + "\"",
                                    "[[axis]]\nname = \"damping_rate\"\nvalues = [0.5, 1.0]\n"))));
   // Each change below comes with its hash recomputed, as anyone can.
   auto crafted = [&](const std::function<void(Plan&)>& change) {
@@ -189,7 +188,7 @@ TEST_CASE("the same sweep planned from another folder is the same plan", "[plan]
   ScratchDir d("plan-paths");
   for (const char* sub : {"a", "b/c"}) {
     std::filesystem::create_directories(d.path / sub);
-    std::filesystem::copy_file(kSpring, d.path / sub / "stiff_spring.toml");
+    std::filesystem::copy_file(kStiffSpringScene, d.path / sub / "stiff_spring.toml");
   }
   const std::string axes = "[[axis]]\nname = \"timestep\"\nvalues = [\"1/60\"]\n";
   const Plan a =
@@ -204,7 +203,7 @@ TEST_CASE("a scene folder's link is refused, and a sweep past 2e6 cells stops at
           "[plan]") {
   ScratchDir d("plan-limits");
   std::filesystem::create_directories(d.path / "scenes");
-  std::filesystem::copy_file(kSpring, d.path / "scenes" / "a.toml");
+  std::filesystem::copy_file(kStiffSpringScene, d.path / "scenes" / "a.toml");
   std::filesystem::create_symlink(kFall, d.path / "scenes" / "b.toml");
   CHECK_THAT(refusal(d, sweep_text("\"scenes\"", "")), Contains("not a regular file"));
   std::filesystem::remove(d.path / "scenes" / "b.toml");
@@ -239,7 +238,7 @@ TEST_CASE(
   // Chipmunk (built with its debug checks) aborts on an infinite velocity: measured SIGABRT at
   // step 65 with a 1e12 N/m spring at 1/20 s (cpBody.c:107).
   const Plan plan = make_plan(load_sweep_known(d.write(
-      "s.toml", "scenes = [\"" + kSpring +
+      "s.toml", "scenes = [\"" + kStiffSpringScene +
                     "\"]\nengines = [\"chipmunk\", \"ours-f64\"]\n[[axis]]\n"
                     "key = \"force[0].spring.stiffness\"\nvalues = [3600.0, 1e12]\n[[axis]]\n"
                     "name = \"timestep\"\nvalues = [\"1/20\"]\n")));
@@ -288,7 +287,7 @@ TEST_CASE("the worker writes the per-cell bytes for the engines small.toml leave
   // 256 cells; two steps on the drag scene and the spring show their records are the same too.
   const Plan plan = make_plan(load_sweep_known(
       d.write("s.toml", "scenes = [\"" + std::string(DROPCHECK_SOURCE_DIR) +
-                            "/scenarios/free_fall_drag.toml\", \"" + kSpring +
+                            "/scenarios/free_fall_drag.toml\", \"" + kStiffSpringScene +
                             "\"]\nengines = [\"simbody\", \"simbody-rkm\", \"dart\"]\n[[axis]]\n"
                             "name = \"timestep\"\nvalues = [\"1/60\", \"1/30\"]\n")));
   std::vector<std::size_t> cells(plan.cell_count());

@@ -12,6 +12,7 @@
 
 #include "../test_dirs.hpp"
 #include "harness/cli/cli.hpp"
+#include "tests/harness/report/has_gnuplot.hpp"
 
 using namespace dropcheck;
 using dropcheck::testing::ScratchDir;
@@ -19,10 +20,6 @@ using dropcheck::testing::slurp;
 namespace fs = std::filesystem;
 
 namespace {
-
-bool has_gnuplot() {
-  return std::system("command -v gnuplot >/dev/null 2>&1") == 0;
-}
 
 // Titles that would run `touch MARKER` if any part of them were read as gnuplot code.
 std::vector<std::string> hostile_titles(const std::string& marker) {

@@ -18,6 +18,7 @@
 #include "harness/report/report_contact.hpp"
 #include "harness/report/report_summary.hpp"
 #include "harness/scene/scene_loader.hpp"
+#include "tests/harness/report/has_gnuplot.hpp"
 
 using namespace dropcheck;
 using Catch::Matchers::Contains;
@@ -58,10 +59,6 @@ int report(const std::vector<std::string>& args, std::string* err_text = nullptr
   const int rc = cli_main(argv, out, err);
   if (err_text) *err_text = err.str();
   return rc;
-}
-
-bool has_gnuplot() {
-  return std::system("command -v gnuplot >/dev/null 2>&1") == 0;
 }
 
 }  // namespace

@@ -4,15 +4,16 @@
 #include "harness/report/stability_io.hpp"
 
 #include <catch2/catch.hpp>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "harness/core/registry.hpp"
+#include "harness/io/json_text.hpp"
 #include "harness/scene/scene_loader.hpp"
 #include "harness/study/stability_study.hpp"
 #include "tests/engine_slots.hpp"
+#include "tests/shipped_scenes.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::EndsWith;
@@ -21,15 +22,9 @@ using namespace dropcheck;
 
 using dropcheck::testing::slots;
 
-namespace {
-
-const std::string kTiny = DROPCHECK_SOURCE_DIR "/scenarios/extreme/tiny_step.toml";
-
-}  // namespace
-
 TEST_CASE("Stability: the study's JSON and text carry verdicts, the search and skipped engines",
           "[stability][report]") {
-  const Scene scene = load_scene(kTiny);
+  const Scene scene = load_scene(kTinyStepScene);
   const SceneStability s = study_scene(scene, slots({"ours", "ours-f64"}));
   const std::string json = stability_to_json(s, StudyOptions{}.search_options);
   CHECK_THAT(json, Contains("\"engine\":\"ours\",\"scalar\":\"f32\"") &&
@@ -107,7 +102,7 @@ TEST_CASE("the study's JSON is valid, exact, and null where a value is absent or
   options.rel_tol = 0.01;
 
   const std::string text = stability_to_json(s, options);
-  const nlohmann::json j = nlohmann::json::parse(text);  // throws on invalid JSON
+  const nlohmann::json j = parse_json<nlohmann::json>(text);  // throws on invalid JSON
   CHECK(j["scene"] == "spring");
   CHECK(j["dt"].get<double>() == 1.0 / 30.0);  // every digit back
   CHECK_THAT(j["search_rule"].get<std::string>(),
@@ -128,10 +123,10 @@ TEST_CASE("the study's JSON is valid, exact, and null where a value is absent or
   CHECK(j["engines"][1] == nlohmann::json({{"engine", "box2d"}, {"skipped", "no springs"}}));
   // A search that found a failure is not capped; one without a search has nulls.
   s.engines[0].search = searched(0.033303, 0.0333481, FailureMode::unbounded_growth);
-  CHECK(nlohmann::json::parse(stability_to_json(s, options))["engines"][0]["search"]["capped"] ==
-        false);
+  CHECK(parse_json<nlohmann::json>(
+            stability_to_json(s, options))["engines"][0]["search"]["capped"] == false);
   s.engines[0].search.reset();
-  const nlohmann::json none = nlohmann::json::parse(stability_to_json(s, options));
+  const nlohmann::json none = parse_json<nlohmann::json>(stability_to_json(s, options));
   CHECK(none["engines"][0]["max_stable_dt"].is_null());
   CHECK(none["engines"][0]["search"].is_null());
 }

@@ -9,22 +9,16 @@
 #include "harness/core/input_error.hpp"
 #include "harness/core/registry.hpp"
 #include "tests/engine_slots.hpp"
+#include "tests/shipped_scenes.hpp"
 
 using Catch::Matchers::Contains;
 using namespace dropcheck;
 
 using dropcheck::testing::slots;
 
-namespace {
-
-const std::string kTiny = DROPCHECK_SOURCE_DIR "/scenarios/extreme/tiny_step.toml";
-const std::string kSpring = DROPCHECK_SOURCE_DIR "/scenarios/extreme/stiff_spring.toml";
-
-}  // namespace
-
 TEST_CASE("The stability section runs only the engines passed in", "[stability][report]") {
   std::ostringstream progress;
-  stability_report_section({kTiny}, slots({"ours"}), progress);
+  stability_report_section({kTinyStepScene}, slots({"ours"}), progress);
   CHECK(progress.str().find("ours") != std::string::npos);
   for (const std::string& other : available_engine_names())
     if (other.rfind("ours", 0) != 0)
@@ -34,10 +28,10 @@ TEST_CASE("The stability section runs only the engines passed in", "[stability][
 TEST_CASE("The stability section is deterministic Markdown naming every failure",
           "[stability][report]") {
   std::ostringstream progress;
-  const std::string a =
-      stability_report_section({kTiny, kSpring}, slots(available_engine_names()), progress);
-  const std::string b =
-      stability_report_section({kSpring, kTiny}, slots(available_engine_names()), progress);
+  const std::string a = stability_report_section({kTinyStepScene, kStiffSpringScene},
+                                                 slots(available_engine_names()), progress);
+  const std::string b = stability_report_section({kStiffSpringScene, kTinyStepScene},
+                                                 slots(available_engine_names()), progress);
   CHECK(a == b);  // scenes sorted by name, no timings
   CHECK_THAT(a, Contains("## Stability: stiff and extreme cases"));
   std::string header = "| scene | h |";

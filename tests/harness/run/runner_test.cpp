@@ -54,7 +54,7 @@ class ScriptedEngine final : public dropcheck::testing::FakeEngine {
 };
 
 // 10 steps of 0.1 s; two bodies, a spring on "b" so the forces depend on the state.
-dropcheck::Scene ten_steps() {
+dropcheck::Scene ten_steps_with_a_spring() {
   return dropcheck::parse_scene(scene_head("1.0", "1/10", kZero) +
                                     body_text("a", kZero, "[1.0, 0.0, 0.0]") +
                                     body_text("b", "[0.0, 2.0, 0.0]") + R"(
@@ -73,7 +73,7 @@ std::vector<std::int64_t> steps_of(const dropcheck::Trajectory& t) {
 
 TEST_CASE("a run that completes records every step, step 0 being the initial state", "[runner]") {
   ScriptedEngine e;
-  const dropcheck::Scene s = ten_steps();
+  const dropcheck::Scene s = ten_steps_with_a_spring();
   const dropcheck::Trajectory t = dropcheck::run_scene(e, s, 0.1);
   CHECK(t.status == dropcheck::RunStatus::ok);
   CHECK(t.engine == "scripted");
@@ -90,7 +90,7 @@ TEST_CASE("a NaN at step k ends the run as non_finite at k and keeps the samples
           "[runner]") {
   ScriptedEngine e;
   e.nan_at = 4;
-  const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps(), 0.1);
+  const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps_with_a_spring(), 0.1);
   CHECK(t.status == dropcheck::RunStatus::non_finite);
   CHECK(t.failed_step == 4);
   CHECK(steps_of(t) == std::vector<std::int64_t>{0, 1, 2, 3});
@@ -102,7 +102,8 @@ TEST_CASE("a NaN at step k ends the run as non_finite at k and keeps the samples
 TEST_CASE("a NaN on a step that is not sampled ends the run at that step", "[runner]") {
   ScriptedEngine e;
   e.nan_at = 6;
-  const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps(), 0.1, {.record_every = 4});
+  const dropcheck::Trajectory t =
+      dropcheck::run_scene(e, ten_steps_with_a_spring(), 0.1, {.record_every = 4});
   CHECK(t.status == dropcheck::RunStatus::non_finite);
   CHECK(t.failed_step == 6);
   CHECK(steps_of(t) == std::vector<std::int64_t>{0, 4});
@@ -116,7 +117,8 @@ TEST_CASE("an infinite state counts as non_finite like a NaN, on a sampled step 
     ScriptedEngine e;
     e.nan_at = 8;
     e.bad_value = bad;
-    const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps(), 0.1, {.record_every = 4});
+    const dropcheck::Trajectory t =
+        dropcheck::run_scene(e, ten_steps_with_a_spring(), 0.1, {.record_every = 4});
     CHECK(t.status == dropcheck::RunStatus::non_finite);
     CHECK(t.failed_step == 8);
     CHECK(steps_of(t) == std::vector<std::int64_t>{0, 4});  // step 8 is not kept
@@ -124,14 +126,15 @@ TEST_CASE("an infinite state counts as non_finite like a NaN, on a sampled step 
   ScriptedEngine big;  // the largest finite double is finite
   big.nan_at = 8;
   big.bad_value = std::numeric_limits<double>::max();
-  CHECK(dropcheck::run_scene(big, ten_steps(), 0.1).status == dropcheck::RunStatus::ok);
+  CHECK(dropcheck::run_scene(big, ten_steps_with_a_spring(), 0.1).status ==
+        dropcheck::RunStatus::ok);
 }
 
 TEST_CASE("a run's samples are sized once, to exactly the samples it keeps", "[runner]") {
   for (const std::int64_t every : {1, 3, 4, 5, 10, 100}) {
     ScriptedEngine e;
     const dropcheck::Trajectory t =
-        dropcheck::run_scene(e, ten_steps(), 0.1, {.record_every = every});
+        dropcheck::run_scene(e, ten_steps_with_a_spring(), 0.1, {.record_every = every});
     INFO("record_every " << every);
     CHECK(t.recorded.capacity() == t.recorded.size());
     CHECK(t.states.capacity() == t.states.size());
@@ -142,9 +145,9 @@ TEST_CASE("a run's samples are sized once, to exactly the samples it keeps", "[r
 TEST_CASE("sampling every few steps hands the engine the same forces as sampling every step",
           "[runner]") {
   ScriptedEngine every_step, every_third;
-  const dropcheck::Trajectory a = dropcheck::run_scene(every_step, ten_steps(), 0.1);
+  const dropcheck::Trajectory a = dropcheck::run_scene(every_step, ten_steps_with_a_spring(), 0.1);
   const dropcheck::Trajectory b =
-      dropcheck::run_scene(every_third, ten_steps(), 0.1, {.record_every = 3});
+      dropcheck::run_scene(every_third, ten_steps_with_a_spring(), 0.1, {.record_every = 3});
   CHECK(every_third.forces_seen == every_step.forces_seen);  // exact: same doubles
   CHECK(b.final_state(1).position == a.final_state(1).position);
 }
@@ -174,7 +177,7 @@ constant = [0.5, 0.0, -1.0]
 TEST_CASE("an EngineError at step k ends the run as engine_error with its message", "[runner]") {
   ScriptedEngine e;
   e.throw_at = 7;
-  const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps(), 0.1);
+  const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps_with_a_spring(), 0.1);
   CHECK(t.status == dropcheck::RunStatus::engine_error);
   CHECK(t.failure == "solver exploded");
   CHECK(t.failed_step == 7);
@@ -184,7 +187,7 @@ TEST_CASE("an EngineError at step k ends the run as engine_error with its messag
 TEST_CASE("an EngineError on load is engine_error at step 0 with no samples", "[runner]") {
   ScriptedEngine e;
   e.throw_on_load = true;
-  const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps(), 0.1);
+  const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps_with_a_spring(), 0.1);
   CHECK(t.status == dropcheck::RunStatus::engine_error);
   CHECK(t.failure == "cannot build the world");
   CHECK(t.failed_step == 0);
@@ -193,23 +196,23 @@ TEST_CASE("an EngineError on load is engine_error at step 0 with no samples", "[
 
 TEST_CASE("record_every keeps step 0, every Nth step and the last step", "[runner]") {
   ScriptedEngine e;
-  CHECK(steps_of(dropcheck::run_scene(e, ten_steps(), 0.1, {.record_every = 4})) ==
+  CHECK(steps_of(dropcheck::run_scene(e, ten_steps_with_a_spring(), 0.1, {.record_every = 4})) ==
         std::vector<std::int64_t>{0, 4, 8, 10});
   ScriptedEngine e2;
-  CHECK(steps_of(dropcheck::run_scene(e2, ten_steps(), 0.1, {.record_every = 5})) ==
+  CHECK(steps_of(dropcheck::run_scene(e2, ten_steps_with_a_spring(), 0.1, {.record_every = 5})) ==
         std::vector<std::int64_t>{0, 5, 10});  // the last step is not recorded twice
   ScriptedEngine e3;
-  CHECK(steps_of(dropcheck::run_scene(e3, ten_steps(), 0.1, {.record_every = 100})) ==
+  CHECK(steps_of(dropcheck::run_scene(e3, ten_steps_with_a_spring(), 0.1, {.record_every = 100})) ==
         std::vector<std::int64_t>{0, 10});
   ScriptedEngine e4;
-  CHECK(dropcheck::run_scene(e4, ten_steps(), 0.1, {.record_every = 0}).samples() ==
+  CHECK(dropcheck::run_scene(e4, ten_steps_with_a_spring(), 0.1, {.record_every = 0}).samples() ==
         11);  // < 1 means 1
 }
 
 TEST_CASE("speed clamps are counted with the first clamped step", "[runner]") {
   ScriptedEngine e;
   e.clamp_at = {3, 8};
-  const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps(), 0.1);
+  const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps_with_a_spring(), 0.1);
   CHECK(t.clamped_steps == 2);
   CHECK(t.first_clamped_step == 3);
   CHECK(t.status == dropcheck::RunStatus::ok);  // a clamp is reported, not a failure
@@ -218,7 +221,7 @@ TEST_CASE("speed clamps are counted with the first clamped step", "[runner]") {
 TEST_CASE("the force handed to step n is the spring force of the state after step n-1",
           "[runner]") {
   ScriptedEngine e;
-  const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps(), 0.1);
+  const dropcheck::Trajectory t = dropcheck::run_scene(e, ten_steps_with_a_spring(), 0.1);
   REQUIRE(e.forces_seen.size() == 10);
   for (std::size_t n = 0; n < 10; ++n) {
     // F = -stiffness*d - damping*v with d = x - anchor (rest length 0), from sample n.
@@ -322,7 +325,7 @@ TEST_CASE("an engine whose read_append gives the wrong number of states ends as 
     std::unique_ptr<dropcheck::Engine> inner_ = dropcheck::make_engine("ours");
   };
   ShortAppend e;
-  dropcheck::Scene s = ten_steps();
+  dropcheck::Scene s = ten_steps_with_a_spring();
   s.forces.clear();  // ours runs free bodies
   const dropcheck::Trajectory t = dropcheck::run_scene(e, s, 0.1, {.record_every = 4});
   CHECK(t.status == dropcheck::RunStatus::engine_error);
@@ -338,7 +341,7 @@ TEST_CASE("ours and ours-f64 end a run whose state overflows as non_finite, kept
   // v = -n * g * h passes the largest number on step 12 in f32 (g = 3e38: 12 * 3e37 > 3.4e38) and
   // on step 18 in f64 (g = 1e308: 18 * 1e307 > 1.8e308). With record_every = 1 the step is kept,
   // with 5 it is not: both read paths (StateUse::kept and the scratch) are checked.
-  dropcheck::Scene s = ten_steps();
+  dropcheck::Scene s = ten_steps_with_a_spring();
   s.forces.clear();  // ours runs free bodies
   s.duration = 3.0;  // 30 steps
   s.world.damping_rate = 0.0;
@@ -361,7 +364,7 @@ TEST_CASE("ours and ours-f64 stream the kept states of a large run bit for bit, 
   // 100 free bodies (4800 B per step) for 3600 steps (17.3 MB kept at record_every = 1) pass both
   // thresholds of kept_states_use (4 KiB per step, 16 MiB per run): streamed stores. Every second
   // step (8.6 MB) stays below them: normal stores. The kept states must be the same bits.
-  dropcheck::Scene s = ten_steps();
+  dropcheck::Scene s = ten_steps_with_a_spring();
   s.forces.clear();
   s.duration = 36.0;  // 3600 steps at h = 0.01
   s.world.damping_rate = 0.5;

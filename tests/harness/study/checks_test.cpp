@@ -6,6 +6,7 @@
 
 #include "harness/core/registry.hpp"
 #include "harness/scene/scene_loader.hpp"
+#include "tests/engine_slots.hpp"
 
 using namespace dropcheck;
 
@@ -42,16 +43,13 @@ class BrokenEngine final : public Engine {
 EngineFactory broken(BrokenEngine::Bug bug) {
   return [bug] { return std::make_unique<BrokenEngine>(bug); };
 }
-EngineFactory named(const char* name) {
-  return [name] { return make_engine(name); };
-}
 
 }  // namespace
 
 TEST_CASE("every check passes for ours and ours-f64 on the drag scene", "[checks]") {
   const Scene scene = load_scene("scenarios/free_fall_drag.toml");
   for (const char* name : {"ours", "ours-f64"}) {
-    const auto results = check_scene(scene, named(name), named("ours-f64"));
+    const auto results = check_scene(scene, testing::factory(name), testing::factory("ours-f64"));
     REQUIRE(results.size() == 4);  // own law at three steps + divergence/convergence
     for (const CheckResult& r : results) {
       INFO(r.check << ": " << r.message);
@@ -85,8 +83,8 @@ TEST_CASE("an adapter that keeps a default gravity is caught as an unexplained r
   const Scene scene = load_scene("scenarios/free_fall.toml");
   CHECK_FALSE(
       check_own_law(scene, broken(BrokenEngine::Bug::default_gravity), scene.timestep).passed);
-  const CheckResult r =
-      check_divergence(scene, broken(BrokenEngine::Bug::default_gravity), named("ours-f64"));
+  const CheckResult r = check_divergence(scene, broken(BrokenEngine::Bug::default_gravity),
+                                         testing::factory("ours-f64"));
   CHECK_FALSE(r.passed);
   CHECK_THAT(r.message, Catch::Contains("UNEXPLAINED residual"));
 }

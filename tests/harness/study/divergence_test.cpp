@@ -6,21 +6,15 @@
 
 #include "harness/core/registry.hpp"
 #include "harness/scene/scene_loader.hpp"
+#include "tests/engine_slots.hpp"
 
 using namespace dropcheck;
-
-namespace {
-
-EngineFactory named(const char* name) {
-  return [name] { return make_engine(name); };
-}
-
-}  // namespace
 
 TEST_CASE("the reference's convergence: every step against the closed form and its own law",
           "[divergence]") {
   const Scene scene = load_scene("scenarios/free_fall_drag.toml");
-  const Divergence d = measure_divergence(scene, named("ours-f64"), named("ours-f64"));
+  const Divergence d =
+      measure_divergence(scene, testing::factory("ours-f64"), testing::factory("ours-f64"));
   CHECK(d.engine == "ours-f64");
   CHECK(d.reference == "ours-f64");
   CHECK(d.to_analytic);
@@ -54,7 +48,8 @@ TEST_CASE("the reference's convergence: every step against the closed form and i
 TEST_CASE("two engines with one law: every step explained, the law part within rounding",
           "[divergence]") {
   const Scene scene = load_scene("scenarios/free_fall_drag.toml");
-  const Divergence d = measure_divergence(scene, named("ours"), named("ours-f64"));
+  const Divergence d =
+      measure_divergence(scene, testing::factory("ours"), testing::factory("ours-f64"));
   CHECK(d.engine == "ours");
   CHECK(d.reference == "ours-f64");
   CHECK_FALSE(d.to_analytic);
@@ -77,7 +72,8 @@ TEST_CASE("two laws that differ in the damping order: the law part, shrinking at
           "[divergence]") {
   if (!make_engine("bullet")) return;  // Bullet not compiled in
   const Scene scene = load_scene("scenarios/free_fall_drag.toml");
-  const Divergence d = measure_divergence(scene, named("bullet"), named("ours-f64"));
+  const Divergence d =
+      measure_divergence(scene, testing::factory("bullet"), testing::factory("ours-f64"));
   REQUIRE(d.steps.size() == 4);
   for (const DivergenceStep& s : d.steps) {
     REQUIRE(s.attribution.has_value());
@@ -93,7 +89,8 @@ TEST_CASE("two laws that differ in the damping order: the law part, shrinking at
 
 TEST_CASE("a scene the reference has no closed form for is not run", "[divergence]") {
   const Scene scene = load_scene("scenarios/spin_drag.toml");
-  const Divergence d = measure_divergence(scene, named("ours-f64"), named("ours-f64"));
+  const Divergence d =
+      measure_divergence(scene, testing::factory("ours-f64"), testing::factory("ours-f64"));
   CHECK(d.finding == DivergenceFinding::no_closed_form);
   CHECK_FALSE(d.no_closed_form.empty());
   CHECK(d.steps.empty());
@@ -104,7 +101,8 @@ TEST_CASE("the steps where a law is unstable are left out, with whose law it is"
           "[divergence][limits]") {
   if (!make_engine("bullet")) return;  // Bullet not compiled in
   const Scene scene = load_scene("scenarios/extreme/stiff_spring_drag.toml");
-  const Divergence d = measure_divergence(scene, named("bullet"), named("ours-f64"));
+  const Divergence d =
+      measure_divergence(scene, testing::factory("bullet"), testing::factory("ours-f64"));
   const DivergenceStep* first = d.first_left_out();
   REQUIRE(first != nullptr);
   CHECK(first->h.text == "1/25");
@@ -119,7 +117,8 @@ TEST_CASE("the steps where a law is unstable are left out, with whose law it is"
 TEST_CASE("a pre-asymptotic sweep is extended, and the struct holds why and how far",
           "[divergence][limits]") {
   const Scene scene = load_scene("scenarios/extreme/heavy_drag.toml");
-  const Divergence d = measure_divergence(scene, named("ours-f64"), named("ours-f64"));
+  const Divergence d =
+      measure_divergence(scene, testing::factory("ours-f64"), testing::factory("ours-f64"));
   CHECK(d.finding == DivergenceFinding::extended);
   REQUIRE(d.order.has_value());
   CHECK_FALSE(d.order->first_order);

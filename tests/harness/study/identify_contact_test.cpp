@@ -8,21 +8,14 @@
 
 #include "harness/core/registry.hpp"
 #include "harness/scene/scene_loader.hpp"
+#include "tests/shipped_scenes.hpp"
 
 using namespace dropcheck;
 using Catch::Contains;
 
-namespace {
-
-Scene shipped(const std::string& stem) {
-  return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + stem + ".toml");
-}
-
-}  // namespace
-
 TEST_CASE("identify on a bounce: the declared member follows, the others depart",
           "[identify][contact]") {
-  const Scene scene = shipped("bounce_e05");
+  const Scene scene = testing::shipped("bounce_e05");
   for (const char* name : {"ours-f64", "ode"}) {
     const std::unique_ptr<Engine> engine = make_engine(name);
     const ContactLawIdentity id = identify_bounce_law(scene, *engine, scene.timestep.seconds);
@@ -41,7 +34,7 @@ TEST_CASE("identify on a bounce: the declared member follows, the others depart"
 
 TEST_CASE("identify on a tumbling landing: ours follows its mean-corner law; ODE declares none",
           "[identify][contact]") {
-  const Scene scene = shipped("tumble_drop");
+  const Scene scene = testing::shipped("tumble_drop");
   const std::unique_ptr<Engine> ours = make_engine("ours");
   const ContactLawIdentity o = identify_turned_contact(scene, *ours, scene.timestep.seconds);
   CHECK(o.ok());

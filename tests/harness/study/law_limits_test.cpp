@@ -13,6 +13,7 @@
 #include "harness/scene/scene_loader.hpp"
 #include "harness/study/checks.hpp"
 #include "harness/study/sweep.hpp"
+#include "tests/engine_slots.hpp"
 
 using namespace dropcheck;
 using Catch::Matchers::Contains;
@@ -58,9 +59,6 @@ class GuardedEngine final : public Engine {
 EngineFactory guarded(double huge, long fail_at, Law law = DampingOrder::AfterForces) {
   return [=] { return std::make_unique<GuardedEngine>(huge, fail_at, law); };
 }
-EngineFactory named(const char* name) {
-  return [name] { return make_engine(name); };
-}
 const Timestep kUnstable{1.0 / 25, "1/25"};  // omega*h = 2.4 on stiff_spring: beyond 2
 
 // extend_sweep on heavy_drag from h = 1/30 and 1/60, every error, observed or added, from `error`.
@@ -76,7 +74,7 @@ ExtendedSweep sweep_of(double (*error)(double h)) {
 TEST_CASE("ours blowing up where its own law is unstable is a LIMIT naming omega*h and the edge",
           "[checks][limits]") {
   const Scene scene = load_scene("scenarios/extreme/stiff_spring.toml");
-  const CheckResult r = check_own_law(scene, named("ours"), kUnstable);
+  const CheckResult r = check_own_law(scene, testing::factory("ours"), kUnstable);
   INFO(r.limit << " | " << r.message);
   CHECK(r.passed);
   CHECK_THAT(r.limit, Contains("unstable at h = 1/25: omega*h = 2.4 > 2") &&
@@ -154,7 +152,8 @@ TEST_CASE("a law is stable below its edge and unstable above it, with drag movin
 TEST_CASE("a pre-asymptotic sweep is extended until its order is in band, and names k*h",
           "[checks][limits]") {
   const Scene scene = load_scene("scenarios/extreme/heavy_drag.toml");
-  const CheckResult r = check_divergence(scene, named("ours-f64"), named("ours-f64"));
+  const CheckResult r =
+      check_divergence(scene, testing::factory("ours-f64"), testing::factory("ours-f64"));
   INFO(r.message);
   CHECK(r.passed);
   CHECK(r.limit.empty());
@@ -167,7 +166,8 @@ TEST_CASE("the divergence leaves out the steps where a law is unstable and says 
           "[checks][limits]") {
   if (!make_engine("bullet")) return;  // Bullet not compiled in
   const Scene scene = load_scene("scenarios/extreme/stiff_spring_drag.toml");
-  const CheckResult r = check_divergence(scene, named("bullet"), named("ours-f64"));
+  const CheckResult r =
+      check_divergence(scene, testing::factory("bullet"), testing::factory("ours-f64"));
   INFO(r.message);
   CHECK(r.passed);
   CHECK_THAT(r.message, Contains("left out of the order: h = 1/25, 1/30 (bullet: its law"));

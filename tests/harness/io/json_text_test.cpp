@@ -1,6 +1,6 @@
-// Tests harness/io/json_reader.hpp: JSON nests at most kMaxJsonDepth levels, refused past that
+// Tests harness/io/json_text.hpp: JSON nests at most kMaxJsonDepth levels, refused past that
 // before the value is walked (a million levels once overflowed the stack in dump()).
-#include "harness/io/json_reader.hpp"
+#include "harness/io/json_text.hpp"
 
 #include <catch2/catch.hpp>
 
