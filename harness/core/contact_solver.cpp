@@ -9,10 +9,10 @@ std::string describe(const ContactSolver& solver) {
     case ContactSolverKind::box2d_2_4:
       return "Box2D 2.4 sequential impulses (" + std::to_string(solver.velocity_iterations) +
              " velocity, " + std::to_string(solver.position_iterations) +
-             " position iterations, warm started)";
+             " position iterations, warm started), replayed";
     case ContactSolverKind::chipmunk_7:
       return "Chipmunk 7 sequential impulses (" + std::to_string(solver.velocity_iterations) +
-             " iterations, cached impulses)";
+             " iterations, cached impulses), replayed";
     case ContactSolverKind::mujoco_2_2:
       return "MuJoCo 2.2 soft contact (pyramidal cone, its convex step problem re-solved)";
   }

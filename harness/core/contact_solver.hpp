@@ -37,7 +37,8 @@ struct ContactSolver {
 };
 
 // "solved exactly every step", "Box2D 2.4 sequential impulses (8 velocity, 3 position iterations,
-// warm started)".
+// warm started), replayed", "MuJoCo 2.2 soft contact (pyramidal cone, its convex step problem
+// re-solved)": the solver and how dropcheck predicts it.
 std::string describe(const ContactSolver& solver);
 
 }  // namespace dropcheck

@@ -49,8 +49,8 @@ std::string samples_text(const Trajectory& t) {
     for (std::size_t b = 0; b < t.bodies(); ++b) {
       const BodyState& st = t.at(s, b);
       out += "sample " + std::to_string(t.recorded[s]) + " " + t.body_names[b];
-      for (int i = 0; i < 3; ++i) out += " " + exact(st.position[i]);
-      for (int i = 0; i < 3; ++i) out += " " + exact(st.velocity[i]);
+      for (int i = 0; i < 3; ++i) out.append(" ").append(exact(st.position[i]));
+      for (int i = 0; i < 3; ++i) out.append(" ").append(exact(st.velocity[i]));
       out += "\n";
     }
   }

@@ -157,7 +157,7 @@ BounceVerdict judge_bounce(const Trajectory& run, const Scene& scene, const Boun
   v.solver = info.contact_solver;
   // The replay is the engine's whole step: what moves it off the ideal law is its solver.
   if (v.law_to_ideal > tolerance::kBouncePath)
-    v.causes.push_back("its solver's own step (" + describe(info.contact_solver) + ")");
+    v.causes.push_back("its solver's own step: " + describe(info.contact_solver));
   return v;
 }
 
@@ -185,7 +185,7 @@ std::string BounceVerdict::sentence() const {
                           seen.speed_out) +
                 apex_text(seen.apexes);
   if (energy_rises) text += " (ENERGY RISES)";
-  text += "; its law (" + (solver ? describe(*solver) + ", replayed" : describe(law)) + "): ";
+  text += "; its law (" + (solver ? describe(*solver) : describe(law)) + "): ";
   if (follows && step_gap < 0.0)
     text += printf_string("the same path to %.2g m", worst_gap);
   else if (follows)

@@ -169,8 +169,7 @@ std::string SlideVerdict::sentence() const {
           ? printf_string(" (continuous: %.5g s, %.5g m)", law.stop_time, law.distance)
           : printf_string(" (continuous: %.7g m by the end)", end_continuous);
   if (solver)
-    text += "; its " + describe(*solver) +
-            (solver->velocity_iterations > 0 ? ", replayed: " : ": ") + stop_text(law_seen);
+    text += "; its " + describe(*solver) + ": " + stop_text(law_seen);
   else
     text += "; its " + clamp + stop_text(law_seen) + continuous;
   text += printf_string(", %.2g m off it", off_law);

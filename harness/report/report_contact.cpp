@@ -49,8 +49,8 @@ std::string slide_section(const SceneEvaluation& se) {
     if (!ev.ran() || ev.at_default().run.status != RunStatus::ok) continue;
     for (const SlideSetup& s : slides) {
       const SlideVerdict v = judge_slide(ev.at_default().run, se.scene, s, ev.info, h);
-      const std::string law = v.solver ? describe(*v.solver) + ", replayed"
-                                       : std::string(to_string(v.model)) + "'s clamp law";
+      const std::string law =
+          v.solver ? describe(*v.solver) : std::string(to_string(v.model)) + "'s clamp law";
       t.add({ev.name, se.scene.bodies[s.body].name, law, stop_cell(v.seen),
              printf_string("%.7g", v.seen.distance), v.exact ? stop_cell(v.law_seen) : kNone,
              v.exact ? printf_string("%.7g", v.law_seen.distance) : kNone,
@@ -70,11 +70,10 @@ std::string slide_section(const SceneEvaluation& se) {
          "engine's friction model: per step v_free = v + pull*h (gravity's part along the floor), "
          "then the friction impulse cancels the slip if it can and otherwise takes grip*h off it "
          "(a cone grips mu*g, a box pyramid each tangent axis by mu*g, a sum pyramid shares mu*g "
-         "between them: docs/contact.md). An engine whose solver takes a fixed number of "
-         "iterations "
-         "(Box2D, Chipmunk) is judged against the replay of its own solver instead, in its own "
-         "arithmetic; "
-         "the clamp law's stop beside it shows what the iterations leave. The run is compared "
+         "between them: docs/contact.md). An engine whose solver stops short of the clamp law is "
+         "judged against its own solver instead: fixed iterations replayed in its own arithmetic, "
+         "or a step problem re-solved (the 'its law' column names which); the clamp law's stop "
+         "beside it shows what the solver leaves. The run is compared "
          "with its law at every step, within " +
          printf_string("%.0e", tolerance::kSlideDistance) + " m.\n\n" + t.str() + "\n";
 }
