@@ -32,6 +32,13 @@ enum class BadUtf8 { throw_error, replace };
 template <class J>
 std::string json_text(const J& value, int indent = -1, BadUtf8 bad = BadUtf8::throw_error);
 
+// J's text on one line, escaped by construction, a byte that is not UTF-8 written as U+FFFD
+// instead of breaking the file: for records that hold names from engines and users.
+template <class J>
+std::string json_line(const J& value) {
+  return json_text(value, -1, BadUtf8::replace);
+}
+
 extern template nlohmann::json parse_json<nlohmann::json>(std::string_view);
 extern template nlohmann::ordered_json parse_json<nlohmann::ordered_json>(std::string_view);
 extern template std::string json_text<nlohmann::json>(const nlohmann::json&, int, BadUtf8);

@@ -58,7 +58,7 @@ std::string column_key(int column) {
 }
 
 // A finite number: NaN and infinities are refused, since every verdict fitted to them is void.
-double number(const std::string& s, const std::string& file, int line, int column) {
+double csv_number(const std::string& s, const std::string& file, int line, int column) {
   double v = 0.0;
   const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   if (ec != std::errc() || ptr != s.data() + s.size() || s.empty())
@@ -134,14 +134,14 @@ void add_row(Trajectory& t, std::int64_t step, const std::string& body, const Bo
 // and an angular velocity.
 RotationState rotation_columns(const std::vector<std::string>& f, const std::string& file, int n) {
   double q[4];
-  for (int i = 0; i < 4; ++i) q[i] = number(f[11 + i], file, n, 11 + i);
+  for (int i = 0; i < 4; ++i) q[i] = csv_number(f[11 + i], file, n, 11 + i);
   RotationState r;
   r.orientation = Quat(q[0], q[1], q[2], q[3]);
   if (std::abs(r.orientation.norm() - 1.0) > 1e-6)
     throw InputError(file, n, column_key(11),
                      "qw, qx, qy, qz must be a unit quaternion (norm " +
                          printf_string("%.9g", r.orientation.norm()) + ")");
-  for (int i = 0; i < 3; ++i) r.angular_velocity[i] = number(f[15 + i], file, n, 15 + i);
+  for (int i = 0; i < 3; ++i) r.angular_velocity[i] = csv_number(f[15 + i], file, n, 15 + i);
   return r;
 }
 
@@ -306,9 +306,9 @@ std::vector<Trajectory> parse_trajectories_csv(std::istream& in, const std::stri
                        "expected " + std::to_string(columns) + " columns (" +
                            (columns == kLinearColumns ? kHeader : kRotationHeader) + "), got " +
                            std::to_string(f.size()));
-    const double dt = number(f[1], file, n, 1);
-    const double step = number(f[2], file, n, 2);
-    number(f[3], file, n, 3);  // t: checked, not used (the step and dt give the time exactly)
+    const double dt = csv_number(f[1], file, n, 1);
+    const double step = csv_number(f[2], file, n, 2);
+    csv_number(f[3], file, n, 3);  // t: checked, not used (the step and dt give the time exactly)
     if (!(dt > 0.0)) throw InputError(file, n, column_key(1), "must be > 0");
     if (step < 0 || step > 9007199254740992.0 ||
         step != static_cast<double>(static_cast<std::int64_t>(step)))
@@ -319,8 +319,8 @@ std::vector<Trajectory> parse_trajectories_csv(std::istream& in, const std::stri
           "step x dt is not a finite time (" + excerpt(f[2]) + " x " + excerpt(f[1]) + ")");
     BodyState s;
     for (int i = 0; i < 3; ++i) {
-      s.position[i] = number(f[5 + i], file, n, 5 + i);
-      s.velocity[i] = number(f[8 + i], file, n, 8 + i);
+      s.position[i] = csv_number(f[5 + i], file, n, 5 + i);
+      s.velocity[i] = csv_number(f[8 + i], file, n, 8 + i);
     }
     for (int column : {0, 4})  // names reach terminals and reports: no control characters
       if (f[column].empty() || find_unsafe_in_line(f[column]) != std::string::npos)

@@ -25,12 +25,6 @@ std::string csv_field(const std::string& s) {
   return out + "\"";
 }
 
-// JSON has no NaN or Inf: nlohmann writes null for them. Names are escaped by construction, and a
-// byte that is not UTF-8 becomes U+FFFD instead of breaking the document.
-std::string dump(const Json& j) {
-  return json_text(j, -1, BadUtf8::replace);
-}
-
 Json json_vec(const Vec3& v) {
   return Json::array({v[0], v[1], v[2]});
 }
@@ -65,7 +59,7 @@ std::string run_head(const Trajectory& t) {
                     {"failure", t.failure},
                     {"failed_step", t.failed_step},
                     {"clamped_steps", t.clamped_steps}};
-  std::string head = dump(run);
+  std::string head = json_line(run);
   head.pop_back();
   return head;
 }
@@ -77,7 +71,8 @@ std::string run_head(const Trajectory& t) {
 void write_run_json(std::ostream& out, const Trajectory& t) {
   out << run_head(t) << ",\"bodies\":[";
   for (std::size_t b = 0; b < t.bodies(); ++b) {
-    out << (b ? ",{\"name\":" : "{\"name\":") << dump(Json(t.body_names[b])) << ",\"samples\":[";
+    out << (b ? ",{\"name\":" : "{\"name\":") << json_line(Json(t.body_names[b]))
+        << ",\"samples\":[";
     for (std::size_t s = 0; s < t.samples(); ++s) {
       const BodyState& st = t.at(s, b);
       Json sample = Json::array({t.recorded[s], json_vec(st.position), json_vec(st.velocity)});
@@ -87,7 +82,7 @@ void write_run_json(std::ostream& out, const Trajectory& t) {
         sample.push_back(Json::array({q.w(), q.x(), q.y(), q.z()}));
         sample.push_back(json_vec(r.angular_velocity));
       }
-      out << (s ? "," : "") << dump(sample);
+      out << (s ? "," : "") << json_line(sample);
     }
     out << "]}";
   }

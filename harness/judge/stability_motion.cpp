@@ -87,8 +87,8 @@ struct Stretch {
   double min_vh = INFINITY, max_vh = 0.0;  // the engine's |v_c|*h per step, range over the stretch
 };
 
-Stretch measure(const Trajectory& run, const std::vector<BodyState>* exact, std::size_t i, int c,
-                std::size_t first, std::size_t last) {
+Stretch measure_motion(const Trajectory& run, const std::vector<BodyState>* exact, std::size_t i,
+                       int c, std::size_t first, std::size_t last) {
   Stretch st{first, last, 0.0, exact ? 0.0 : -1.0};
   for (std::size_t s = first + 1; s <= last; ++s) {
     const double steps = static_cast<double>(run.recorded[s] - run.recorded[s - 1]);
@@ -141,7 +141,7 @@ bool frozen_in(const Trajectory& run, const std::vector<BodyState>* exact, std::
     if (s < run.samples() && run.at(s, i).position[c] == run.at(first, i).position[c]) continue;
     const std::size_t last = s - 1;
     if (run.recorded[last] - run.recorded[first] >= o.frozen_steps) {
-      const Stretch st = measure(run, exact, i, c, first, last);
+      const Stretch st = measure_motion(run, exact, i, c, first, last);
       const double spacing = float_spacing(run.at(first, i).position[c], scalar);
       const double lost = std::max(0.5 * spacing, tolerance);
       const bool moves =

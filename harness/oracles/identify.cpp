@@ -123,7 +123,7 @@ void fit_velocity(const Scene& scene, const Trajectory& run, const std::vector<V
 }
 
 // Iterates the member from the recorded initial state; fills max_dx and max_dv.
-void residual(const Scene& scene, const Trajectory& run, MemberFit& m) {
+void law_residual(const Scene& scene, const Trajectory& run, MemberFit& m) {
   std::vector<BodyState> state(run.states.begin(),
                                run.states.begin() + static_cast<long>(run.bodies()));
   std::vector<Vec3> forces(run.bodies());
@@ -163,7 +163,7 @@ Identification identify_law(const Scene& scene, const Trajectory& run) {
     MemberFit m;
     m.law = law;
     fit_velocity(scene, run, f, m);
-    residual(scene, run, m);
+    law_residual(scene, run, m);
     id.fits.push_back(m);
   }
   std::vector<std::size_t> order(id.fits.size());

@@ -16,9 +16,10 @@ RotationState to_state(const Spin<LD>& s) {
 }
 
 // predict_rotation's loop, from the start orientations `q0` and angular velocities `w0`.
-std::vector<RotationState> iterate(RotationLaw law, Law linear, const Scene& scene, double h,
-                                   const std::vector<std::int64_t>& recorded,
-                                   const std::vector<Quat>& q0, const std::vector<VL>& w0) {
+std::vector<RotationState> iterate_rotation(RotationLaw law, Law linear, const Scene& scene,
+                                            double h, const std::vector<std::int64_t>& recorded,
+                                            const std::vector<Quat>& q0,
+                                            const std::vector<VL>& w0) {
   const std::size_t bodies = scene.bodies.size();
   std::vector<Vec3> torques(bodies);
   compute_torques(scene, torques);
@@ -68,7 +69,8 @@ std::vector<Quat> start_orientations(const Scene& scene) {
 
 std::vector<RotationState> predict_rotation(RotationLaw law, Law linear, const Scene& scene,
                                             double h, const std::vector<std::int64_t>& recorded) {
-  return iterate(law, linear, scene, h, recorded, start_orientations(scene), start_spins(scene));
+  return iterate_rotation(law, linear, scene, h, recorded, start_orientations(scene),
+                          start_spins(scene));
 }
 
 std::vector<RotationState> predict_rotation_from(RotationLaw law, Law linear, const Scene& scene,
@@ -81,7 +83,7 @@ std::vector<RotationState> predict_rotation_from(RotationLaw law, Law linear, co
     q0.push_back(r.orientation);
     w0.push_back(r.angular_velocity.cast<LD>());
   }
-  return iterate(law, linear, scene, h, recorded, q0, w0);
+  return iterate_rotation(law, linear, scene, h, recorded, q0, w0);
 }
 
 double rotation_amplification(RotationLaw law, Law linear, const Scene& scene, double h,
@@ -89,12 +91,13 @@ double rotation_amplification(RotationLaw law, Law linear, const Scene& scene, d
   constexpr LD kNudge = 1e-9L;
   const std::vector<VL> w0 = start_spins(scene);
   const std::vector<Quat> q0 = start_orientations(scene);
-  const std::vector<RotationState> base = iterate(law, linear, scene, h, recorded, q0, w0);
+  const std::vector<RotationState> base = iterate_rotation(law, linear, scene, h, recorded, q0, w0);
   double worst = 1.0;
   for (int axis = 0; axis < 3; ++axis) {
     std::vector<VL> nudged = w0;
     for (VL& w : nudged) w[axis] += kNudge * std::max(w.norm(), LD(1));
-    const std::vector<RotationState> other = iterate(law, linear, scene, h, recorded, q0, nudged);
+    const std::vector<RotationState> other =
+        iterate_rotation(law, linear, scene, h, recorded, q0, nudged);
     for (std::size_t i = 0; i < base.size(); ++i) {
       const double scale = std::max(double(w0[i % w0.size()].norm()), 1.0);
       const double angle = geodesic_angle(base[i].orientation, other[i].orientation);

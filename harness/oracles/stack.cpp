@@ -11,7 +11,7 @@ namespace {
 
 // `upper`'s centre lies strictly inside `lower`'s top face (x-z): a centre on an edge balances
 // between two columns, and neither carries its load alone.
-bool over(const Body& upper, const Body& lower) {
+bool over_body(const Body& upper, const Body& lower) {
   return std::abs(upper.position.x() - lower.position.x()) < lower.half_extents.x() &&
          std::abs(upper.position.z() - lower.position.z()) < lower.half_extents.z();
 }
@@ -66,7 +66,7 @@ std::vector<StackSetup> stack_setups(const Scene& scene) {
       long next = -1;
       for (std::size_t j = 0; j < scene.bodies.size(); ++j) {
         const Body& b = scene.bodies[j];
-        if (!stackable(scene, j) || !over(b, under) || bottom_of(b) < top_of(under)) continue;
+        if (!stackable(scene, j) || !over_body(b, under) || bottom_of(b) < top_of(under)) continue;
         if (next < 0 || b.position.y() < scene.bodies[static_cast<std::size_t>(next)].position.y())
           next = static_cast<long>(j);
       }

@@ -31,7 +31,7 @@ Json number(double v) {
   return std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf";
 }
 
-Json engine_json(const EngineInfo& i) {
+Json record_engine_json(const EngineInfo& i) {
   Json e{{"name", i.name},
          {"version", i.version},
          {"scalar", to_string(i.scalar)},
@@ -149,7 +149,7 @@ CellRecord run_cell(const Plan& plan, const Cell& cell, Isolation isolation,
   std::unique_ptr<Engine> engine = make_engine(c.engine);
   if (!engine) return finish(r, "skipped", c.engine + ": " + engine_unavailable_reason(c.engine));
   const EngineInfo info = engine->info();
-  r["engine"] = engine_json(info);
+  r["engine"] = record_engine_json(info);
   r["h"] = c.h.text;
   r["steps"] = step_count(c.scene, c.h.seconds);
   if (!c.scalar.empty() && c.scalar != to_string(info.scalar))

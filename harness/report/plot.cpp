@@ -154,7 +154,7 @@ void remove_quietly(const std::filesystem::path& p) {
   std::filesystem::remove(p, ec);
 }
 
-std::string read_text(const std::filesystem::path& p) {
+std::string read_plot_text(const std::filesystem::path& p) {
   std::ifstream in(p);
   std::ostringstream s;
   s << in.rdbuf();
@@ -236,7 +236,7 @@ std::string render_plot(const PlotSpec& spec, const std::string& dir, const std:
   const int status = run_gnuplot(dir, stem + ".gp", stem + ".log", why);
   if (status == -1 && why.empty()) why = "gnuplot could not be waited for";
   if (status != -1 && status != 0) {
-    const std::string log = read_text(d / (stem + ".log"));
+    const std::string log = read_plot_text(d / (stem + ".log"));
     why = WIFEXITED(status) && WEXITSTATUS(status) == 127 ? "gnuplot not found"
                                                           : "gnuplot failed: " + log;
   } else if (status == 0) {

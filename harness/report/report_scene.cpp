@@ -80,7 +80,7 @@ std::vector<std::string> left_out(const SceneEvaluation& se) {
   return out;
 }
 
-std::string intro(const SceneEvaluation& se) {
+std::string scene_intro(const SceneEvaluation& se) {
   const Scene& s = se.scene;
   std::string md = s.description.empty() ? "" : s.description + "\n\n";
   md += "- File: `" + s.source + "`; " + sig(s.duration, 6) + " s" + " at h = " + s.timestep.text +
@@ -315,7 +315,7 @@ std::string heading_anchor(const std::string& heading) {
 
 std::string scene_section(const SceneEvaluation& se, const std::vector<ReportPlot>& plots,
                           const PlotOutcomes& outcomes, bool timing) {
-  std::string md = "### " + se.scene.name + "\n\n" + intro(se);
+  std::string md = "### " + se.scene.name + "\n\n" + scene_intro(se);
   for (const ReportPlot& p : plots)
     if (p.file.find("-trajectory.svg") != std::string::npos) md += plot_md(p, outcomes);
   // A slide, a bounce or a stack has its own table; the landing table follows where other bodies

@@ -146,7 +146,7 @@ void maps(const Group& g, const std::string& dir, std::ostringstream& md) {
   }
 }
 
-void failures(const std::vector<SweepCell>& cells, std::ostringstream& md) {
+void sweep_failures(const std::vector<SweepCell>& cells, std::ostringstream& md) {
   MarkdownTable t({"cell", "status", "cause"}, "lll");
   std::size_t skipped = 0;
   for (const SweepCell& c : cells) {
@@ -212,7 +212,7 @@ void write_sweep_report(const std::vector<SweepCell>& cells, const std::string& 
         "shows how its run ended, with the largest stable step its engine's law allows drawn "
         "across it where the first axis is the step; the second, its error against the closed "
         "form in decades (cells that ended ok and have one). The records: docs/results.md.\n\n";
-  failures(cells, md);
+  sweep_failures(cells, md);
   timings(cells, md);
   for (const auto& [k, g] : groups) {
     if (progress) progress(escape_controls(g.scene + " / " + g.engine));

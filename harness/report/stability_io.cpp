@@ -20,11 +20,6 @@ Json json_number(std::optional<double> v) {
   return v && std::isfinite(*v) ? Json(*v) : Json(nullptr);
 }
 
-// Escaped by construction; a byte that is not UTF-8 becomes U+FFFD instead of breaking the file.
-std::string dump(const Json& j) {
-  return json_text(j, -1, BadUtf8::replace);
-}
-
 Json failures_json(const Verdict& v) {
   Json out = Json::array();
   for (const Failure& f : v.failures)
@@ -107,11 +102,11 @@ std::string stability_to_json(const SceneStability& s, const SearchOptions& sear
        printf_string("each probe at step h runs duration' = ceil(min(duration, %lld*dt)/h)*h; "
                      "bisection to a relative %.3g",
                      static_cast<long long>(search.horizon_steps), search.rel_tol)}};
-  std::string out = dump(head);  // then the engines, one a line, as before nlohmann wrote them
+  std::string out = json_line(head);  // then the engines, one a line, as before nlohmann wrote them
   out.pop_back();
   out += ",\"engines\":[";
   for (std::size_t i = 0; i < s.engines.size(); ++i)
-    out += (i ? ",\n" : "\n") + dump(engine_json(s.engines[i]));
+    out += (i ? ",\n" : "\n") + json_line(engine_json(s.engines[i]));
   return out + "\n]}\n";
 }
 

@@ -14,7 +14,7 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-std::optional<double> number(const Json& j) {
+std::optional<double> result_number(const Json& j) {
   if (j.is_number()) return j.get<double>();
   if (j.is_string()) {
     const std::string s = j.get<std::string>();
@@ -39,13 +39,13 @@ SweepCell cell_of(const Json& j) {
     c.axes.emplace_back(name, value.get<std::string>());
   if (j.contains("error") && j["error"].contains("closed_form") &&
       j["error"]["closed_form"].is_object())
-    c.error = number(j["error"]["closed_form"].at("max_dx"));
+    c.error = result_number(j["error"]["closed_form"].at("max_dx"));
   if (j.contains("stability")) {
-    c.theory_max_h = number(j["stability"].at("theory_max_h"));
+    c.theory_max_h = result_number(j["stability"].at("theory_max_h"));
     c.law_unstable = j["stability"].value("law_unstable", "");
   }
   if (j.contains("timing")) {
-    c.ns_per_body_step = number(j["timing"].at("ns_per_body_step"));
+    c.ns_per_body_step = result_number(j["timing"].at("ns_per_body_step"));
     c.cpu = j["timing"].value("cpu", "");
   }
   return c;

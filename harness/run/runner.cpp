@@ -16,7 +16,7 @@
 namespace dropcheck {
 namespace {
 
-bool finite(const BodyState& s) {
+bool finite_states(const BodyState& s) {
   return s.position.allFinite() && s.velocity.allFinite();
 }
 
@@ -56,7 +56,7 @@ std::span<BodyState> read_states(const Engine& engine, StateBuffer& buffer, std:
   return std::span(buffer).subspan(at, bodies);
 }
 
-bool finite(const RotationState& r) {
+bool finite_states(const RotationState& r) {
   return all_finite(std::span(&r, 1));
 }
 
@@ -97,7 +97,8 @@ void fail_non_unit(Trajectory& t, std::span<const RotationState> rotations, std:
 void fail_non_finite(Trajectory& t, std::span<const BodyState> states,
                      std::span<const RotationState> rotations, std::int64_t n) {
   std::size_t i = 0;
-  while (i + 1 < states.size() && finite(states[i]) && (rotations.empty() || finite(rotations[i])))
+  while (i + 1 < states.size() && finite_states(states[i]) &&
+         (rotations.empty() || finite_states(rotations[i])))
     ++i;
   t.status = RunStatus::non_finite;
   t.failed_step = n;

@@ -38,7 +38,7 @@ std::string vec(const Vec3& v) {
   return fmt("(%.17g, %.17g, %.17g)", v.x(), v.y(), v.z());
 }
 
-CheckResult result(const Scene& scene, const std::string& engine, const std::string& check) {
+CheckResult check_result(const Scene& scene, const std::string& engine, const std::string& check) {
   return {scene.name, engine, check, false, {}, {}};
 }
 
@@ -61,7 +61,7 @@ std::vector<Timestep> conformance_steps(const Scene& scene) {
 CheckResult check_own_law(const Scene& scene, const EngineFactory& make, const Timestep& h) {
   std::unique_ptr<Engine> engine = make();
   const EngineInfo info = engine->info();
-  CheckResult r = result(scene, info.name, "own law at h = " + h.text);
+  CheckResult r = check_result(scene, info.name, "own law at h = " + h.text);
   const Trajectory run = run_scene(*engine, scene, h.seconds);
   const std::string unstable = law_instability(scene, info.law, h);
   if (run.status != RunStatus::ok) {
@@ -176,8 +176,8 @@ CheckResult check_divergence(const Scene& scene, const EngineFactory& make,
                              const EngineFactory& reference, std::int64_t extension_steps) {
   const Divergence d = measure_divergence(scene, make, reference, extension_steps);
   CheckResult r =
-      result(scene, d.engine,
-             d.to_analytic ? "convergence to analytic" : "divergence from " + d.reference);
+      check_result(scene, d.engine,
+                   d.to_analytic ? "convergence to analytic" : "divergence from " + d.reference);
   r.passed = d.passed;
   r.limit = d.limit() ? d.drift->limit_text() : "";
   r.message = divergence_message(d);
@@ -275,7 +275,8 @@ struct ContactRun {
 ContactRun contact_run(const Scene& scene, const EngineFactory& make, const Timestep& h,
                        const std::string& what) {
   std::unique_ptr<Engine> engine = make();
-  ContactRun c{result(scene, engine->info().name, what + " at h = " + h.text), engine->info(), {}};
+  ContactRun c{
+      check_result(scene, engine->info().name, what + " at h = " + h.text), engine->info(), {}};
   Trajectory run = run_scene(*engine, scene, h.seconds);
   if (run.status != RunStatus::ok) {
     c.result.message = std::string("run failed: ") + to_string(run.status) + ": " + run.failure;

@@ -113,7 +113,7 @@ struct Pair {
 
 // Marks the step left out when either law is unstable at it. Each law's instability is asked
 // once (RK4's predicts its rotation over the whole run to find it), the engine's first.
-bool left_out(const Pair& p, DivergenceStep& s) {
+bool divergence_left_out(const Pair& p, DivergenceStep& s) {
   const std::string engine_unstable = law_instability(p.scene, p.ei.law, s.h);
   s.unstable = !engine_unstable.empty() || p.to_analytic ? engine_unstable
                                                          : law_instability(p.scene, p.ri.law, s.h);
@@ -149,7 +149,7 @@ void measure_between(const Pair& p, const Trajectory& run, DivergenceStep& s) {
 bool measure_step(const Pair& p, const Timestep& h, std::vector<DivergenceStep>& steps) {
   DivergenceStep& s = steps.emplace_back();
   s.h = h;
-  if (left_out(p, s)) return true;
+  if (divergence_left_out(p, s)) return true;
   const Trajectory run = run_scene(p.engine, p.scene, h.seconds);
   if (run.status != RunStatus::ok) {
     s.failure = run.failure;

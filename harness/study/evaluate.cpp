@@ -18,7 +18,7 @@
 namespace dropcheck {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kNoFigure = std::numeric_limits<double>::quiet_NaN();
 
 void say(const Progress& progress, const std::string& what) {
   if (progress) progress(what);
@@ -126,7 +126,7 @@ void measure_landings(EngineEvaluation& ev, const SceneEvaluation& se) {
   const std::vector<LandingSetup> setups = engine_landing_setups(se.scene, ev.info);
   for (StepEvaluation& s : ev.sweep) {
     for (const LandingSetup& setup : setups) {
-      LandingResult r{setup, observe_landing(s.run, setup), kNaN};
+      LandingResult r{setup, observe_landing(s.run, setup), kNoFigure};
       const std::int64_t n = discrete_contact_step(ev.info.law, se.scene, s.h.seconds, setup);
       if (n >= 0) r.law_contact_time = static_cast<double>(n) * s.h.seconds;
       s.landings.push_back(r);
@@ -205,7 +205,7 @@ void measure_orders(EngineEvaluation& ev, const SceneEvaluation& se) {
     h.push_back(s.h.seconds);
     cont.push_back(s.continuous_error());
     const double budget = s.attribution ? s.attribution->budget : 0.0;
-    const double d = s.vs_reference ? s.vs_reference->max_dx : kNaN;
+    const double d = s.vs_reference ? s.vs_reference->max_dx : kNoFigure;
     div.push_back(d <= budget ? 0.0 : d);
   }
   if (se.uses_fine || se.no_analytic.empty()) ev.orders_continuous = observed_orders(h, cont);
@@ -231,7 +231,7 @@ SceneEvaluation prepare(const Scene& scene, const EvaluateOptions& options) {
 
 double StepEvaluation::continuous_error() const {
   const ErrorStats* c = continuous();
-  return c ? c->max_dx : kNaN;
+  return c ? c->max_dx : kNoFigure;
 }
 
 const ErrorStats* StepEvaluation::continuous() const {

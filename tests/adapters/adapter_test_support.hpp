@@ -22,6 +22,7 @@
 #include "harness/oracles/replayed_contact.hpp"
 #include "harness/run/runner.hpp"
 #include "harness/scene/scene_loader.hpp"
+#include "tests/shipped_scenes.hpp"
 
 // Declares `engine` as make_engine(name), or warns why that engine is unavailable and ends the test
 // case (for the engines a build may leave out).
@@ -38,7 +39,7 @@ inline const char* const kFreeFlightScenes[] = {"seed_part3", "free_fall", "free
                                                 "throw_up"};
 
 inline Scene scenario(const std::string& name) {
-  return load_scene(std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + name + ".toml");
+  return shipped(name);
 }
 
 // The largest position difference between a run and its engine's law, and where it occurs.

@@ -12,7 +12,7 @@ using namespace dropcheck;
 
 namespace {
 
-std::string refusal(const std::vector<std::string>& lines, std::size_t bodies = 1) {
+std::string protocol_refusal(const std::vector<std::string>& lines, std::size_t bodies = 1) {
   EngineInfo info;
   HandshakeReader handshake(info, false, {"ours"});
   std::vector<BodyState> states(bodies);
@@ -48,7 +48,7 @@ TEST_CASE("a complete handshake and state lines are accepted", "[exec]") {
   std::vector<std::string> lines = kHandshake;
   lines.push_back("state 0 0 10 0 0 0 0");
   lines.push_back("state 1 1e308 -5e-324 0 0 -0.5 0");
-  CHECK(refusal(lines) == "(accepted)");
+  CHECK(protocol_refusal(lines) == "(accepted)");
 }
 
 TEST_CASE("text an engine announces is kept with its control characters escaped", "[exec]") {
@@ -72,22 +72,23 @@ TEST_CASE("text an engine announces is kept with its control characters escaped"
 }
 
 TEST_CASE("a refusal quotes at most a short, escaped excerpt of the engine's line", "[exec]") {
-  CHECK(refusal({"hello \x1b[2J"}) ==
+  CHECK(protocol_refusal({"hello \x1b[2J"}) ==
         "garbage from the engine: expected 'dropcheck-engine 1', got 'hello \\x1b[2J'");
   std::vector<std::string> lines = kHandshake;
   lines.push_back("state 0 " + std::string(1'000'000, '9') + " 0 0 0 0 0");
-  const std::string huge = refusal(lines);
+  const std::string huge = protocol_refusal(lines);
   CHECK_THAT(huge, Contains("garbage from the engine: expected a number, got '999"));
   CHECK(huge.size() < 200);
-  CHECK_THAT(refusal({"dropcheck-engine 1", "name ours"}),
+  CHECK_THAT(protocol_refusal({"dropcheck-engine 1", "name ours"}),
              Contains("'ours' is the name of a built-in engine"));
-  CHECK_THAT(refusal({"dropcheck-engine 1", "name \x1b[2J"}),
+  CHECK_THAT(protocol_refusal({"dropcheck-engine 1", "name \x1b[2J"}),
              Contains("'\\x1b[2J' is not a valid engine name"));
-  CHECK_THAT(refusal({"dropcheck-engine 1", "name e", "ready"}),
+  CHECK_THAT(protocol_refusal({"dropcheck-engine 1", "name e", "ready"}),
              Contains("the handshake lacks version"));
   std::vector<std::string> endless{"dropcheck-engine 1"};
   endless.resize(100, "version 1");
-  CHECK_THAT(refusal(endless), Contains("a handshake of more than 64 lines without 'ready'"));
+  CHECK_THAT(protocol_refusal(endless),
+             Contains("a handshake of more than 64 lines without 'ready'"));
 }
 
 TEST_CASE("an engine that turns bodies announces it with its rotational member",
@@ -100,11 +101,11 @@ TEST_CASE("an engine that turns bodies announces it with its rotational member",
   CHECK(info.capabilities.rotation == Rotation::full);
   CHECK(info.rotation_law ==
         RotationLaw{Gyroscopic::implicit_body, OrientationUpdate::exponential_map});
-  CHECK_THAT(refusal(handshake({"capabilities rotation"})),
+  CHECK_THAT(protocol_refusal(handshake({"capabilities rotation"})),
              Contains("announces rotation but lacks 'rotation-law KEY'"));
-  CHECK_THAT(refusal(handshake({"capabilities rotation-z", "rotation-law explicit"})),
+  CHECK_THAT(protocol_refusal(handshake({"capabilities rotation-z", "rotation-law explicit"})),
              Contains("garbage from the engine") && Contains("rotation-law keys"));
-  CHECK(refusal(handshake({"capabilities rotation-z", "rotation-law no-gyro/exp-map"})) ==
+  CHECK(protocol_refusal(handshake({"capabilities rotation-z", "rotation-law no-gyro/exp-map"})) ==
         "(accepted)");
 }
 
@@ -142,13 +143,13 @@ TEST_CASE("an engine that collides materials and spheres announces them with its
   CHECK_FALSE(info.bounce_law.push_in_position);
   CHECK(info.bounce_law.threshold == 0.5);
   CHECK(info.bounce_law.contact_distance_per_size == 0.02);
-  CHECK(refusal(handshake({"bounce-law 0 inf position 0 0 0"})) == "(accepted)");
+  CHECK(protocol_refusal(handshake({"bounce-law 0 inf position 0 0 0"})) == "(accepted)");
   for (const char* bad : {"bounce-law 1.5 inf velocity 0 0 0", "bounce-law 0.2 0 velocity 0 0 0",
                           "bounce-law 0.2 inf sideways 0 0 0", "bounce-law 0.2 inf velocity -1 0 0",
                           "bounce-law 0.2 inf velocity nan 0 0", "bounce-law 0.2 inf velocity 0 0",
                           "friction-model pyramid"})
-    CHECK_THAT(refusal(handshake({bad})), Contains("garbage from the engine"));
-  CHECK_THAT(refusal(handshake({"capabilities restitution spheres"})),
+    CHECK_THAT(protocol_refusal(handshake({bad})), Contains("garbage from the engine"));
+  CHECK_THAT(protocol_refusal(handshake({"capabilities restitution spheres"})),
              Contains("without 'contacts'"));
 }
 
@@ -168,5 +169,5 @@ TEST_CASE("an engine announces its stack law", "[exec][contact][stack]") {
        {"stack-law 0 0 0 0 0 0 0.001 0.001", "stack-law 0 4.5 0 0 0 0 0.001 0.001",
         "stack-law 0 4 0 0 2.5 0 0.001 0.001", "stack-law -1 4 0 0 0 0 0.001 0.001",
         "stack-law 0 4 0 0 0 0 inf 0.001", "stack-law 0 4 0 0 0 0 0.001"})
-    CHECK_THAT(refusal(handshake({bad})), Contains("garbage from the engine"));
+    CHECK_THAT(protocol_refusal(handshake({bad})), Contains("garbage from the engine"));
 }

@@ -27,29 +27,29 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kSource = DROPCHECK_SOURCE_DIR;
-const std::string kPython = kSource + "/examples/python/seed_engine.toml";
-const std::string kWrong = kSource + "/examples/python/wrong_order.toml";
+const std::string kExecSource = DROPCHECK_SOURCE_DIR;
+const std::string kPython = kExecSource + "/examples/python/seed_engine.toml";
+const std::string kWrong = kExecSource + "/examples/python/wrong_order.toml";
 const std::string kC = std::string("exec:") + DROPCHECK_SEED_ENGINE_C;
-const std::string kBad = kSource + "/tests/adapters/bad_engine.py";
+const std::string kBad = kExecSource + "/tests/adapters/bad_engine.py";
 
-Scene scene(const std::string& name) {
-  return load_scene(kSource + "/scenarios/" + name + ".toml");
+Scene exec_scene(const std::string& name) {
+  return load_scene(kExecSource + "/scenarios/" + name + ".toml");
 }
 
-Trajectory run(const std::string& engine, const Scene& s) {
+Trajectory run_exec(const std::string& engine, const Scene& s) {
   auto e = make_engine(engine);
   REQUIRE(e);
   return run_scene(*e, s, s.timestep.seconds);
 }
 
 // True when this process has no child left, running or zombie.
-bool no_children() {
+bool exec_no_children() {
   int status = 0;
   return ::waitpid(-1, &status, WNOHANG) == -1 && errno == ECHILD;
 }
 
-void require_same_bits(const Trajectory& a, const Trajectory& b) {
+void require_exec_same_bits(const Trajectory& a, const Trajectory& b) {
   REQUIRE(a.status == RunStatus::ok);
   REQUIRE(a.samples() == b.samples());
   for (std::size_t i = 0; i < a.states.size(); ++i) {
@@ -64,7 +64,7 @@ Trajectory run_bad(const std::string& mode, int at, double timeout_s = 2.0) {
   ExecSpec spec;
   spec.command = {"python3", kBad, mode, std::to_string(at)};
   spec.timeout_s = timeout_s;
-  const Scene s = scene("wind");
+  const Scene s = exec_scene("wind");
   Trajectory t;
   {
     auto e = make_exec_engine(spec);
@@ -74,7 +74,7 @@ Trajectory run_bad(const std::string& mode, int at, double timeout_s = 2.0) {
 }
 
 // The InputError message of parse_exec_spec(spec), or "no error".
-std::string error_of(const std::string& spec) {
+std::string exec_error_of(const std::string& spec) {
   try {
     parse_exec_spec(spec);
   } catch (const InputError& e) {
@@ -95,19 +95,19 @@ std::string write_file(const std::string& name, const std::string& text) {
 TEST_CASE("The Python seed engine follows ours-f64 bit for bit over the protocol", "[exec]") {
   for (const char* name : {"wind", "throw_up", "seed_part3"}) {
     INFO(name);
-    const Scene s = scene(name);
-    require_same_bits(run(kPython, s), run("ours-f64", s));
+    const Scene s = exec_scene(name);
+    require_exec_same_bits(run_exec(kPython, s), run_exec("ours-f64", s));
   }
   CHECK(make_engine(kPython)->info().name == "seed-python");
   CHECK(make_engine(kPython)->info().scalar == Scalar::f64);
-  CHECK(no_children());
+  CHECK(exec_no_children());
 }
 
 TEST_CASE("The C seed engine in float follows ours (f32) bit for bit over the protocol", "[exec]") {
   for (const char* name : {"wind", "throw_up", "seed_part3"}) {
     INFO(name);
-    const Scene s = scene(name);
-    require_same_bits(run(kC, s), run("ours", s));
+    const Scene s = exec_scene(name);
+    require_exec_same_bits(run_exec(kC, s), run_exec("ours", s));
   }
   const EngineInfo info = make_engine(kC)->info();
   CHECK(info.name == "seed-c");
@@ -117,7 +117,7 @@ TEST_CASE("The C seed engine in float follows ours (f32) bit for bit over the pr
 
 TEST_CASE("check passes the example engines and fails the wrong-order one on its own law",
           "[exec]") {
-  const Scene s = scene("throw_up");
+  const Scene s = exec_scene("throw_up");
   const EngineFactory ref = [] { return make_engine("ours-f64"); };
   for (const std::string& engine : {kPython, kC}) {
     for (const CheckResult& r : check_scene(
@@ -134,16 +134,16 @@ TEST_CASE("check passes the example engines and fails the wrong-order one on its
 
 TEST_CASE("run and check accept an external engine on the command line", "[exec][cli]") {
   std::ostringstream out, err;
-  REQUIRE(cli_main({"run", kSource + "/scenarios/wind.toml", "--engine", kPython}, out, err) ==
+  REQUIRE(cli_main({"run", kExecSource + "/scenarios/wind.toml", "--engine", kPython}, out, err) ==
           kExitOk);
   CHECK_THAT(out.str(), Contains("seed-python small") && Contains("120") && Contains("ok"));
   out.str("");
-  REQUIRE(cli_main({"check", kSource + "/scenarios/wind.toml", "--engine", kC}, out, err) ==
+  REQUIRE(cli_main({"check", kExecSource + "/scenarios/wind.toml", "--engine", kC}, out, err) ==
           kExitOk);
   CHECK_THAT(out.str(),
              Contains("PASS  wind  seed-c  own law at h = 1/60") && Contains("0 failed"));
   out.str("");
-  CHECK(cli_main({"check", kSource + "/scenarios/wind.toml", "--engine", kWrong}, out, err) ==
+  CHECK(cli_main({"check", kExecSource + "/scenarios/wind.toml", "--engine", kWrong}, out, err) ==
         kExitCheckFailed);
   CHECK_THAT(out.str(), Contains("FAIL  wind  wrong-order  own law"));
 }
@@ -154,7 +154,7 @@ TEST_CASE("A crashing engine is a result naming the signal and the step", "[exec
   CHECK(t.failed_step == 3);
   CHECK_THAT(t.failure, Contains("at step 3: the engine crashed: SIGSEGV"));
   CHECK(t.samples() == 3);  // steps 0, 1, 2 recorded
-  CHECK(no_children());
+  CHECK(exec_no_children());
 }
 
 TEST_CASE("A hanging engine times out at its step and is killed", "[exec]") {
@@ -166,7 +166,7 @@ TEST_CASE("A hanging engine times out at its step and is killed", "[exec]") {
   CHECK(t.failed_step == 2);
   CHECK_THAT(t.failure, Contains("at step 2: no answer within 1.5 s (timeout; engine killed)"));
   CHECK(seconds < 5.0);  // measured 1.6 s (1.5 s timeout + python start), never the 60 s sleep
-  CHECK(no_children());
+  CHECK(exec_no_children());
 }
 
 TEST_CASE("Garbage, a wrong body count, an error line and an early exit are results", "[exec]") {
@@ -189,7 +189,7 @@ TEST_CASE("Garbage, a wrong body count, an error line and an early exit are resu
   for (const Trajectory* t : {&garbage, &bodies, &error})
     CHECK(t->status == RunStatus::engine_error);
   CHECK(exit.status == RunStatus::crashed);  // its process went away
-  CHECK(no_children());
+  CHECK(exec_no_children());
 }
 
 TEST_CASE("An engine answering NaN is recorded as a non-finite state at that step", "[exec]") {
@@ -210,12 +210,12 @@ TEST_CASE("A wrong handshake, a silent engine and a missing program fail at star
   missing.command = {"/nonexistent/engine"};
   auto e = make_exec_engine(missing);
   CHECK(e->info().name == "engine");
-  const Scene s = scene("wind");
+  const Scene s = exec_scene("wind");
   const Trajectory t = run_scene(*e, s, s.timestep.seconds);
   CHECK(t.status == RunStatus::engine_error);
   CHECK_THAT(t.failure, Contains("at start: cannot start '/nonexistent/engine'"));
   e.reset();
-  CHECK(no_children());
+  CHECK(exec_no_children());
 }
 
 TEST_CASE("The handshake declares continuous collision with the capability continuous-collision",
@@ -245,7 +245,7 @@ TEST_CASE("The handshake declares continuous collision with the capability conti
     {
       auto e = make_exec_engine(spec);
       seen.info = e->info();
-      const Scene s = scene("wind");
+      const Scene s = exec_scene("wind");
       if (run) seen.failure = run_scene(*e, s, s.timestep.seconds).failure;
     }
     fs::remove(script);
@@ -261,25 +261,27 @@ TEST_CASE("The handshake declares continuous collision with the capability conti
              Contains("at start") && Contains("capabilities 'contacts', 'planar-only', "
                                               "'continuous-collision', 'rotation', 'rotation-z', "
                                               "'friction', 'restitution' or 'spheres'"));
-  CHECK(no_children());
+  CHECK(exec_no_children());
 }
 
 TEST_CASE("Engine files and exec: paths are validated as input", "[exec]") {
   CHECK(is_exec_spec("exec:./x"));
   CHECK(is_exec_spec("a/b.toml"));
   CHECK_FALSE(is_exec_spec("ours"));
-  CHECK_THAT(error_of("/nonexistent/e.toml"), Contains("/nonexistent/e.toml: no such engine file"));
-  CHECK_THAT(error_of("exec:/nonexistent"), Contains("'/nonexistent': No such file or directory"));
-  CHECK_THAT(error_of(write_file("a.toml", "name = \"x\"\n")), Contains("command: missing"));
-  CHECK_THAT(error_of(write_file("b.toml", "command = [\"x\"]\nspeed = 3\n")),
+  CHECK_THAT(exec_error_of("/nonexistent/e.toml"),
+             Contains("/nonexistent/e.toml: no such engine file"));
+  CHECK_THAT(exec_error_of("exec:/nonexistent"),
+             Contains("'/nonexistent': No such file or directory"));
+  CHECK_THAT(exec_error_of(write_file("a.toml", "name = \"x\"\n")), Contains("command: missing"));
+  CHECK_THAT(exec_error_of(write_file("b.toml", "command = [\"x\"]\nspeed = 3\n")),
              Contains(":2: speed: unknown key (known: name, command, timeout)"));
-  CHECK_THAT(error_of(write_file("c.toml", "command = [\"x\"]\ntimeout = -1\n")),
+  CHECK_THAT(exec_error_of(write_file("c.toml", "command = [\"x\"]\ntimeout = -1\n")),
              Contains("timeout: must be a number of seconds in (0, 3600]"));
-  CHECK_THAT(error_of(write_file("d.toml", "command = []\n")),
+  CHECK_THAT(exec_error_of(write_file("d.toml", "command = []\n")),
              Contains("command: must be a non-empty array"));
-  CHECK_THAT(error_of(write_file("e.toml", "name = \"ours\"\ncommand = [\"x\"]\n")),
+  CHECK_THAT(exec_error_of(write_file("e.toml", "name = \"ours\"\ncommand = [\"x\"]\n")),
              Contains("'ours' is the name of a built-in engine"));
-  CHECK_THAT(error_of(write_file("f.toml", "name = \"a b\"\ncommand = [\"x\"]\n")),
+  CHECK_THAT(exec_error_of(write_file("f.toml", "name = \"a b\"\ncommand = [\"x\"]\n")),
              Contains("not a valid engine name"));
   const ExecSpec ok =
       parse_exec_spec(write_file("g.toml", "command = [\"python3\", \"e.py\"]\ntimeout = 0.5\n"));
@@ -287,8 +289,8 @@ TEST_CASE("Engine files and exec: paths are validated as input", "[exec]") {
   CHECK(ok.timeout_s == 0.5);
   CHECK(ok.cwd == fs::temp_directory_path().string());
   std::ostringstream out, err;
-  CHECK(cli_main({"run", kSource + "/scenarios/wind.toml", "--engine", "/nonexistent/e.toml"}, out,
-                 err) == kExitBadInput);
+  CHECK(cli_main({"run", kExecSource + "/scenarios/wind.toml", "--engine", "/nonexistent/e.toml"},
+                 out, err) == kExitBadInput);
   CHECK_THAT(err.str(), Contains("no such engine file"));
 }
 
@@ -303,20 +305,20 @@ TEST_CASE(
   fs::create_directories(dir / "engine_dir");
   fs::create_symlink("/dev/zero", dir / "zero.toml");
   // Refused at once, never read: /dev/zero would never end.
-  CHECK_THAT(error_of((dir / "zero.toml").string()),
+  CHECK_THAT(exec_error_of((dir / "zero.toml").string()),
              Contains("zero.toml: cannot read the file: not a regular file (a device, FIFO or "
                       "socket)"));
-  CHECK_THAT(error_of((dir / "folder.toml").string()),
+  CHECK_THAT(exec_error_of((dir / "folder.toml").string()),
              Contains("folder.toml: cannot read the file: it is a directory"));
   std::ofstream(dir / "e.toml") << "command = [\"./engine_dir\", \"x\"]\n";
-  CHECK(error_of((dir / "e.toml").string()) ==
+  CHECK(exec_error_of((dir / "e.toml").string()) ==
         (dir / "e.toml").string() + ":1: command: './engine_dir' is a folder, not a program");
   std::ofstream(dir / "f.toml") << "command = [\"./missing\"]\n";
-  CHECK_THAT(error_of((dir / "f.toml").string()),
+  CHECK_THAT(exec_error_of((dir / "f.toml").string()),
              Contains(":1: command: './missing': No such file or directory"));
   std::ofstream(dir / "g.toml") << "name = \"x\"\ncommand = [\"python3\", \"e.py\"]\n"
                                 << "# \x1b[2J\n";
-  CHECK_THAT(error_of((dir / "g.toml").string()), Contains("g.toml:3: control character"));
+  CHECK_THAT(exec_error_of((dir / "g.toml").string()), Contains("g.toml:3: control character"));
   fs::remove_all(dir);
 }
 
@@ -324,13 +326,13 @@ TEST_CASE("Two engines that announce the same name are refused as the clash", "[
   const fs::path dir =
       fs::temp_directory_path() / ("dropcheck_exec_clash_" + std::to_string(::getpid()));
   fs::create_directories(dir);
-  const std::string py = kSource + "/examples/python/seed_engine.py";
+  const std::string py = kExecSource + "/examples/python/seed_engine.py";
   std::ofstream(dir / "a.toml") << "command = [\"python3\", \"" << py << "\"]\n";
   std::ofstream(dir / "b.toml") << "command = [\"python3\", \"" << py << "\"]\n";
   for (const std::string command : {"run", "check", "report", "bless"}) {
     INFO(command);
     std::ostringstream out, err;
-    std::vector<std::string> argv{command,    kSource + "/scenarios/free_fall.toml",
+    std::vector<std::string> argv{command,    kExecSource + "/scenarios/free_fall.toml",
                                   "--engine", (dir / "a.toml").string(),
                                   "--engine", (dir / "b.toml").string()};
     if (command == "report" || command == "bless") {
@@ -352,8 +354,8 @@ namespace {
 // The bounce check of scenarios/bounce_e05 on tests/adapters/bounce_engine.py MODE ANNOUNCE.
 CheckResult bounce_check(const std::string& mode, const std::string& announce) {
   ExecSpec spec;
-  spec.command = {"python3", kSource + "/tests/adapters/bounce_engine.py", mode, announce};
-  const Scene s = scene("bounce_e05");
+  spec.command = {"python3", kExecSource + "/tests/adapters/bounce_engine.py", mode, announce};
+  const Scene s = exec_scene("bounce_e05");
   return check_bounce(
       s, [&] { return make_exec_engine(spec); }, s.timestep);
 }
@@ -380,6 +382,6 @@ TEST_CASE(
   CHECK_THAT(liar.message, Contains("DEPARTS at step"));
   // An engine without the capabilities never gets the scene.
   ExecSpec plain;
-  plain.command = {"python3", kSource + "/examples/python/seed_engine.py"};
-  CHECK_THAT(make_exec_engine(plain)->cannot_run(scene("bounce_e05")), Contains("contacts"));
+  plain.command = {"python3", kExecSource + "/examples/python/seed_engine.py"};
+  CHECK_THAT(make_exec_engine(plain)->cannot_run(exec_scene("bounce_e05")), Contains("contacts"));
 }

@@ -22,13 +22,13 @@ namespace {
 
 using LD = long double;
 
-struct Case {
+struct PhysicsCase {
   double x0, v0, accel_g, force, mass, drag;  // one axis; accel_g is g along it
 };
 
 // Exact discrete solution after n steps (header comment), one axis.
 template <typename T>
-void closed_form(const Case& c, T h_t, int n, LD& x, LD& v) {
+void physics_closed_form(const PhysicsCase& c, T h_t, int n, LD& x, LD& v) {
   const LD h = h_t, f = static_cast<T>(c.drag), x0 = static_cast<T>(c.x0),
            v0 = static_cast<T>(c.v0);
   const LD a =
@@ -47,8 +47,8 @@ void closed_form(const Case& c, T h_t, int n, LD& x, LD& v) {
 // Runs `steps` steps of ApplyPhysics with the case on every axis scaled by (1, -1, 0.5) and
 // returns the worst |x - closed form| and |v - closed form| over all steps and axes.
 template <typename T>
-void worst_error(const Case& c, int steps, T h, double& dx, double& dv, double& max_x,
-                 double& max_v) {
+void physics_worst_error(const PhysicsCase& c, int steps, T h, double& dx, double& dv,
+                         double& max_x, double& max_v) {
   const Eigen::Vector3d scale(1.0, -1.0, 0.5);
   std::vector<ours::Model<T>> models(1);
   models[0].translation = (c.x0 * scale).cast<T>();
@@ -63,10 +63,10 @@ void worst_error(const Case& c, int steps, T h, double& dx, double& dv, double& 
         (c.force * scale).cast<T>();  // the accumulator is cleared each step
     ours::ApplyPhysics<T>(models, world, h);
     for (int i = 0; i < 3; ++i) {
-      Case ci{c.x0 * scale[i],    c.v0 * scale[i], c.accel_g * scale[i],
-              c.force * scale[i], c.mass,          c.drag};
+      PhysicsCase ci{c.x0 * scale[i],    c.v0 * scale[i], c.accel_g * scale[i],
+                     c.force * scale[i], c.mass,          c.drag};
       LD x, v;
-      closed_form<T>(ci, h, n, x, v);
+      physics_closed_form<T>(ci, h, n, x, v);
       dx = std::max(dx, double(std::fabs(LD(models[0].translation[i]) - x)));
       dv = std::max(dv, double(std::fabs(LD(models[0].rigidBody.velocity[i]) - v)));
       max_x = std::max(max_x, double(std::fabs(x)));
@@ -88,10 +88,10 @@ Bound float_bound(int n, double h, double max_x, double max_v) {
   return {n * u * (max_x + 3.0 * (n + 1) * h * max_v), 5.0 * n * u * max_v};
 }
 
-const Case kNoDrag{10.0, 0.0, -9.8, 0.0, 1.0, 1.0};
-const Case kSeedDrag{10.0, 0.0, -9.8, 0.0, 1.0, 0.98};
-const Case kForceAndV0{1.0, 8.0, -9.8, 7.0, 2.5, 0.98};  // mass != 1, v0 != 0, drag
-const Case kForceAndV0NoDrag{1.0, 8.0, -9.8, 7.0, 2.5, 1.0};
+const PhysicsCase kNoDrag{10.0, 0.0, -9.8, 0.0, 1.0, 1.0};
+const PhysicsCase kSeedDrag{10.0, 0.0, -9.8, 0.0, 1.0, 0.98};
+const PhysicsCase kForceAndV0{1.0, 8.0, -9.8, 7.0, 2.5, 0.98};  // mass != 1, v0 != 0, drag
+const PhysicsCase kForceAndV0NoDrag{1.0, 8.0, -9.8, 7.0, 2.5, 1.0};
 
 }  // namespace
 
@@ -118,7 +118,7 @@ TEST_CASE(
   // Each row: the case, its steps at 1/60, and the measured worst |dx| and |dv|.
   struct Row {
     const char* what;
-    Case c;
+    PhysicsCase c;
     int steps;
     const char* measured;
   };
@@ -128,7 +128,7 @@ TEST_CASE(
       Row{"the seed's drag", kSeedDrag, 300, "dx 2.7e-14, dv 1.3e-14"},
       Row{"a force, mass 2.5 and v0, with drag", kForceAndV0, 300, "dx 7.1e-14, dv 2.2e-14"});
   double dx, dv, mx, mv;
-  worst_error<double>(r.c, r.steps, 1.0 / 60.0, dx, dv, mx, mv);
+  physics_worst_error<double>(r.c, r.steps, 1.0 / 60.0, dx, dv, mx, mv);
   INFO(r.what << ", " << r.steps << " steps (measured " << r.measured << ")");
   CHECK(dx < 1e-12);
   CHECK(dv < 1e-12);
@@ -136,10 +136,10 @@ TEST_CASE(
 
 TEST_CASE("ApplyPhysics in float stays within the float rounding bound of the closed form",
           "[ours]") {
-  for (const Case& c : {kNoDrag, kSeedDrag, kForceAndV0, kForceAndV0NoDrag}) {
+  for (const PhysicsCase& c : {kNoDrag, kSeedDrag, kForceAndV0, kForceAndV0NoDrag}) {
     const int n = 300;
     double dx, dv, mx, mv;
-    worst_error<float>(c, n, ours::PHYSICS_TIMESTEP<float>, dx, dv, mx, mv);
+    physics_worst_error<float>(c, n, ours::PHYSICS_TIMESTEP<float>, dx, dv, mx, mv);
     const Bound b = float_bound(n, 1.0 / 60.0, mx, mv + 9.8 / 60.0 + 7.0 / 2.5 / 60.0);
     INFO("drag " << c.drag << ": dx " << dx << " (bound " << b.x << "), dv " << dv << " (bound "
                  << b.v << ")");

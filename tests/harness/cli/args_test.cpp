@@ -20,14 +20,14 @@ const dropcheck::CommandSpec kSpec{"demo",
                                     {"--csv", "OUT", "csv"},
                                     {"--quick", "", "a flag"}}};
 
-dropcheck::Args parse(const std::vector<std::string>& argv) {
+dropcheck::Args parse_args_line(const std::vector<std::string>& argv) {
   return dropcheck::parse_args(kSpec, argv);
 }
 
 }  // namespace
 
 TEST_CASE("parse_args splits positionals, repeatable options and flags", "[cli][args]") {
-  const dropcheck::Args a = parse(
+  const dropcheck::Args a = parse_args_line(
       {"scene.toml", "--engine", "ours", "--quick", "--engine", "ode", "more", "--dt", "1/120"});
   CHECK(a.positional == std::vector<std::string>{"scene.toml", "more"});
   CHECK(a.values("--engine") == std::vector<std::string>{"ours", "ode"});
@@ -40,7 +40,7 @@ TEST_CASE("parse_args splits positionals, repeatable options and flags", "[cli][
 }
 
 TEST_CASE("a negative number is a value and --name=VALUE takes any value", "[cli][args]") {
-  const dropcheck::Args a = parse({"--dt", "-0.1", "--csv=--out"});
+  const dropcheck::Args a = parse_args_line({"--dt", "-0.1", "--csv=--out"});
   CHECK(a.value("--dt") == "-0.1");
   CHECK(a.value("--csv") == "--out");
   CHECK(a.positional.empty());
@@ -50,27 +50,28 @@ TEST_CASE(
     "after a bare -- every word is a positional, and a single-dash word before it is an unknown "
     "option",
     "[cli][args]") {
-  const dropcheck::Args a = parse({"--", "-x"});
+  const dropcheck::Args a = parse_args_line({"--", "-x"});
   CHECK(a.positional == std::vector<std::string>{"-x"});
-  CHECK_THROWS_WITH(parse({"-x"}), Contains("-x") && Contains("unknown option"));
+  CHECK_THROWS_WITH(parse_args_line({"-x"}), Contains("-x") && Contains("unknown option"));
 }
 
 TEST_CASE("an unknown option or a missing value is an InputError naming the option",
           "[cli][args]") {
-  CHECK_THROWS_WITH(parse({"--nope"}), Contains("--nope") && Contains("unknown option"));
-  CHECK_THROWS_WITH(parse({"f.toml", "--dt"}), Contains("--dt"));
-  CHECK_THROWS_AS(parse({"--nope"}), dropcheck::InputError);
+  CHECK_THROWS_WITH(parse_args_line({"--nope"}), Contains("--nope") && Contains("unknown option"));
+  CHECK_THROWS_WITH(parse_args_line({"f.toml", "--dt"}), Contains("--dt"));
+  CHECK_THROWS_AS(parse_args_line({"--nope"}), dropcheck::InputError);
 }
 
 TEST_CASE("an empty value or a single-valued option given twice is an InputError naming it",
           "[cli][args]") {
-  CHECK_THROWS_WITH(parse({"--dt", ""}), Contains("--dt") && Contains("empty"));
-  CHECK_THROWS_WITH(parse({"--dt", "1", "--dt", "2"}), Contains("--dt") && Contains("2 times"));
+  CHECK_THROWS_WITH(parse_args_line({"--dt", ""}), Contains("--dt") && Contains("empty"));
+  CHECK_THROWS_WITH(parse_args_line({"--dt", "1", "--dt", "2"}),
+                    Contains("--dt") && Contains("2 times"));
 }
 
 TEST_CASE("--help is thrown as HelpRequested carrying the options", "[cli][args]") {
   try {
-    parse({"--help"});
+    parse_args_line({"--help"});
     FAIL("no HelpRequested");
   } catch (const dropcheck::HelpRequested& h) {
     CHECK_THAT(h.text, Contains("--engine") && Contains("--dt") && Contains("dropcheck demo"));

@@ -16,7 +16,7 @@ std::string scene_file(const std::string& stem) {
   return std::string(DROPCHECK_SOURCE_DIR) + "/scenarios/" + stem + ".toml";
 }
 
-int run(const std::vector<std::string>& argv, std::string& out) {
+int run_bless(const std::vector<std::string>& argv, std::string& out) {
   std::ostringstream o, e;
   const int code = cli_main(argv, o, e);
   out = o.str() + e.str();
@@ -28,13 +28,14 @@ int run(const std::vector<std::string>& argv, std::string& out) {
 TEST_CASE("bless --out writes a result set that bless --check then passes", "[baseline][cli]") {
   const ScratchDir dir("cli-bless");
   std::string out;
-  REQUIRE(run({"bless", scene_file("throw_up"), "--engine", "ours", "--out", dir.path.string()},
-              out) == 0);
+  REQUIRE(
+      run_bless({"bless", scene_file("throw_up"), "--engine", "ours", "--out", dir.path.string()},
+                out) == 0);
   CHECK_THAT(out, Catch::StartsWith("new ") && Catch::Contains("throw_up.ours.txt (hash "));
   const std::vector<std::string> check = {"bless",          "--check", scene_file("throw_up"),
                                           "--engine",       "ours",    "--baselines",
                                           dir.path.string()};
-  REQUIRE(run(check, out) == 0);
+  REQUIRE(run_bless(check, out) == 0);
   CHECK_THAT(out, Catch::Contains("passed: throw_up / ours / bits: hash ") &&
                       Catch::Contains(
                           "passed: throw_up / ours / determinism: two runs gave identical CSV"));
@@ -44,18 +45,19 @@ TEST_CASE("bless --check exits 77 when every tier is skipped and 1 when a baseli
           "[baseline][cli]") {
   const ScratchDir dir("cli-check");
   std::string out;
-  CHECK(run({"bless", "--check", kTurnedPair, "--engine", "ours", "--baselines", dir.path.string()},
+  CHECK(run_bless(
+            {"bless", "--check", kTurnedPair, "--engine", "ours", "--baselines", dir.path.string()},
             out) == 77);
   CHECK_THAT(out, Catch::Contains("skipped: ours_turned_pair / ours / physics: the engine cannot "
                                   "run this scene: a turned or turning box beside another"));
-  CHECK(run({"bless", "--check", scene_file("wind"), "--engine", "ours-f64", "--tier", "tolerance",
-             "--baselines", dir.path.string()},
-            out) == 1);
+  CHECK(run_bless({"bless", "--check", scene_file("wind"), "--engine", "ours-f64", "--tier",
+                   "tolerance", "--baselines", dir.path.string()},
+                  out) == 1);
   CHECK_THAT(out,
              Catch::Contains("FAILED: wind / ours-f64 / tolerance: no baseline ") &&
                  Catch::Contains("run `dropcheck bless " + scene_file("wind") + "` to make one"));
-  CHECK(run({"bless", "--check", scene_file("wind"), "--tier", "colour"}, out) == 2);
-  CHECK(run({"bless", scene_file("wind"), "--tier", "bits"}, out) == 2);
+  CHECK(run_bless({"bless", "--check", scene_file("wind"), "--tier", "colour"}, out) == 2);
+  CHECK(run_bless({"bless", scene_file("wind"), "--tier", "bits"}, out) == 2);
 }
 
 TEST_CASE("bless --out writes a run that fails a tier, marks it and exits 1", "[baseline][cli]") {
@@ -63,7 +65,8 @@ TEST_CASE("bless --out writes a run that fails a tier, marks it and exits 1", "[
   const std::string engine =
       std::string(DROPCHECK_SOURCE_DIR) + "/examples/python/wrong_order.toml";
   std::string out;
-  CHECK(run({"bless", scene_file("free_fall_drag"), "--engine", engine, "--out", dir.path.string()},
+  CHECK(run_bless(
+            {"bless", scene_file("free_fall_drag"), "--engine", engine, "--out", dir.path.string()},
             out) == 1);
   INFO(out);
   CHECK_THAT(out, Catch::Contains("FAILED (written, marked in the file): free_fall_drag / "
@@ -71,19 +74,21 @@ TEST_CASE("bless --out writes a run that fails a tier, marks it and exits 1", "[
                       Catch::Contains("a consistent new scheme: first-order, follows") &&
                       Catch::Contains("no baseline to compare with"));
   CHECK(std::filesystem::exists(dir.file("free_fall_drag.wrong-order.txt")));
-  CHECK(run({"bless", scene_file("free_fall_drag"), "--engine", "ours", "--out", dir.path.string()},
+  CHECK(run_bless(
+            {"bless", scene_file("free_fall_drag"), "--engine", "ours", "--out", dir.path.string()},
             out) == 0);
 }
 
 TEST_CASE("diff prints Markdown to stdout or writes it with --out", "[baseline][cli]") {
   const ScratchDir a("cli-diff-a"), b("cli-diff-b"), c("cli-diff-out");
   std::string out;
-  REQUIRE(run({"bless", scene_file("free_fall"), "--out", a.path.string()}, out) == 0);
-  REQUIRE(run({"bless", scene_file("free_fall"), "--out", b.path.string()}, out) == 0);
-  REQUIRE(run({"diff", a.path.string(), b.path.string()}, out) == 0);
+  REQUIRE(run_bless({"bless", scene_file("free_fall"), "--out", a.path.string()}, out) == 0);
+  REQUIRE(run_bless({"bless", scene_file("free_fall"), "--out", b.path.string()}, out) == 0);
+  REQUIRE(run_bless({"diff", a.path.string(), b.path.string()}, out) == 0);
   CHECK_THAT(out, Catch::StartsWith("# dropcheck diff") &&
                       Catch::Contains("0 of 2 scene/engine runs moved"));
-  REQUIRE(run({"diff", a.path.string(), b.path.string(), "--out", c.file("diff.md")}, out) == 0);
+  REQUIRE(run_bless({"diff", a.path.string(), b.path.string(), "--out", c.file("diff.md")}, out) ==
+          0);
   CHECK_THAT(slurp(c.file("diff.md")), Catch::Contains("| free_fall | ours | identical |"));
-  CHECK(run({"diff", a.path.string()}, out) == 2);
+  CHECK(run_bless({"diff", a.path.string()}, out) == 2);
 }

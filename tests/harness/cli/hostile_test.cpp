@@ -51,8 +51,8 @@ std::string scene_text(const std::string& name = "tiny", const std::string& extr
          extra;
 }
 
-std::string scene(const ScratchDir& d, const std::string& file = "tiny.toml",
-                  const std::string& name = "tiny") {
+std::string hostile_scene(const ScratchDir& d, const std::string& file = "tiny.toml",
+                          const std::string& name = "tiny") {
   put(d.file(file), scene_text(name));
   return d.file(file);
 }
@@ -169,7 +169,7 @@ TEST_CASE("engines with a stray argument is refused naming it", "[cli][hostile]"
 
 TEST_CASE("run --csv '' names --csv and writes nothing", "[cli][hostile]") {
   ScratchDir d("hostile-csv-empty");
-  const std::string s = scene(d);
+  const std::string s = hostile_scene(d);
   const Result r = run_tiny(s, {"--csv", ""});
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains("--csv"));
@@ -181,7 +181,7 @@ TEST_CASE(
     "engine runs",
     "[cli][hostile]") {
   ScratchDir d("hostile-option-refused");
-  const std::string s = scene(d);
+  const std::string s = hostile_scene(d);
   // Each row: what it is, the command line and what the error says.
   struct Case {
     std::string what;
@@ -286,7 +286,7 @@ TEST_CASE(
   for (const Case& c : cases) {
     INFO(c.what);
     ScratchDir d("hostile-output-is-input");
-    const std::string s = scene(d);
+    const std::string s = hostile_scene(d);
     const std::string before = slurp(s);
     const Result r = run_tiny(s, {c.option, c.output(d)});
     CHECK(r.code == 2);
@@ -299,7 +299,7 @@ TEST_CASE(
 TEST_CASE("run --csv X --json X is refused before any work and X is not created",
           "[cli][hostile]") {
   ScratchDir d("hostile-two-outputs");
-  const std::string s = scene(d);
+  const std::string s = hostile_scene(d);
   const Result r = run_tiny(s, {"--csv", d.file("x"), "--json", d.file("x")});
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains("--json") && Contains("--csv"));
@@ -309,7 +309,7 @@ TEST_CASE("run --csv X --json X is refused before any work and X is not created"
 
 TEST_CASE("stability S --json S is refused and the scene is untouched", "[cli][hostile]") {
   ScratchDir d("hostile-stability-input");
-  const std::string s = scene(d);
+  const std::string s = hostile_scene(d);
   const std::string before = slurp(s);
   const Result r = cli({"stability", s, "--engine", "ours-f64", "--json", s});
   CHECK(r.code == 2);
@@ -318,7 +318,7 @@ TEST_CASE("stability S --json S is refused and the scene is untouched", "[cli][h
 
 TEST_CASE("diff A B --out A/summary.md is refused: A is an input", "[cli][hostile]") {
   ScratchDir a("hostile-diff-in-a"), b("hostile-diff-in-b");
-  const std::string s = scene(a, "s.toml");
+  const std::string s = hostile_scene(a, "s.toml");
   REQUIRE(cli({"bless", s, "--engine", "ours-f64", "--out", (a.path / "set").string()}).code == 0);
   REQUIRE(cli({"bless", s, "--engine", "ours-f64", "--out", (b.path / "set").string()}).code == 0);
   const Result r = cli({"diff", (a.path / "set").string(), (b.path / "set").string(), "--out",
@@ -335,7 +335,7 @@ TEST_CASE("run --csv onto an existing folder is refused and the folder is untouc
           "[cli][hostile]") {
   ScratchDir d("hostile-csv-dir");
   fs::create_directories(d.path / "out" / "keep");
-  const Result r = run_tiny(scene(d), {"--csv", d.file("out")});
+  const Result r = run_tiny(hostile_scene(d), {"--csv", d.file("out")});
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains("directory"));
   CHECK(fs::is_directory(d.path / "out" / "keep"));
@@ -343,7 +343,7 @@ TEST_CASE("run --csv onto an existing folder is refused and the folder is untouc
 
 TEST_CASE("run --csv /dev/null is refused: a device is never replaced", "[cli][hostile]") {
   ScratchDir d("hostile-devnull");
-  const Result r = run_tiny(scene(d), {"--csv", "/dev/null"});
+  const Result r = run_tiny(hostile_scene(d), {"--csv", "/dev/null"});
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains("character device"));
   struct stat st {};
@@ -354,7 +354,7 @@ TEST_CASE("run --csv /dev/null is refused: a device is never replaced", "[cli][h
 TEST_CASE("run --csv onto a FIFO is refused without blocking", "[cli][hostile]") {
   ScratchDir d("hostile-fifo");
   REQUIRE(::mkfifo(d.file("pipe").c_str(), 0600) == 0);
-  const Result r = run_tiny(scene(d), {"--csv", d.file("pipe")});
+  const Result r = run_tiny(hostile_scene(d), {"--csv", d.file("pipe")});
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains("FIFO"));
   struct stat st {};
@@ -367,7 +367,7 @@ TEST_CASE("run --csv through a symbolic link writes the linked file and keeps th
   ScratchDir d("hostile-link-through");
   put(d.file("real.csv"), "old");
   fs::create_symlink("real.csv", d.file("link.csv"));  // relative, resolved from the link's folder
-  REQUIRE(run_tiny(scene(d), {"--csv", d.file("link.csv")}).code == 0);
+  REQUIRE(run_tiny(hostile_scene(d), {"--csv", d.file("link.csv")}).code == 0);
   CHECK(fs::is_symlink(d.file("link.csv")));
   CHECK_THAT(slurp(d.file("real.csv")), StartsWith("engine,dt,step"));
 }
@@ -375,7 +375,7 @@ TEST_CASE("run --csv through a symbolic link writes the linked file and keeps th
 TEST_CASE("run --csv through a dangling link creates the file it names", "[cli][hostile]") {
   ScratchDir d("hostile-link-dangling");
   fs::create_symlink(d.file("made.csv"), d.file("link.csv"));
-  REQUIRE(run_tiny(scene(d), {"--csv", d.file("link.csv")}).code == 0);
+  REQUIRE(run_tiny(hostile_scene(d), {"--csv", d.file("link.csv")}).code == 0);
   CHECK(fs::is_symlink(d.file("link.csv")));
   CHECK_THAT(slurp(d.file("made.csv")), StartsWith("engine,dt,step"));
 }
@@ -383,7 +383,7 @@ TEST_CASE("run --csv through a dangling link creates the file it names", "[cli][
 TEST_CASE("run --csv through a link to a device is refused", "[cli][hostile]") {
   ScratchDir d("hostile-link-dev");
   fs::create_symlink("/dev/null", d.file("link.csv"));
-  const Result r = run_tiny(scene(d), {"--csv", d.file("link.csv")});
+  const Result r = run_tiny(hostile_scene(d), {"--csv", d.file("link.csv")});
   CHECK(r.code == 2);
   CHECK(fs::is_symlink(d.file("link.csv")));
 }
@@ -392,7 +392,7 @@ TEST_CASE("run --csv on a symbolic link loop is refused", "[cli][hostile]") {
   ScratchDir d("hostile-link-loop");
   fs::create_symlink(d.file("b"), d.file("a"));
   fs::create_symlink(d.file("a"), d.file("b"));
-  const Result r = run_tiny(scene(d), {"--csv", d.file("a")});
+  const Result r = run_tiny(hostile_scene(d), {"--csv", d.file("a")});
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains("symbolic links"));
 }
@@ -400,13 +400,14 @@ TEST_CASE("run --csv on a symbolic link loop is refused", "[cli][hostile]") {
 TEST_CASE("a user's own OUT.tmp survives a run writing OUT", "[cli][hostile]") {
   ScratchDir d("hostile-user-tmp");
   put(d.file("out.csv.tmp"), "mine");
-  REQUIRE(run_tiny(scene(d), {"--csv", d.file("out.csv")}).code == 0);
+  REQUIRE(run_tiny(hostile_scene(d), {"--csv", d.file("out.csv")}).code == 0);
   CHECK(slurp(d.file("out.csv.tmp")) == "mine");
 }
 
 TEST_CASE("a run leaves no temporary file beside its outputs", "[cli][hostile]") {
   ScratchDir d("hostile-no-tmp");
-  REQUIRE(run_tiny(scene(d), {"--csv", d.file("o.csv"), "--json", d.file("o.json")}).code == 0);
+  REQUIRE(run_tiny(hostile_scene(d), {"--csv", d.file("o.csv"), "--json", d.file("o.json")}).code ==
+          0);
   CHECK(names(d.path) == std::set<std::string>{"o.csv", "o.json", "tiny.toml"});
 }
 
@@ -414,7 +415,7 @@ TEST_CASE("a replaced output keeps its permissions", "[cli][hostile]") {
   ScratchDir d("hostile-mode");
   put(d.file("o.csv"), "old");
   fs::permissions(d.file("o.csv"), fs::perms::owner_read | fs::perms::owner_write);
-  REQUIRE(run_tiny(scene(d), {"--csv", d.file("o.csv")}).code == 0);
+  REQUIRE(run_tiny(hostile_scene(d), {"--csv", d.file("o.csv")}).code == 0);
   CHECK(fs::status(d.file("o.csv")).permissions() ==
         (fs::perms::owner_read | fs::perms::owner_write));
 }
@@ -425,7 +426,7 @@ TEST_CASE("a replaced output keeps its permissions", "[cli][hostile]") {
 TEST_CASE("run --csv under a regular file is refused before any engine runs", "[cli][hostile]") {
   ScratchDir d("hostile-under-file");
   put(d.file("file"), "x");
-  const Result r = run_tiny(scene(d), {"--csv", d.file("file/sub/out.csv")});
+  const Result r = run_tiny(hostile_scene(d), {"--csv", d.file("file/sub/out.csv")});
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains("--csv") && Contains("not a folder"));
   CHECK_FALSE(engines_ran(r));
@@ -434,7 +435,7 @@ TEST_CASE("run --csv under a regular file is refused before any engine runs", "[
 
 TEST_CASE("run --csv naming a folder (trailing slash, '.') is refused", "[cli][hostile]") {
   ScratchDir d("hostile-csv-slash");
-  const std::string s = scene(d);
+  const std::string s = hostile_scene(d);
   const Result slash = run_tiny(s, {"--csv", d.file("newdir") + "/"});
   CHECK(slash.code == 2);
   CHECK_THAT(slash.err, Contains("folder"));
@@ -444,13 +445,13 @@ TEST_CASE("run --csv naming a folder (trailing slash, '.') is refused", "[cli][h
 
 TEST_CASE("run --csv into folders that do not exist yet creates them", "[cli][hostile]") {
   ScratchDir d("hostile-csv-mkdir");
-  REQUIRE(run_tiny(scene(d), {"--csv", d.file("a/b/o.csv")}).code == 0);
+  REQUIRE(run_tiny(hostile_scene(d), {"--csv", d.file("a/b/o.csv")}).code == 0);
   CHECK_THAT(slurp(d.file("a/b/o.csv")), StartsWith("engine,dt"));
 }
 
 TEST_CASE("report --out under a regular file, or onto one, is refused", "[cli][hostile]") {
   ScratchDir d("hostile-report-file");
-  const std::string s = scene(d);
+  const std::string s = hostile_scene(d);
   put(d.file("file"), "x");
   CHECK(cli({"report", s, "--engine", "ours", "--out", d.file("file/rep")}).code == 2);
   const Result onto = cli({"report", s, "--engine", "ours", "--out", d.file("file")});
@@ -461,7 +462,7 @@ TEST_CASE("report --out under a regular file, or onto one, is refused", "[cli][h
 
 TEST_CASE("report --out a folder holding its own input scene is refused", "[cli][hostile]") {
   ScratchDir d("hostile-report-holds-input");
-  const std::string s = scene(d, "rep/tiny.toml");
+  const std::string s = hostile_scene(d, "rep/tiny.toml");
   const Result r = cli({"report", s, "--engine", "ours", "--out", d.file("rep")});
   CHECK(r.code == 2);
   CHECK(fs::exists(s));
@@ -470,7 +471,7 @@ TEST_CASE("report --out a folder holding its own input scene is refused", "[cli]
 TEST_CASE("bless --out a regular file or /proc is refused before any engine runs",
           "[cli][hostile]") {
   ScratchDir d("hostile-bless-out");
-  const std::string s = scene(d);
+  const std::string s = hostile_scene(d);
   put(d.file("file"), "x");
   CHECK(cli({"bless", s, "--engine", "ours-f64", "--out", d.file("file")}).code == 2);
   CHECK(cli({"bless", s, "--engine", "ours-f64", "--out", "/proc/dropcheck-x"}).code == 2);
@@ -483,7 +484,7 @@ TEST_CASE("bless --out a regular file or /proc is refused before any engine runs
 TEST_CASE("report --out a user's folder of README.md and SVGs is refused and left as it was",
           "[cli][hostile]") {
   ScratchDir d("hostile-report-user");
-  const std::string s = scene(d);
+  const std::string s = hostile_scene(d);
   user_folder(d.path / "mine");
   const std::set<std::string> before = tree(d.path / "mine");
   const Result r = cli({"report", s, "--engine", "ours", "--no-timing", "--out", d.file("mine")});
@@ -496,7 +497,7 @@ TEST_CASE("report --out a user's folder of README.md and SVGs is refused and lef
 TEST_CASE("a report folder carries a manifest and is replaced by the next report",
           "[cli][hostile]") {
   ScratchDir d("hostile-report-manifest");
-  const std::string s = scene(d);
+  const std::string s = hostile_scene(d);
   REQUIRE(cli({"report", s, "--engine", "ours", "--no-timing", "--out", d.file("rep")}).code == 0);
   const std::string manifest = slurp(d.file("rep/.dropcheck-manifest"));
   CHECK_THAT(manifest, Contains("\nREADME.md\n"));
@@ -508,7 +509,7 @@ TEST_CASE("a report folder carries a manifest and is replaced by the next report
 
 TEST_CASE("a report folder with a file its manifest does not list is refused", "[cli][hostile]") {
   ScratchDir d("hostile-report-unlisted");
-  const std::string s = scene(d);
+  const std::string s = hostile_scene(d);
   REQUIRE(cli({"report", s, "--engine", "ours", "--no-timing", "--out", d.file("rep")}).code == 0);
   put(d.file("rep/notes.txt"), "mine");
   const Result r = cli({"report", s, "--engine", "ours", "--no-timing", "--out", d.file("rep")});
@@ -519,7 +520,7 @@ TEST_CASE("a report folder with a file its manifest does not list is refused", "
 
 TEST_CASE("a report folder holding a subfolder is refused", "[cli][hostile]") {
   ScratchDir d("hostile-report-subdir");
-  const std::string s = scene(d);
+  const std::string s = hostile_scene(d);
   REQUIRE(cli({"report", s, "--engine", "ours", "--no-timing", "--out", d.file("rep")}).code == 0);
   fs::create_directories(d.path / "rep" / "keep");
   CHECK(cli({"report", s, "--engine", "ours", "--no-timing", "--out", d.file("rep")}).code == 2);
@@ -538,7 +539,7 @@ TEST_CASE("a report written before manifests is adopted only when its README nam
 
 TEST_CASE("report --out a symbolic link to a user's folder is refused", "[cli][hostile]") {
   ScratchDir d("hostile-report-link");
-  const std::string s = scene(d);
+  const std::string s = hostile_scene(d);
   user_folder(d.path / "mine");
   fs::create_directory_symlink(d.path / "mine", d.path / "rep");
   CHECK(cli({"report", s, "--engine", "ours", "--out", d.file("rep")}).code == 2);
@@ -575,7 +576,7 @@ TEST_CASE("SIGTERM removes a registered temporary file and staging folder, then 
 TEST_CASE("a report killed at any moment leaves the previous report whole and nothing beside it",
           "[cli][hostile]") {
   ScratchDir d("hostile-report-kill");
-  const std::string s = scene(d);
+  const std::string s = hostile_scene(d);
   REQUIRE(cli({"report", s, "--engine", "ours", "--no-timing", "--out", d.file("rep")}).code == 0);
   const std::set<std::string> complete = tree(d.path / "rep");
   for (int delay_us : {0, 500, 1000, 2000, 4000, 8000, 16000, 32000}) {
@@ -598,7 +599,7 @@ TEST_CASE("a report killed at any moment leaves the previous report whole and no
 TEST_CASE("two runs writing the same CSV at once leave one run's complete output and both exit 0",
           "[cli][hostile]") {
   ScratchDir d("hostile-concurrent-csv");
-  const std::string s = scene(d);
+  const std::string s = hostile_scene(d);
   REQUIRE(run_tiny(s, {"--dt", "1/10", "--csv", d.file("ref10.csv")}).code == 0);
   REQUIRE(run_tiny(s, {"--dt", "1/20", "--csv", d.file("ref20.csv")}).code == 0);
   for (int round = 0; round < 5; ++round) {
@@ -627,7 +628,7 @@ TEST_CASE("two runs writing the same CSV at once leave one run's complete output
 TEST_CASE("two reports into one folder at once leave one complete report and both exit 0",
           "[cli][hostile]") {
   ScratchDir d("hostile-concurrent-report");
-  const std::string s = scene(d);
+  const std::string s = hostile_scene(d);
   for (int round = 0; round < 4; ++round) {
     pid_t pids[2];
     for (pid_t& pid : pids) {
@@ -821,7 +822,7 @@ TEST_CASE(
     "a scene that cannot be read is refused with the reason (missing file; folder; not a folder)",
     "[cli][hostile]") {
   ScratchDir d("hostile-scene-reason");
-  const std::string s = scene(d);
+  const std::string s = hostile_scene(d);
   std::vector<std::pair<std::string, std::string>> cases = unreadable_files(d, ".toml");
   cases.push_back({s + "/x.toml", "Not a directory"});
   for (const auto& [file, reason] : cases)
@@ -836,7 +837,7 @@ TEST_CASE(
 TEST_CASE("identify --trajectory names why the CSV cannot be read (missing file; folder; device)",
           "[cli][hostile]") {
   ScratchDir d("hostile-trajectory-reason");
-  const std::string s = scene(d);
+  const std::string s = hostile_scene(d);
   std::vector<std::pair<std::string, std::string>> cases = unreadable_files(d, ".csv");
   cases.push_back({"/dev/zero", "not a regular file"});
   for (const auto& [file, reason] : cases) {
@@ -871,7 +872,7 @@ TEST_CASE("check's h/2 and h/4 labels never overflow or go negative for huge 1/N
 TEST_CASE("Ctrl-C while gnuplot draws a report stops dropcheck and gnuplot and leaves nothing",
           "[cli][hostile]") {
   ScratchDir d("hostile-gnuplot-sigint"), bin("hostile-gnuplot-bin");
-  const std::string s = scene(d);
+  const std::string s = hostile_scene(d);
   // A gnuplot that says it started, then hangs (as a slow plot would).
   put(bin.file("gnuplot"), "#!/bin/sh\necho $$ > '" + bin.file("started.tmp") + "'\nmv '" +
                                bin.file("started.tmp") + "' '" + bin.file("started") +

@@ -17,7 +17,7 @@ using dropcheck::testing::slurp;
 
 namespace {
 
-const std::string kScene =
+const std::string kIsolationScene =
     std::string(DROPCHECK_SOURCE_DIR) + "/tests/scenes/box2d_tiny_cube_abort.toml";
 
 // Runs a command with isolated runs (the executable's default), returning its exit code.
@@ -42,7 +42,7 @@ TEST_CASE(
   if (!have("box2d")) return;
   ScratchDir dir("isolation-run");
   std::string out;
-  REQUIRE(isolated_cli({"run", kScene, "--json", dir.file("runs.json")}, out) == kExitOk);
+  REQUIRE(isolated_cli({"run", kIsolationScene, "--json", dir.file("runs.json")}, out) == kExitOk);
   INFO(out);
   CHECK_THAT(out, Contains("box2d  crashed: SIGABRT while loading the scene"));
   CHECK_THAT(out, Contains("Assertion `area > "));
@@ -57,12 +57,12 @@ TEST_CASE("check, report and stability carry box2d's crash as its result", "[cli
   if (!have("box2d")) return;
   ScratchDir dir("isolation-cmds");
   std::string out;
-  isolated_cli({"check", kScene, "--engine", "box2d"}, out);
+  isolated_cli({"check", kIsolationScene, "--engine", "box2d"}, out);
   CHECK_THAT(out, Contains("crashed: SIGABRT while loading the scene"));
-  REQUIRE(isolated_cli({"report", kScene, "--out", dir.file("report"), "--no-timing", "--engine",
-                        "box2d", "--engine", "ode"},
+  REQUIRE(isolated_cli({"report", kIsolationScene, "--out", dir.file("report"), "--no-timing",
+                        "--engine", "box2d", "--engine", "ode"},
                        out) == kExitOk);
   CHECK_THAT(slurp(dir.file("report/README.md")), Contains("failed"));
-  isolated_cli({"stability", kScene, "--engine", "box2d"}, out);
+  isolated_cli({"stability", kIsolationScene, "--engine", "box2d"}, out);
   CHECK_THAT(out, Contains("crashed"));
 }

@@ -25,7 +25,7 @@ using dropcheck::testing::slurp;
 namespace {
 
 // `record` with every engine sample of every cell scaled by `factor` (the calibration kept).
-std::string scaled(const std::string& record, double factor) {
+std::string scaled_record(const std::string& record, double factor) {
   nlohmann::ordered_json j = dropcheck::parse_json<nlohmann::ordered_json>(record);
   for (auto& cell : j["cells"])
     for (auto& x : cell["samples_ms"]) x = x.get<double>() * factor;
@@ -47,7 +47,7 @@ TEST_CASE("report --fail-on-slowdown exits 1 naming the cells that slowed, 0 whe
   const std::string record = slurp(d.file("r/timings.json"));
   // The same cells, as if measured on a build 100 times as fast: now every cell is far slower (a
   // margin no noise of these smoke timings reaches).
-  std::ofstream(d.file("faster.json")) << scaled(record, 0.01);
+  std::ofstream(d.file("faster.json")) << scaled_record(record, 0.01);
   std::vector<std::string> args = report;
   args.insert(args.end(), {"--compare-timings", d.file("faster.json"), "--fail-on-slowdown"});
   const Result slow = cli(args);
@@ -56,7 +56,7 @@ TEST_CASE("report --fail-on-slowdown exits 1 naming the cells that slowed, 0 whe
              Contains("slowdown: fall / ours-f64 / h = 1/60: minimum / calibration rose"));
   CHECK_THAT(slurp(d.file("r/README.md")), Contains("cells are flagged"));
   // Against a build 100 times as slow nothing is flagged.
-  std::ofstream(d.file("slower.json")) << scaled(record, 100.0);
+  std::ofstream(d.file("slower.json")) << scaled_record(record, 100.0);
   args[args.size() - 2] = d.file("slower.json");
   const Result fine = cli(args);
   CHECK(fine.code == 0);

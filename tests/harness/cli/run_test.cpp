@@ -39,7 +39,7 @@ std::vector<std::string> split(const std::string& text, char sep) {
   return out;
 }
 
-bool same_bits(const std::string& text, double v) {
+bool cli_same_bits(const std::string& text, double v) {
   const double r = std::strtod(text.c_str(), nullptr);
   return std::memcmp(&r, &v, sizeof r) == 0;
 }
@@ -124,13 +124,13 @@ TEST_CASE(
         REQUIRE(f.size() == 11);
         INFO(lines[row]);
         CHECK(f[0] == name);
-        CHECK(same_bits(f[1], 1.0 / 60.0));
+        CHECK(cli_same_bits(f[1], 1.0 / 60.0));
         CHECK(f[2] == std::to_string(t.recorded[s]));
-        CHECK(same_bits(f[3], t.time(s)));
+        CHECK(cli_same_bits(f[3], t.time(s)));
         CHECK(f[4] == t.body_names[b]);
         for (int k = 0; k < 3; ++k) {
-          CHECK(same_bits(f[5 + k], t.at(s, b).position[k]));
-          CHECK(same_bits(f[8 + k], t.at(s, b).velocity[k]));
+          CHECK(cli_same_bits(f[5 + k], t.at(s, b).position[k]));
+          CHECK(cli_same_bits(f[8 + k], t.at(s, b).velocity[k]));
         }
       }
     }

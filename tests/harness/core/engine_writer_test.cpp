@@ -21,7 +21,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Puts `states` through a StateWriter<Streamed> into fresh slots of `out`; returns finish().
 template <bool Streamed>
-bool write(StateBuffer& out, const std::vector<std::array<double, 6>>& states) {
+bool write_states(StateBuffer& out, const std::vector<std::array<double, 6>>& states) {
   const std::size_t at = out.size();
   out.resize(at + states.size());
   StateWriter<Streamed> w(out.data() + at);
@@ -41,7 +41,7 @@ template <bool Streamed>
 void check_writes_exactly() {
   StateBuffer out;
   out.push_back({Vec3(9, 9, 9), Vec3(9, 9, 9)});  // written before: left as it was
-  CHECK(write<Streamed>(out, kFinite));
+  CHECK(write_states<Streamed>(out, kFinite));
   REQUIRE(out.size() == 4);
   CHECK(out[0].position == Vec3(9, 9, 9));
   for (std::size_t i = 0; i < kFinite.size(); ++i) {
@@ -64,7 +64,7 @@ void check_finds_every_non_finite() {
         states[body][k] = bad;
         StateBuffer out;
         INFO("body " << body << ", number " << k << ", value " << bad);
-        CHECK_FALSE(write<Streamed>(out, states));
+        CHECK_FALSE(write_states<Streamed>(out, states));
         CHECK(std::bit_cast<std::uint64_t>(
                   reinterpret_cast<const double*>(out.data())[6 * body + k]) ==
               std::bit_cast<std::uint64_t>(bad));  // written all the same
@@ -87,8 +87,8 @@ TEST_CASE("a state writer reports a NaN or an Inf in any number of any state", "
 
 TEST_CASE("a state writer with nothing put reports all finite", "[engine]") {
   StateBuffer out;
-  CHECK(write<true>(out, {}));
-  CHECK(write<false>(out, {}));
+  CHECK(write_states<true>(out, {}));
+  CHECK(write_states<false>(out, {}));
   CHECK(out.empty());
 }
 

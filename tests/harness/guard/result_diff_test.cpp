@@ -14,7 +14,7 @@ using namespace dropcheck::testing;
 
 namespace {
 
-void write(const ScratchDir& dir, const Baseline& b) {
+void write_baseline_file(const ScratchDir& dir, const Baseline& b) {
   write_file_atomic(dir.file(baseline_file_name(b.scene, b.engine)), baseline_to_text(b));
 }
 
@@ -27,10 +27,12 @@ TEST_CASE("Diff of two result sets lists what moved and how the error curves shi
           "[baseline][diff]") {
   const ScratchDir before("diff-before"), after("diff-after");
   for (const char* stem : {"free_fall", "free_fall_drag"})
-    write(before, make_baseline(shipped_scene(stem), ours_f64));
-  write(before, make_baseline(shipped_scene("throw_up"), ours_f64));  // dropped from the new set
-  write(after, make_baseline(shipped_scene("free_fall"), make_moved_drag_f64));  // f = 1: no change
-  write(after, make_baseline(shipped_scene("free_fall_drag"), make_moved_drag_f64));
+    write_baseline_file(before, make_baseline(shipped_scene(stem), ours_f64));
+  write_baseline_file(
+      before, make_baseline(shipped_scene("throw_up"), ours_f64));  // dropped from the new set
+  write_baseline_file(
+      after, make_baseline(shipped_scene("free_fall"), make_moved_drag_f64));  // f = 1: no change
+  write_baseline_file(after, make_baseline(shipped_scene("free_fall_drag"), make_moved_drag_f64));
 
   const std::string md =
       diff_markdown(load_result_set(before.path.string()), load_result_set(after.path.string()));
@@ -58,9 +60,9 @@ TEST_CASE("Diff shows wall time per simulated second when the result sets carry 
   const ScratchDir before("timing-before"), after("timing-after");
   Baseline b = make_baseline(shipped_scene("free_fall"), ours_f64);
   for (SweepPoint& p : b.sweep) p.wall_min = 1e-3, p.wall_median = 1.1e-3, p.replicas = 8;
-  write(before, b);
+  write_baseline_file(before, b);
   for (SweepPoint& p : b.sweep) p.wall_min = 2.5e-3;
-  write(after, b);
+  write_baseline_file(after, b);
   const std::string md =
       diff_markdown(load_result_set(before.path.string()), load_result_set(after.path.string()));
   INFO(md);

@@ -19,7 +19,7 @@ using dropcheck::testing::ScratchDir;
 namespace {
 
 // The message load_scene throws for `path`, and how long it took to throw it.
-std::string refusal(const std::string& path, double& seconds) {
+std::string read_refusal(const std::string& path, double& seconds) {
   const auto start = std::chrono::steady_clock::now();
   std::string what;
   try {
@@ -40,12 +40,12 @@ TEST_CASE("devices and FIFOs are refused at once, before a byte is read", "[load
   for (const std::string& path : {std::string("/dev/zero"), std::string("/dev/urandom"), fifo}) {
     INFO(path);
     double took = 0;
-    CHECK_THAT(refusal(path, took), Contains("not a regular file (a device, FIFO or socket)"));
+    CHECK_THAT(read_refusal(path, took), Contains("not a regular file (a device, FIFO or socket)"));
     CHECK(took < 1.0);  // measured < 1 ms; before, /dev/zero read until memory ran out
   }
   double took = 0;
-  CHECK_THAT(refusal(dir.path.string(), took), Contains("it is a directory"));
-  CHECK_THAT(refusal(dir.file("missing.toml"), took),
+  CHECK_THAT(read_refusal(dir.path.string(), took), Contains("it is a directory"));
+  CHECK_THAT(read_refusal(dir.file("missing.toml"), took),
              Contains("cannot read the file: No such file"));
 }
 
@@ -55,7 +55,7 @@ TEST_CASE("a scene file over 1 MiB is refused with its size and the limit", "[lo
   std::ofstream(big) << "# " << std::string(kMaxSceneBytes, 'x') << "\n";
   double took = 0;
   CHECK_THAT(
-      refusal(big, took),
+      read_refusal(big, took),
       Contains("the file is 1048579 bytes, more than the limit of 1048576 bytes (1 MiB, for a "
                "scene)"));
   // At the limit it is read (and then refused only because it holds no scene).

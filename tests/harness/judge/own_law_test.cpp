@@ -17,12 +17,12 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-struct Case {
+struct OwnLawCase {
   EngineInfo info;
   Trajectory law;  // free_fall's law at its step: finite, stable
 };
 
-Case free_fall() {
+OwnLawCase free_fall() {
   const Scene s = load_scene("scenarios/free_fall.toml");
   const EngineInfo info = make_engine("ours-f64")->info();
   return {info, predict_discrete(info.law, s, s.timestep.seconds)};
@@ -31,7 +31,7 @@ Case free_fall() {
 }  // namespace
 
 TEST_CASE("a run identical to a finite law follows it within a finite tolerance", "[own_law]") {
-  const Case c = free_fall();
+  const OwnLawCase c = free_fall();
   const OwnLawVerdict v = judge_own_law(c.info, c.law, c.law, c.law);
   CHECK(v.tolerance.finite());
   CHECK(v.follows());
@@ -39,7 +39,7 @@ TEST_CASE("a run identical to a finite law follows it within a finite tolerance"
 
 TEST_CASE("a law that reaches Inf or NaN gives no tolerance, and nothing follows it", "[own_law]") {
   for (double bad : {std::numeric_limits<double>::infinity(), std::nan("")}) {
-    const Case c = free_fall();
+    const OwnLawCase c = free_fall();
     Trajectory law = c.law;
     law.states[law.states.size() / 2].position.y() = bad;
     Trajectory run = law;  // the run equals the law wherever both are finite
@@ -57,7 +57,7 @@ TEST_CASE("a law that reaches Inf or NaN gives no tolerance, and nothing follows
 }
 
 TEST_CASE("a NaN in the run is an infinite departure from a finite law", "[own_law]") {
-  const Case c = free_fall();
+  const OwnLawCase c = free_fall();
   Trajectory run = c.law;
   run.states.back().velocity.x() = std::nan("");
   const OwnLawVerdict v = judge_own_law(c.info, run, c.law, c.law);
@@ -68,7 +68,7 @@ TEST_CASE("a NaN in the run is an infinite departure from a finite law", "[own_l
 
 TEST_CASE("a finite law whose |x| overflows a squared norm still gets a finite tolerance",
           "[own_law]") {
-  const Case c = free_fall();
+  const OwnLawCase c = free_fall();
   Trajectory law = c.law;
   for (BodyState& b : law.states) b.position = Vec3(1e300, -1e300, 0.0);  // |x|^2 = Inf
   const OwnLawTolerance t = own_law_tolerance(c.info, law);

@@ -76,7 +76,7 @@ TEST_CASE("a turning body whose rotational energy passes what its momentum allow
 namespace {
 
 // One body in free flight or on a spring, no contacts, recorded every step of h.
-Scene one_body(double h, std::int64_t steps, double k) {
+Scene growth_one_body(double h, std::int64_t steps, double k) {
   Scene s;
   s.name = "one";
   s.timestep = {h, "h"};
@@ -110,7 +110,7 @@ TEST_CASE("free flight up to the discrete terminal speed is stable, 2% beyond it
   // the bound every first-order order keeps. Scaled by 1.02 the speed passes it with the 1% slack
   // once 1.02*(1 - phi^n) > 1.01, i.e. phi^n < 1/102: n*0.5 > ln(102) = 4.62, from step 10 on.
   const double h = 1.0 / 60.0, k = 30.0, g = 9.8, phi = std::exp(-k * h);
-  Scene scene = one_body(h, 60, k);
+  Scene scene = growth_one_body(h, 60, k);
   scene.world.gravity = Vec3(0.0, -g, 0.0);
   std::vector<double> x{0.0}, v{0.0}, faster{0.0};
   for (int n = 0; n < 60; ++n) {
@@ -146,7 +146,7 @@ TEST_CASE("a spring iterated just inside its edge is stable, just outside it gro
   // 2.01 the step matrix has a real eigenvalue -1.22 and the energy grows by 1.49 per step.
   for (double wh : {1.99, 2.01}) {
     const double w = 60.0, h = wh / w;
-    Scene scene = one_body(h, 600, 0.0);
+    Scene scene = growth_one_body(h, 600, 0.0);
     scene.forces.push_back(Force{{0}, Spring{Vec3::Zero(), w * w, 0.0, 0.0}});
     scene.bodies[0].position = Vec3(0.0, 0.05, 0.0);
     std::vector<double> x{0.05}, v{0.0};

@@ -26,11 +26,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-Scene scene(const std::string& name) {
+Scene identify_scene(const std::string& name) {
   return load_scene(DROPCHECK_SOURCE_DIR "/scenarios/" + name + ".toml");
 }
 
-Trajectory run(const std::string& engine, const Scene& s) {
+Trajectory run_identified(const std::string& engine, const Scene& s) {
   auto e = make_engine(engine);
   REQUIRE(e);
   return run_scene(*e, s, s.timestep.seconds);
@@ -49,8 +49,8 @@ void require_identified(const std::string& engine) {
     WARN(engine << ": " << engine_unavailable_reason(engine));
     return;
   }
-  const Scene s = scene("wind");
-  const Identification id = identify_law(s, run(engine, s));
+  const Scene s = identify_scene("wind");
+  const Identification id = identify_law(s, run_identified(engine, s));
   const MemberFit& best = id.fits[id.best];
   INFO(engine << ": best " << law_key(best.law) << " at " << best.max_dx << " m, runner-up "
               << law_key(id.fits[id.runner_up].law) << " at " << id.fits[id.runner_up].max_dx
@@ -87,8 +87,8 @@ TEST_CASE("identify names the law of mujoco from its own trajectory", "[identify
 }
 
 TEST_CASE("A trajectory that is no fixed-step scheme of the family fits no member", "[identify]") {
-  const Scene s = scene("wind");
-  Trajectory t = run("ours-f64", s);
+  const Scene s = identify_scene("wind");
+  Trajectory t = run_identified("ours-f64", s);
   for (std::size_t i = 0; i < t.states.size(); ++i)  // a 10 cm wobble no member can follow
     t.states[i].position.y() += 0.1 * std::sin(0.3 * static_cast<double>(i / t.bodies()));
   const Identification id = identify_law(s, t);
@@ -103,8 +103,8 @@ TEST_CASE("A trajectory that is no fixed-step scheme of the family fits no membe
 
 TEST_CASE("A gravity-only scene cannot separate after-forces from before-forces with g fitted",
           "[identify]") {
-  const Scene s = scene("throw_up");
-  const Identification id = identify_law(s, run("ours-f64", s));
+  const Scene s = identify_scene("throw_up");
+  const Identification id = identify_law(s, run_identified("ours-f64", s));
   CHECK(id.ambiguous);
   const Law pair[] = {id.fits[id.best].law, id.fits[id.runner_up].law};
   CHECK(
@@ -112,7 +112,7 @@ TEST_CASE("A gravity-only scene cannot separate after-forces from before-forces 
        (pair[1] == Law{DampingOrder::AfterForces} && pair[0] == Law{DampingOrder::BeforeForces})));
   // ... but after-position (ODE) still separates there, by its positions.
   if (make_engine("ode")) {
-    const Identification ode = identify_law(s, run("ode", s));
+    const Identification ode = identify_law(s, run_identified("ode", s));
     CHECK_FALSE(ode.ambiguous);
     CHECK(ode.fits[ode.best].law == Law{DampingOrder::AfterPosition});
   }
@@ -122,8 +122,8 @@ TEST_CASE("An undamped run fits phi = 1 on every member, RK4's included, without
           "[identify]") {
   // The RK4 member is refitted with the force share T(k*h) of its fitted phi; at phi = 1 exactly
   // (an f64 engine without damping) T = 1 again, which once recursed without end (SIGSEGV).
-  const Scene s = scene("free_fall");
-  const Identification id = identify_law(s, run("ours-f64", s));
+  const Scene s = identify_scene("free_fall");
+  const Identification id = identify_law(s, run_identified("ours-f64", s));
   CHECK(id.determined);
   for (const MemberFit& m : id.fits) {
     INFO(law_key(m.law));
@@ -139,8 +139,8 @@ TEST_CASE("A force-free run determines neither phi nor gravity, and every member
           "[identify]") {
   // Gazebo's simple boxes: no gravity, a constant velocity. Any phi with c = (1 - phi)*v fits the
   // velocities, so the fit reports no figure (it once printed phi = 0.86 and g = 150 m/s^2).
-  const Scene s = scene("gazebo_boxes_simple");
-  const Identification id = identify_law(s, run("ours-f64", s));
+  const Scene s = identify_scene("gazebo_boxes_simple");
+  const Identification id = identify_law(s, run_identified("ours-f64", s));
   CHECK_FALSE(id.determined);
   CHECK(id.ambiguous);
   CHECK(id.tied.size() == id.fits.size());
@@ -156,15 +156,15 @@ TEST_CASE("A force-free run determines neither phi nor gravity, and every member
   // A changing velocity determines them again: the same box under gravity.
   Scene fall = s;
   fall.world.gravity = Vec3(0.0, -9.81, 0.0);
-  const Identification g = identify_law(fall, run("ours-f64", fall));
+  const Identification g = identify_law(fall, run_identified("ours-f64", fall));
   CHECK(g.determined);
   CHECK(g.fits[0].gravity.y() == Approx(-9.81).epsilon(1e-9));
 }
 
 TEST_CASE("A trajectory CSV reads back exactly and identifies like the run it came from",
           "[identify]") {
-  const Scene s = scene("wind");
-  const Trajectory t = run("ours", s);
+  const Scene s = identify_scene("wind");
+  const Trajectory t = run_identified("ours", s);
   const std::string csv = temp_file("ours.csv", trajectories_to_csv(std::span(&t, 1)));
   const std::vector<Trajectory> back = read_trajectories_csv(csv);
   REQUIRE(back.size() == 1);
@@ -182,7 +182,7 @@ TEST_CASE("A trajectory CSV reads back exactly and identifies like the run it ca
 }
 
 TEST_CASE("identify rejects unusable input with the file and the problem", "[identify]") {
-  const Scene s = scene("wind");
+  const Scene s = identify_scene("wind");
   std::ostringstream out, err;
   const auto fails = [&](std::vector<std::string> argv, const std::string& message) {
     err.str("");
@@ -210,7 +210,7 @@ TEST_CASE("identify rejects unusable input with the file and the problem", "[ide
          temp_file("b.csv",
                    header + "ours,0.1,0,0,small,1,2,3,0,0,0\nours,0.1,1,0.1,small,1,2,3,0,0,0\n")},
         "1 bodies, the scene has 2");
-  const Trajectory a = run("ours", s), b = run("ours-f64", s);
+  const Trajectory a = run_identified("ours", s), b = run_identified("ours-f64", s);
   const Trajectory both[] = {a, b};
   fails({"identify", s.source, "--trajectory", temp_file("two.csv", trajectories_to_csv(both))},
         "holds 2 runs (ours at dt 0.0166667, ours-f64 at dt 0.0166667)");

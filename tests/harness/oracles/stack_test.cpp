@@ -13,8 +13,8 @@ using namespace dropcheck;
 
 namespace {
 
-constexpr double kG = 9.8, kH = 1.0 / 60.0;
-const StackLaw kOde{.compliance = 1e-10 / 0.2, .points = 4};
+constexpr double kGravity = 9.8, kH = 1.0 / 60.0;
+const StackLaw kOdeStack{.compliance = 1e-10 / 0.2, .points = 4};
 const StackLaw kMujoco{.soft = 1e-4 * 1.25 / 16.0, .tau_steps = 2.0};
 
 }  // namespace
@@ -53,24 +53,25 @@ TEST_CASE("a stack is a column of resting boxes over a floor, bottom up", "[cont
 TEST_CASE("stack laws: ODE's constraint force mixing and MuJoCo's soft sag", "[contact][stack]") {
   // ODE: CFM/h*f = ERP/h^2*depth per point, depth = CFM/ERP*h*W/4: 1 kg on the floor at 1/60 is
   // 5e-10/60*9.8/4 = 2.0417e-11 m, the rest offset its landings measure (-2.04e-11 m).
-  CHECK(contact_sink(kOde, kG, 1.0, 0.0, kH) == Approx(5e-10 / 60.0 * 9.8 / 4.0).epsilon(1e-15));
-  CHECK(contact_sink(kOde, kG, 1.0, 0.0, kH) == Approx(2.0417e-11).epsilon(1e-4));
+  CHECK(contact_sink(kOdeStack, kGravity, 1.0, 0.0, kH) ==
+        Approx(5e-10 / 60.0 * 9.8 / 4.0).epsilon(1e-15));
+  CHECK(contact_sink(kOdeStack, kGravity, 1.0, 0.0, kH) == Approx(2.0417e-11).epsilon(1e-4));
   // MuJoCo: (1 - d)*(1 + mu^2)/16*(2h)^2*W*(1/m_a + 1/m_b): 1 kg under 1e5 kg at 1/240 is
   // 1e-4*1.25/16*(1/120)^2*100001*9.8 = 5.3169e-4 m.
-  CHECK(contact_sink(kMujoco, 100001.0 * kG, 1.0, 0.0, 1.0 / 240.0) ==
-        Approx(1e-4 * 1.25 / 16.0 / 14400.0 * 100001.0 * kG).epsilon(1e-15));
+  CHECK(contact_sink(kMujoco, 100001.0 * kGravity, 1.0, 0.0, 1.0 / 240.0) ==
+        Approx(1e-4 * 1.25 / 16.0 / 14400.0 * 100001.0 * kGravity).epsilon(1e-15));
   // The upper contact of a stack acts on both bodies: the small cube on the medium one sinks as
   // the medium one on the floor carrying twice the weight.
-  CHECK(contact_sink(kMujoco, kG, 1.0, 1.0, kH) ==
-        Approx(contact_sink(kMujoco, 2 * kG, 1.0, 0.0, kH)));
+  CHECK(contact_sink(kMujoco, kGravity, 1.0, 1.0, kH) ==
+        Approx(contact_sink(kMujoco, 2 * kGravity, 1.0, 0.0, kH)));
   // Predicted per level: the sinks of every contact under it, summed.
   const StackSetup s = stack_setups(testing::shipped("extreme/mass_ratio"))[1];
   EngineInfo ode;
-  ode.stack_law = kOde;
-  const double bottom = contact_sink(kOde, 100001.0 * kG, 1.0, 0.0, kH);
+  ode.stack_law = kOdeStack;
+  const double bottom = contact_sink(kOdeStack, 100001.0 * kGravity, 1.0, 0.0, kH);
   CHECK(predict_stack(s, 0, ode, kH).sink == bottom);
   CHECK(predict_stack(s, 1, ode, kH).sink ==
-        Approx(bottom + contact_sink(kOde, 1e5 * kG, 1e5, 1.0, kH)).epsilon(1e-15));
+        Approx(bottom + contact_sink(kOdeStack, 1e5 * kGravity, 1e5, 1.0, kH)).epsilon(1e-15));
   CHECK(predict_stack(s, 1, ode, kH).residual == 0.0);  // a direct solver converges
 }
 

@@ -22,7 +22,7 @@ struct Cli {
   std::string out, err;
 };
 
-Cli run(const std::vector<std::string>& argv) {
+Cli run_sweep_cli(const std::vector<std::string>& argv) {
   std::ostringstream out, err;
   const int code = cli_main(argv, out, err);
   return {code, out.str(), err.str()};
@@ -38,7 +38,7 @@ std::string make_plan_file(const ScratchDir& d) {
           "engines = [\"ours\", \"chipmunk\"]\n"
           "[[axis]]\nname = \"timestep\"\nvalues = [\"1/120\", \"1/60\", \"1/32\", \"1/25\"]\n"
           "[[axis]]\nkey = \"force[0].spring.stiffness\"\nvalues = [900.0, 3600.0]\n");
-  const Cli p = run({"plan", sweep, "--out", d.file("p.plan")});
+  const Cli p = run_sweep_cli({"plan", sweep, "--out", d.file("p.plan")});
   REQUIRE(p.code == 0);
   CHECK_THAT(p.out, Contains("16 cells"));
   return d.file("p.plan");
@@ -46,8 +46,8 @@ std::string make_plan_file(const ScratchDir& d) {
 
 void run_shards(const std::string& plan, const std::string& dir, int n) {
   for (int i = 1; i <= n; ++i)
-    REQUIRE(run({"sweep", plan, "--shard", std::to_string(i) + "/" + std::to_string(n), "--out",
-                 dir, "--quiet"})
+    REQUIRE(run_sweep_cli({"sweep", plan, "--shard", std::to_string(i) + "/" + std::to_string(n),
+                           "--out", dir, "--quiet"})
                 .code == 0);
 }
 
@@ -62,7 +62,7 @@ TEST_CASE("sweep: the merged result is the same bytes for 1, 7, 20 and 1000 shar
     const std::string dir = d.file("shards-" + std::to_string(n));
     run_shards(plan, dir, n);
     const std::string out = d.file("r" + std::to_string(n) + ".jsonl");
-    const Cli m = run({"merge", plan, dir, "--out", out});
+    const Cli m = run_sweep_cli({"merge", plan, dir, "--out", out});
     REQUIRE(m.code == 0);
     CHECK_THAT(m.out, Contains("16 records"));
     results.push_back(slurp(out));
@@ -78,7 +78,8 @@ TEST_CASE("sweep: the merged result is the same bytes for 1, 7, 20 and 1000 shar
   CHECK_THAT(results[0], Contains("\"status\":\"non-finite\""));
   // Rerunning a shard replaces its file with the same bytes.
   const std::string first = slurp(d.file("shards-7/shard-3-of-7.jsonl"));
-  REQUIRE(run({"sweep", plan, "--shard", "3/7", "--out", d.file("shards-7"), "--quiet"}).code == 0);
+  REQUIRE(run_sweep_cli({"sweep", plan, "--shard", "3/7", "--out", d.file("shards-7"), "--quiet"})
+              .code == 0);
   CHECK(slurp(d.file("shards-7/shard-3-of-7.jsonl")) == first);
 }
 
@@ -87,15 +88,17 @@ TEST_CASE("merge lists missing cells, and sweep --cells-from runs just those", "
   const std::string plan = make_plan_file(d), dir = d.file("shards");
   run_shards(plan, dir, 4);
   run_shards(plan, d.file("whole"), 1);
-  REQUIRE(run({"merge", plan, d.file("whole"), "--out", d.file("whole.jsonl")}).code == 0);
+  REQUIRE(run_sweep_cli({"merge", plan, d.file("whole"), "--out", d.file("whole.jsonl")}).code ==
+          0);
   std::filesystem::remove(dir + "/shard-2-of-4.jsonl");
-  const Cli m = run({"merge", plan, dir, "--out", d.file("r.jsonl")});
+  const Cli m = run_sweep_cli({"merge", plan, dir, "--out", d.file("r.jsonl")});
   CHECK(m.code == 1);
   CHECK_THAT(m.err, Contains("cells missing"));
   CHECK_FALSE(std::filesystem::exists(d.file("r.jsonl")));
-  const Cli again = run({"sweep", plan, "--cells-from", d.file("r.jsonl.missing"), "--out", dir});
+  const Cli again =
+      run_sweep_cli({"sweep", plan, "--cells-from", d.file("r.jsonl.missing"), "--out", dir});
   REQUIRE(again.code == 0);
-  REQUIRE(run({"merge", plan, dir, "--out", d.file("r.jsonl")}).code == 0);
+  REQUIRE(run_sweep_cli({"merge", plan, dir, "--out", d.file("r.jsonl")}).code == 0);
   CHECK(slurp(d.file("r.jsonl")) == slurp(d.file("whole.jsonl")));
 }
 
@@ -109,12 +112,12 @@ TEST_CASE(
   const std::string whole = slurp(dir + "/shard-1-of-1.jsonl");
   // The same bytes twice (a shard rerun beside the first run) are one record.
   d.write("shards/cells-copy.jsonl", whole.substr(0, whole.find('\n') + 1));
-  CHECK(run({"merge", plan, dir, "--out", d.file("r.jsonl")}).code == 0);
+  CHECK(run_sweep_cli({"merge", plan, dir, "--out", d.file("r.jsonl")}).code == 0);
   // Different bytes for one cell: both files named.
   std::string changed = whole.substr(0, whole.find('\n') + 1);
   changed.replace(changed.find("\"hash\":\"") + 8, 4, "0000");
   d.write("shards/cells-copy.jsonl", changed);
-  Cli m = run({"merge", plan, dir, "--out", d.file("r2.jsonl")});
+  Cli m = run_sweep_cli({"merge", plan, dir, "--out", d.file("r2.jsonl")});
   CHECK(m.code == 2);
   CHECK_THAT(m.err, Contains("cells-copy.jsonl") && Contains("shard-1-of-1.jsonl:1") &&
                         Contains("different bytes"));
@@ -122,13 +125,13 @@ TEST_CASE(
   std::string other = whole.substr(0, whole.find('\n') + 1);
   other.replace(other.find("\"plan\":\"") + 8, 16, "0123456789abcdef");
   d.write("shards/cells-copy.jsonl", other);
-  m = run({"merge", plan, dir, "--out", d.file("r2.jsonl")});
+  m = run_sweep_cli({"merge", plan, dir, "--out", d.file("r2.jsonl")});
   CHECK(m.code == 2);
   CHECK_THAT(m.err, Contains("belongs to plan"));
   // A planted link among the shard files: refused, not followed.
   std::filesystem::remove(dir + "/cells-copy.jsonl");
   std::filesystem::create_symlink("/etc/passwd", dir + "/shard-9-of-9.jsonl");
-  m = run({"merge", plan, dir, "--out", d.file("r2.jsonl")});
+  m = run_sweep_cli({"merge", plan, dir, "--out", d.file("r2.jsonl")});
   CHECK(m.code == 2);
   CHECK_THAT(m.err, Contains("not a regular file"));
   CHECK_THAT(m.err, !Contains("root:"));
@@ -136,23 +139,24 @@ TEST_CASE(
   std::filesystem::remove(dir + "/shard-9-of-9.jsonl");
   const std::string victim = d.write("victim.txt", "keep me\n");
   std::filesystem::create_symlink(victim, dir + "/shard-1-of-2.jsonl");
-  CHECK(run({"sweep", plan, "--shard", "1/2", "--out", dir, "--quiet"}).code == 2);
+  CHECK(run_sweep_cli({"sweep", plan, "--shard", "1/2", "--out", dir, "--quiet"}).code == 2);
   CHECK(slurp(victim) == "keep me\n");
 }
 
 TEST_CASE("sweep and plan refuse bad arguments with exit 2", "[plan][cli]") {
   ScratchDir d("sweep-args");
   const std::string plan = make_plan_file(d);
-  CHECK_THAT(run({"sweep", plan, "--shard", "0/7", "--out", d.file("x")}).err,
+  CHECK_THAT(run_sweep_cli({"sweep", plan, "--shard", "0/7", "--out", d.file("x")}).err,
              Contains("--shard: expected 1 <= I <= N"));
-  CHECK(run({"sweep", plan, "--shard", "8/7", "--out", d.file("x")}).code == 2);
-  CHECK(run({"sweep", plan, "--out", d.file("x")}).code == 2);  // neither --shard nor --cells-from
-  CHECK(run({"sweep", d.write("junk.plan", "{}"), "--shard", "1/1", "--out", d.file("x")}).code ==
-        2);
-  CHECK_THAT(
-      run({"sweep", plan, "--cells-from", d.write("list", "no|such|cell\n"), "--out", d.file("x")})
-          .err,
-      Contains("list:1") && Contains("is not in plan"));
+  CHECK(run_sweep_cli({"sweep", plan, "--shard", "8/7", "--out", d.file("x")}).code == 2);
+  CHECK(run_sweep_cli({"sweep", plan, "--out", d.file("x")}).code ==
+        2);  // neither --shard nor --cells-from
+  CHECK(run_sweep_cli({"sweep", d.write("junk.plan", "{}"), "--shard", "1/1", "--out", d.file("x")})
+            .code == 2);
+  CHECK_THAT(run_sweep_cli({"sweep", plan, "--cells-from", d.write("list", "no|such|cell\n"),
+                            "--out", d.file("x")})
+                 .err,
+             Contains("list:1") && Contains("is not in plan"));
 }
 
 TEST_CASE(
@@ -161,7 +165,8 @@ TEST_CASE(
     "[plan][cli]") {
   ScratchDir d("sweep-cache");
   const std::string plan = make_plan_file(d), cache = d.file("cache");
-  Cli first = run({"sweep", plan, "--shard", "1/1", "--out", d.file("a"), "--cache", cache});
+  Cli first =
+      run_sweep_cli({"sweep", plan, "--shard", "1/1", "--out", d.file("a"), "--cache", cache});
   REQUIRE(first.code == 0);
   CHECK_THAT(first.out, Contains("0 from the cache"));
   // A larger sweep: one more step. Its 16 old cells come from the cache, its 4 new ones run.
@@ -172,14 +177,14 @@ TEST_CASE(
                     "[[axis]]\nname = \"timestep\"\n"
                     "values = [\"1/120\", \"1/60\", \"1/32\", \"1/25\", \"1/240\"]\n"
                     "[[axis]]\nkey = \"force[0].spring.stiffness\"\nvalues = [900.0, 3600.0]\n");
-  REQUIRE(run({"plan", sweep, "--out", d.file("t.plan")}).code == 0);
-  Cli second =
-      run({"sweep", d.file("t.plan"), "--shard", "1/1", "--out", d.file("b"), "--cache", cache});
+  REQUIRE(run_sweep_cli({"plan", sweep, "--out", d.file("t.plan")}).code == 0);
+  Cli second = run_sweep_cli(
+      {"sweep", d.file("t.plan"), "--shard", "1/1", "--out", d.file("b"), "--cache", cache});
   REQUIRE(second.code == 0);
   CHECK_THAT(second.out, Contains("20 cells") && Contains("16 from the cache"));
   REQUIRE(
-      run({"sweep", d.file("t.plan"), "--shard", "1/1", "--out", d.file("c"), "--quiet"}).code ==
-      0);
+      run_sweep_cli({"sweep", d.file("t.plan"), "--shard", "1/1", "--out", d.file("c"), "--quiet"})
+          .code == 0);
   CHECK(slurp(d.file("b/shard-1-of-1.jsonl")) == slurp(d.file("c/shard-1-of-1.jsonl")));
   // A damaged entry is no entry: that cell runs again.
   for (const auto& e : std::filesystem::recursive_directory_iterator(cache))
@@ -187,8 +192,8 @@ TEST_CASE(
       std::ofstream(e.path()) << "{\"format\":\"junk\"}\n";
       break;
     }
-  Cli third =
-      run({"sweep", d.file("t.plan"), "--shard", "1/1", "--out", d.file("e"), "--cache", cache});
+  Cli third = run_sweep_cli(
+      {"sweep", d.file("t.plan"), "--shard", "1/1", "--out", d.file("e"), "--cache", cache});
   CHECK_THAT(third.out, Contains("19 from the cache"));
   CHECK(slurp(d.file("e/shard-1-of-1.jsonl")) == slurp(d.file("c/shard-1-of-1.jsonl")));
 }
@@ -197,13 +202,13 @@ TEST_CASE("sweep refuses a bad --out before running any cell", "[plan][cli]") {
   ScratchDir d("sweep-out");
   const std::string plan = make_plan_file(d);
   const std::string file = d.write("a-file", "x\n");
-  const Cli c = run({"sweep", plan, "--shard", "1/1", "--out", file});
+  const Cli c = run_sweep_cli({"sweep", plan, "--shard", "1/1", "--out", file});
   CHECK(c.code == 2);
   CHECK_THAT(c.err, Contains("is not a folder"));
   CHECK_THAT(c.err, !Contains("cell 1 of"));
   std::filesystem::create_directories(d.path / "out");
   std::filesystem::create_symlink(file, d.path / "out" / "shard-1-of-1.jsonl");
-  const Cli l = run({"sweep", plan, "--shard", "1/1", "--out", d.file("out")});
+  const Cli l = run_sweep_cli({"sweep", plan, "--shard", "1/1", "--out", d.file("out")});
   CHECK(l.code == 2);
   CHECK_THAT(l.err, !Contains("cell 1 of"));
   CHECK(slurp(file) == "x\n");
@@ -214,8 +219,8 @@ TEST_CASE("report --results draws a sweep's maps and lists its failed cells, the
   ScratchDir d("sweep-report");
   const std::string plan = make_plan_file(d);
   run_shards(plan, d.file("shards"), 1);
-  REQUIRE(run({"merge", plan, d.file("shards"), "--out", d.file("r.jsonl")}).code == 0);
-  const Cli a = run({"report", "--results", d.file("r.jsonl"), "--out", d.file("maps")});
+  REQUIRE(run_sweep_cli({"merge", plan, d.file("shards"), "--out", d.file("r.jsonl")}).code == 0);
+  const Cli a = run_sweep_cli({"report", "--results", d.file("r.jsonl"), "--out", d.file("maps")});
   REQUIRE(a.code == 0);
   const std::string readme = slurp(d.file("maps/README.md"));
   CHECK_THAT(readme, Contains("# dropcheck sweep report"));
@@ -225,12 +230,13 @@ TEST_CASE("report --results draws a sweep's maps and lists its failed cells, the
   CHECK(std::filesystem::exists(d.file("maps/stiff_spring-ours-stability.svg")));
   CHECK(std::filesystem::exists(d.file("maps/stiff_spring-chipmunk-error.svg")));
   const std::string svg = slurp(d.file("maps/stiff_spring-ours-stability.svg"));
-  REQUIRE(run({"report", "--results", d.file("r.jsonl"), "--out", d.file("maps")}).code == 0);
+  REQUIRE(run_sweep_cli({"report", "--results", d.file("r.jsonl"), "--out", d.file("maps")}).code ==
+          0);
   CHECK(slurp(d.file("maps/README.md")) == readme);
   CHECK(slurp(d.file("maps/stiff_spring-ours-stability.svg")) == svg);
   // Not a result file: exit 2 before anything is written.
-  const Cli bad =
-      run({"report", "--results", d.write("bad.jsonl", "{\"x\":1}\n"), "--out", d.file("m2")});
+  const Cli bad = run_sweep_cli(
+      {"report", "--results", d.write("bad.jsonl", "{\"x\":1}\n"), "--out", d.file("m2")});
   CHECK(bad.code == 2);
   CHECK_THAT(bad.err, Contains("bad.jsonl:1"));
   CHECK_FALSE(std::filesystem::exists(d.file("m2")));
@@ -256,8 +262,8 @@ TEST_CASE(
                              "\"]\nengines = [\"ours\"]\n[[axis]]\nname = \"timestep\"\nvalues = "
                              "[\"1/60\"]\n");
   const std::string sweep_bytes = slurp(sweep), scene_bytes = slurp(d.file("scene.toml"));
-  refused(run({"plan", sweep, "--out", sweep}), "--out");
-  refused(run({"plan", sweep, "--out", d.file("scene.toml")}), "--out");
+  refused(run_sweep_cli({"plan", sweep, "--out", sweep}), "--out");
+  refused(run_sweep_cli({"plan", sweep, "--out", d.file("scene.toml")}), "--out");
   CHECK(slurp(sweep) == sweep_bytes);
   CHECK(slurp(d.file("scene.toml")) == scene_bytes);
   // sweep: its shard file onto the plan (--out being the plan's folder, the plan named so), onto
@@ -265,28 +271,32 @@ TEST_CASE(
   std::filesystem::create_directories(d.file("here"));
   const std::string named_like_shard = d.file("here/shard-1-of-1.jsonl");
   std::filesystem::copy_file(plan, named_like_shard);
-  refused(run({"sweep", named_like_shard, "--shard", "1/1", "--out", d.file("here")}), "--out");
+  refused(run_sweep_cli({"sweep", named_like_shard, "--shard", "1/1", "--out", d.file("here")}),
+          "--out");
   CHECK(slurp(named_like_shard) == plan_bytes);
   // merge: --out onto the plan, --out or --missing inside the shard folder, onto each other.
   run_shards(plan, dir, 1);
-  refused(run({"merge", plan, dir, "--out", plan}), "--out");
+  refused(run_sweep_cli({"merge", plan, dir, "--out", plan}), "--out");
   CHECK(slurp(plan) == plan_bytes);
-  refused(run({"merge", plan, dir, "--out", dir + "/shard-1-of-1.jsonl"}), "--out");
-  refused(run({"merge", plan, dir, "--out", d.file("r.jsonl"), "--missing", plan}), "--missing");
-  const Cli same =
-      run({"merge", plan, dir, "--out", d.file("r.jsonl"), "--missing", d.file("r.jsonl")});
+  refused(run_sweep_cli({"merge", plan, dir, "--out", dir + "/shard-1-of-1.jsonl"}), "--out");
+  refused(run_sweep_cli({"merge", plan, dir, "--out", d.file("r.jsonl"), "--missing", plan}),
+          "--missing");
+  const Cli same = run_sweep_cli(
+      {"merge", plan, dir, "--out", d.file("r.jsonl"), "--missing", d.file("r.jsonl")});
   CHECK(same.code == 2);
   CHECK_THAT(same.err, Contains("name two different files"));
   // report --results: a report folder that holds the result file.
-  REQUIRE(run({"merge", plan, dir, "--out", d.file("maps/r.jsonl")}).code == 0);
-  const Cli rep = run({"report", "--results", d.file("maps/r.jsonl"), "--out", d.file("maps")});
+  REQUIRE(run_sweep_cli({"merge", plan, dir, "--out", d.file("maps/r.jsonl")}).code == 0);
+  const Cli rep =
+      run_sweep_cli({"report", "--results", d.file("maps/r.jsonl"), "--out", d.file("maps")});
   CHECK(rep.code == 2);
   CHECK_THAT(rep.err, Contains("--out") && Contains("refusing"));
   CHECK(std::filesystem::exists(d.file("maps/r.jsonl")));
   // sweep --cache: a subfolder that is a link to a folder outside the cache is refused before any
   // cell runs, and nothing is written through it.
   const std::string cache = d.file("cache");
-  REQUIRE(run({"sweep", plan, "--shard", "1/1", "--out", d.file("a"), "--cache", cache, "--quiet"})
+  REQUIRE(run_sweep_cli(
+              {"sweep", plan, "--shard", "1/1", "--out", d.file("a"), "--cache", cache, "--quiet"})
               .code == 0);
   std::filesystem::path sub;
   for (const auto& e : std::filesystem::directory_iterator(cache)) sub = e.path();
@@ -294,7 +304,8 @@ TEST_CASE(
   std::filesystem::create_directories(d.file("elsewhere"));
   std::filesystem::remove_all(sub);
   std::filesystem::create_symlink(d.file("elsewhere"), sub);
-  const Cli linked = run({"sweep", plan, "--shard", "1/1", "--out", d.file("b"), "--cache", cache});
+  const Cli linked =
+      run_sweep_cli({"sweep", plan, "--shard", "1/1", "--out", d.file("b"), "--cache", cache});
   CHECK(linked.code == 2);
   CHECK_THAT(linked.err, Contains("--cache") && Contains("symbolic link"));
   CHECK_THAT(linked.err, !Contains("cell 1 of"));
@@ -305,8 +316,8 @@ TEST_CASE("a plan or a record nesting arrays past 64 levels is refused by file, 
           "[plan][cli][hostile]") {
   ScratchDir d("sweep-deep");
   const std::string deep = std::string(1000000, '[') + std::string(1000000, ']');
-  const Cli s = run({"sweep", d.write("deep.plan", "{\"description\":" + deep + "}"), "--shard",
-                     "1/1", "--out", d.file("x")});
+  const Cli s = run_sweep_cli({"sweep", d.write("deep.plan", "{\"description\":" + deep + "}"),
+                               "--shard", "1/1", "--out", d.file("x")});
   CHECK(s.code == 2);
   CHECK_THAT(s.err, Contains("deep.plan") && Contains("nest deeper than 64 levels"));
   const std::string plan = make_plan_file(d);
@@ -315,7 +326,7 @@ TEST_CASE("a plan or a record nesting arrays past 64 levels is refused by file, 
   const std::string record_deep = std::string(200000, '[') + std::string(200000, ']');
   d.write("shards/shard-1-of-1.jsonl",
           "{\"format\":\"dropcheck-record/1\",\"key\":\"k\",\"plan\":" + record_deep + "}\n");
-  const Cli m = run({"merge", plan, d.file("shards"), "--out", d.file("r.jsonl")});
+  const Cli m = run_sweep_cli({"merge", plan, d.file("shards"), "--out", d.file("r.jsonl")});
   CHECK(m.code == 2);
   CHECK_THAT(m.err, Contains("shard-1-of-1.jsonl:1") && Contains("not a JSON record"));
 }
@@ -334,7 +345,7 @@ TEST_CASE("report --results escapes record text everywhere and gives two scenes 
               "\"},\"status\":\"odd\\nstatus\",\"reason\":\"line\\n## injected\","
               "\"stability\":{\"theory_max_h\":null,\"law_unstable\":\"\"}}\n";
   const std::string results = d.write("r.jsonl", text);
-  const Cli c = run({"report", "--results", results, "--out", d.file("maps")});
+  const Cli c = run_sweep_cli({"report", "--results", results, "--out", d.file("maps")});
   REQUIRE(c.code == 0);
   CHECK_THAT(c.err, !Contains("\x1b"));
   const std::string readme = slurp(d.file("maps/README.md"));
@@ -355,15 +366,17 @@ TEST_CASE("plan refuses what run refuses, and one step written two ways", "[plan
                                  values + "]\n");
   };
   // 1e-9 s: 10^9 steps, as `run --dt 1e-9` refuses them.
-  const Cli tiny = run({"plan", sweep("\"1e-9\""), "--out", d.file("p.plan")});
+  const Cli tiny = run_sweep_cli({"plan", sweep("\"1e-9\""), "--out", d.file("p.plan")});
   CHECK(tiny.code == 2);
   CHECK_THAT(tiny.err, Contains("s.toml") && Contains("exceed the limit of 20000000 steps"));
   CHECK_FALSE(std::filesystem::exists(d.file("p.plan")));
   // "1/60" and "1/060" are one step: one text, so listed twice.
-  const Cli twice = run({"plan", sweep("\"1/60\", \"1/060\""), "--out", d.file("p.plan")});
+  const Cli twice =
+      run_sweep_cli({"plan", sweep("\"1/60\", \"1/060\""), "--out", d.file("p.plan")});
   CHECK(twice.code == 2);
   CHECK_THAT(twice.err, Contains("1/60 appears twice"));
-  const Cli seconds = run({"plan", sweep("\"0.0010\", 0.001"), "--out", d.file("p.plan")});
+  const Cli seconds =
+      run_sweep_cli({"plan", sweep("\"0.0010\", 0.001"), "--out", d.file("p.plan")});
   CHECK(seconds.code == 2);
   CHECK_THAT(seconds.err, Contains("0.001 appears twice (as 0.0010)"));
 }

@@ -34,7 +34,7 @@ std::string sweep_text(const std::string& scenes, const std::string& axes) {
   return "scenes = [" + scenes + "]\nengines = [\"ours\", \"ours-f64\"]\n" + axes;
 }
 
-std::string refusal(const ScratchDir& d, const std::string& text) {
+std::string sweep_refusal(const ScratchDir& d, const std::string& text) {
   const std::string path = d.write("s.toml", text);
   try {
     make_plan(load_sweep(path, known_engine_names()));
@@ -49,39 +49,43 @@ std::string refusal(const ScratchDir& d, const std::string& text) {
 TEST_CASE("a bad sweep file is refused naming the file, line, key and problem", "[plan]") {
   ScratchDir d("sweep-refusals");
   const std::string spring = "\"" + kStiffSpringScene + "\"";
-  CHECK_THAT(refusal(d, sweep_text(spring, "colour = 1\n")),
+  CHECK_THAT(sweep_refusal(d, sweep_text(spring, "colour = 1\n")),
              Contains("s.toml:3: colour: unknown key"));
-  CHECK_THAT(refusal(d, sweep_text(spring, "[[axis]]\nname = \"wind\"\nvalues = [1]\n")),
+  CHECK_THAT(sweep_refusal(d, sweep_text(spring, "[[axis]]\nname = \"wind\"\nvalues = [1]\n")),
              Contains("axis[0].name: unknown axis 'wind'"));
-  CHECK_THAT(refusal(d, "scenes = [" + spring + "]\nengines = [\"havok\"]\n"),
+  CHECK_THAT(sweep_refusal(d, "scenes = [" + spring + "]\nengines = [\"havok\"]\n"),
              Contains("engines[0]: unknown engine 'havok'"));
   CHECK_THAT(
-      refusal(d, sweep_text(spring,
-                            "[[axis]]\nname = \"timestep\"\nfrom = 0.01\nto = 0.1\ncount = 0\n")),
+      sweep_refusal(
+          d,
+          sweep_text(spring, "[[axis]]\nname = \"timestep\"\nfrom = 0.01\nto = 0.1\ncount = 0\n")),
       Contains("axis[0].count: must be a whole number"));
-  CHECK_THAT(refusal(d, sweep_text(spring,
-                                   "[[axis]]\nname = \"damping_rate\"\nfrom = 0.0\nto = 1.0\ncount "
-                                   "= 3\nscale = \"log\"\n")),
-             Contains("a log range needs from > 0"));
-  CHECK_THAT(refusal(d, sweep_text(spring, "[[axis]]\nname = \"scalar\"\nvalues = [\"f16\"]\n")),
-             Contains("expected \"f32\" or \"f64\""));
-  CHECK_THAT(refusal(d, sweep_text(spring,
-                                   "[[axis]]\nname = \"gravity\"\nvalues = [1.0]\n[[axis]]\nname = "
-                                   "\"gravity\"\nvalues = [2.0]\n")),
-             Contains("axis gravity given twice"));
-  CHECK_THAT(refusal(d, sweep_text("\"nowhere.toml\"", "")),
+  CHECK_THAT(
+      sweep_refusal(d, sweep_text(spring,
+                                  "[[axis]]\nname = \"damping_rate\"\nfrom = 0.0\nto = 1.0\ncount "
+                                  "= 3\nscale = \"log\"\n")),
+      Contains("a log range needs from > 0"));
+  CHECK_THAT(
+      sweep_refusal(d, sweep_text(spring, "[[axis]]\nname = \"scalar\"\nvalues = [\"f16\"]\n")),
+      Contains("expected \"f32\" or \"f64\""));
+  CHECK_THAT(
+      sweep_refusal(d, sweep_text(spring,
+                                  "[[axis]]\nname = \"gravity\"\nvalues = [1.0]\n[[axis]]\nname = "
+                                  "\"gravity\"\nvalues = [2.0]\n")),
+      Contains("axis gravity given twice"));
+  CHECK_THAT(sweep_refusal(d, sweep_text("\"nowhere.toml\"", "")),
              Contains("not a scene file or folder"));
   // A value that cannot apply to a scene: named with the axis and the scene, before any cell runs.
   CHECK_THAT(
-      refusal(d, sweep_text("\"" + kFall + "\"",
-                            "[[axis]]\nname = \"spring_stiffness\"\nvalues = [10.0]\n")),
+      sweep_refusal(d, sweep_text("\"" + kFall + "\"",
+                                  "[[axis]]\nname = \"spring_stiffness\"\nvalues = [10.0]\n")),
       Contains("axis[0]: spring_stiffness = 10 on scene free_fall") && Contains("has no spring"));
-  CHECK_THAT(
-      refusal(d, sweep_text(spring, "[[axis]]\nkey = \"body.nobody.mass\"\nvalues = [2.0]\n")),
-      Contains("no body named 'nobody'"));
-  CHECK_THAT(
-      refusal(d, sweep_text(spring, "[[axis]]\nkey = \"world.gravity[1]\"\nvalues = [inf]\n")),
-      Contains("must be finite"));
+  CHECK_THAT(sweep_refusal(
+                 d, sweep_text(spring, "[[axis]]\nkey = \"body.nobody.mass\"\nvalues = [2.0]\n")),
+             Contains("no body named 'nobody'"));
+  CHECK_THAT(sweep_refusal(
+                 d, sweep_text(spring, "[[axis]]\nkey = \"world.gravity[1]\"\nvalues = [inf]\n")),
+             Contains("must be finite"));
 }
 
 TEST_CASE("a plan is the same bytes from the same inputs, and its hash follows the scenes' text",
@@ -205,13 +209,13 @@ TEST_CASE("a scene folder's link is refused, and a sweep past 2e6 cells stops at
   std::filesystem::create_directories(d.path / "scenes");
   std::filesystem::copy_file(kStiffSpringScene, d.path / "scenes" / "a.toml");
   std::filesystem::create_symlink(kFall, d.path / "scenes" / "b.toml");
-  CHECK_THAT(refusal(d, sweep_text("\"scenes\"", "")), Contains("not a regular file"));
+  CHECK_THAT(sweep_refusal(d, sweep_text("\"scenes\"", "")), Contains("not a regular file"));
   std::filesystem::remove(d.path / "scenes" / "b.toml");
   std::string axes;
   for (const char* key : {"world.gravity[0]", "world.gravity[1]", "world.gravity[2]", "duration"})
     axes += std::string("[[axis]]\nkey = \"") + key + "\"\nfrom = 1.0\nto = 2.0\ncount = 100\n";
   // 1 scene x 2 engines x 100^3 = 2e6 cells is allowed; the fourth axis takes it to 2e8.
-  CHECK_THAT(refusal(d, sweep_text("\"scenes\"", axes)),
+  CHECK_THAT(sweep_refusal(d, sweep_text("\"scenes\"", axes)),
              Contains("axis[3]") && Contains("more than the 2e+06"));
 }
 

@@ -24,7 +24,7 @@ const std::string kSkipped =
     R"({"format":"dropcheck-record/1","key":"s|bullet|timestep=1/60","scene":"s",)"
     R"("axes":{"timestep":"1/60"},"status":"skipped","reason":"f64 only"})";
 
-std::string error_of(const std::string& text) {
+std::string results_error_of(const std::string& text) {
   try {
     parse_sweep_results(text, "r.jsonl");
   } catch (const InputError& e) {
@@ -56,11 +56,11 @@ TEST_CASE("a result file's text is read as the file is, a record per line", "[re
 }
 
 TEST_CASE("a line that is not a record is refused naming its line", "[report][results]") {
-  CHECK_THAT(error_of(kOk + "\n\n{\"format\":\"dropcheck-record/2\"}\n"),
+  CHECK_THAT(results_error_of(kOk + "\n\n{\"format\":\"dropcheck-record/2\"}\n"),
              Contains("r.jsonl:3: not a dropcheck-record/1 record: '{\"format\""));
-  CHECK_THAT(error_of(kOk + "\n" + R"({"format":"dropcheck-record/1","key":"s"})"),
+  CHECK_THAT(results_error_of(kOk + "\n" + R"({"format":"dropcheck-record/1","key":"s"})"),
              Contains("r.jsonl:2: not a dropcheck-record/1 record"));
-  CHECK_THAT(error_of("\n\r\n"), Contains("r.jsonl: holds no record"));
-  CHECK_THAT(error_of(std::string(kMaxResultLine + 1, ' ')),
+  CHECK_THAT(results_error_of("\n\r\n"), Contains("r.jsonl: holds no record"));
+  CHECK_THAT(results_error_of(std::string(kMaxResultLine + 1, ' ')),
              Contains("r.jsonl:1: a line longer than 1048576 bytes: not a result file"));
 }

@@ -16,13 +16,13 @@ const std::string kHead = "duration = 1.0\n";
 const std::string kWorld = "[world]\ngravity = [0.0, -9.8, 0.0]\n";
 const std::string kBody = "[[body]]\nname = \"cube\"\nposition = [0.0, 10.0, 0.0]\n";
 
-std::string scene(const std::string& head, const std::string& world, const std::string& bodies,
-                  const std::string& tail = "") {
+std::string loader_scene(const std::string& head, const std::string& world,
+                         const std::string& bodies, const std::string& tail = "") {
   return head + world + bodies + tail;
 }
 
 // The InputError message of parsing `text` as x.toml, or "(loaded)" when it loads.
-std::string error_of(const std::string& text) {
+std::string loader_error_of(const std::string& text) {
   try {
     dropcheck::parse_scene(text, "x.toml");
   } catch (const dropcheck::InputError& e) {
@@ -33,7 +33,7 @@ std::string error_of(const std::string& text) {
 
 // Checks that the message names the file, the key and the problem.
 void check_error(const std::string& text, const std::string& key, const std::string& problem) {
-  const std::string msg = error_of(text);
+  const std::string msg = loader_error_of(text);
   INFO(text);
   CHECK_THAT(msg, Contains("x.toml:") && Contains(key + ": ") && Contains(problem));
 }
@@ -42,7 +42,7 @@ void check_error(const std::string& text, const std::string& key, const std::str
 
 TEST_CASE("a minimal scene loads with the contract's defaults", "[loader]") {
   const dropcheck::Scene s =
-      dropcheck::parse_scene(scene(kHead, kWorld, kBody), "dir/minimal.toml");
+      dropcheck::parse_scene(loader_scene(kHead, kWorld, kBody), "dir/minimal.toml");
   CHECK(s.name == "minimal");  // the file's stem
   CHECK(s.source == "dir/minimal.toml");
   CHECK(s.duration == 1.0);
@@ -63,7 +63,7 @@ TEST_CASE("a minimal scene loads with the contract's defaults", "[loader]") {
 TEST_CASE("linear_drag 0.98 at 1/60 becomes k = -ln(0.98)*60 and decays by 0.98 per step",
           "[loader]") {
   const dropcheck::Scene s =
-      dropcheck::parse_scene(scene(kHead, kWorld + "linear_drag = 0.98\n", kBody), "x.toml");
+      dropcheck::parse_scene(loader_scene(kHead, kWorld + "linear_drag = 0.98\n", kBody), "x.toml");
   // k = -ln(f)/h, so exp(-k*h) = f at the scene's step.
   CHECK(s.world.damping_rate ==
         Approx(-std::log(0.98) * 60.0).epsilon(1e-15));                      // measured 0 (equal)
@@ -74,9 +74,10 @@ TEST_CASE("linear_drag 0.98 at 1/60 becomes k = -ln(0.98)*60 and decays by 0.98 
 }
 
 TEST_CASE("linear_damping is the rate k itself and linear_drag = 1 means no damping", "[loader]") {
-  CHECK(dropcheck::parse_scene(scene(kHead, kWorld + "linear_damping = 1.25\n", kBody), "x.toml")
+  CHECK(dropcheck::parse_scene(loader_scene(kHead, kWorld + "linear_damping = 1.25\n", kBody),
+                               "x.toml")
             .world.damping_rate == 1.25);
-  CHECK(dropcheck::parse_scene(scene(kHead, kWorld + "linear_drag = 1.0\n", kBody), "x.toml")
+  CHECK(dropcheck::parse_scene(loader_scene(kHead, kWorld + "linear_drag = 1.0\n", kBody), "x.toml")
             .world.damping_rate == 0.0);
 }
 
@@ -93,166 +94,177 @@ TEST_CASE("integers are accepted where numbers are expected", "[loader]") {
 
 TEST_CASE("a force without bodies acts on every dynamic body and skips static ones", "[loader]") {
   const dropcheck::Scene s = dropcheck::parse_scene(
-      scene(kHead, kWorld,
-            "[[body]]\nname = \"floor\"\nposition = [0, 0, 0]\nstatic = true\n" + kBody +
-                "[[body]]\nname = \"b\"\nposition = [0, 0, 0]\n",
-            "[[force]]\nconstant = [2.0, 0.0, 0.0]\n"),
+      loader_scene(kHead, kWorld,
+                   "[[body]]\nname = \"floor\"\nposition = [0, 0, 0]\nstatic = true\n" + kBody +
+                       "[[body]]\nname = \"b\"\nposition = [0, 0, 0]\n",
+                   "[[force]]\nconstant = [2.0, 0.0, 0.0]\n"),
       "x.toml");
   REQUIRE(s.forces.size() == 1);
   CHECK(s.forces[0].bodies == std::vector<std::size_t>{1, 2});
 }
 
 TEST_CASE("an unknown key is rejected naming its full path, at every level", "[loader]") {
-  check_error(scene(kHead + "durration = 2.0\n", kWorld, kBody), "durration", "unknown key");
-  check_error(scene(kHead, kWorld + "gravityy = 1.0\n", kBody), "world.gravityy", "unknown key");
-  check_error(scene(kHead, kWorld, kBody + "colour = \"red\"\n"), "body[0].colour", "unknown key");
-  check_error(scene(kHead, kWorld, kBody, "[[force]]\nconstant = [1, 0, 0]\nstrength = 2\n"),
+  check_error(loader_scene(kHead + "durration = 2.0\n", kWorld, kBody), "durration", "unknown key");
+  check_error(loader_scene(kHead, kWorld + "gravityy = 1.0\n", kBody), "world.gravityy",
+              "unknown key");
+  check_error(loader_scene(kHead, kWorld, kBody + "colour = \"red\"\n"), "body[0].colour",
+              "unknown key");
+  check_error(loader_scene(kHead, kWorld, kBody, "[[force]]\nconstant = [1, 0, 0]\nstrength = 2\n"),
               "force[0].strength", "unknown key");
   check_error(
-      scene(kHead, kWorld, kBody,
-            "[[force]]\nspring = { anchor = [0, 5, 0], stiffness = 4.0, stiffnes = 5.0 }\n"),
+      loader_scene(kHead, kWorld, kBody,
+                   "[[force]]\nspring = { anchor = [0, 5, 0], stiffness = 4.0, stiffnes = 5.0 }\n"),
       "force[0].spring.stiffnes", "unknown key");
 }
 
 TEST_CASE("an unknown key's message gives the line it is on", "[loader]") {
   // Lines: 1 duration, 2 [world], 3 gravity, 4 [[body]], 5 name, 6 position, 7 colour.
-  CHECK_THAT(error_of(scene(kHead, kWorld, kBody + "colour = \"red\"\n")),
+  CHECK_THAT(loader_error_of(loader_scene(kHead, kWorld, kBody + "colour = \"red\"\n")),
              Contains("x.toml:7: body[0].colour"));
 }
 
 TEST_CASE("a value of the wrong type is rejected naming the key and both types", "[loader]") {
-  check_error(scene(kHead, kWorld, kBody + "mass = \"heavy\"\n"), "body[0].mass",
+  check_error(loader_scene(kHead, kWorld, kBody + "mass = \"heavy\"\n"), "body[0].mass",
               "expected a number, got a string");
-  check_error(scene(kHead, "[world]\ngravity = 9.8\n", kBody), "world.gravity",
+  check_error(loader_scene(kHead, "[world]\ngravity = 9.8\n", kBody), "world.gravity",
               "expected an array of 3 numbers");
-  check_error(scene(kHead, "[world]\ngravity = [0.0, -9.8]\n", kBody), "world.gravity",
+  check_error(loader_scene(kHead, "[world]\ngravity = [0.0, -9.8]\n", kBody), "world.gravity",
               "expected an array of 3 numbers");
-  check_error(scene(kHead, "[world]\ngravity = [0.0, \"down\", 0.0]\n", kBody), "world.gravity[1]",
-              "expected a number, got a string");
-  check_error(scene(kHead, kWorld, kBody + "static = 1\n"), "body[0].static",
+  check_error(loader_scene(kHead, "[world]\ngravity = [0.0, \"down\", 0.0]\n", kBody),
+              "world.gravity[1]", "expected a number, got a string");
+  check_error(loader_scene(kHead, kWorld, kBody + "static = 1\n"), "body[0].static",
               "expected true or false, got an integer");
-  check_error(scene(kHead, kWorld + "contacts = \"yes\"\n", kBody), "world.contacts",
+  check_error(loader_scene(kHead, kWorld + "contacts = \"yes\"\n", kBody), "world.contacts",
               "expected true or false, got a string");
-  check_error(scene(kHead + "name = 5\n", kWorld, kBody), "name",
+  check_error(loader_scene(kHead + "name = 5\n", kWorld, kBody), "name",
               "expected a string, got an integer");
-  check_error(scene(kHead + "timestep = true\n", kWorld, kBody), "timestep",
+  check_error(loader_scene(kHead + "timestep = true\n", kWorld, kBody), "timestep",
               "expected seconds or \"1/N\", got a boolean");
-  check_error(scene(kHead, "world = 3\n", kBody), "world", "expected a table");
-  check_error(scene(kHead + "body = 3\n", kWorld, ""), "body", "expected [[body]] tables");
-  check_error(scene(kHead, kWorld, kBody, "[[force]]\nspring = 3\n"), "force[0].spring",
+  check_error(loader_scene(kHead, "world = 3\n", kBody), "world", "expected a table");
+  check_error(loader_scene(kHead + "body = 3\n", kWorld, ""), "body", "expected [[body]] tables");
+  check_error(loader_scene(kHead, kWorld, kBody, "[[force]]\nspring = 3\n"), "force[0].spring",
               "expected an inline table");
 }
 
 TEST_CASE("TOML nan and inf are rejected as non-finite naming the key", "[loader]") {
-  check_error(scene(kHead, kWorld, kBody + "mass = nan\n"), "body[0].mass", "must be finite");
-  check_error(scene(kHead, "[world]\ngravity = [0.0, -inf, 0.0]\n", kBody), "world.gravity[1]",
+  check_error(loader_scene(kHead, kWorld, kBody + "mass = nan\n"), "body[0].mass",
               "must be finite");
-  check_error(scene(kHead, kWorld, "[[body]]\nname = \"cube\"\nposition = [0.0, inf, 0.0]\n"),
-              "body[0].position[1]", "must be finite");
-  check_error(scene("duration = inf\n", kWorld, kBody), "duration", "must be finite");
-  check_error(scene(kHead + "timestep = nan\n", kWorld, kBody), "timestep", "must be finite");
-  check_error(scene(kHead, kWorld + "linear_drag = nan\n", kBody), "world.linear_drag",
+  check_error(loader_scene(kHead, "[world]\ngravity = [0.0, -inf, 0.0]\n", kBody),
+              "world.gravity[1]", "must be finite");
+  check_error(
+      loader_scene(kHead, kWorld, "[[body]]\nname = \"cube\"\nposition = [0.0, inf, 0.0]\n"),
+      "body[0].position[1]", "must be finite");
+  check_error(loader_scene("duration = inf\n", kWorld, kBody), "duration", "must be finite");
+  check_error(loader_scene(kHead + "timestep = nan\n", kWorld, kBody), "timestep",
+              "must be finite");
+  check_error(loader_scene(kHead, kWorld + "linear_drag = nan\n", kBody), "world.linear_drag",
               "must be finite");
 }
 
 TEST_CASE("a mass <= 0 is rejected naming the key", "[loader]") {
-  check_error(scene(kHead, kWorld, kBody + "mass = 0.0\n"), "body[0].mass",
+  check_error(loader_scene(kHead, kWorld, kBody + "mass = 0.0\n"), "body[0].mass",
               "must be > 0 kg, got 0");
-  check_error(scene(kHead, kWorld, kBody + "mass = -2.0\n"), "body[0].mass",
+  check_error(loader_scene(kHead, kWorld, kBody + "mass = -2.0\n"), "body[0].mass",
               "must be > 0 kg, got -2");
 }
 
 TEST_CASE("a half extent <= 0 is rejected naming the key", "[loader]") {
-  check_error(scene(kHead, kWorld, kBody + "half_extents = [0.5, 0.0, 0.5]\n"),
+  check_error(loader_scene(kHead, kWorld, kBody + "half_extents = [0.5, 0.0, 0.5]\n"),
               "body[0].half_extents", "> 0 m");
-  check_error(scene(kHead, kWorld, kBody + "half_extents = [0.5, 0.5, -1.0]\n"),
+  check_error(loader_scene(kHead, kWorld, kBody + "half_extents = [0.5, 0.5, -1.0]\n"),
               "body[0].half_extents", "> 0 m");
 }
 
 TEST_CASE("linear_drag of 0 or 1.5 is rejected and so are both drag keys together", "[loader]") {
-  check_error(scene(kHead, kWorld + "linear_drag = 0.0\n", kBody), "world.linear_drag",
+  check_error(loader_scene(kHead, kWorld + "linear_drag = 0.0\n", kBody), "world.linear_drag",
               "must be in (0, 1], got 0");
-  check_error(scene(kHead, kWorld + "linear_drag = 1.5\n", kBody), "world.linear_drag",
+  check_error(loader_scene(kHead, kWorld + "linear_drag = 1.5\n", kBody), "world.linear_drag",
               "must be in (0, 1], got 1.5");
-  check_error(scene(kHead, kWorld + "linear_damping = -1.0\n", kBody), "world.linear_damping",
-              "must be >= 0");
-  check_error(scene(kHead, kWorld + "linear_drag = 0.98\nlinear_damping = 1.2\n", kBody),
+  check_error(loader_scene(kHead, kWorld + "linear_damping = -1.0\n", kBody),
+              "world.linear_damping", "must be >= 0");
+  check_error(loader_scene(kHead, kWorld + "linear_drag = 0.98\nlinear_damping = 1.2\n", kBody),
               "world.linear_damping", "not both");
 }
 
 TEST_CASE("duplicate body names are rejected naming the name", "[loader]") {
-  check_error(scene(kHead, kWorld, kBody + kBody), "body[1].name", "duplicate body name \"cube\"");
-  check_error(scene(kHead, kWorld, "[[body]]\nname = \"\"\nposition = [0, 0, 0]\n"), "body[0].name",
-              "must not be empty");
+  check_error(loader_scene(kHead, kWorld, kBody + kBody), "body[1].name",
+              "duplicate body name \"cube\"");
+  check_error(loader_scene(kHead, kWorld, "[[body]]\nname = \"\"\nposition = [0, 0, 0]\n"),
+              "body[0].name", "must not be empty");
 }
 
 TEST_CASE("a force on an unknown or a static body is rejected naming the body", "[loader]") {
   check_error(
-      scene(kHead, kWorld, kBody, "[[force]]\nbodies = [\"ghost\"]\nconstant = [1, 0, 0]\n"),
+      loader_scene(kHead, kWorld, kBody, "[[force]]\nbodies = [\"ghost\"]\nconstant = [1, 0, 0]\n"),
       "force[0].bodies[0]", "no body named 'ghost'");
-  check_error(scene(kHead, kWorld,
-                    kBody + "[[body]]\nname = \"floor\"\nposition = [0, 0, 0]\nstatic = true\n",
-                    "[[force]]\nbodies = [\"cube\", \"floor\"]\nconstant = [1, 0, 0]\n"),
-              "force[0].bodies[1]", "body \"floor\" is static");
-  check_error(scene(kHead, kWorld, kBody, "[[force]]\nbodies = []\nconstant = [1, 0, 0]\n"),
+  check_error(
+      loader_scene(kHead, kWorld,
+                   kBody + "[[body]]\nname = \"floor\"\nposition = [0, 0, 0]\nstatic = true\n",
+                   "[[force]]\nbodies = [\"cube\", \"floor\"]\nconstant = [1, 0, 0]\n"),
+      "force[0].bodies[1]", "body \"floor\" is static");
+  check_error(loader_scene(kHead, kWorld, kBody, "[[force]]\nbodies = []\nconstant = [1, 0, 0]\n"),
               "force[0].bodies", "non-empty array");
 }
 
 TEST_CASE("a force needs exactly one law and a spring's parameters are checked", "[loader]") {
-  check_error(scene(kHead, kWorld, kBody, "[[force]]\nbodies = [\"cube\"]\n"), "force[0].constant",
-              "exactly one");
+  check_error(loader_scene(kHead, kWorld, kBody, "[[force]]\nbodies = [\"cube\"]\n"),
+              "force[0].constant", "exactly one");
   check_error(
-      scene(kHead, kWorld, kBody,
-            "[[force]]\nconstant = [1, 0, 0]\nspring = { anchor = [0, 0, 0], stiffness = 1.0 }\n"),
+      loader_scene(
+          kHead, kWorld, kBody,
+          "[[force]]\nconstant = [1, 0, 0]\nspring = { anchor = [0, 0, 0], stiffness = 1.0 }\n"),
       "force[0].constant", "exactly one");
-  check_error(
-      scene(kHead, kWorld, kBody, "[[force]]\nspring = { anchor = [0, 5, 0], stiffness = -1.0 }\n"),
-      "force[0].spring.stiffness", "must be >= 0");
-  check_error(scene(kHead, kWorld, kBody, "[[force]]\nspring = { anchor = [0, 5, 0] }\n"),
+  check_error(loader_scene(kHead, kWorld, kBody,
+                           "[[force]]\nspring = { anchor = [0, 5, 0], stiffness = -1.0 }\n"),
+              "force[0].spring.stiffness", "must be >= 0");
+  check_error(loader_scene(kHead, kWorld, kBody, "[[force]]\nspring = { anchor = [0, 5, 0] }\n"),
               "force[0].spring.stiffness", "required key is missing");
 }
 
 TEST_CASE("a step count over the limit is rejected with the count and the limit", "[loader]") {
   // 1e9 s at 1/60 s is 6e10 steps; the limit is kMaxSteps = 2e7.
-  check_error(scene("duration = 1e9\n", kWorld, kBody), "timestep",
+  check_error(loader_scene("duration = 1e9\n", kWorld, kBody), "timestep",
               "60000000000 steps, more than the limit of 20000000");
   // 1e300 s: a count no integer holds is still printed as a count, not an overflowed integer.
-  check_error(scene("duration = 1e300\n", kWorld, kBody), "timestep", "6e+301 steps");
+  check_error(loader_scene("duration = 1e300\n", kWorld, kBody), "timestep", "6e+301 steps");
 }
 
 TEST_CASE("a timestep longer than the duration or not dividing it is rejected", "[loader]") {
-  check_error(scene("duration = 0.01\n", kWorld, kBody), "timestep", "longer than the duration");
-  check_error(scene(kHead + "timestep = 0.3\n", kWorld, kBody), "timestep",
+  check_error(loader_scene("duration = 0.01\n", kWorld, kBody), "timestep",
+              "longer than the duration");
+  check_error(loader_scene(kHead + "timestep = 0.3\n", kWorld, kBody), "timestep",
               "not a whole number of steps");
-  check_error(scene(kHead + "timesteps = [\"1/60\", \"1/30\", 0.7]\n", kWorld, kBody),
+  check_error(loader_scene(kHead + "timesteps = [\"1/60\", \"1/30\", 0.7]\n", kWorld, kBody),
               "timesteps[2]", "not a whole number of steps");
-  check_error(scene("duration = 0.0\n", kWorld, kBody), "duration", "must be > 0 seconds");
+  check_error(loader_scene("duration = 0.0\n", kWorld, kBody), "duration", "must be > 0 seconds");
 }
 
 TEST_CASE("timestep texts 1/0, abc and -0.1 are rejected quoting the text", "[loader]") {
-  check_error(scene(kHead + "timestep = \"1/0\"\n", kWorld, kBody), "timestep", "\"1/0\"");
-  check_error(scene(kHead + "timestep = \"abc\"\n", kWorld, kBody), "timestep", "\"abc\"");
-  check_error(scene(kHead + "timestep = \"-0.1\"\n", kWorld, kBody), "timestep",
+  check_error(loader_scene(kHead + "timestep = \"1/0\"\n", kWorld, kBody), "timestep", "\"1/0\"");
+  check_error(loader_scene(kHead + "timestep = \"abc\"\n", kWorld, kBody), "timestep", "\"abc\"");
+  check_error(loader_scene(kHead + "timestep = \"-0.1\"\n", kWorld, kBody), "timestep",
               "> 0, got \"-0.1\"");
-  check_error(scene(kHead + "timestep = -0.1\n", kWorld, kBody), "timestep", "> 0, got \"-0.1\"");
-  check_error(scene(kHead + "timesteps = []\n", kWorld, kBody), "timesteps", "non-empty array");
+  check_error(loader_scene(kHead + "timestep = -0.1\n", kWorld, kBody), "timestep",
+              "> 0, got \"-0.1\"");
+  check_error(loader_scene(kHead + "timesteps = []\n", kWorld, kBody), "timesteps",
+              "non-empty array");
 }
 
 TEST_CASE("a missing required key is rejected naming it", "[loader]") {
-  check_error(scene("", kWorld, kBody), "duration", "required key is missing");
-  check_error(scene(kHead, "[world]\nlinear_drag = 0.98\n", kBody), "world.gravity",
+  check_error(loader_scene("", kWorld, kBody), "duration", "required key is missing");
+  check_error(loader_scene(kHead, "[world]\nlinear_drag = 0.98\n", kBody), "world.gravity",
               "required key is missing");
-  check_error(scene(kHead, kWorld, "[[body]]\nname = \"cube\"\n"), "body[0].position",
+  check_error(loader_scene(kHead, kWorld, "[[body]]\nname = \"cube\"\n"), "body[0].position",
               "required key is missing");
-  check_error(scene(kHead, kWorld, "[[body]]\nposition = [0, 0, 0]\n"), "body[0].name",
+  check_error(loader_scene(kHead, kWorld, "[[body]]\nposition = [0, 0, 0]\n"), "body[0].name",
               "required key is missing");
-  check_error(scene(kHead, "", kBody), "world", "required table [world] is missing");
-  check_error(scene(kHead, kWorld, ""), "body", "at least one [[body]]");
+  check_error(loader_scene(kHead, "", kBody), "world", "required table [world] is missing");
+  check_error(loader_scene(kHead, kWorld, ""), "body", "at least one [[body]]");
 }
 
 TEST_CASE("a TOML syntax error gives the file and its line", "[loader]") {
-  const std::string msg =
-      error_of("duration = 1.0\n[world]\ngravity = [0.0, -9.8, 0.0]\nlinear_drag = = 0.98\n");
+  const std::string msg = loader_error_of(
+      "duration = 1.0\n[world]\ngravity = [0.0, -9.8, 0.0]\nlinear_drag = = 0.98\n");
   CHECK_THAT(msg, Contains("x.toml:4: ") && Contains("TOML syntax error"));
 }
 
@@ -276,33 +288,36 @@ TEST_CASE("a directory given as the scene file is an InputError, not an empty sc
 
 TEST_CASE("a control character in a scene or body name is refused, escaped or raw", "[loader]") {
   // TOML escapes decode to the bytes a terminal acts on: ESC (clear screen), BEL, NUL, tab, C1.
-  check_error(scene("name = \"a\\u001b[2Jb\"\n" + kHead, kWorld, kBody), "name",
+  check_error(loader_scene("name = \"a\\u001b[2Jb\"\n" + kHead, kWorld, kBody), "name",
               "control character '\\x1b' in a name");
-  check_error(scene("name = \"bell\\u0007\"\n" + kHead, kWorld, kBody), "name",
+  check_error(loader_scene("name = \"bell\\u0007\"\n" + kHead, kWorld, kBody), "name",
               "control character '\\x07'");
-  check_error(scene(kHead, kWorld, "[[body]]\nname = \"cu\\tbe\"\n"), "body[0].name",
+  check_error(loader_scene(kHead, kWorld, "[[body]]\nname = \"cu\\tbe\"\n"), "body[0].name",
               "control character '\\x09'");
-  check_error(scene(kHead, kWorld, "[[body]]\nname = \"nul\\u0000\"\n"), "body[0].name",
+  check_error(loader_scene(kHead, kWorld, "[[body]]\nname = \"nul\\u0000\"\n"), "body[0].name",
               "control character '\\x00'");
-  check_error(scene(kHead, kWorld, "[[body]]\nname = \"csi\\u009b\"\n"), "body[0].name",
+  check_error(loader_scene(kHead, kWorld, "[[body]]\nname = \"csi\\u009b\"\n"), "body[0].name",
               "control character '\\xc2\\x9b'");
   // Printable non-ASCII stays a valid name.
-  CHECK(error_of(scene("name = \"w\\u00fcrfel\"\n" + kHead, kWorld, kBody)) == "(loaded)");
+  CHECK(loader_error_of(loader_scene("name = \"w\\u00fcrfel\"\n" + kHead, kWorld, kBody)) ==
+        "(loaded)");
 }
 
 TEST_CASE("an integer too large to be exactly a double is named as such", "[loader]") {
   // 2^53 + 1 = 9007199254740993 would become ...992 as a double: refused, not rounded.
-  check_error(scene(kHead, kWorld, kBody + "mass = 9007199254740993\n"), "body[0].mass",
+  check_error(loader_scene(kHead, kWorld, kBody + "mass = 9007199254740993\n"), "body[0].mass",
               "the integer 9007199254740993 is too large to be exactly a double (beyond 2^53)");
-  check_error(scene(kHead, kWorld, kBody + "mass = -9007199254740993\n"), "body[0].mass",
+  check_error(loader_scene(kHead, kWorld, kBody + "mass = -9007199254740993\n"), "body[0].mass",
               "too large to be exactly a double");
   // 2^53 itself is exact, and accepted as a number.
-  CHECK(error_of(scene(kHead, kWorld, kBody + "mass = 9007199254740992\n")) == "(loaded)");
+  CHECK(loader_error_of(loader_scene(kHead, kWorld, kBody + "mass = 9007199254740992\n")) ==
+        "(loaded)");
 }
 
 TEST_CASE("rotation keys: defaults change nothing, given ones are kept, and the scene rotates",
           "[loader][rotation]") {
-  const dropcheck::Scene plain = dropcheck::parse_scene(scene(kHead, kWorld, kBody), "x.toml");
+  const dropcheck::Scene plain =
+      dropcheck::parse_scene(loader_scene(kHead, kWorld, kBody), "x.toml");
   const dropcheck::Body& b = plain.bodies[0];
   CHECK(b.orientation.coeffs() == dropcheck::Quat::Identity().coeffs());
   CHECK(b.angular_velocity == dropcheck::Vec3::Zero());
@@ -312,10 +327,11 @@ TEST_CASE("rotation keys: defaults change nothing, given ones are kept, and the 
   CHECK_FALSE(dropcheck::needs_rotation(plain));
 
   const dropcheck::Scene spun = dropcheck::parse_scene(
-      scene(kHead, "[world]\ngravity = [0.0, -9.8, 0.0]\nangular_drag = 0.98\n",
-            kBody + "orientation = [0.0, 1.0, 0.0, 0.0]\nangular_velocity = [0.1, 5.0, 0.1]\n"
-                    "inertia = [0.8083333333333333, 0.6833333333333333, 0.14166666666666666]\n",
-            "[[torque]]\nconstant = [0.0, 0.0, 2.0]\n"),
+      loader_scene(kHead, "[world]\ngravity = [0.0, -9.8, 0.0]\nangular_drag = 0.98\n",
+                   kBody +
+                       "orientation = [0.0, 1.0, 0.0, 0.0]\nangular_velocity = [0.1, 5.0, 0.1]\n"
+                       "inertia = [0.8083333333333333, 0.6833333333333333, 0.14166666666666666]\n",
+                   "[[torque]]\nconstant = [0.0, 0.0, 2.0]\n"),
       "x.toml");
   CHECK(spun.bodies[0].orientation.x() == 1.0);
   CHECK(spun.bodies[0].angular_velocity == dropcheck::Vec3(0.1, 5.0, 0.1));
@@ -329,30 +345,31 @@ TEST_CASE("rotation keys: defaults change nothing, given ones are kept, and the 
 
 TEST_CASE("a quaternion that is not unit, or moments no body has, are refused naming the key",
           "[loader][rotation]") {
-  check_error(scene(kHead, kWorld, kBody + "orientation = [0.7071, 0.7071, 0.0, 0.0]\n"),
+  check_error(loader_scene(kHead, kWorld, kBody + "orientation = [0.7071, 0.7071, 0.0, 0.0]\n"),
               "body[0].orientation", "not a unit quaternion: its norm is 0.99999");
-  check_error(scene(kHead, kWorld, kBody + "orientation = [1.0, 0.0, 0.0]\n"),
+  check_error(loader_scene(kHead, kWorld, kBody + "orientation = [1.0, 0.0, 0.0]\n"),
               "body[0].orientation", "expected a unit quaternion [w, x, y, z]");
-  check_error(scene(kHead, kWorld, kBody + "inertia = [1.0, 0.0, 1.0]\n"), "body[0].inertia",
+  check_error(loader_scene(kHead, kWorld, kBody + "inertia = [1.0, 0.0, 1.0]\n"), "body[0].inertia",
               "every principal moment must be > 0");
-  check_error(scene(kHead, kWorld, kBody + "inertia = [1.0, -1.0, 1.0]\n"), "body[0].inertia",
-              "every principal moment must be > 0");
-  check_error(scene(kHead, kWorld, kBody + "inertia = [1.0, 1.0, 3.0]\n"), "body[0].inertia",
+  check_error(loader_scene(kHead, kWorld, kBody + "inertia = [1.0, -1.0, 1.0]\n"),
+              "body[0].inertia", "every principal moment must be > 0");
+  check_error(loader_scene(kHead, kWorld, kBody + "inertia = [1.0, 1.0, 3.0]\n"), "body[0].inertia",
               "Izz = 3 exceeds the sum of the other two (2)");
-  check_error(scene(kHead, kWorld, kBody + "inertia = [5.0, 1.0, 3.0]\n"), "body[0].inertia",
+  check_error(loader_scene(kHead, kWorld, kBody + "inertia = [5.0, 1.0, 3.0]\n"), "body[0].inertia",
               "Ixx = 5 exceeds the sum of the other two (4)");
-  check_error(scene(kHead, kWorld, kBody + "angular_velocity = [1.0, nan, 0.0]\n"),
+  check_error(loader_scene(kHead, kWorld, kBody + "angular_velocity = [1.0, nan, 0.0]\n"),
               "body[0].angular_velocity[1]", "must be finite");
-  check_error(scene(kHead,
-                    "[world]\ngravity = [0.0, 0.0, 0.0]\nangular_drag = 0.9\n"
-                    "angular_damping = 1.0\n",
-                    kBody),
+  check_error(loader_scene(kHead,
+                           "[world]\ngravity = [0.0, 0.0, 0.0]\nangular_drag = 0.9\n"
+                           "angular_damping = 1.0\n",
+                           kBody),
               "world.angular_damping", "give angular_drag or angular_damping, not both");
-  check_error(
-      scene(kHead, kWorld, kBody, "[[torque]]\nbodies = [\"ghost\"]\nconstant = [1, 0, 0]\n"),
-      "torque[0].bodies[0]", "no body named 'ghost'");
+  check_error(loader_scene(kHead, kWorld, kBody,
+                           "[[torque]]\nbodies = [\"ghost\"]\nconstant = [1, 0, 0]\n"),
+              "torque[0].bodies[0]", "no body named 'ghost'");
   // A flat plate's moments meet the triangle inequality with equality: accepted.
-  CHECK(error_of(scene(kHead, kWorld, kBody + "inertia = [1.0, 2.0, 3.0]\n")) == "(loaded)");
+  CHECK(loader_error_of(loader_scene(kHead, kWorld, kBody + "inertia = [1.0, 2.0, 3.0]\n")) ==
+        "(loaded)");
 }
 
 TEST_CASE("a published figure names a rotational member and a step, on a scene that rotates",
@@ -361,16 +378,16 @@ TEST_CASE("a published figure names a rotational member and a step, on a scene t
   const std::string good =
       "[[published]]\nsource = \"a paper\"\nengine = \"X\"\ndt = 0.001\n"
       "max_momentum_drift = 0.01\nlaw = \"explicit/first-order\"\n";
-  CHECK(error_of(scene(kHead, kWorld, spin, good)) == "(loaded)");
-  check_error(scene(kHead, kWorld, spin,
-                    "[[published]]\nsource = \"a paper\"\nengine = \"X\"\ndt = 0.001\n"
-                    "max_momentum_drift = 0.01\nlaw = \"explicit\"\n"),
+  CHECK(loader_error_of(loader_scene(kHead, kWorld, spin, good)) == "(loaded)");
+  check_error(loader_scene(kHead, kWorld, spin,
+                           "[[published]]\nsource = \"a paper\"\nengine = \"X\"\ndt = 0.001\n"
+                           "max_momentum_drift = 0.01\nlaw = \"explicit\"\n"),
               "published[0].law", "expected a rotational member: one of no-gyro/first-order");
-  check_error(scene(kHead, kWorld, spin,
-                    "[[published]]\nsource = \"a paper\"\nengine = \"X\"\ndt = 0.0\n"
-                    "max_momentum_drift = 0.01\nlaw = \"explicit/first-order\"\n"),
+  check_error(loader_scene(kHead, kWorld, spin,
+                           "[[published]]\nsource = \"a paper\"\nengine = \"X\"\ndt = 0.0\n"
+                           "max_momentum_drift = 0.01\nlaw = \"explicit/first-order\"\n"),
               "published[0].dt", "must be > 0");
-  check_error(scene(kHead, kWorld, kBody, good), "published[0].law",
+  check_error(loader_scene(kHead, kWorld, kBody, good), "published[0].law",
               "published rotation figures need a scene that rotates");
 }
 
@@ -378,20 +395,22 @@ TEST_CASE("a static body may not turn, and a published member must fit the scene
           "[loader][rotation]") {
   const std::string floor =
       "[[body]]\nname = \"floor\"\nstatic = true\nposition = [0.0, -1.0, 0.0]\n";
-  check_error(scene(kHead, kWorld, kBody + floor + "angular_velocity = [0.0, 1.0, 0.0]\n"),
+  check_error(loader_scene(kHead, kWorld, kBody + floor + "angular_velocity = [0.0, 1.0, 0.0]\n"),
               "body[1].angular_velocity", "a static body does not turn");
-  check_error(scene(kHead, kWorld, kBody + floor + "orientation = [0.0, 1.0, 0.0, 0.0]\n"),
+  check_error(loader_scene(kHead, kWorld, kBody + floor + "orientation = [0.0, 1.0, 0.0, 0.0]\n"),
               "body[1].orientation", "a static body does not turn");
   const std::string spin = kBody + "angular_velocity = [0.0, 0.0, 1.0]\n";
-  check_error(scene(kHead, kWorld, spin,
-                    "[[published]]\nsource = \"s\"\nengine = \"X\"\ndt = 0.001\n"
-                    "max_momentum_drift = 0.01\nlaw = \"explicit/first-order\"\nlaw_dt = 1e-12\n"),
-              "published[0].law_dt", "leave at most 1e7 steps");
+  check_error(
+      loader_scene(kHead, kWorld, spin,
+                   "[[published]]\nsource = \"s\"\nengine = \"X\"\ndt = 0.001\n"
+                   "max_momentum_drift = 0.01\nlaw = \"explicit/first-order\"\nlaw_dt = 1e-12\n"),
+      "published[0].law_dt", "leave at most 1e7 steps");
 }
 
 TEST_CASE("contact keys: a sphere with its radius, friction and restitution load and are kept",
           "[loader][contact]") {
-  const dropcheck::Scene plain = dropcheck::parse_scene(scene(kHead, kWorld, kBody), "x.toml");
+  const dropcheck::Scene plain =
+      dropcheck::parse_scene(loader_scene(kHead, kWorld, kBody), "x.toml");
   CHECK(plain.bodies[0].shape == dropcheck::Shape::box);
   CHECK_FALSE(plain.bodies[0].friction.has_value());
   CHECK_FALSE(plain.bodies[0].restitution.has_value());
@@ -399,9 +418,9 @@ TEST_CASE("contact keys: a sphere with its radius, friction and restitution load
   CHECK_FALSE(dropcheck::has_spheres(plain));
 
   const dropcheck::Scene ball = dropcheck::parse_scene(
-      scene(kHead, kWorld,
-            kBody + "shape = \"sphere\"\nradius = 0.25\nmass = 2.0\nfriction = 0.5\n"
-                    "restitution = 0.9\n"),
+      loader_scene(kHead, kWorld,
+                   kBody + "shape = \"sphere\"\nradius = 0.25\nmass = 2.0\nfriction = 0.5\n"
+                           "restitution = 0.9\n"),
       "x.toml");
   const dropcheck::Body& b = ball.bodies[0];
   CHECK(b.shape == dropcheck::Shape::sphere);
@@ -416,23 +435,23 @@ TEST_CASE("contact keys: a sphere with its radius, friction and restitution load
 
 TEST_CASE("contact keys out of range or mixed between shapes are refused naming the key",
           "[loader][contact]") {
-  check_error(scene(kHead, kWorld, kBody + "shape = \"cone\"\n"), "body[0].shape",
+  check_error(loader_scene(kHead, kWorld, kBody + "shape = \"cone\"\n"), "body[0].shape",
               "expected \"box\" or \"sphere\", got 'cone'");
-  check_error(scene(kHead, kWorld, kBody + "shape = \"sphere\"\n"), "body[0].radius",
+  check_error(loader_scene(kHead, kWorld, kBody + "shape = \"sphere\"\n"), "body[0].radius",
               "required key is missing");
-  check_error(scene(kHead, kWorld, kBody + "shape = \"sphere\"\nradius = 0.0\n"), "body[0].radius",
-              "must be > 0 m");
-  check_error(scene(kHead, kWorld,
-                    kBody + "shape = \"sphere\"\nradius = 1.0\n"
-                            "half_extents = [1.0, 1.0, 1.0]\n"),
+  check_error(loader_scene(kHead, kWorld, kBody + "shape = \"sphere\"\nradius = 0.0\n"),
+              "body[0].radius", "must be > 0 m");
+  check_error(loader_scene(kHead, kWorld,
+                           kBody + "shape = \"sphere\"\nradius = 1.0\n"
+                                   "half_extents = [1.0, 1.0, 1.0]\n"),
               "body[0].half_extents", "a sphere has a radius");
-  check_error(scene(kHead, kWorld, kBody + "radius = 1.0\n"), "body[0].radius",
+  check_error(loader_scene(kHead, kWorld, kBody + "radius = 1.0\n"), "body[0].radius",
               "a box has half_extents");
-  check_error(scene(kHead, kWorld, kBody + "friction = -0.1\n"), "body[0].friction",
+  check_error(loader_scene(kHead, kWorld, kBody + "friction = -0.1\n"), "body[0].friction",
               "must be >= 0");
-  check_error(scene(kHead, kWorld, kBody + "restitution = 1.5\n"), "body[0].restitution",
+  check_error(loader_scene(kHead, kWorld, kBody + "restitution = 1.5\n"), "body[0].restitution",
               "must be in [0, 1]");
-  check_error(scene(kHead, kWorld, kBody + "friction = \"high\"\n"), "body[0].friction",
+  check_error(loader_scene(kHead, kWorld, kBody + "friction = \"high\"\n"), "body[0].friction",
               "expected a number, got a string");
 }
 
@@ -440,14 +459,15 @@ TEST_CASE("one friction and one restitution per scene: two bodies that differ ar
           "[loader][contact]") {
   const std::string floor =
       "[[body]]\nname = \"floor\"\nstatic = true\nposition = [0.0, -0.5, 0.0]\n";
-  check_error(scene(kHead, kWorld, kBody + "friction = 0.5\n" + floor + "friction = 0.3\n"),
+  check_error(loader_scene(kHead, kWorld, kBody + "friction = 0.5\n" + floor + "friction = 0.3\n"),
               "body[1].friction",
               "one friction per scene (docs/contact.md): body \"cube\" sets 0.5");
-  check_error(scene(kHead, kWorld, kBody + "restitution = 0.5\n" + floor + "restitution = 0.0\n"),
-              "body[1].restitution", "one restitution per scene");
+  check_error(
+      loader_scene(kHead, kWorld, kBody + "restitution = 0.5\n" + floor + "restitution = 0.0\n"),
+      "body[1].restitution", "one restitution per scene");
   const dropcheck::Scene same = dropcheck::parse_scene(
-      scene(kHead, kWorld,
-            kBody + "friction = 0.5\n" + floor + "friction = 0.5\nrestitution = 0.2\n"),
+      loader_scene(kHead, kWorld,
+                   kBody + "friction = 0.5\n" + floor + "friction = 0.5\nrestitution = 0.2\n"),
       "x.toml");
   CHECK(*dropcheck::scene_material(same).friction == 0.5);
   CHECK(*dropcheck::scene_material(same).restitution == 0.2);
@@ -480,14 +500,14 @@ TEST_CASE("[expect] figures keep their text as written, and the description quot
 
 TEST_CASE("a description without placeholders loads as written, braces are placeholders only",
           "[loader]") {
-  CHECK(
-      dropcheck::parse_scene("description = \"h = 1/60\"\n" + scene(kHead, kWorld, kBody), "x.toml")
-          .description == "h = 1/60");
-  check_error("description = \"a {b\"\n" + scene(kHead, kWorld, kBody), "description",
+  CHECK(dropcheck::parse_scene("description = \"h = 1/60\"\n" + loader_scene(kHead, kWorld, kBody),
+                               "x.toml")
+            .description == "h = 1/60");
+  check_error("description = \"a {b\"\n" + loader_scene(kHead, kWorld, kBody), "description",
               "a '{' never closed: '{b'");
-  check_error("description = \"a} b\"\n" + scene(kHead, kWorld, kBody), "description",
+  check_error("description = \"a} b\"\n" + loader_scene(kHead, kWorld, kBody), "description",
               "a '}' that closes no {placeholder}: 'a}'");
-  check_error("description = \"{b}\"\n" + scene(kHead, kWorld, kBody), "description",
+  check_error("description = \"{b}\"\n" + loader_scene(kHead, kWorld, kBody), "description",
               "'{b}' names no figure of [expect]");
 }
 
@@ -495,7 +515,7 @@ TEST_CASE("an [expect] figure that is not a plain finite number is refused namin
   const auto with = [](const std::string& figure) {
     return "description = \"{a}\"\n" + kHead + "[expect]\na = " + figure + "\n" + kWorld + kBody;
   };
-  CHECK(error_of(with("1.5")) == "(loaded)");
+  CHECK(loader_error_of(with("1.5")) == "(loaded)");
   check_error(with("\"62\""), "expect.a", "expected a number, got a string");
   check_error(with("true"), "expect.a", "expected a number, got a boolean");
   check_error(with("[1, 2]"), "expect.a", "expected a number, got an array");
@@ -504,7 +524,7 @@ TEST_CASE("an [expect] figure that is not a plain finite number is refused namin
   check_error(with("9007199254740993"), "expect.a", "too large to be exactly a double");
   for (const char* written : {"0x3e", "1_000", "+5", "1E5", "5e+00_1"}) {
     INFO(written);
-    const std::string msg = error_of(with(written));
+    const std::string msg = loader_error_of(with(written));
     CHECK_THAT(msg, Contains("expect.a: write a figure as a plain decimal number") ||
                         Contains("TOML syntax error"));
   }
@@ -520,13 +540,13 @@ TEST_CASE("[expect] names are [a-z][a-z0-9_]*, and a table in it names a body", 
   check_error(with("{Stop}", "[expect]\nStop = 1\n"), "expect.Stop", "[a-z][a-z0-9_]*");
   check_error(with("{_a}", "[expect]\n_a = 1\n"), "expect._a", "[a-z][a-z0-9_]*");
   check_error(with("x", "[expect]\n\"a b\" = 1\n"), "expect.a b", "[a-z][a-z0-9_]*");
-  CHECK_THAT(error_of(with("x", "[expect]\n\"a\\u001b[2J\" = 1\n")),
+  CHECK_THAT(loader_error_of(with("x", "[expect]\n\"a\\u001b[2J\" = 1\n")),
              Contains("expect.a\\x1b[2J: ") && !Contains("\x1b"));
   check_error(with("{ghost.a}", "[expect.ghost]\na = 1\n"), "expect.ghost",
               "no body named 'ghost'");
   check_error(with("{cube.x.a}", "[expect.cube.x]\na = 1\n"), "expect.cube.x",
               "expected a number, got a table");
-  CHECK(error_of(with("{cube.a}", "[expect.cube]\na = 1\n")) == "(loaded)");
+  CHECK(loader_error_of(with("{cube.a}", "[expect.cube]\na = 1\n")) == "(loaded)");
 }
 
 TEST_CASE("an [expect] table holds at most 64 figures, each quoted by the description",
@@ -537,13 +557,13 @@ TEST_CASE("an [expect] table holds at most 64 figures, each quoted by the descri
     expect += "f" + std::to_string(i) + " = " + std::to_string(i) + "\n";
   }
   const std::string text = "description = \"" + description + "\"\n" + kHead + expect;
-  CHECK_THAT(error_of(text + kWorld + kBody),
+  CHECK_THAT(loader_error_of(text + kWorld + kBody),
              Contains("x.toml:") && Contains(": more than 64 figures in [expect]"));
   check_error("description = \"{a}\"\n" + kHead + "[expect]\na = 1\nb = 2\n" + kWorld + kBody,
               "expect.b", "the description never quotes it (write {b} where it states it)");
-  CHECK_THAT(
-      error_of("description = \"{a}\"\n" + kHead + "[expect]\na = 1\nb = 2\n" + kWorld + kBody),
-      Contains("x.toml:5: expect.b: "));  // the line of b
+  CHECK_THAT(loader_error_of("description = \"{a}\"\n" + kHead + "[expect]\na = 1\nb = 2\n" +
+                             kWorld + kBody),
+             Contains("x.toml:5: expect.b: "));  // the line of b
   check_error("description = \"{a}\"\n" + kHead + "[expect]\na = 1\n[expect.cube]\nb = 2\n" +
                   kWorld + kBody,
               "expect.cube.b", "the description never quotes it (write {cube.b}");

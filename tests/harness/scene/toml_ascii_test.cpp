@@ -21,7 +21,7 @@ bool all_ascii(const std::string& s) {
 }
 
 // The message toml_as_ascii gives `text` (as s.toml), or "(accepted)".
-std::string refusal(const std::string& text) {
+std::string ascii_refusal(const std::string& text) {
   try {
     toml_as_ascii(text, "s.toml");
   } catch (const dropcheck::InputError& e) {
@@ -90,13 +90,13 @@ TEST_CASE("a leading byte order mark is dropped", "[core][toml_ascii]") {
 
 TEST_CASE("a non-ASCII character outside strings and comments is refused with its line",
           "[core][toml_ascii]") {
-  const std::string why = refusal("a = 1\nx = 0.\xCB\x9D\n");
+  const std::string why = ascii_refusal("a = 1\nx = 0.\xCB\x9D\n");
   CHECK_THAT(why,
              Contains("s.toml:2") && Contains("U+02DD") && Contains("outside a string or comment"));
-  CHECK_THAT(refusal("\xC2\xA0"
-                     "a = 1\n"),
+  CHECK_THAT(ascii_refusal("\xC2\xA0"
+                           "a = 1\n"),
              Contains("U+00A0"));  // a no-break space
-  CHECK_THAT(refusal("[t\xC3\xA9]\n"), Contains("U+00E9"));
+  CHECK_THAT(ascii_refusal("[t\xC3\xA9]\n"), Contains("U+00E9"));
 }
 
 TEST_CASE("invalid UTF-8 is refused wherever it is, with the byte and line", "[core][toml_ascii]") {
@@ -104,32 +104,33 @@ TEST_CASE("invalid UTF-8 is refused wherever it is, with the byte and line", "[c
        {std::string("a = \"\xFF\"\n"), std::string("# \xC3\n"), std::string("a = '\xED\xA0\x80'\n"),
         std::string("a = \"\xC0\xAF\""), std::string("a = \"\xF4\x90\x80\x80\"")}) {
     INFO(bad);
-    CHECK_THAT(refusal("x = 1\n" + bad), Contains("s.toml:2") && Contains("not valid UTF-8"));
+    CHECK_THAT(ascii_refusal("x = 1\n" + bad), Contains("s.toml:2") && Contains("not valid UTF-8"));
   }
 }
 
 TEST_CASE("control characters other than tab and line breaks are refused, NUL and DEL too",
           "[core][toml_ascii]") {
   for (const char c : {'\0', '\x01', '\x08', '\x0B', '\x0C', '\x1B', '\x1F', '\x7F'}) {
-    const std::string why = refusal("a = 1\n[t" + std::string(1, c) + "]\n");
+    const std::string why = ascii_refusal("a = 1\n[t" + std::string(1, c) + "]\n");
     INFO(static_cast<int>(c));
     CHECK_THAT(why, Contains("s.toml:2") && Contains("control character U+00"));
   }
-  CHECK(refusal("a = \"\t\"\r\nb = 2\n") == "(accepted)");
+  CHECK(ascii_refusal("a = \"\t\"\r\nb = 2\n") == "(accepted)");
 }
 
 TEST_CASE("a backslash before a non-ASCII character is refused, not made a valid escape",
           "[core][toml_ascii]") {
-  CHECK_THAT(refusal("a = \"\\\xC3\xA9\"\n"), Contains("is not a TOML escape"));
-  CHECK_THAT(refusal("a = \"\"\"\\\xC3\xA9\"\"\"\n"), Contains("is not a TOML escape"));
-  CHECK(refusal("a = \"\\\\\xC3\xA9\"\n") == "(accepted)");
+  CHECK_THAT(ascii_refusal("a = \"\\\xC3\xA9\"\n"), Contains("is not a TOML escape"));
+  CHECK_THAT(ascii_refusal("a = \"\"\"\\\xC3\xA9\"\"\"\n"), Contains("is not a TOML escape"));
+  CHECK(ascii_refusal("a = \"\\\\\xC3\xA9\"\n") == "(accepted)");
 }
 
 TEST_CASE("a string left open at the end of its line is refused with that line",
           "[core][toml_ascii]") {
-  CHECK_THAT(refusal("a = \"x\nb = \xC3\xA9\n"), Contains("s.toml:1") && Contains("not closed"));
-  CHECK_THAT(refusal("a = 'x\n"), Contains("not closed"));
-  CHECK_THAT(refusal("a = '''\xC3\xA9\n"), Contains("not closed"));
+  CHECK_THAT(ascii_refusal("a = \"x\nb = \xC3\xA9\n"),
+             Contains("s.toml:1") && Contains("not closed"));
+  CHECK_THAT(ascii_refusal("a = 'x\n"), Contains("not closed"));
+  CHECK_THAT(ascii_refusal("a = '''\xC3\xA9\n"), Contains("not closed"));
 }
 
 TEST_CASE("the scene loader refuses a control character in a scene before parsing, exit 2 text",

@@ -25,7 +25,7 @@ using testing::registry_factory;
 namespace {
 
 // The stiff spring of scenarios/extreme/stiff_spring.toml: w = sqrt(3600/1) = 60 rad/s.
-constexpr double kOmega = 60.0;
+constexpr double kSpringOmega = 60.0;
 
 }  // namespace
 
@@ -35,7 +35,7 @@ TEST_CASE(
   const Scene scene = extreme_scene("stiff_spring");
   const StepSearch s =
       search_max_stable_dt(registry_factory("ours-f64"), scene, scene.timestep.seconds);
-  const double edge = 2.0 / kOmega;
+  const double edge = 2.0 / kSpringOmega;
   // Measured: max_stable_dt 0.033303 (-0.09%), first unstable 0.0333481 (+0.05%), 11 probes.
   CHECK(std::abs(s.max_stable_dt / edge - 1.0) < 0.01);
   CHECK(s.max_stable_dt <= edge);
@@ -57,7 +57,7 @@ TEST_CASE(
   // An engine that moves the position with the step-start velocity (Chipmunk) is forward Euler
   // on the spring: |z|^2 = 1 + (w*h)^2 at every step, so no step is stable, as the theory says.
   const Scene scene = extreme_scene("stiff_spring");
-  const double edge = 2.0 / kOmega;
+  const double edge = 2.0 / kSpringOmega;
   for (const std::string& name : available_engine_names()) {
     if (!make_engine(name)->cannot_run(scene).empty()) continue;  // simbody-rkm: springs
     const EngineInfo info = make_engine(name)->info();

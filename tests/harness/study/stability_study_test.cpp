@@ -26,9 +26,9 @@ struct Owned {
 };
 
 // ours-f64 declaring another law (its runs are ours-f64's; only the theory follows the law).
-class Declares final : private Owned, public ForwardingEngine {
+class StudyDeclares final : private Owned, public ForwardingEngine {
  public:
-  explicit Declares(Law law)
+  explicit StudyDeclares(Law law)
       : Owned{make_engine("ours-f64")}, ForwardingEngine(*engine), law_(law) {}
   EngineInfo info() const override {
     EngineInfo i = inner_.info();
@@ -50,7 +50,7 @@ TEST_CASE("the study runs each engine at the scene's step with the theory edge o
   const std::vector<EngineSlot> slots = {
       {"ours-f64", registry_factory("ours-f64"), ""},
       {"missing", EngineFactory(), "not compiled in"},
-      {"declares-rk4", [] { return std::make_unique<Declares>(kRungeKutta4); }, ""}};
+      {"declares-rk4", [] { return std::make_unique<StudyDeclares>(kRungeKutta4); }, ""}};
   StudyOptions options;
   options.search = false;
   std::ostringstream progress;

@@ -14,7 +14,7 @@ using namespace dropcheck;
 namespace {
 
 // A floor, a cube pushed by a constant force and a cube on a spring, all in the x-y plane.
-Scene scene() {
+Scene timing_scene() {
   Scene s;
   s.name = "timing";
   s.duration = 0.5;
@@ -33,7 +33,7 @@ Scene scene() {
 }  // namespace
 
 TEST_CASE("timing replicates every body and force, shifted along x", "[timing]") {
-  const Scene s = scene();
+  const Scene s = timing_scene();
   const Scene r = replicate(s, 3);
   REQUIRE(r.bodies.size() == 9);
   REQUIRE(r.forces.size() == 6);
@@ -63,7 +63,7 @@ TEST_CASE("timing replicates every body and force, shifted along x", "[timing]")
 }
 
 TEST_CASE("every copy of a scene replicated for timing moves like the original", "[timing]") {
-  const Scene s = scene();
+  const Scene s = timing_scene();
   const double h = 1.0 / 60, shift = 20.0;
   auto engine = make_engine("ours-f64");
   const Trajectory one = run_scene(*engine, s, h), three = run_scene(*engine, replicate(s, 3), h);
@@ -79,7 +79,7 @@ TEST_CASE("every copy of a scene replicated for timing moves like the original",
 }
 
 TEST_CASE("timing returns positive figures for every engine", "[timing]") {
-  const Scene s = scene();
+  const Scene s = timing_scene();
   TimingOptions fast;  // as little work as possible: this checks the plumbing, not the machine
   fast.body_steps_per_run = 1;
   fast.min_sample_seconds = 0.0;
@@ -114,7 +114,7 @@ TEST_CASE("timing returns positive figures for every engine", "[timing]") {
 
 TEST_CASE("the work of a timed run depends on the scene and h only, never on a measurement",
           "[timing]") {
-  const Scene s = scene();  // 2 dynamic bodies, 0.5 s
+  const Scene s = timing_scene();  // 2 dynamic bodies, 0.5 s
   TimingOptions o;
   o.body_steps_per_run = 1000;
   // 1/60: 30 steps * 2 bodies = 60 body-steps per copy; 16 copies hold 960 < 1000, 32 hold 1920.
@@ -140,7 +140,7 @@ TEST_CASE("the work of a timed run depends on the scene and h only, never on a m
 
 TEST_CASE("a cheap engine's timed sample repeats the run by a count fixed in code, not measured",
           "[timing]") {
-  const Scene s = scene();  // 2 dynamic bodies; 1/60: 30 steps, 60 body-steps per copy
+  const Scene s = timing_scene();  // 2 dynamic bodies; 1/60: 30 steps, 60 body-steps per copy
   TimingOptions o;
   o.min_sample_seconds = 1e-5;
   CHECK(nominal_ns_per_body_step("ours") == 3.5);
@@ -164,7 +164,7 @@ TEST_CASE("a cheap engine's timed sample repeats the run by a count fixed in cod
 
 TEST_CASE("a timing with repeats reports per copy and per run, and says how many it summed",
           "[timing]") {
-  const Scene s = scene();
+  const Scene s = timing_scene();
   TimingOptions o;
   o.body_steps_per_run = 1;
   o.min_sample_seconds = 1e-5;  // ours: 64 repeats of 210 ns (above)
@@ -199,7 +199,7 @@ TEST_CASE("a timing's statistics are order statistics of its samples", "[timing]
 }
 
 TEST_CASE("timing runs every engine once a round, alternating from round to round", "[timing]") {
-  const Scene s = scene();
+  const Scene s = timing_scene();
   TimingOptions o;
   o.body_steps_per_run = 1;
   o.min_sample_seconds = 0.0;
