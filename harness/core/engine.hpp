@@ -16,6 +16,7 @@
 #include "harness/core/contact_solver.hpp"
 #include "harness/core/friction_model.hpp"
 #include "harness/core/law.hpp"
+#include "harness/core/relative_cfm.hpp"
 #include "harness/core/rotation_law.hpp"
 #include "harness/core/scene.hpp"
 #include "harness/core/stack_law.hpp"
@@ -80,6 +81,9 @@ struct EngineInfo {
   BounceLaw bounce_law = kIdealBounce;
   // How its contacts hold a resting stack of boxes (harness/core/stack_law.hpp).
   StackLaw stack_law;
+  // Constraint force mixing relative to each diagonal entry of its contact LCP, with its error
+  // reduction (harness/core/relative_cfm.hpp): what its slide law and sink follow. None: rigid.
+  RelativeCfm relative_cfm;
   // Where its contact acts on a turned or turning box (harness/core/turned_contact.hpp).
   TurnedContact turned_contact = TurnedContact::not_declared;
   // Landing on a static floor: where the centre of a resting box sits relative to the geometric

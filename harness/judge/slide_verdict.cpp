@@ -62,9 +62,9 @@ LawFit fit_path(const SlidePath& run, const SlideObservation& seen, const SlideP
 }
 
 LawFit fit(const SlidePath& run, const SlideObservation& seen, const SlideSetup& s,
-           FrictionModel model, double h, PositionUpdate position) {
+           FrictionModel model, double h, PositionUpdate position, const RelativeCfm& soft) {
   const auto steps = static_cast<std::int64_t>(run.s.size()) - 1;
-  return fit_path(run, seen, slide_path(s, model, h, steps, position));
+  return fit_path(run, seen, slide_path(s, model, h, steps, position, soft));
 }
 
 // The clamp law's closed forms of the verdict, for a path of `steps` steps.
@@ -105,9 +105,10 @@ SlideVerdict judge_replayed(const Trajectory& run, const SlidePath& path, const 
 }  // namespace
 
 SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& s, FrictionModel model, double h,
-                         PositionUpdate position) {
+                         PositionUpdate position, const RelativeCfm& soft) {
   SlideVerdict v;
   v.model = model;
+  v.soft = soft;
   const SlidePath path = observed_slide_path(run, s);
   v.seen = observe_slide(path, tolerance::kStoppedSpeed, tolerance::kSlideDistance);
   v.exact = exact_slide_angle(model, s.angle);
@@ -122,13 +123,13 @@ SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& s, FrictionMod
     return v;
   }
   clamp_figures(v, s, h, path.s.size());
-  const LawFit own = fit(path, v.seen, s, model, h, position);
+  const LawFit own = fit(path, v.seen, s, model, h, position, soft);
   v.law_seen = own.seen;
   v.off_law = own.off;
   v.first_off = own.first_off;
   v.follows = own.follows;
   if (v.follows) return v;
-  const SlidePath ahead = slide_steps(s, model, h, path, position);
+  const SlidePath ahead = slide_steps(s, model, h, path, position, soft);
   v.off_steps = path_distance(path, ahead);
   for (std::size_t n = 0; n < path.v.size(); ++n)
     v.off_steps_speed = std::max(v.off_steps_speed, std::abs(path.v[n] - ahead.v[n]));
@@ -137,7 +138,7 @@ SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& s, FrictionMod
   if (v.follows) return v;
   for (FrictionModel other : kFrictionModels)
     if (other != model && exact_slide_angle(other, s.angle) &&
-        fit(path, v.seen, s, other, h, position).follows)
+        fit(path, v.seen, s, other, h, position, soft).follows)
       v.instead = other;
   return v;
 }
@@ -145,7 +146,7 @@ SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& s, FrictionMod
 SlideVerdict judge_slide(const Trajectory& run, const Scene& scene, const SlideSetup& s,
                          const EngineInfo& info, double h) {
   if (!replayed(info.contact_solver))
-    return judge_slide(run, s, info.friction_model, h, info.law.position);
+    return judge_slide(run, s, info.friction_model, h, info.law.position, info.relative_cfm);
   SlideVerdict v;
   v.model = info.friction_model;
   const SlidePath path = observed_slide_path(run, s);
@@ -163,7 +164,8 @@ SlideVerdict judge_slide(const Trajectory& run, const Scene& scene, const SlideS
 std::string SlideVerdict::sentence() const {
   std::string text = stop_text(seen);
   if (!exact) return text + "; not judged: " + not_judged;
-  const std::string clamp = std::string(to_string(model)) + "'s clamp law: ";
+  const std::string clamp = std::string(to_string(model)) + "'s clamp law" +
+                            (soft.cfm > 0.0 ? " under " + describe(soft) : std::string()) + ": ";
   const std::string continuous =
       law.stops && law.stop_step > 0
           ? printf_string(" (continuous: %.5g s, %.5g m)", law.stop_time, law.distance)
@@ -173,12 +175,19 @@ std::string SlideVerdict::sentence() const {
   else
     text += "; its " + clamp + stop_text(law_seen) + continuous;
   text += printf_string(", %.2g m off it", off_law);
+  // What leaves a path that follows its law step by step: a float engine's rounding, or the tilt
+  // that a relative CFM lets the friction give the box (DART: about 1e-6 rad/s, which sets it
+  // rocking back once it stops), which its law leaves out.
+  const char* drift = soft.cfm > 0.0 ? "the box tilts under its regularised rows, which the law "
+                                       "leaves out"
+                                     : "the run's rounding";
   if (off_steps >= 0.0)
-    text += printf_string(
-        follows ? ", every step as its law to %.2g m and %.2g m/s (the drift is the run's "
-                  "rounding)"
-                : " (one step from its own state: %.2g m, %.2g m/s)",
-        off_steps, off_steps_speed);
+    text += follows ? printf_string(
+                          ", every step as its law to %.2g m and %.2g m/s (the drift: "
+                          "%s)",
+                          off_steps, off_steps_speed, drift)
+                    : printf_string(" (one step from its own state: %.2g m, %.2g m/s)", off_steps,
+                                    off_steps_speed);
   if (solver) {
     // What the solver leaves: the clamp law, and the replay with more iterations.
     text += "; the " + clamp + stop_text(clamp_seen) + continuous;

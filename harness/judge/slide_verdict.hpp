@@ -17,6 +17,7 @@ namespace dropcheck {
 struct SlideVerdict {
   SlideObservation seen;
   FrictionModel model = FrictionModel::cone;  // the engine's declared model
+  RelativeCfm soft;  // its contact's relative constraint force mixing (none: rigid)
   // Judged: the model's slide has an exact answer at this angle (0, 45 degrees) and the run kept
   // every step; not_judged says why not.
   bool exact = false;
@@ -47,9 +48,11 @@ struct SlideVerdict {
   std::string sentence() const;
 };
 
-// Against the clamp law of `model`, the position moved as `position` says.
+// Against the clamp law of `model`, the position moved as `position` says, under relative
+// constraint force mixing `soft` (none: a rigid contact).
 SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& setup, FrictionModel model,
-                         double h, PositionUpdate position = PositionUpdate::SemiImplicit);
+                         double h, PositionUpdate position = PositionUpdate::SemiImplicit,
+                         const RelativeCfm& soft = {});
 
 // Against the engine's own law: its friction model's clamp law for an exact solver, the replay of
 // its solver (info.contact_solver) otherwise.

@@ -125,40 +125,66 @@ namespace {
 
 // One step of the clamp law from (s, v): the position moves with the new speed (semi-implicit) or
 // with the step-start speed (explicit).
-void slide_step(const SlideSetup& setup, double grip_h, double h, PositionUpdate position,
-                double& s, double& v) {
+// One step of the clamp law, the friction taking at most grip_h off the slip; a step that stops
+// the slip leaves `stick` of it.
+void slide_step(const SlideSetup& setup, double grip_h, double stick, double h,
+                PositionUpdate position, double& s, double& v) {
   const double v_start = v;
   const double v_free = v + setup.pull * h;
-  v = std::abs(v_free) <= grip_h ? 0.0 : v_free - std::copysign(grip_h, v_free);
+  v = std::abs(v_free) <= grip_h ? stick * v_free : v_free - std::copysign(grip_h, v_free);
   s += h * (position == PositionUpdate::Explicit ? v_start : v);
+}
+
+// The normal side of the law over steps 0..steps: each step's grip*h, scaled by that step's normal
+// impulse against a rigid contact's g*h (exactly 1 for a rigid law), and the sink below the height
+// after step 1 (harness/core/relative_cfm.hpp).
+struct NormalSide {
+  std::vector<double> grip_h, off;
+  double stick = 0.0;
+};
+NormalSide normal_side(const SlideSetup& setup, FrictionModel model, double h, std::size_t steps,
+                       const RelativeCfm& soft) {
+  const double grip_h = slide_grip(setup.mu, setup.g, model, setup.angle) * h;
+  NormalSide out{{0.0}, {0.0}, soft.cfm / (1.0 + soft.cfm)};
+  NormalState n;
+  double sink_1 = 0.0;
+  for (std::size_t k = 1; k <= steps; ++k) {
+    const double impulse = normal_step(soft, setup.g, h, n);
+    if (k == 1) sink_1 = n.d;
+    out.grip_h.push_back(grip_h * (impulse / (setup.g * h)));
+    out.off.push_back(n.d - sink_1);
+  }
+  return out;
 }
 
 }  // namespace
 
 SlidePath slide_path(const SlideSetup& setup, FrictionModel model, double h, std::int64_t steps,
-                     PositionUpdate position) {
-  const double grip_h = slide_grip(setup.mu, setup.g, model, setup.angle) * h;
+                     PositionUpdate position, const RelativeCfm& soft) {
+  const NormalSide normal = normal_side(
+      setup, model, h, static_cast<std::size_t>(std::max<std::int64_t>(steps, 0)), soft);
   SlidePath p;
   double s = 0.0, v = setup.v0;
-  for (std::int64_t n = 0; n <= steps; ++n) {
-    if (n > 0) slide_step(setup, grip_h, h, position, s, v);
+  for (std::size_t n = 0; n < normal.grip_h.size(); ++n) {
+    if (n > 0) slide_step(setup, normal.grip_h[n], normal.stick, h, position, s, v);
     p.s.push_back(s);
     p.v.push_back(v);
-    p.off.push_back(0.0);
+    p.off.push_back(normal.off[n]);
   }
   return p;
 }
 
 SlidePath slide_steps(const SlideSetup& setup, FrictionModel model, double h, const SlidePath& from,
-                      PositionUpdate position) {
-  const double grip_h = slide_grip(setup.mu, setup.g, model, setup.angle) * h;
+                      PositionUpdate position, const RelativeCfm& soft) {
+  const NormalSide normal =
+      normal_side(setup, model, h, from.s.empty() ? 0 : from.s.size() - 1, soft);
   SlidePath p;
   for (std::size_t n = 0; n < from.s.size(); ++n) {
     double s = n == 0 ? 0.0 : from.s[n - 1], v = n == 0 ? setup.v0 : from.v[n - 1];
-    if (n > 0) slide_step(setup, grip_h, h, position, s, v);
+    if (n > 0) slide_step(setup, normal.grip_h[n], normal.stick, h, position, s, v);
     p.s.push_back(s);
     p.v.push_back(v);
-    p.off.push_back(0.0);
+    p.off.push_back(normal.off[n]);
   }
   return p;
 }

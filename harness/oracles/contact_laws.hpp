@@ -13,6 +13,7 @@
 #include "harness/core/bounce_law.hpp"
 #include "harness/core/friction_model.hpp"
 #include "harness/core/law.hpp"
+#include "harness/core/relative_cfm.hpp"
 #include "harness/core/scene.hpp"
 #include "harness/core/trajectory.hpp"
 
@@ -90,15 +91,20 @@ struct SlidePath {
 // slip when it can (|v_free| <= grip*h gives v = 0) and otherwise takes grip*h off it; x += h*v
 // with the new v, or with the step-start v for an engine whose position update is explicit
 // (Chipmunk: by step n it has moved h*(v0 - v_n) further, h*v0 for a slide that has stopped).
+// Under relative constraint force mixing `soft` (DART: harness/core/relative_cfm.hpp) the grip of
+// each step is scaled by that step's normal impulse, a stopping step leaves cfm/(1 + cfm) of the
+// slip, and off[n] is the sink since step 1.
 SlidePath slide_path(const SlideSetup& setup, FrictionModel model, double h, std::int64_t steps,
-                     PositionUpdate position = PositionUpdate::SemiImplicit);
+                     PositionUpdate position = PositionUpdate::SemiImplicit,
+                     const RelativeCfm& soft = {});
 
 // The law one step ahead of a path (a run's): step n + 1 of the result is the law's step from
 // `from`'s state after step n. A run that rounds differently from the law in double (a float
 // engine) can leave the law's whole path where a contact decision lies within rounding, and still
 // follow the law at every step.
 SlidePath slide_steps(const SlideSetup& setup, FrictionModel model, double h, const SlidePath& from,
-                      PositionUpdate position = PositionUpdate::SemiImplicit);
+                      PositionUpdate position = PositionUpdate::SemiImplicit,
+                      const RelativeCfm& soft = {});
 
 // The path of the slide's body from its state after each step 0, 1, ... (a run's, a replay's).
 SlidePath slide_path_of(std::span<const BodyState> states, const SlideSetup& setup);

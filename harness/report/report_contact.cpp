@@ -50,7 +50,9 @@ std::string slide_section(const SceneEvaluation& se) {
     for (const SlideSetup& s : slides) {
       const SlideVerdict v = judge_slide(ev.at_default().run, se.scene, s, ev.info, h);
       const std::string law =
-          v.solver ? describe(*v.solver) : std::string(to_string(v.model)) + "'s clamp law";
+          v.solver ? describe(*v.solver)
+                   : std::string(to_string(v.model)) + "'s clamp law" +
+                         (v.soft.cfm > 0.0 ? " under " + describe(v.soft) : std::string());
       t.add({ev.name, se.scene.bodies[s.body].name, law, stop_cell(v.seen),
              printf_string("%.7g", v.seen.distance), v.exact ? stop_cell(v.law_seen) : kNone,
              v.exact ? printf_string("%.7g", v.law_seen.distance) : kNone,
