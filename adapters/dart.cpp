@@ -155,11 +155,12 @@ class DartEngine final : public Engine {
     const std::optional<double> mu = scene_material(scene).friction;
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
       const Body& b = scene.bodies[i];
+      dart::dynamics::BodyNode* node = nullptr;
       if (!b.is_static)
-        bodies_[i] = add_body(b, scene, i);
+        node = bodies_[i] = add_body(b, scene, i);
       else if (scene.world.contacts)
-        add_static(b, i);
-      if (scene.world.contacts) add_box(b, mu);
+        node = add_static(b, i);
+      if (scene.world.contacts) add_box(*node, b, mu);
     }
   }
 
@@ -188,22 +189,21 @@ class DartEngine final : public Engine {
 
  private:
   // A static body: a Skeleton welded to the world at the body's position.
-  void add_static(const Body& b, std::size_t index) {
+  dart::dynamics::BodyNode* add_static(const Body& b, std::size_t index) {
     auto skeleton = dart::dynamics::Skeleton::create("static" + std::to_string(index));
     auto [joint, node] = skeleton->createJointAndBodyNodePair<dart::dynamics::WeldJoint>();
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.translation() = b.position;
     joint->setTransformFromParentBodyNode(pose);
     world_->addSkeleton(skeleton);
-    last_node_ = node;
+    return node;
   }
 
-  // The body's box on the node just added, with the scene's friction when it sets one.
-  void add_box(const Body& b, const std::optional<double>& mu) {
+  // The body's box on its node, with the scene's friction when it sets one.
+  void add_box(dart::dynamics::BodyNode& node, const Body& b, const std::optional<double>& mu) {
     auto shape =
-        last_node_
-            ->createShapeNodeWith<dart::dynamics::CollisionAspect, dart::dynamics::DynamicsAspect>(
-                std::make_shared<dart::dynamics::BoxShape>(2.0 * b.half_extents));
+        node.createShapeNodeWith<dart::dynamics::CollisionAspect, dart::dynamics::DynamicsAspect>(
+            std::make_shared<dart::dynamics::BoxShape>(2.0 * b.half_extents));
     if (mu) shape->getDynamicsAspect()->setFrictionCoeff(*mu);
   }
 
@@ -219,7 +219,6 @@ class DartEngine final : public Engine {
     joint->setTransform(pose);
     joint->setLinearVelocity(b.velocity);
     world_->addSkeleton(skeleton);
-    last_node_ = node;
     return node;
   }
 
@@ -243,7 +242,6 @@ class DartEngine final : public Engine {
   dart::simulation::WorldPtr world_;
   std::vector<dart::dynamics::BodyNode*> bodies_;  // indexed like Scene::bodies; null if static
   std::vector<Vec3> positions_;                    // the scene's positions (static bodies)
-  dart::dynamics::BodyNode* last_node_ = nullptr;  // the body node load added last
 };
 
 }  // namespace
