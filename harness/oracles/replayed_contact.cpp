@@ -1,12 +1,15 @@
 #include "harness/oracles/replayed_contact.hpp"
 
+#include <algorithm>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "harness/core/box2d_world.hpp"
 #include "harness/core/chipmunk_world.hpp"
 #include "harness/core/mujoco_world.hpp"
+#include "harness/core/number_format.hpp"
 #include "harness/oracles/box2d_step.hpp"
 #include "harness/oracles/chipmunk_step.hpp"
 #include "harness/oracles/mujoco_step.hpp"
@@ -18,6 +21,62 @@ bool replayed(const ContactSolver& solver) {
 }
 
 namespace {
+
+// Box2D and Chipmunk replay one dynamic body on one static body. A scene of several dynamic bodies
+// that never touch one another is several such problems: Box2D solves each island of touching
+// bodies alone and a static body joins no island (b2World::Solve), and Chipmunk's arbiters each
+// change the velocity of their one dynamic body only (a static body's inverse mass is 0), with no
+// early exit across them. So body `body` moves as it would with the static bodies alone, in the
+// same order, as long as no other dynamic body comes near it; replay_alone checks that.
+struct Alone {
+  Scene scene;
+  std::size_t body = 0;  // its index in `scene`
+};
+
+Alone alone(const Scene& scene, std::size_t body) {
+  Alone out{scene, 0};
+  out.scene.bodies.clear();
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+    if (i == body || scene.bodies[i].is_static) {
+      if (i == body) out.body = out.scene.bodies.size();
+      out.scene.bodies.push_back(scene.bodies[i]);
+    }
+  return out;
+}
+
+// The radius of the sphere about the body's centre that holds its shape.
+double reach(const Body& b) {
+  return b.shape == Shape::sphere ? b.radius : b.half_extents.norm();
+}
+
+// How close two bodies' spheres may come while neither engine can see them touch: Box2D's contact
+// points need the shapes within their skins (2 x 0.01 m) and Chipmunk's within its collision slop
+// (0.1 m by default); 0.2 m stays outside both.
+constexpr double kApart = 0.2;
+
+using ReplayOne = std::vector<BodyState> (*)(const Scene&, std::size_t, const ContactSolver&,
+                                             double, std::int64_t);
+
+// `replay` of body `body` of `scene` with the static bodies alone, after checking that every other
+// dynamic body, replayed alone in the same way, stays kApart from it at every step.
+std::vector<BodyState> replay_alone(ReplayOne replay, const Scene& scene, std::size_t body,
+                                    const ContactSolver& solver, double h, std::int64_t steps) {
+  const Alone own = alone(scene, body);
+  std::vector<BodyState> states = replay(own.scene, own.body, solver, h, steps);
+  for (std::size_t j = 0; j < scene.bodies.size(); ++j) {
+    if (j == body || scene.bodies[j].is_static) continue;
+    const Alone other = alone(scene, j);
+    const std::vector<BodyState> theirs = replay(other.scene, other.body, solver, h, steps);
+    const double apart = reach(scene.bodies[body]) + reach(scene.bodies[j]) + kApart;
+    for (std::size_t n = 0; n < std::min(states.size(), theirs.size()); ++n)
+      if ((states[n].position - theirs[n].position).norm() < apart)
+        throw std::invalid_argument("the replay takes dynamic bodies that never touch, and " +
+                                    scene.bodies[body].name + " comes within " + g3(apart) +
+                                    " m of " + scene.bodies[j].name + " at step " +
+                                    std::to_string(n));
+  }
+  return states;
+}
 
 // The body's states under Box2D's replay.
 std::vector<BodyState> box2d_states(const Scene& scene, std::size_t body,
@@ -79,9 +138,9 @@ std::vector<BodyState> replayed_states(const Scene& scene, std::size_t body,
                                        const Trajectory* run) {
   switch (solver.kind) {
     case ContactSolverKind::box2d_2_4:
-      return box2d_states(scene, body, solver, h, steps);
+      return replay_alone(box2d_states, scene, body, solver, h, steps);
     case ContactSolverKind::chipmunk_7:
-      return chipmunk_states(scene, body, solver, h, steps);
+      return replay_alone(chipmunk_states, scene, body, solver, h, steps);
     case ContactSolverKind::mujoco_2_2:
       return mujoco_states(scene, body, h, steps, run);
     case ContactSolverKind::exact:

@@ -217,44 +217,49 @@ inline void check_bounces(Engine& engine, std::initializer_list<BounceCase> case
 }
 
 // A slide run by engine `name` on `scene` and judged against its own law for `judged_as` (the
-// scene itself, or the scene a mistaken run should have followed).
+// scene itself, or the scene a mistaken run should have followed): its slide number `slide`
+// (slide_setups' order).
 struct JudgedSlide {
   Trajectory run;
   SlideVerdict verdict;
 };
 
 inline JudgedSlide judged_slide(const std::string& name, const Scene& scene, const Scene& judged_as,
-                                bool body_materials = false) {
+                                bool body_materials = false, std::size_t slide = 0) {
   std::unique_ptr<Engine> engine = required_engine(name);
   if (body_materials) REQUIRE(engine->use_body_materials());
   const double h = scene.timestep.seconds;
   JudgedSlide j{run_scene(*engine, scene, h), {}};
   REQUIRE(j.run.status == RunStatus::ok);
-  j.verdict = judge_slide(j.run, judged_as, slide_setups(judged_as).at(0), engine->info(), h);
+  j.verdict = judge_slide(j.run, judged_as, slide_setups(judged_as).at(slide), engine->info(), h);
   return j;
 }
 
-// Checks that engine `name` (a replayed solver) slides on each of `scenes` as its replay does, to
-// `max_off` m (0: bit for bit, the same operations in the same order), and departs from it by step
-// 2 when the friction is 2 % off. The default scenes are the planar slides (incline_hold's second
-// cube slides beside the first at z = 3: not planar).
+// Checks that engine `name` (a replayed solver) moves each slide of each of `scenes` as its replay
+// does, to `max_off` m (0: bit for bit, the same operations in the same order), and that the last
+// slide of each (the launched one, where a scene also holds a body at rest) departs from it by step
+// 2 when the friction is 2 % off. The default scenes are the planar slides.
 inline void check_replayed_slides(const std::string& name,
                                   std::initializer_list<const char*> scenes = {"slide_stop",
-                                                                               "incline_slide"},
+                                                                               "incline_slide",
+                                                                               "incline_hold"},
                                   double max_off = 0.0) {
   for (const char* scene_name : scenes) {
     const Scene scene = scenario(scene_name);
-    const SlideVerdict v = judged_slide(name, scene, scene).verdict;
-    INFO(scene_name << ": " << v.sentence());
-    CHECK(v.exact);
-    CHECK(v.solver.has_value());
-    CHECK(v.follows);
-    CHECK(v.off_law <= max_off);
+    const std::size_t slides = slide_setups(scene).size();
+    for (std::size_t k = 0; k < slides; ++k) {
+      const SlideVerdict v = judged_slide(name, scene, scene, false, k).verdict;
+      INFO(scene_name << ", slide " << k << ": " << v.sentence());
+      CHECK(v.exact);
+      CHECK(v.solver.has_value());
+      CHECK(v.follows);
+      CHECK(v.off_law <= max_off);
+    }
     Scene off = scene;
     for (Body& b : off.bodies)
       if (b.friction) *b.friction *= 1.02;
-    const SlideVerdict d = judged_slide(name, off, scene).verdict;
-    INFO("mu 2 % off: " << d.sentence());
+    const SlideVerdict d = judged_slide(name, off, scene, false, slides - 1).verdict;
+    INFO(scene_name << ", mu 2 % off: " << d.sentence());
     CHECK_FALSE(d.follows);
     CHECK(d.first_off >= 1);
     CHECK(d.first_off <= 2);  // the first steps with friction already differ
