@@ -150,6 +150,12 @@ ExtendedSweep extend_sweep(const Scene& scene, std::vector<double> h, std::vecto
   };
   judge();
   while (!x.reached) {
+    // An error that is not finite (the closed form or the run overflowed) stays so at any step.
+    if (!x.e.empty() && !std::isfinite(x.e.back())) {
+      x.stopped = "the error at h = " + step_text(x.h.back()) + " is " + g3(x.e.back()) +
+                  ", which no finer step makes finite";
+      return x;
+    }
     const double next = 0.5 * x.h.back();
     const std::int64_t steps = step_count(scene, next);
     if (steps > kMaxSteps) {

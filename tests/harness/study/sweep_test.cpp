@@ -152,6 +152,15 @@ TEST_CASE("a sweep's extension stops, saying why, at a failed run or the step li
   });
   CHECK(calls == 0);
   CHECK(limit.stopped == "h = 1/120 would take more than the step limit");
+  // An error that overflowed stays infinite at every finer step: not tried either.
+  scene.duration = 1.0;
+  const ExtendedSweep overflow =
+      extend_sweep(scene, h, {INFINITY, INFINITY}, 0.0, [&](double, std::string&) {
+        ++calls;
+        return std::optional<double>(INFINITY);
+      });
+  CHECK(calls == 0);
+  CHECK(overflow.stopped == "the error at h = 1/60 is inf, which no finer step makes finite");
 }
 
 TEST_CASE("a step is written 1/N when it is one, and two steps are one to 1e-12", "[sweep]") {
