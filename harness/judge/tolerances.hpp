@@ -127,6 +127,10 @@ inline constexpr double kMaxRebound = 1e-3;
 // First contact may come this many steps from the step the engine's own law predicts (the contact
 // itself rounds the crossing to a step; Box2D's skin meets the floor one step early).
 inline constexpr long kContactStepSlack = 1;
+// How far a run may be from its engine's climb path at any step (m; harness/oracles/landing.hpp
+// climb_path: DART's capped push-out). Measured on drop_on_floor and drop_on_floor_undamped at
+// 1/30 to 1/240: 2.3e-14 m at worst (tests/adapters/dart_test.cpp); a cap twice DART's is 2 mm off.
+inline constexpr double kClimbPath = 1e-9;
 
 // --- Regression tier 2, harness/guard/regression.cpp --------------------------------------------
 // Absolute tolerance on samples of a fresh run against its baseline, by scalar. Measured: Debug

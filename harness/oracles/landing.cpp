@@ -290,4 +290,49 @@ LandingObservation observe_landing(const Trajectory& run, const LandingSetup& se
   return o;
 }
 
+std::optional<ClimbPath> climb_path(const EngineInfo& info, const Scene& scene, double h,
+                                    const LandingSetup& setup) {
+  const RelativeCfm& law = info.relative_cfm;
+  const Law free = info.law;
+  if (law.cfm == 0.0 || !std::isfinite(law.max_push) || free.scheme != Scheme::Euler ||
+      free.position != PositionUpdate::SemiImplicit ||
+      free.damping == DampingOrder::AfterPosition || pushed(scene, setup.body))
+    return std::nullopt;
+  const Trajectory fall = predict_discrete(free, scene, h);
+  const std::int64_t contact = first_contact_step(fall, setup);
+  ClimbPath path;
+  for (std::size_t n = 0; n < fall.samples(); ++n) {
+    path.y.push_back(fall.at(n, setup.body).position.y());
+    path.climb = fall.at(n, setup.body).velocity.y();
+    if (fall.recorded[n] == contact) break;
+  }
+  if (contact < 0) return path;
+  const double phi = std::exp(-scene.world.damping_rate * h);
+  const double a = scene.world.gravity.y();
+  NormalState s{path.climb, setup.rest_height - path.y.back()};
+  for (std::int64_t n = contact + 1; n <= step_count(scene, h); ++n) {
+    double x = 0.0, v_free = s.v;
+    advance(free, phi, h, a, x, v_free);
+    if (s.d >= 0.0) {
+      contact_step(law, v_free, h, s);
+    } else {
+      s.v = v_free;
+      s.d -= h * s.v;
+    }
+    path.y.push_back(setup.rest_height - s.d);
+  }
+  path.climb = s.v;
+  return path;
+}
+
+double off_climb(const Trajectory& run, const LandingSetup& setup, const ClimbPath& path) {
+  double worst = 0.0;
+  for (std::size_t n = 0; n < run.samples(); ++n) {
+    const auto k = static_cast<std::size_t>(run.recorded[n]);
+    if (k >= path.y.size()) break;
+    worst = std::max(worst, std::abs(run.at(n, setup.body).position.y() - path.y[k]));
+  }
+  return worst;
+}
+
 }  // namespace dropcheck

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -132,6 +133,26 @@ std::int64_t first_contact_step(const Trajectory& run, const LandingSetup& setup
 // ignored) until the bottom is at or below the floor top; -1 when not within the scene's duration.
 std::int64_t discrete_contact_step(Law law, const Scene& scene, double h,
                                    const LandingSetup& setup);
+
+// The landing of an engine whose contact is regularised with a capped push-out
+// (EngineInfo::relative_cfm with a finite max_push: DART), step by step: the body falls as the
+// engine's free-flight law until its first step at or below the rest height, then each step that
+// starts in the floor (depth d >= 0) is relative_cfm's contact_step from the law's free velocity
+// (gravity and damping), and x += h*v. Such a body stops about |v|*h deep and climbs out at the
+// cap, for minutes: the path, not a rest height, is what a run must follow.
+struct ClimbPath {
+  std::vector<double> y;  // m: centre height after steps 0..steps
+  double climb = 0.0;     // m/s: the normal velocity after the last step
+};
+
+// The climb path of `setup`'s body at step h, for an engine that declares a capped push-out and a
+// semi-implicit member with its damping before the position update, on a body no force pushes;
+// nullopt otherwise (the landing is judged by the declared rest offset).
+std::optional<ClimbPath> climb_path(const EngineInfo& info, const Scene& scene, double h,
+                                    const LandingSetup& setup);
+
+// The largest |y - path| of the run's body over its samples.
+double off_climb(const Trajectory& run, const LandingSetup& setup, const ClimbPath& path);
 
 // Landing figures of one run (any status: a failed run is analysed up to its last sample).
 LandingObservation observe_landing(const Trajectory& run, const LandingSetup& setup,

@@ -11,9 +11,6 @@ namespace dropcheck {
 // The landing table of a contact scene at the default step ("" when no body lands on a floor).
 std::string landing_section(const SceneEvaluation& se);
 
-// True when the run's resting offset lies within the engine's documented band.
-bool rest_offset_expected(const EngineEvaluation& ev, const LandingResult& landing);
-
 // How the default-step run's passage through the floor is judged, as `dropcheck check` judges it
 // (judge_tunnelling, harness/oracles/landing.hpp): limit = tunnelled without continuous collision.
 TunnelVerdict landing_tunnel_verdict(const SceneEvaluation& se, const EngineEvaluation& ev,

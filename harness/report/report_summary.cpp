@@ -58,17 +58,13 @@ bool unexplained(const EngineEvaluation& ev) {
 // first contact to judge stillness is not restless (as `dropcheck check` decides).
 bool off_rest(const SceneEvaluation& se, const EngineEvaluation& ev) {
   for (const LandingResult& l : ev.at_default().landings)
-    if (landing_tunnel_verdict(se, ev, l) != TunnelVerdict::limit && !rest_offset_expected(ev, l))
-      return true;
+    if (landing_tunnel_verdict(se, ev, l) != TunnelVerdict::limit && !l.end.rests) return true;
   return false;
 }
 
 bool restless(const SceneEvaluation& se, const EngineEvaluation& ev) {
-  for (const LandingResult& l : ev.at_default().landings) {
-    const bool judged = l.seen.first_contact_step < 0 || l.seen.still_judged;
-    if (landing_tunnel_verdict(se, ev, l) != TunnelVerdict::limit && judged && !l.seen.still)
-      return true;
-  }
+  for (const LandingResult& l : ev.at_default().landings)
+    if (landing_tunnel_verdict(se, ev, l) != TunnelVerdict::limit && !l.end.settled) return true;
   return false;
 }
 

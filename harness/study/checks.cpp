@@ -9,6 +9,7 @@
 #include "harness/core/timestep.hpp"
 #include "harness/judge/attribution.hpp"
 #include "harness/judge/bounce_verdict.hpp"
+#include "harness/judge/landing_expectation.hpp"
 #include "harness/judge/law_stability.hpp"
 #include "harness/judge/metrics.hpp"
 #include "harness/judge/own_law.hpp"
@@ -191,8 +192,9 @@ void append(std::string& text, const std::string& part) {
   text += (text.empty() ? "" : "; ") + part;
 }
 
-// One judged body's landing figures against its expectations; clears `passed` on a failure.
-// Stillness is judged only over a window wholly after first contact.
+// One judged body's landing figures against its expectations (harness/judge/
+// landing_expectation.hpp); clears `passed` on a failure. Stillness is judged only over a window
+// wholly after first contact.
 std::string landing_text(const Trajectory& run, const LandingSetup& setup, const EngineInfo& info,
                          const Scene& scene, const Timestep& h, bool& passed) {
   const StillCriteria still;
@@ -200,26 +202,19 @@ std::string landing_text(const Trajectory& run, const LandingSetup& setup, const
   const std::int64_t law_step = discrete_contact_step(info.law, scene, h.seconds, setup);
   const bool on_time = o.first_contact_step >= 0 &&
                        std::abs(o.first_contact_step - law_step) <= tolerance::kContactStepSlack;
-  const double rebound = o.rebound - info.rest_offset;  // above the engine's own rest height
+  const LandingExpectation expected = landing_expectation(info, scene, h.seconds, setup);
+  const double rebound = o.rebound - expected.rest_offset;  // above the engine's own rest height
   const bool no_rebound = rebound <= tolerance::kMaxRebound;
-  const bool rests = std::abs(o.rest_offset - info.rest_offset) <= info.rest_tolerance;
-  // A run that ends less than the window after first contact cannot show stillness: not judged.
-  const bool short_run = o.first_contact_step >= 0 && !o.still_judged;
-  passed = passed && on_time && no_rebound && rests && (o.still || short_run);
+  const LandingEnd end = judge_landing_end(run, setup, o, expected, info, still);
+  passed = passed && on_time && no_rebound && end.rests && end.settled;
   return fmt("first contact at step %.0f (law: step %.0f; continuous t = %.4f s)",
              double(o.first_contact_step), double(law_step), setup.contact_time) +
          (on_time ? "" : " MORE THAN ONE STEP OFF") +
          fmt(", rebound %.3g m above rest (limit %.0e)", rebound, tolerance::kMaxRebound) +
          (no_rebound ? "" : " TOO HIGH") +
-         fmt(", rest offset %.3g m (expected %.3g +- %.3g)", o.rest_offset, info.rest_offset,
-             info.rest_tolerance) +
-         (rests ? "" : " OUT OF RANGE") +
-         (short_run ? fmt(", stillness not judged: the run ends %.3g s after first contact "
-                          "(window %.3g s)",
-                          o.after_contact, still.seconds)
-                    : fmt(", still: max |v| %.3g m/s, range %.3g m over the last %.3g s",
-                          o.still_speed, o.still_range, still.seconds) +
-                          (o.still ? "" : " NOT STILL"));
+         fmt(", rest offset %.3g m (expected %.3g +- %.3g)", o.rest_offset, expected.rest_offset,
+             expected.tolerance) +
+         (end.rests ? "" : " OUT OF RANGE") + ", " + end.text;
 }
 
 // What is judged of a landing with no closed form (`why`): the run ends, and every dynamic body

@@ -126,9 +126,11 @@ void measure_landings(EngineEvaluation& ev, const SceneEvaluation& se) {
   const std::vector<LandingSetup> setups = engine_landing_setups(se.scene, ev.info);
   for (StepEvaluation& s : ev.sweep) {
     for (const LandingSetup& setup : setups) {
-      LandingResult r{setup, observe_landing(s.run, setup), kNoFigure};
+      LandingResult r{setup, observe_landing(s.run, setup), kNoFigure, {}, {}};
       const std::int64_t n = discrete_contact_step(ev.info.law, se.scene, s.h.seconds, setup);
       if (n >= 0) r.law_contact_time = static_cast<double>(n) * s.h.seconds;
+      r.expected = landing_expectation(ev.info, se.scene, s.h.seconds, setup);
+      r.end = judge_landing_end(s.run, setup, r.seen, r.expected, ev.info);
       s.landings.push_back(r);
     }
   }

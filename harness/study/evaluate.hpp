@@ -17,6 +17,7 @@
 #include "harness/core/engine.hpp"
 #include "harness/core/trajectory.hpp"
 #include "harness/judge/attribution.hpp"
+#include "harness/judge/landing_expectation.hpp"
 #include "harness/judge/metrics.hpp"
 #include "harness/judge/own_law.hpp"
 #include "harness/oracles/landing.hpp"
@@ -43,6 +44,8 @@ struct LandingResult {
   LandingObservation seen;
   double law_contact_time =
       0.0;  // s: the law's first step with the bottom at the floor * h; NaN never
+  LandingExpectation expected;  // its rest offset, or its engine's climb path
+  LandingEnd end;               // how the run's end meets that
 };
 
 // One engine at one step h of the sweep.

@@ -8,7 +8,9 @@
 
 #include "adapter_test_support.hpp"
 #include "harness/core/registry.hpp"
+#include "harness/judge/landing_expectation.hpp"
 #include "harness/oracles/discrete_law.hpp"
+#include "harness/oracles/landing.hpp"
 #include "harness/run/runner.hpp"
 
 using namespace dropcheck;
@@ -105,11 +107,42 @@ TEST_CASE("DART's slides follow the box pyramid's clamp law under its relative C
   }
 }
 
-TEST_CASE("DART runs the slides among the contact scenes and says why it runs no other",
+TEST_CASE("DART runs the slides and the landings and says why it runs no stack",
           "[dart][contact]") {
   ENGINE_OR_RETURN(engine, "dart");
-  for (const char* name : {"slide_stop", "incline_slide", "incline_hold", "slide_diagonal"})
+  for (const char* name : {"slide_stop", "incline_slide", "incline_hold", "slide_diagonal",
+                           "drop_on_floor", "drop_on_floor_undamped"})
     CHECK(engine->cannot_run(scenario(name)).empty());
-  CHECK_THAT(engine->cannot_run(scenario("drop_on_floor")),
-             Catch::Contains("pushes a landing out at 1e-3 m/s"));
+  CHECK_THAT(engine->cannot_run(scenario("stack_rest")), Catch::Contains("a stack"));
+}
+
+TEST_CASE("A DART landing climbs out of the floor at its capped push-out, step by step",
+          "[dart][contact]") {
+  ENGINE_OR_RETURN(engine, "dart");
+  // Off the climb path at any step, measured over each scene's four steps: 3.6e-15 m
+  // (drop_on_floor) and 6.5e-15 m (drop_on_floor_undamped) at 1/60, 2.3e-14 m at worst.
+  for (const char* name : {"drop_on_floor", "drop_on_floor_undamped"}) {
+    const Scene scene = scenario(name);
+    const LandingSetup setup = landing_setups(scene).at(0);
+    for (const Timestep& step : scene.timesteps) {
+      const double h = step.seconds;
+      const Trajectory run = run_scene(*engine, scene, h);
+      REQUIRE(run.status == RunStatus::ok);
+      const LandingExpectation expected = landing_expectation(engine->info(), scene, h, setup);
+      REQUIRE(expected.climb.has_value());
+      const double off = off_climb(run, setup, *expected.climb);
+      INFO(name << " at " << step.text << ": " << off << " m off, climbing at "
+                << expected.climb->climb << " m/s");
+      CHECK(off <= 1e-12);
+      if (step.text != "1/60") continue;
+      // At 1/60 both land over 6 cm deep and climb at the cap less cfm times the step's fall.
+      const double g = -scene.world.gravity.y();
+      CHECK(expected.climb->climb == Approx(1e-3 - 1e-5 * g * h).epsilon(2e-4));
+      CHECK(expected.rest_offset < -0.06);
+      // A push-out cap twice DART's leaves the path by some 1 mm a second after contact.
+      EngineInfo wrong = engine->info();
+      wrong.relative_cfm.max_push = 2e-3;
+      CHECK(off_climb(run, setup, *landing_expectation(wrong, scene, h, setup).climb) > 2e-3);
+    }
+  }
 }

@@ -1,0 +1,48 @@
+#include "harness/judge/landing_expectation.hpp"
+
+#include <cmath>
+
+#include "harness/core/number_format.hpp"
+#include "harness/judge/tolerances.hpp"
+
+namespace dropcheck {
+
+LandingExpectation landing_expectation(const EngineInfo& info, const Scene& scene, double h,
+                                       const LandingSetup& setup) {
+  LandingExpectation e{info.rest_offset, info.rest_tolerance, climb_path(info, scene, h, setup)};
+  if (e.climb) {
+    e.rest_offset = e.climb->y.back() - setup.rest_height;
+    e.tolerance = tolerance::kClimbPath;
+  }
+  return e;
+}
+
+LandingEnd judge_landing_end(const Trajectory& run, const LandingSetup& setup,
+                             const LandingObservation& seen, const LandingExpectation& expected,
+                             const EngineInfo& info, const StillCriteria& still) {
+  LandingEnd end;
+  end.rests = std::abs(seen.rest_offset - expected.rest_offset) <= expected.tolerance;
+  if (expected.climb) {
+    end.off_path = off_climb(run, setup, *expected.climb);
+    end.settled = end.off_path <= expected.tolerance;
+    end.text = printf_string(
+                   "climbs at %.3g m/s as its law (push-out capped at %g m/s), %.2g m "
+                   "off it at worst",
+                   expected.climb->climb, info.relative_cfm.max_push, end.off_path) +
+               (end.settled ? "" : " DEPARTS");
+    return end;
+  }
+  // A run that ends less than the window after first contact cannot show stillness: not judged.
+  const bool short_run = seen.first_contact_step >= 0 && !seen.still_judged;
+  end.settled = seen.still || short_run;
+  end.text = short_run ? printf_string(
+                             "stillness not judged: the run ends %.3g s after first "
+                             "contact (window %.3g s)",
+                             seen.after_contact, still.seconds)
+                       : printf_string("still: max |v| %.3g m/s, range %.3g m over the last %.3g s",
+                                       seen.still_speed, seen.still_range, still.seconds) +
+                             (seen.still ? "" : " NOT STILL");
+  return end;
+}
+
+}  // namespace dropcheck
