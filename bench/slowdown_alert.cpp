@@ -95,7 +95,7 @@ TimingRecord time_all(const std::vector<Scene>& scenes, const std::vector<Engine
   std::vector<SceneEvaluation> evaluated;
   for (const Scene& s : scenes) evaluated.push_back(evaluate_scene(s, slots));
   time_evaluations(evaluated, slots);
-  return timing_record(evaluated, current_provenance("."));
+  return timing_record(evaluated, current_provenance("."), this_machine());
 }
 
 int run(int argc, char** argv) {

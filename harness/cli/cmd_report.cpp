@@ -123,12 +123,21 @@ void evaluate_all(const std::vector<Scene>& scenes, const std::vector<EngineSlot
 // one whose cells do not match this report's): a gate that checked nothing must not pass.
 int slowdown_exit(const ReportInput& in, bool fail, std::ostream& err) {
   if (!in.timing) return kExitOk;
-  const TimingRecord now = timing_record(in.scenes, in.provenance);
+  const TimingRecord now = timing_record(in.scenes, in.provenance, in.machine);
   const SlowdownAlert alert = slowdown_alert(in, now);
   if (!alert.before) {
     if (!fail) return kExitOk;
     err << "dropcheck report: --fail-on-slowdown: no timings to compare with (give "
            "--compare-timings FILE); no cell judged\n";
+    return kExitBadInput;
+  }
+  if (!alert.other_machine.empty()) {
+    err << "timings: the record compared with (commit " << alert.before->commit
+        << ") was measured on another machine (they differ in " << alert.other_machine
+        << "): no cell judged; the report says more\n";
+    if (!fail) return kExitOk;
+    err << "dropcheck report: --fail-on-slowdown: timings from another machine cannot be judged "
+           "here; compare with a record written on this machine\n";
     return kExitBadInput;
   }
   for (const Slowdown& s : alert.flagged)
@@ -224,6 +233,7 @@ int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ost
   ReportInput in;
   in.timing = !args.has("--no-timing");
   in.provenance = current_provenance(".", out_dir);
+  in.machine = this_machine();
   describe_engines(slots, in);
   if (args.has("--timing-smoke")) {
     in.timing_options.body_steps_per_run = 1;

@@ -25,6 +25,8 @@ struct ReportInput {
   TimingOptions timing_options;  // as used, for the note on how timings are made
   std::string stability;         // Markdown of the stability section ("" when none)
   std::string stability_note;    // shown when `stability` is empty
+  // The machine the timings are measured on (cmd_report: this_machine()), recorded with them.
+  Machine machine;
   // The timings of the report this one replaces (its timings.json), to say how far each figure
   // moved; without a record, its note says why.
   PreviousTimings previous;
@@ -38,6 +40,9 @@ struct ReportInput {
 struct SlowdownAlert {
   const TimingRecord* before = nullptr;  // nullptr: nothing to compare with (see `note`)
   std::string note;
+  // Set when `before` was timed on another machine: the fields that differ ("cpu, installation";
+  // harness/timing/machine.hpp). Nothing is judged then.
+  std::string other_machine;
   std::vector<Slowdown> flagged;  // largest rise first
   std::size_t judged = 0;         // cells compared (timed the same way in both records)
 };

@@ -104,6 +104,18 @@ struct JsonReader {
       fail(where + key, "expected a whole number from 1 to 2^30");
     return v.get<int>();
   }
+  // The machine object (a record from before dropcheck wrote one has none: an unknown machine).
+  Machine machine(const Json& m) const {
+    if (!m.is_object()) fail("machine", std::string("expected an object, got ") + m.type_name());
+    Machine out{text(m, "cpu", "machine."),    text(m, "cpu_id", "machine."),
+                text(m, "caches", "machine."), 0,
+                text(m, "kernel", "machine."), text(m, "installation", "machine.")};
+    const Json& cpus = at(m, "logical_cpus", "machine.");
+    if (!cpus.is_number_integer() || cpus.get<long long>() < 0 || cpus.get<long long>() > 1 << 20)
+      fail("machine.logical_cpus", "expected a whole number from 0 to 2^20");
+    out.logical_cpus = cpus.get<int>();
+    return out;
+  }
   TimedCell cell(const Json& c, const std::string& name) const {
     if (!c.is_object()) fail(name, std::string("expected an object, got ") + c.type_name());
     const std::string where = name + ".";
@@ -152,8 +164,9 @@ double TimedCell::value(TimingFigure f) const {
   return f.ratio ? ratio_of(full_ms, calibration_ms, f.statistic) : statistic(full_ms, f.statistic);
 }
 
-TimingRecord timing_record(const std::vector<SceneEvaluation>& scenes, const Provenance& p) {
-  TimingRecord r{p.commit, p.cpu, {}};
+TimingRecord timing_record(const std::vector<SceneEvaluation>& scenes, const Provenance& p,
+                           const Machine& machine) {
+  TimingRecord r{p.commit, p.cpu, {}, machine};
   for (const SceneEvaluation& se : scenes)
     for (const EngineEvaluation& ev : se.engines)
       for (const StepEvaluation& st : ev.sweep)
@@ -162,8 +175,13 @@ TimingRecord timing_record(const std::vector<SceneEvaluation>& scenes, const Pro
 }
 
 std::string timing_json(const TimingRecord& record) {
+  const Machine& m = record.machine;
+  const Json machine{{"cpu", m.cpu},       {"cpu_id", m.cpu_id},
+                     {"caches", m.caches}, {"logical_cpus", m.logical_cpus},
+                     {"kernel", m.kernel}, {"installation", m.installation}};
   std::string out = "{\n  \"commit\": " + json_text(Json(record.commit)) +
-                    ",\n  \"cpu\": " + json_text(Json(record.cpu)) + ",\n  \"cells\": [";
+                    ",\n  \"cpu\": " + json_text(Json(record.cpu)) +
+                    ",\n  \"machine\": " + json_text(machine) + ",\n  \"cells\": [";
   for (std::size_t i = 0; i < record.cells.size(); ++i)
     out += (i ? ",\n    " : "\n    ") + json_text(cell_json(record.cells[i]));
   return out + (record.cells.empty() ? "]\n}\n" : "\n  ]\n}\n");
@@ -178,7 +196,8 @@ TimingRecord parse_timing_record(const std::string& text, const std::string& fil
     r.fail("", "not a timings record: " + excerpt(e.what(), 120));
   }
   if (!root.is_object()) r.fail("", "not a timings record: expected a JSON object");
-  TimingRecord record{r.text(root, "commit", ""), r.text(root, "cpu", ""), {}};
+  TimingRecord record{r.text(root, "commit", ""), r.text(root, "cpu", ""), {}, {}};
+  if (root.contains("machine")) record.machine = r.machine(r.at(root, "machine", ""));
   const Json& cells = r.at(root, "cells", "");
   if (!cells.is_array())
     r.fail("cells", std::string("expected an array, got ") + cells.type_name());
@@ -256,6 +275,8 @@ double slowdown_threshold(const std::string& engine) {
 std::vector<Slowdown> slowdowns(const TimingRecord& before, const TimingRecord& now,
                                 std::size_t* judged) {
   std::vector<Slowdown> out;
+  if (judged) *judged = 0;
+  if (!machine_differences(before.machine, now.machine).empty()) return out;
   std::vector<MovedCell> cells = pairs(before, now, kAlertFigure);
   if (judged) *judged = cells.size();
   for (MovedCell& m : cells) {

@@ -13,6 +13,7 @@
 #include "harness/core/provenance.hpp"
 #include "harness/io/link_policy.hpp"
 #include "harness/study/evaluate.hpp"
+#include "harness/timing/machine.hpp"
 #include "harness/timing/timing.hpp"
 
 namespace dropcheck {
@@ -46,10 +47,13 @@ struct TimingRecord {
   std::string commit;  // Provenance::commit
   std::string cpu;     // Provenance::cpu
   std::vector<TimedCell> cells;
+  Machine machine;  // where the cells were timed (empty fields: a record that did not say)
 };
 
-// The timed cells of `scenes` (every engine that ran, every step of its sweep), in report order.
-TimingRecord timing_record(const std::vector<SceneEvaluation>& scenes, const Provenance& p);
+// The timed cells of `scenes` (every engine that ran, every step of its sweep), in report order,
+// timed on `machine`.
+TimingRecord timing_record(const std::vector<SceneEvaluation>& scenes, const Provenance& p,
+                           const Machine& machine);
 
 // The record as JSON (nlohmann), one cell a line; parse_timing_record reads it back exactly.
 std::string timing_json(const TimingRecord& record);
@@ -114,7 +118,8 @@ struct Slowdown {
   double threshold = 0.0;  // the threshold it crossed
 };
 // `judged` (when given) receives how many cells were compared: a cell of `now` is judged only when
-// `before` holds it once, timed the same way (copies, repeats, number of samples) and finite.
+// `before` holds it once, timed the same way (copies, repeats, number of samples) and finite, and
+// only when both records were timed on the same machine (machine_differences empty): none else.
 std::vector<Slowdown> slowdowns(const TimingRecord& before, const TimingRecord& now,
                                 std::size_t* judged = nullptr);
 

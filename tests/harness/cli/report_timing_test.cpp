@@ -71,6 +71,22 @@ TEST_CASE("report --fail-on-slowdown exits 1 naming the cells that slowed, 0 whe
   const Result none = cli(args);
   CHECK(none.code == 2);
   CHECK_THAT(none.err, Contains("0 of 3 cells judged") && Contains("no cell of this report"));
+  // A record from another machine (the far faster one, on another installation): nothing is
+  // judged, no slowdown line; the gate refuses to pass on it.
+  nlohmann::ordered_json elsewhere =
+      dropcheck::parse_json<nlohmann::ordered_json>(scaled_record(record, 0.01));
+  elsewhere["machine"]["installation"] = "0123456789abcdef";
+  std::ofstream(d.file("elsewhere.json")) << dropcheck::json_text(elsewhere);
+  args[args.size() - 2] = d.file("elsewhere.json");
+  const Result gate = cli(args);
+  CHECK(gate.code == 2);
+  CHECK(gate.err.find("calibration rose") == std::string::npos);
+  CHECK_THAT(gate.err, Contains("measured on another machine (they differ in installation)"));
+  CHECK_THAT(slurp(d.file("r/README.md")), Contains("Not judged: the timings compared with"));
+  args.pop_back();  // without --fail-on-slowdown: exit 0
+  const Result shown = cli(args);
+  CHECK(shown.code == 0);
+  CHECK(shown.err.find("slowdown") == std::string::npos);
 }
 
 TEST_CASE("report --compare-timings with a bad file is refused before any work", "[cli][timing]") {

@@ -25,6 +25,11 @@ TimedCell timed(const std::string& scene, const std::string& engine, const std::
   return c;
 }
 
+// The machine the records of these tests were timed on.
+const Machine kHere{
+    "CPU x",           "family 6, model 207, stepping 2", "L1d 48K, L2 2048K", 2, "6.1.0",
+    "00000000000000aa"};
+
 std::string parse_error(const std::string& text) {
   try {
     parse_timing_record(text, "out/timings.json");
@@ -40,7 +45,8 @@ TEST_CASE("a timings record reads back exactly what was written, every sample", 
   const TimingRecord r{"abc1234",
                        "CPU \"x\", 2 logical",
                        {timed("wind", "ours", "1/60", 0.1 / 3), timed("a,b", "ode", "0.01", 1e-300),
-                        timed("wind", "bullet", "1/60", 12345.678901234567)}};
+                        timed("wind", "bullet", "1/60", 12345.678901234567)},
+                       kHere};
   const TimingRecord back = parse_timing_record(timing_json(r), "timings.json");
   CHECK(back.commit == r.commit);
   CHECK(back.cpu == r.cpu);
@@ -52,7 +58,7 @@ TEST_CASE("a timings record reads back exactly what was written, every sample", 
     CHECK(std::tie(a.full_ms, a.bare_ms, a.calibration_ms) ==
           std::tie(b.full_ms, b.bare_ms, b.calibration_ms));
   }
-  CHECK(parse_timing_record(timing_json({"c", "cpu", {}}), "t").cells.empty());
+  CHECK(parse_timing_record(timing_json({"c", "cpu", {}, kHere}), "t").cells.empty());
 }
 
 TEST_CASE("a cell's figures are statistics of its samples, alone or over the calibration's",
@@ -109,14 +115,16 @@ TEST_CASE("two timing records are compared on the cells both hold, once each", "
                             "cpu",
                             {timed("s", "ours", "1/60", 1.0), timed("s", "ode", "1/60", 2.0),
                              timed("s", "bullet", "1/60", 3.0), timed("s", "box2d", "1/60", 1.0),
-                             timed("s", "box2d", "1/60", 1.0), timed("t", "ours", "1/60", 1.0)}};
+                             timed("s", "box2d", "1/60", 1.0), timed("t", "ours", "1/60", 1.0)},
+                            kHere};
   const TimingRecord now{"a",
                          "cpu",
                          {timed("s", "ours", "1/60", 1.09),    // +9 %: agrees
                           timed("s", "ode", "1/60", 1.6),      // 2 / 1.6 - 1 = 25 %
                           timed("s", "bullet", "1/60", 3.03),  // +1 %
                           timed("s", "box2d", "1/60", 1.0),    // twice in `before`: left out
-                          timed("s", "ours", "1/120", 5.0)}};  // not in `before`: left out
+                          timed("s", "ours", "1/120", 5.0)},   // not in `before`: left out
+                         kHere};
   const TimingComparison c = compare_timings(before, now, {}, 0.10, 2);
   CHECK(c.cells == 3);
   CHECK(c.agree == 2);
@@ -135,7 +143,7 @@ TEST_CASE("the side-by-side ratio cancels a machine that is slower for both", "[
   TimedCell a = timed("s", "ode", "1/60", 2.0), b = a;
   for (double& x : b.full_ms) x *= 1.3;  // the whole machine 30 % slower in the second run
   for (double& x : b.calibration_ms) x *= 1.3;
-  const TimingRecord before{"a", "cpu", {a}}, now{"a", "cpu", {b}};
+  const TimingRecord before{"a", "cpu", {a}, kHere}, now{"a", "cpu", {b}, kHere};
   CHECK(compare_timings(before, now, {kHeadline, false}).agree == 0);
   CHECK(compare_timings(before, now, {kHeadline, true}).agree == 1);
 }
@@ -148,12 +156,14 @@ TEST_CASE("the slowdown alert flags a cell whose headline rose past its engine's
   const TimingRecord before{"a",
                             "cpu",
                             {timed("s", "ode", "1/60", 1.0), timed("s", "ode", "1/120", 1.0),
-                             timed("s", "ours", "1/60", 1.0)}};
+                             timed("s", "ours", "1/60", 1.0)},
+                            kHere};
   const TimingRecord now{"b",
                          "cpu",
                          {timed("s", "ode", "1/60", 1.0 + 0.5 * t),  // noise: not flagged
                           timed("s", "ode", "1/120", 1.20),          // a 20 % slowdown
-                          timed("s", "ours", "1/60", 0.5)}};         // faster: not flagged
+                          timed("s", "ours", "1/60", 0.5)},          // faster: not flagged
+                         kHere};
   const std::vector<Slowdown> s = slowdowns(before, now);
   REQUIRE(s.size() == 1);
   CHECK(s[0].cell.h == "1/120");
@@ -176,6 +186,42 @@ TEST_CASE("the slowdown alert flags a cell whose headline rose past its engine's
   CHECK(judged == 0);
   slowdowns(before, now, &judged);
   CHECK(judged == 3);
+  // The same cells timed on another machine, or by a record that does not say where: none judged.
+  for (const Machine& elsewhere : {Machine{}, [] {
+                                     Machine m = kHere;
+                                     m.installation = "00000000000000bb";
+                                     return m;
+                                   }()}) {
+    TimingRecord there = now;
+    there.machine = elsewhere;
+    CHECK(slowdowns(before, there, &judged).empty());
+    CHECK(judged == 0);
+  }
+}
+
+TEST_CASE("a record says which machine timed it, and two machines differ where they do",
+          "[timing]") {
+  const TimingRecord r{"a", "cpu", {timed("s", "ode", "1/60", 1.0)}, kHere};
+  const Machine back = parse_timing_record(timing_json(r), "t").machine;
+  CHECK(machine_differences(back, kHere).empty());
+  CHECK(describe(back) ==
+        "CPU x (family 6, model 207, stepping 2; L1d 48K, L2 2048K), 2 logical CPUs, Linux 6.1.0, "
+        "installation 00000000000000aa");
+  Machine other = kHere;
+  other.caches = "L1d 32K";
+  other.kernel = "6.2";
+  CHECK(machine_differences(kHere, other) == std::vector<std::string>{"caches", "kernel"});
+  // A record from before machines were written: every field unknown, so never the same machine.
+  CHECK(machine_differences(Machine{}, kHere).size() == 6);
+  CHECK(describe(Machine{}) == "not recorded");
+  // This machine reads its own description, and is itself.
+  const Machine here = this_machine();
+  CHECK_FALSE(here.installation.empty());
+  CHECK(here.logical_cpus >= 1);
+  CHECK(machine_differences(here, this_machine()).empty());
+  CHECK_THAT(parse_error("{\"commit\": \"a\", \"cpu\": \"c\", \"machine\": {\"cpu\": 1}, "
+                         "\"cells\": []}"),
+             Contains("out/timings.json") && Contains("machine.cpu"));
 }
 
 TEST_CASE("a timings.json from before samples were kept is named as such", "[timing]") {
