@@ -38,6 +38,16 @@ std::string format_seconds(double s) {
   return sig(s, 6) + " s";
 }
 
+// Appends " c0 c1 ..." to a protocol line, each coefficient of `v` exactly (appended piece by
+// piece: GCC 12 warns falsely on " " + std::string at -O2).
+template <class Vector>
+void append_words(std::string& line, const Vector& v) {
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    line += ' ';
+    line += exact(v[i]);
+  }
+}
+
 class ExecEngine final : public Engine {
  public:
   explicit ExecEngine(ExecSpec spec) : spec_(std::move(spec)) {
@@ -110,10 +120,9 @@ class ExecEngine final : public Engine {
     ++step_;
     where_ = "at step " + std::to_string(step_);
     std::string line = "step " + std::to_string(step_);
-    for (const Vec3& f : forces_)
-      line += " " + exact(f.x()) + " " + exact(f.y()) + " " + exact(f.z());
+    for (const Vec3& f : forces_) append_words(line, f);
     for (Vec3& t : torques_) {
-      line += " " + exact(t.x()) + " " + exact(t.y()) + " " + exact(t.z());
+      append_words(line, t);
       t.setZero();  // this step only (Engine::set_torques)
     }
     send(line);
@@ -140,13 +149,11 @@ class ExecEngine final : public Engine {
     std::string s =
         std::string("body ") + (b.is_static ? "static" : "dynamic") + " " + exact(b.mass);
     const Vec3 inertia = inertia_of(b);
-    for (const Vec3* v : {&b.half_extents, &b.position, &b.velocity})
-      s += " " + exact(v->x()) + " " + exact(v->y()) + " " + exact(v->z());
+    for (const Vec3* v : {&b.half_extents, &b.position, &b.velocity}) append_words(s, *v);
     if (!rotating) return s;
     const Quat& q = b.orientation;
-    for (double d : {q.w(), q.x(), q.y(), q.z()}) s += " " + exact(d);
-    for (const Vec3* v : {&b.angular_velocity, &inertia})
-      s += " " + exact(v->x()) + " " + exact(v->y()) + " " + exact(v->z());
+    append_words(s, Eigen::Vector4d(q.w(), q.x(), q.y(), q.z()));
+    for (const Vec3* v : {&b.angular_velocity, &inertia}) append_words(s, *v);
     return s;
   }
 

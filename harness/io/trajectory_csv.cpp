@@ -157,7 +157,10 @@ constexpr const char* kGazeboColumns[] = {
 
 std::string gazebo_header() {
   std::string h;
-  for (const char* c : kGazeboColumns) h += (h.empty() ? "" : ",") + std::string(c);
+  for (const char* c : kGazeboColumns) {
+    if (!h.empty()) h += ',';
+    h += c;
+  }
   return h;
 }
 

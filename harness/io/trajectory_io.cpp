@@ -14,7 +14,10 @@ using Json = nlohmann::ordered_json;
 
 // ",x,y,z" for each vector.
 void append_csv(std::string& out, const Vec3& v) {
-  for (int i = 0; i < 3; ++i) out += "," + exact(v[i]);
+  for (int i = 0; i < 3; ++i) {
+    out += ',';
+    out += exact(v[i]);
+  }
 }
 
 // RFC 4180: a field holding a comma, a quote or a line break is quoted, its quotes doubled.
@@ -45,7 +48,10 @@ const RotationState& rotation_of(const Trajectory& t, std::size_t sample, std::s
 // ",qw,qx,qy,qz,wx,wy,wz".
 void append_csv(std::string& out, const RotationState& r) {
   const Quat& q = r.orientation;
-  for (double d : {q.w(), q.x(), q.y(), q.z()}) out += "," + exact(d);
+  for (double d : {q.w(), q.x(), q.y(), q.z()}) {
+    out += ',';
+    out += exact(d);
+  }
   append_csv(out, r.angular_velocity);
 }
 
