@@ -23,7 +23,7 @@ const CommandEntry kCommands[] = {
      "dropcheck bless [FILE]... [--engine E]... [--out DIR] [--timing]\n"
      "  dropcheck bless --check FILE... [--engine E]... [--tier T]... [--baselines DIR]"},
     {"diff", cmd_diff, "dropcheck diff OLD NEW [--out FILE]"},
-    {"check", cmd_check, "dropcheck check FILE... [--engine E]..."},
+    {"check", cmd_check, "dropcheck check PATH... [--engine E]..."},
     {"report", cmd_report,
      "dropcheck report [FILE|DIR]... [--out DIR] [--engine E]... [--no-timing]"},
     {"stability", cmd_stability, "dropcheck stability FILE [--engine E]... [--json OUT]"},

@@ -1,4 +1,4 @@
-// dropcheck check FILE... [--engine E]...
+// dropcheck check PATH... [--engine E]...  (PATH: a scene file, or a folder: the *.toml in it)
 // Runs every check that applies to each scene on each engine (harness/study/checks.hpp) and
 // prints one line per check: PASS/LIMIT/FAIL (LIMIT: passed, the engine met a limit of its own
 // law or design, named), scene, engine, check, measured figures. Exit 1 if any check
@@ -8,6 +8,7 @@
 #include "cli.hpp"
 #include "harness/core/input_error.hpp"
 #include "harness/core/registry.hpp"
+#include "harness/scene/scene_files.hpp"
 #include "harness/scene/scene_loader.hpp"
 #include "harness/study/checks.hpp"
 #include "selection.hpp"
@@ -31,8 +32,8 @@ const CommandSpec& check_spec() {
   static const CommandSpec spec{
       "check",
       "Runs every check that applies to each scene on each engine; exit 1 if one failed.",
-      "scene FILE",
-      "scene files (.toml)",
+      "PATH",
+      "scene files (.toml), or folders: the *.toml directly in each",
       1,
       -1,
       {{"--engine", "E", "an engine to check (repeatable; default: every engine compiled in)",
@@ -43,7 +44,7 @@ const CommandSpec& check_spec() {
 int cmd_check(const std::vector<std::string>& argv, std::ostream& out, std::ostream&) {
   const Args args = parse_args(check_spec(), argv);
   std::vector<Scene> scenes;
-  for (const std::string& file : args.positional) scenes.push_back(load_scene(file));
+  for (const std::string& file : scene_files(args.positional)) scenes.push_back(load_scene(file));
   if (!make_engine("ours-f64"))
     throw InputError("", 0, "ours-f64", "the reference engine is missing");
 

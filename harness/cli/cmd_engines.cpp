@@ -1,4 +1,8 @@
 // dropcheck engines: name, version, scalar, capabilities, discrete law, damping mapping.
+#include <algorithm>
+#include <array>
+#include <memory>
+
 #include "args.hpp"
 #include "cli.hpp"
 #include "harness/core/number_format.hpp"
@@ -21,19 +25,36 @@ const CommandSpec& engines_spec() {
 
 int cmd_engines(const std::vector<std::string>& argv, std::ostream& out, std::ostream&) {
   parse_args(engines_spec(), argv);
-  const char* row = "%-11s %-14s %-6s %-53s %-38s %s\n";
-  out << printf_string(row, "engine", "version", "scalar", "capabilities", "discrete law",
-                       "damping mapping");
+  // Each column as wide as its widest cell, so that a long name or mapping shifts nothing after it;
+  // an engine not compiled in is one line saying why, in its place.
+  struct Row {
+    std::array<std::string, 6> cells;
+    std::string unavailable;
+  };
+  std::vector<Row> rows{
+      {{"engine", "version", "scalar", "capabilities", "discrete law", "damping mapping"}, ""}};
   for (const std::string& name : known_engine_names()) {
     std::unique_ptr<Engine> e = make_engine(name);
     if (!e) {
-      out << name << "  (" << engine_unavailable_reason(name) << ")\n";
+      rows.push_back({{}, name + "  (" + engine_unavailable_reason(name) + ")"});
       continue;
     }
     const EngineInfo i = e->info();
-    out << printf_string(row, i.name.c_str(), i.version.c_str(), to_string(i.scalar),
-                         to_string(i.capabilities).c_str(), to_string(i.law).c_str(),
-                         i.damping_mapping.c_str());
+    rows.push_back({{i.name, i.version, to_string(i.scalar), to_string(i.capabilities),
+                     to_string(i.law), i.damping_mapping},
+                    ""});
+  }
+  std::array<int, 6> width{};
+  for (const Row& row : rows)
+    for (std::size_t c = 0; c < row.cells.size(); ++c)
+      width[c] = std::max(width[c], static_cast<int>(row.cells[c].size()));
+  for (const Row& row : rows) {
+    const auto& c = row.cells;
+    out << (row.unavailable.empty()
+                ? printf_string("%-*s %-*s %-*s %-*s %-*s %s", width[0], c[0], width[1], c[1],
+                                width[2], c[2], width[3], c[3], width[4], c[4], c[5])
+                : row.unavailable)
+        << "\n";
   }
   return kExitOk;
 }

@@ -22,6 +22,7 @@
 #include "harness/report/report_sweep.hpp"
 #include "harness/report/stability_report.hpp"
 #include "harness/report/sweep_results.hpp"
+#include "harness/scene/scene_files.hpp"
 #include "harness/scene/scene_loader.hpp"
 #include "selection.hpp"
 
@@ -35,24 +36,14 @@ struct SceneFiles {
   std::vector<std::string> extreme;  // the stability section
 };
 
-// *.toml directly in `dir`, sorted by name so that the report's order does not depend on the disk.
-std::vector<std::string> toml_files(const fs::path& dir) {
-  std::vector<std::string> out;
-  std::error_code ec;
-  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec))
-    if (e.is_regular_file() && e.path().extension() == ".toml")
-      out.push_back(e.path().generic_string());
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
 void add_path(const std::string& arg, SceneFiles& files) {
   const fs::path p(arg);
   std::error_code ec;
   if (fs::is_directory(p, ec)) {
-    for (std::string& f : toml_files(p)) files.scenes.push_back(std::move(f));
+    for (std::string& f : toml_files(arg)) files.scenes.push_back(std::move(f));
     if (fs::is_directory(p / "extreme", ec))
-      for (std::string& f : toml_files(p / "extreme")) files.extreme.push_back(std::move(f));
+      for (std::string& f : toml_files((p / "extreme").generic_string()))
+        files.extreme.push_back(std::move(f));
   } else if (fs::exists(p, ec)) {
     const bool extreme = p.lexically_normal().parent_path().filename() == "extreme";
     (extreme ? files.extreme : files.scenes).push_back(arg);
@@ -61,7 +52,7 @@ void add_path(const std::string& arg, SceneFiles& files) {
   }
 }
 
-SceneFiles scene_files(const std::vector<std::string>& args) {
+SceneFiles report_scene_files(const std::vector<std::string>& args) {
   SceneFiles files;
   for (const std::string& a : args.empty() ? std::vector<std::string>{"scenarios"} : args)
     add_path(a, files);
@@ -211,7 +202,7 @@ int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ost
   const Args args = parse_args(report_spec(), argv);
   const std::string out_dir = args.value("--out", "reports");
   if (args.has("--results")) return sweep_report(args, out_dir, out, err);
-  const SceneFiles files = scene_files(args.positional);
+  const SceneFiles files = report_scene_files(args.positional);
   OutputPlan plan;
   for (const std::string& f : files.scenes) plan.read(f);
   for (const std::string& f : files.extreme) plan.read(f);

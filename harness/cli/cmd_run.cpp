@@ -4,6 +4,8 @@
 // (harness/io/output_plan.hpp); output files are written only after every run finished,
 // atomically.
 
+#include <algorithm>
+
 #include "args.hpp"
 #include "cli.hpp"
 #include "harness/core/input_error.hpp"
@@ -18,18 +20,33 @@
 namespace dropcheck {
 namespace {
 
-void print_header(const Scene& s, const Timestep& dt, std::ostream& out) {
+// The widths of the name columns of `run`'s table: each as wide as its widest name, so that a long
+// engine or body name never shifts the figures after it.
+struct NameWidths {
+  int engine = 6, body = 4;  // "engine", "body"
+};
+
+NameWidths name_widths(const Scene& s, const std::vector<SelectedEngine>& engines) {
+  NameWidths w;
+  for (const SelectedEngine& e : engines)  // a run is named by its engine's own name
+    w.engine = std::max(w.engine, int((e.engine ? e.engine->info().name : e.name).size()));
+  for (const Body& b : s.bodies) w.body = std::max(w.body, int(b.name.size()));
+  return w;
+}
+
+void print_header(const Scene& s, const Timestep& dt, const NameWidths& w, std::ostream& out) {
   out << printf_string(
       "scene %s: %zu bodies, %g s at h = %s (%lld steps), gravity (%g, %g, %g), "
       "damping k = %.6g 1/s, contacts %s\n",
       s.name.c_str(), s.bodies.size(), s.duration, dt.text.c_str(),
       static_cast<long long>(step_count(s, dt.seconds)), s.world.gravity.x(), s.world.gravity.y(),
       s.world.gravity.z(), s.world.damping_rate, s.world.contacts ? "on" : "off");
-  out << printf_string("%-9s %-10s %13s %13s %13s %12s %12s %12s %8s %9s  %s\n", "engine", "body",
-                       "x", "y", "z", "vx", "vy", "vz", "steps", "wall ms", "status");
+  out << printf_string("%-*s %-*s %13s %13s %13s %12s %12s %12s %8s %9s  %s\n", w.engine, "engine",
+                       w.body, "body", "x", "y", "z", "vx", "vy", "vz", "steps", "wall ms",
+                       "status");
 }
 
-void print_run(const Trajectory& t, std::ostream& out) {
+void print_run(const Trajectory& t, const NameWidths& w, std::ostream& out) {
   if (t.samples() == 0) {  // the engine failed before step 0 (load): no state to print
     out << t.engine << "  " << to_string(t.status) << ": " << t.failure << "\n";
     return;
@@ -40,11 +57,11 @@ void print_run(const Trajectory& t, std::ostream& out) {
     if (t.status != RunStatus::ok) status += ": " + t.failure;
     if (t.clamped_steps)
       status += " (speed clamped on " + std::to_string(t.clamped_steps) + " steps)";
-    out << printf_string("%-9s %-10s %13.6f %13.6f %13.6f %12.6f %12.6f %12.6f %8lld %9.3f  %s\n",
-                         t.engine.c_str(), t.body_names[b].c_str(), s.position.x(), s.position.y(),
-                         s.position.z(), s.velocity.x(), s.velocity.y(), s.velocity.z(),
-                         static_cast<long long>(t.recorded.back()), t.wall_seconds * 1e3,
-                         status.c_str());
+    out << printf_string("%-*s %-*s %13.6f %13.6f %13.6f %12.6f %12.6f %12.6f %8lld %9.3f  %s\n",
+                         w.engine, t.engine.c_str(), w.body, t.body_names[b].c_str(),
+                         s.position.x(), s.position.y(), s.position.z(), s.velocity.x(),
+                         s.velocity.y(), s.velocity.z(), static_cast<long long>(t.recorded.back()),
+                         t.wall_seconds * 1e3, status.c_str());
   }
 }
 
@@ -86,7 +103,8 @@ int cmd_run(const std::vector<std::string>& argv, std::ostream& out, std::ostrea
   const Timestep dt = step_from_flag(args.value("--dt"), scene);
   std::vector<SelectedEngine> engines = select_engines(args.values("--engine"), scene);
 
-  print_header(scene, dt, out);
+  const NameWidths widths = name_widths(scene, engines);
+  print_header(scene, dt, widths, out);
   std::vector<Trajectory> runs;
   for (SelectedEngine& e : engines) {
     if (!e.engine) {
@@ -94,7 +112,7 @@ int cmd_run(const std::vector<std::string>& argv, std::ostream& out, std::ostrea
       continue;
     }
     runs.push_back(run_scene(*e.engine, scene, dt.seconds));
-    print_run(runs.back(), out);
+    print_run(runs.back(), widths, out);
   }
   // Both streamed: memory is the trajectories plus a 64 KiB buffer.
   if (args.has("--csv"))

@@ -28,6 +28,7 @@ std::vector<SelectedEngine> select_engines(const std::vector<std::string>& reque
         throw InputError("", 0, "--engine " + escape_controls(name), why);
       s.skipped_because = why;
     } else if (std::string why = s.engine->cannot_run(scene); !why.empty()) {
+      s.name = s.engine->info().name;  // an engine file's own name, not its path
       s.engine.reset();
       s.skipped_because = why;
     }

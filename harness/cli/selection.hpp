@@ -11,7 +11,7 @@
 namespace dropcheck {
 
 struct SelectedEngine {
-  std::string name;
+  std::string name;  // as requested (an engine file's path), or its own name when it is skipped
   std::unique_ptr<Engine> engine;  // nullptr when it cannot run the scene
   std::string skipped_because;     // why not ("not planar", "not compiled in ...")
 };

@@ -104,8 +104,12 @@ BuildId current_build() {
   return id;
 }
 
+std::string source_tree() {
+  return DROPCHECK_SOURCE_TREE;
+}
+
 std::string source_commit() {
-  return commit_stamp(DROPCHECK_SOURCE_TREE);
+  return commit_stamp(source_tree());
 }
 
 std::string commit_stamp(const std::string& dir) {

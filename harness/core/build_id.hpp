@@ -25,6 +25,9 @@ BuildId current_build();
 // hashes on every shipped scene; the level stays in the key because it may change bits elsewhere.)
 std::string fp_flags(const std::string& flags);
 
+// The source tree this binary was built from (CMake's source directory at configure time).
+std::string source_tree();
+
 // commit_stamp of the source tree this binary was built from.
 std::string source_commit();
 

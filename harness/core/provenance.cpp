@@ -94,7 +94,10 @@ std::string iso_date_from_epoch(const std::string& epoch) {
 }
 
 Provenance current_provenance(const std::string& dir, const std::string& output_dir) {
-  const std::string git = "git -C " + shell_quoted(dir);
+  // Outside a checkout (a report written from elsewhere): the tree this binary was built from.
+  std::string git = "git -C " + shell_quoted(dir);
+  if (output_of(git + " rev-parse --show-toplevel").empty())
+    git = "git -C " + shell_quoted(source_tree());
   Provenance p;
   const char* epoch = std::getenv("SOURCE_DATE_EPOCH");
   p.date = epoch ? iso_date_from_epoch(epoch) : "";

@@ -16,7 +16,8 @@ struct Provenance {
   std::string cpu;         // "model name" of /proc/cpuinfo, with the number of logical CPUs
 };
 
-// The provenance of a report generated from the git checkout holding `dir` by this binary.
+// The provenance of a report generated from the git checkout holding `dir` by this binary; when
+// `dir` is in no checkout, from the source tree this binary was built from (build_id.hpp).
 // Changes under `output_dir` (the report's own directory, committed in the repository) do not make
 // the tree dirty: rerunning the report must not change its own provenance. Parts that cannot be
 // found read "unknown".

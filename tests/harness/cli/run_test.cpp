@@ -18,6 +18,7 @@
 #include "harness/core/registry.hpp"
 #include "harness/run/runner.hpp"
 #include "harness/scene/scene_loader.hpp"
+#include "tests/scene_texts.hpp"
 
 using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
@@ -322,4 +323,69 @@ TEST_CASE(
   CHECK_THAT(ode.out, Contains("combine rule: not identified: ode's adapter sets each pair") &&
                           Contains("declared box pyramid: matches"));
   CHECK(cli({"identify", scene, "--trajectory", "x.csv", "--combine"}).code == 2);
+}
+
+TEST_CASE("check takes a folder for the scene files directly in it, in name order",
+          "[cli][check]") {
+  ScratchDir d("check-folder");
+  std::filesystem::create_directories(d.file("set/deeper"));
+  using dropcheck::testing::kEarth;
+  const std::string scene =
+      dropcheck::testing::scene_head("0.5", "1/60", kEarth) +
+      dropcheck::testing::body_text("cube", "[0.0, 10.0, 0.0]", "[0.0, 0.0, 0.0]");
+  std::ofstream(d.file("set/b.toml")) << "name = \"second\"\n" << scene;
+  std::ofstream(d.file("set/a.toml")) << "name = \"first\"\n" << scene;
+  std::ofstream(d.file("set/notes.txt")) << "not a scene";
+  std::ofstream(d.file("set/deeper/c.toml")) << "name = \"not taken\"\n" << scene;
+  const Result r = cli({"check", d.file("set"), "--engine", "ours-f64"});
+  CHECK(r.code == 0);
+  const std::size_t first = r.out.find("PASS  first"), second = r.out.find("PASS  second");
+  CHECK(first != std::string::npos);
+  CHECK(second != std::string::npos);
+  CHECK(first < second);
+  CHECK(r.out.find("not taken") == std::string::npos);
+  std::filesystem::create_directories(d.file("empty"));
+  const Result empty = cli({"check", d.file("empty"), "--engine", "ours-f64"});
+  CHECK(empty.code == 2);
+  CHECK_THAT(empty.err, Contains("empty") && Contains("a folder without a scene file"));
+}
+
+TEST_CASE("run's and engines' columns stay aligned whatever the length of a name", "[cli][run]") {
+  ScratchDir d("aligned-columns");
+  const std::string name(40, 'b');
+  std::ofstream(d.file("s.toml")) << dropcheck::testing::scene_head("0.1", "1/60",
+                                                                    dropcheck::testing::kEarth)
+                                  << dropcheck::testing::body_text(name, "[0.0, 1.0, 0.0]",
+                                                                   "[0.0, 0.0, 0.0]");
+  const Result r = cli({"run", d.file("s.toml"), "--engine", "ours-f64", "--engine", "ours"});
+  REQUIRE(r.code == 0);
+  std::istringstream lines(r.out);
+  std::string line, header;
+  std::getline(lines, line);  // the scene line
+  std::getline(lines, header);
+  int rows = 0;
+  while (std::getline(lines, line)) {
+    INFO(header << "\n" << line);
+    CHECK(line.find(" ok") + 1 == header.find("status"));
+    ++rows;
+  }
+  CHECK(rows == 2);
+  const Result e = cli({"engines"});
+  std::istringstream table(e.out);
+  std::getline(table, header);
+  while (std::getline(table, line)) {
+    if (line.find("  (") != std::string::npos) continue;  // not compiled in
+    INFO(header << "\n" << line);
+    const std::size_t scalar =
+        line.find(" f64 ") != std::string::npos ? line.find(" f64 ") : line.find(" f32 ");
+    CHECK(scalar + 1 == header.find("scalar"));
+  }
+}
+
+TEST_CASE("a skipped external engine is named by its own name, not its file's path",
+          "[cli][check]") {
+  const Result r = cli({"check", DROPCHECK_SOURCE_DIR "/scenarios/drop_on_floor.toml", "--engine",
+                        DROPCHECK_SOURCE_DIR "/examples/python/seed_engine.toml"});
+  CHECK_THAT(r.out, Contains("skipped: drop_on_floor  seed-python: no contacts"));
+  CHECK(r.out.find("seed_engine.toml") == std::string::npos);
 }
