@@ -57,11 +57,12 @@
 //                          the law's, 8.5e-7 m over 240 steps.
 //   push-out            -> ERP 0.01 of the depth per step, capped at 1e-3 m/s (DART_ERP,
 //                          DART_MAX_ERV): relative_cfm's max_push. A box that lands from a height
-//                          stops up to |v|*h deep and climbs out at the cap less cfm*g*h: a 10 m
-//                          drop at 1/60 lands 0.18 m deep and rises at 0.99929e-3 m/s, so that a
-//                          landing takes minutes to rest. The landing check follows that climb
-//                          step by step (harness/oracles/landing.hpp climb_path). A stack (two
-//                          moving boxes in contact, in series) is not modelled yet and not run.
+//                          stops up to |v|*h deep and climbs out at the cap less cfm times the
+//                          step's fall: drop_on_floor_undamped at 1/60 lands 0.218 m deep and
+//                          rises at 0.998367e-3 m/s, so that a landing takes minutes to rest. The
+//                          landing check follows that climb step by step
+//                          (harness/oracles/landing.hpp climb_path). A stack (two moving boxes in
+//                          contact, in series) is not modelled yet and not run.
 //   restitution         -> not mapped (DART multiplies the two shapes' coefficients and ignores
 //                          a rebound under 0.1 m/s).
 #include <cmath>
@@ -85,15 +86,16 @@
 namespace dropcheck {
 namespace {
 
-// Whether boxes a and b overlap in the x-z plane (one above the other).
-bool share_footprint(const Body& a, const Body& b) {
+// Whether boxes a and b overlap in the x-z plane (one above the other) or touch.
+bool stacked_or_touching(const Body& a, const Body& b) {
   const Vec3 gap = (a.position - b.position).cwiseAbs() - (a.half_extents + b.half_extents);
-  return gap.x() < 0.0 && gap.z() < 0.0;
+  return (gap.x() < 0.0 && gap.z() < 0.0) || gap.maxCoeff() <= 0.0;
 }
 
-// Why DART's contacts in `scene` are not judged, or "": each dynamic body must meet static bodies
-// alone (no dynamic body above or below it: a stack's two regularised contacts in series are not
-// modelled) and no force may push it (the climb path of a landing takes gravity and damping only).
+// Why DART's contacts in `scene` are not judged, or "": no dynamic body may start above, below or
+// touching another (a stack's two regularised contacts in series are not modelled; bodies that
+// meet later, sliding into each other, would fail their checks rather than pass wrongly), and no
+// force may push one (the climb path of a landing takes gravity and damping only).
 std::string contact_limit(const Scene& scene) {
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const Body& b = scene.bodies[i];
@@ -102,7 +104,7 @@ std::string contact_limit(const Scene& scene) {
       return "a pushed body among contacts: DART's landing is judged under gravity and damping "
              "alone";
     for (const Body& o : scene.bodies)
-      if (&o != &b && !o.is_static && share_footprint(b, o))
+      if (&o != &b && !o.is_static && stacked_or_touching(b, o))
         return "a stack: DART's regularised contacts between two moving boxes are not modelled by "
                "the stack check yet";
   }
@@ -126,7 +128,7 @@ class DartEngine final : public Engine {
     i.friction_model = FrictionModel::box_pyramid;
     i.relative_cfm = {.cfm = 1e-5, .erp = 0.01, .max_push = 1e-3};
     i.contact_settings =
-        "World::step with the default FCL detector; box shapes, friction 1.0 or the scene's "
+        "World::step with DART's own collision detector; box shapes, friction 1.0 or the scene's "
         "(the smaller of two), restitution 0; boxed LCP (Dantzig), ERP 0.01, max error reduction "
         "velocity 1e-3 m/s, CFM 1e-5 of each diagonal entry";
     i.damping_mapping =

@@ -39,7 +39,7 @@ std::string format_seconds(double s) {
 }
 
 // Appends " c0 c1 ..." to a protocol line, each coefficient of `v` exactly (appended piece by
-// piece: GCC 12 warns falsely on " " + std::string at -O2).
+// piece: GCC 12 warns falsely on " " + std::string at -O3).
 template <class Vector>
 void append_words(std::string& line, const Vector& v) {
   for (Eigen::Index i = 0; i < v.size(); ++i) {
@@ -57,7 +57,7 @@ class ExecEngine final : public Engine {
     info_.name = spec_.name.empty()
                      ? escape_controls(std::filesystem::path(named_by).stem().string())
                      : spec_.name;
-    info_.version = "?";
+    info_.version.assign(1, '?');  // (= "?" draws GCC 12's false -Wrestrict at -O3)
     info_.own_process = true;
     info_.damping_mapping = "the engine's own (external, docs/protocol.md)";
     try {

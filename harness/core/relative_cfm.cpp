@@ -13,7 +13,8 @@ double contact_step(const RelativeCfm& law, double v_free, double h, NormalState
     return -v_free;
   }
   const double push = std::min(law.erp * s.d / h, law.max_push);
-  s.v = (law.cfm * v_free + push) / (1.0 + law.cfm);
+  // The LCP's normal impulse is never negative: the contact only pushes (v_n' >= v_free).
+  s.v = std::max(v_free, (law.cfm * v_free + push) / (1.0 + law.cfm));
   s.d -= h * s.v;
   return s.v - v_free;
 }

@@ -3,7 +3,7 @@
 // at most max_push. What that does to a box resting, sliding or landing flat on a static floor, per
 // step, with v_free the box's normal velocity (up positive) after the step's gravity and damping
 // and d its depth at the step's start (a contact while d >= 0):
-//   v_n' = (cfm*v_free + min(erp*d/h, max_push))/(1 + cfm),   d' = d - h*v_n'
+//   v_n' = max(v_free, (cfm*v_free + min(erp*d/h, max_push))/(1 + cfm)),   d' = d - h*v_n'
 // (the regularised normal row stops 1/(1 + cfm) of the approach and adds the push-out). Resting,
 // v_free = v_n - g*h: the box sinks towards cfm*g*h^2/erp, by a factor close to (1 - erp) a step.
 // Landing from a height, it stops about |v|*h deep and climbs out at the cap, less cfm*g*h. Its

@@ -50,8 +50,8 @@ double reach(const Body& b) {
 }
 
 // How close two bodies' spheres may come while neither engine can see them touch: Box2D's contact
-// points need the shapes within their skins (2 x 0.01 m) and Chipmunk's within its collision slop
-// (0.1 m by default); 0.2 m stays outside both.
+// points need the shapes within their skins (2 x 0.01 m), Chipmunk's an overlap (its collision
+// slop here 0.005 m, harness/core/chipmunk_world.hpp); 0.2 m stays well outside both.
 constexpr double kApart = 0.2;
 
 using ReplayOne = std::vector<BodyState> (*)(const Scene&, std::size_t, const ContactSolver&,

@@ -51,13 +51,19 @@ std::string caches() {
   return out;
 }
 
+// /etc/machine-id and the host name: containers made from one image share the first, and get a
+// host name of their own each.
 std::string installation() {
-  std::string id = first_line("/etc/machine-id");
-  if (id.empty()) {
-    std::array<char, 256> host{};
-    if (gethostname(host.data(), host.size() - 1) == 0) id = host.data();
-  }
-  return id.empty() ? std::string() : printf_string("%016llx", (unsigned long long)fnv1a(id));
+  std::array<char, 256> host{};
+  if (gethostname(host.data(), host.size() - 1) != 0) host[0] = '\0';
+  const std::string id = first_line("/etc/machine-id") + "/" + host.data();
+  return id == "/" ? std::string() : printf_string("%016llx", (unsigned long long)fnv1a(id));
+}
+
+// At most the 256 characters a timings record's reader takes of a text.
+std::string bounded(std::string text) {
+  if (text.size() > 256) text.resize(256);
+  return text;
 }
 
 }  // namespace
@@ -68,8 +74,8 @@ Machine this_machine() {
   const std::string family = cpuinfo("cpu family"), model = cpuinfo("model"),
                     stepping = cpuinfo("stepping");
   if (!family.empty())
-    m.cpu_id = "family " + family + ", model " + model + ", stepping " + stepping;
-  m.caches = caches();
+    m.cpu_id = bounded("family " + family + ", model " + model + ", stepping " + stepping);
+  m.caches = bounded(caches());
   const long cpus = sysconf(_SC_NPROCESSORS_ONLN);
   m.logical_cpus = cpus > 0 ? static_cast<int>(cpus) : 0;
   utsname u{};

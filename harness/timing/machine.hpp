@@ -16,8 +16,8 @@ struct Machine {
   std::string caches;  // cpu0's caches: "L1d 48K, L1i 32K, L2 2048K, L3 307200K"
   int logical_cpus = 0;
   std::string kernel;  // uname's release
-  // FNV-1a of /etc/machine-id (of the host name where there is none), in hex: two installations
-  // on identical hardware differ here, and the id itself is not written out.
+  // FNV-1a of /etc/machine-id and the host name, in hex: two installations on identical hardware
+  // differ here (and two containers of one image, by their host names); neither is written out.
   std::string installation;
 };
 

@@ -139,7 +139,7 @@ TEST_CASE("A DART landing climbs out of the floor at its capped push-out, step b
       const double g = -scene.world.gravity.y();
       CHECK(expected.climb->climb == Approx(1e-3 - 1e-5 * g * h).epsilon(2e-4));
       CHECK(expected.rest_offset < -0.06);
-      // A push-out cap twice DART's leaves the path by some 1 mm a second after contact.
+      // A push-out cap twice DART's leaves the path by about 3 mm by the end.
       EngineInfo wrong = engine->info();
       wrong.relative_cfm.max_push = 2e-3;
       CHECK(off_climb(run, setup, *landing_expectation(wrong, scene, h, setup).climb) > 2e-3);

@@ -3,6 +3,7 @@
 #include "harness/core/provenance.hpp"
 
 #include <catch2/catch.hpp>
+#include <filesystem>
 
 #include "harness/core/build_id.hpp"
 
@@ -14,8 +15,12 @@ TEST_CASE("provenance names the commit, from outside a checkout too", "[provenan
   CHECK(here.commit != "unknown");
   CHECK(here.commit.find_first_not_of("0123456789abcdef-dirty") == std::string::npos);
   CHECK(here.date != "unknown");
-  // "/" is in no checkout: the source tree this binary was built from stands in.
-  const Provenance elsewhere = current_provenance("/");
+  // A fresh folder outside any checkout: the source tree this binary was built from stands in.
+  const std::filesystem::path outside =
+      std::filesystem::temp_directory_path() / "dropcheck-provenance-outside";
+  std::filesystem::create_directories(outside);
+  const Provenance elsewhere = current_provenance(outside.string());
+  std::filesystem::remove(outside);
   CHECK(elsewhere.commit == here.commit);
   CHECK(elsewhere.date == here.date);
   CHECK(source_tree() == DROPCHECK_SOURCE_DIR);

@@ -290,3 +290,30 @@ TEST_CASE("Tunnelling is a limit without continuous collision and a fault with i
   const Tunnelling fine = discrete_tunnelling(DampingOrder::AfterForces, thin, 1e-3, setup);
   CHECK(judge_tunnelling(fine, plain, through, one) == TunnelVerdict::none);  // judged as usual
 }
+
+TEST_CASE("A capped push-out's climb path: fall by the law, stop |v|*h deep, climb at the cap",
+          "[landing]") {
+  const Scene scene = testing::shipped("drop_on_floor_undamped");
+  const LandingSetup setup = landing_setups(scene).at(0);
+  const double h = scene.timestep.seconds, g = 9.8;
+  EngineInfo info;  // semi-implicit Euler, damping after the forces (none here)
+  info.law = Law{DampingOrder::AfterForces};
+  CHECK_FALSE(climb_path(info, scene, h, setup).has_value());  // rigid: no climb path
+  info.relative_cfm = {.cfm = 1e-5, .erp = 0.01, .max_push = 1e-3};
+  const std::optional<ClimbPath> path = climb_path(info, scene, h, setup);
+  REQUIRE(path.has_value());
+  REQUIRE(path->y.size() == static_cast<std::size_t>(step_count(scene, h)) + 1);
+  // The fall: y(n) = 10 - g*h^2*n*(n + 1)/2 to the first step at or below the rest height (84).
+  const std::int64_t contact = discrete_contact_step(info.law, scene, h, setup);
+  REQUIRE(contact == 84);
+  for (const std::int64_t n : {std::int64_t{1}, contact})
+    CHECK(path->y[n] == Approx(10.0 - g * h * h * double(n * (n + 1)) / 2.0).epsilon(1e-14));
+  // Then every step climbs at the cap less cfm times the step's fall: the depth, 0.218 m, is far
+  // above the cap's reach erp*d/h.
+  const double climb = (1e-3 - 1e-5 * g * h * (double(contact) + 1.0)) / (1.0 + 1e-5);
+  CHECK(path->y[contact + 1] - path->y[contact] == Approx(h * climb).epsilon(1e-9));
+  CHECK(path->climb == Approx((1e-3 + 1e-5 * (path->climb - g * h)) / (1.0 + 1e-5)).epsilon(1e-9));
+  // Without a cap there is no climb to follow: such a landing is judged by its rest offset.
+  info.relative_cfm.max_push = std::numeric_limits<double>::infinity();
+  CHECK_FALSE(climb_path(info, scene, h, setup).has_value());
+}

@@ -78,18 +78,14 @@ TEST_CASE("the replays refuse what they do not replay", "[replay]") {
   CHECK_THROWS_AS(replayed_states(apart, 0, kBox2d, 1.0 / 60.0, 10), std::invalid_argument);
 }
 
-TEST_CASE("dynamic bodies that never touch are replayed each alone, and bodies that meet are not",
-          "[replay]") {
+// (That the engines move such bodies as their replays alone do, bit for bit, is tested with the
+// engines: check_replayed_slides on incline_hold.)
+TEST_CASE("dynamic bodies that meet are not replayed each alone", "[replay]") {
   const Scene scene = testing::shipped("incline_hold");  // a held cube, a launched one behind it
   const double h = scene.timestep.seconds;
-  Scene launched_alone = scene;
-  launched_alone.bodies.erase(launched_alone.bodies.begin());  // the held cube
   for (const ContactSolver& solver : {kBox2d, kChipmunk}) {
     INFO(describe(solver));
-    const std::vector<BodyState> both = replayed_states(scene, 1, solver, h, 180);
-    const std::vector<BodyState> alone = replayed_states(launched_alone, 0, solver, h, 180);
-    REQUIRE(both.size() == alone.size());
-    for (std::size_t n = 0; n < both.size(); ++n) CHECK(both[n].position == alone[n].position);
+    CHECK_NOTHROW(replayed_states(scene, 1, solver, h, 180));
     // Launched 2 m behind the held cube, it stops 0.47 m past where that one stands.
     Scene meeting = scene;
     meeting.bodies.at(1).position.x() = -2.0;
