@@ -63,8 +63,20 @@
 //                          landing check follows that climb step by step
 //                          (harness/oracles/landing.hpp climb_path). A stack (two moving boxes in
 //                          contact, in series) is not modelled yet and not run.
-//   restitution         -> not mapped (DART multiplies the two shapes' coefficients and ignores
-//                          a rebound under 0.1 m/s).
+//   restitution e       -> setRestitutionCoeff(e) on a moving body's shape, 1 on a static one:
+//                          a contact takes the product of its two (computeRestitutionCoefficient),
+//                          e exactly against a static body; two moving bodies with restitution
+//                          would meet at e^2 and are not run (contact_limit). The contact bounces
+//                          when the product exceeds 1e-3 (DART_RESTITUTION_COEFF_THRESHOLD). In
+//                          getInformation, the normal row's target is e times the approach its
+//                          LCP sees, -J*v after integrateVelocities (the step's gravity applied),
+//                          when that rebound exceeds 0.1 m/s (DART_BOUNCING_VELOCITY_THRESHOLD) and
+//                          the capped push-out, at most 100 m/s (DART_MAX_BOUNCING_VELOCITY); the
+//                          row then stops 1/(1 + cfm) of the way there: bounce_law below.
+//   sphere              -> a SphereShape of its radius; DARTCollisionDetector's sphere-box test
+//                          (collideSphereBox) reports a contact at penetration >= 0, so a touch is
+//                          one, at depth radius - (distance from the centre to the box).
+#include <algorithm>
 #include <cmath>
 #include <dart/collision/dart/DARTCollisionDetector.hpp>
 #include <dart/config.hpp>
@@ -74,6 +86,7 @@
 #include <dart/dynamics/FreeJoint.hpp>
 #include <dart/dynamics/ShapeNode.hpp>
 #include <dart/dynamics/Skeleton.hpp>
+#include <dart/dynamics/SphereShape.hpp>
 #include <dart/dynamics/WeldJoint.hpp>
 #include <dart/simulation/World.hpp>
 #include <memory>
@@ -92,17 +105,23 @@ bool stacked_or_touching(const Body& a, const Body& b) {
   return (gap.x() < 0.0 && gap.z() < 0.0) || gap.maxCoeff() <= 0.0;
 }
 
-// Why DART's contacts in `scene` are not judged, or "": no dynamic body may start above, below or
-// touching another (a stack's two regularised contacts in series are not modelled; bodies that
-// meet later, sliding into each other, would fail their checks rather than pass wrongly), and no
-// force may push one (the climb path of a landing takes gravity and damping only).
+// Why DART's contacts in `scene` are not judged, or "": no restitution between two moving bodies,
+// no dynamic body may start above, below or touching another (a stack's two regularised contacts in
+// series are not modelled; bodies that meet later, sliding into each other, would fail their checks
+// rather than pass wrongly), and no force may push one (the climb path of a landing takes gravity
+// and damping only).
 std::string contact_limit(const Scene& scene) {
+  const auto moving = std::count_if(scene.bodies.begin(), scene.bodies.end(),
+                                    [](const Body& b) { return !b.is_static; });
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const Body& b = scene.bodies[i];
     if (b.is_static) continue;
     if (pushed(scene, i))
       return "a pushed body among contacts: DART's landing is judged under gravity and damping "
              "alone";
+    if (scene_material(scene).restitution && moving > 1)
+      return "restitution among two moving bodies: DART multiplies the two shapes' coefficients, "
+             "so they would meet at e^2";
     for (const Body& o : scene.bodies)
       if (&o != &b && !o.is_static && stacked_or_touching(b, o))
         return "a stack: DART's regularised contacts between two moving boxes are not modelled by "
@@ -110,6 +129,9 @@ std::string contact_limit(const Scene& scene) {
   }
   return {};
 }
+
+// DART's contact constants (ContactConstraint.cpp): DART_CFM, DART_ERP, DART_MAX_ERV.
+constexpr RelativeCfm kContact{.cfm = 1e-5, .erp = 0.01, .max_push = 1e-3};
 
 class DartEngine final : public Engine {
  public:
@@ -122,15 +144,24 @@ class DartEngine final : public Engine {
                       .planar_only = false,
                       .rotation = Rotation::none,
                       .friction = true,
-                      .restitution = false,
-                      .spheres = false};
+                      .restitution = true,
+                      .spheres = true};
     i.law = DampingOrder::AfterForces;
     i.friction_model = FrictionModel::box_pyramid;
-    i.relative_cfm = {.cfm = 1e-5, .erp = 0.01, .max_push = 1e-3};
+    i.relative_cfm = kContact;
+    i.bounce_law = {.erp = kContact.erp,
+                    .max_push = kContact.max_push,
+                    .threshold = 0.1,
+                    .touching = true,
+                    .free_approach = true,
+                    .threshold_on_rebound = true,
+                    .max_rebound = 100.0,
+                    .cfm = kContact.cfm};
     i.contact_settings =
-        "World::step with DART's own collision detector; box shapes, friction 1.0 or the scene's "
-        "(the smaller of two), restitution 0; boxed LCP (Dantzig), ERP 0.01, max error reduction "
-        "velocity 1e-3 m/s, CFM 1e-5 of each diagonal entry";
+        "World::step with DART's own collision detector; box and sphere shapes, friction 1.0 or "
+        "the scene's (the smaller of two), restitution 0 or the scene's (a moving body's e times "
+        "a static body's 1); boxed LCP (Dantzig), ERP 0.01, max error reduction velocity 1e-3 "
+        "m/s, CFM 1e-5 of each diagonal entry";
     i.damping_mapping =
         "FreeJoint translational damping d = m*(exp(k*h) - 1)/h (implicit: v = (v + a*h)/(1 + "
         "h*d/m))";
@@ -154,7 +185,7 @@ class DartEngine final : public Engine {
     bodies_.assign(scene.bodies.size(), nullptr);
     positions_.clear();
     for (const Body& b : scene.bodies) positions_.push_back(b.position);
-    const std::optional<double> mu = scene_material(scene).friction;
+    const Material material = scene_material(scene);
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
       const Body& b = scene.bodies[i];
       dart::dynamics::BodyNode* node = nullptr;
@@ -162,7 +193,7 @@ class DartEngine final : public Engine {
         node = bodies_[i] = add_body(b, scene, i);
       else if (scene.world.contacts)
         node = add_static(b, i);
-      if (scene.world.contacts) add_box(*node, b, mu);
+      if (scene.world.contacts) add_shape(*node, b, material);
     }
   }
 
@@ -201,12 +232,20 @@ class DartEngine final : public Engine {
     return node;
   }
 
-  // The body's box on its node, with the scene's friction when it sets one.
-  void add_box(dart::dynamics::BodyNode& node, const Body& b, const std::optional<double>& mu) {
-    auto shape =
+  // The body's box or sphere on its node, with the scene's friction and restitution when it sets
+  // them (a static body's restitution 1: the contact's product is the moving body's e).
+  void add_shape(dart::dynamics::BodyNode& node, const Body& b, const Material& material) {
+    dart::dynamics::ShapePtr geometry;
+    if (b.shape == Shape::sphere)
+      geometry = std::make_shared<dart::dynamics::SphereShape>(b.radius);
+    else
+      geometry = std::make_shared<dart::dynamics::BoxShape>(2.0 * b.half_extents);
+    auto* shape =
         node.createShapeNodeWith<dart::dynamics::CollisionAspect, dart::dynamics::DynamicsAspect>(
-            std::make_shared<dart::dynamics::BoxShape>(2.0 * b.half_extents));
-    if (mu) shape->getDynamicsAspect()->setFrictionCoeff(*mu);
+            geometry);
+    if (material.friction) shape->getDynamicsAspect()->setFrictionCoeff(*material.friction);
+    if (material.restitution)
+      shape->getDynamicsAspect()->setRestitutionCoeff(b.is_static ? 1.0 : *material.restitution);
   }
 
   dart::dynamics::BodyNode* add_body(const Body& b, const Scene& scene, std::size_t index) {

@@ -67,24 +67,37 @@ bool valid_name(const std::string& name) {
   throw ProtocolError("garbage from the engine: expected " + expected + ", got " + excerpt(got));
 }
 
-// "bounce-law ERP MAX_PUSH velocity|position THRESHOLD DISTANCE DISTANCE_PER_SIZE"
-// (harness/core/bounce_law.hpp): ERP in [0, 1], MAX_PUSH > 0 or "inf", the rest finite and >= 0.
+// "bounce-law ERP MAX_PUSH velocity|position THRESHOLD DISTANCE DISTANCE_PER_SIZE
+// [step-start|after-gravity approach|rebound MAX_REBOUND CFM]" (harness/core/bounce_law.hpp): ERP
+// in [0, 1], MAX_PUSH and MAX_REBOUND > 0 or "inf", the rest finite and >= 0.
 BounceLaw parse_bounce_law(const std::vector<std::string>& k, const std::string& line) {
   const char* form =
-      "'bounce-law ERP MAX_PUSH velocity|position THRESHOLD DISTANCE DISTANCE_PER_SIZE' (ERP in "
-      "[0, 1], MAX_PUSH > 0 or inf, the others >= 0)";
-  if (k.size() != 7 || (k[3] != "velocity" && k[3] != "position")) garbage(form, line);
+      "'bounce-law ERP MAX_PUSH velocity|position THRESHOLD DISTANCE DISTANCE_PER_SIZE "
+      "[step-start|after-gravity approach|rebound MAX_REBOUND CFM]' (ERP in [0, 1], MAX_PUSH and "
+      "MAX_REBOUND > 0 or inf, the others >= 0)";
+  if ((k.size() != 7 && k.size() != 11) || (k[3] != "velocity" && k[3] != "position"))
+    garbage(form, line);
   BounceLaw law;
   law.push_in_position = k[3] == "position";
-  double* numbers[] = {&law.erp, &law.max_push, &law.threshold, &law.contact_distance,
-                       &law.contact_distance_per_size};
-  const std::size_t at[] = {1, 2, 4, 5, 6};
-  for (std::size_t i = 0; i < 5; ++i) {
-    if (i == 1 && k[at[i]] == "inf") continue;  // max_push stays infinite
-    if (!parse_number(k[at[i]], *numbers[i]) || !std::isfinite(*numbers[i]) || *numbers[i] < 0.0)
+  const auto number = [&](const std::string& text, double& out, bool may_be_infinite) {
+    if (may_be_infinite && text == "inf") return;  // stays infinite
+    if (!parse_number(text, out) || !std::isfinite(out) || out < 0.0) garbage(form, line);
+  };
+  number(k[1], law.erp, false);
+  number(k[2], law.max_push, true);
+  number(k[4], law.threshold, false);
+  number(k[5], law.contact_distance, false);
+  number(k[6], law.contact_distance_per_size, false);
+  if (k.size() == 11) {
+    if ((k[7] != "step-start" && k[7] != "after-gravity") ||
+        (k[8] != "approach" && k[8] != "rebound"))
       garbage(form, line);
+    law.free_approach = k[7] == "after-gravity";
+    law.threshold_on_rebound = k[8] == "rebound";
+    number(k[9], law.max_rebound, true);
+    number(k[10], law.cfm, false);
   }
-  if (law.erp > 1.0 || !(law.max_push > 0.0)) garbage(form, line);
+  if (law.erp > 1.0 || !(law.max_push > 0.0) || !(law.max_rebound > 0.0)) garbage(form, line);
   return law;
 }
 

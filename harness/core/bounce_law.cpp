@@ -21,13 +21,30 @@ std::string contact_distance_text(const BounceLaw& law) {
   return text;
 }
 
+std::string restitution_text(const BounceLaw& law) {
+  std::string text = law.free_approach
+                         ? "restitution of the approach speed after the step's gravity"
+                         : "restitution of the step-start approach speed";
+  if (law.threshold > 0.0)
+    text += printf_string(
+        law.threshold_on_rebound ? ", when the rebound exceeds %.6g m/s" : " above %.6g m/s",
+        law.threshold);
+  if (std::isfinite(law.max_rebound))
+    text += printf_string(", capped at %.6g m/s", law.max_rebound);
+  return text;
+}
+
+std::string cfm_text(const BounceLaw& law) {
+  return printf_string("constraint force mixing %.6g of the row's diagonal entry", law.cfm);
+}
+
 std::string describe(const BounceLaw& law) {
-  std::string text = "restitution of the step-start approach speed";
-  if (law.threshold > 0.0) text += printf_string(" above %.6g m/s", law.threshold);
+  std::string text = restitution_text(law);
   if (law.erp > 0.0) text += ", " + push_text(law);
   if (law.contact_distance > 0.0 || law.contact_distance_per_size > 0.0)
     text += ", " + contact_distance_text(law);
   if (law.touching) text += ", a touch (gap 0) is a contact";
+  if (law.cfm > 0.0) text += ", " + cfm_text(law);
   return text;
 }
 

@@ -8,12 +8,17 @@
 // in it) and v the normal velocity then (negative: approaching), while gap < contact distance
 // (or gap <= 0 for an engine whose touching pairs are contacts):
 //   v_free = v - g*h                                  (this step's gravity)
-//   rest   = e*(-v)  when -v > threshold, else 0      (restitution of the step-start approach)
+//   rest   = e*(-v)  when -v > threshold, else 0      (restitution of the step-start approach;
+//            of -v_free for an engine that takes its approach after the step's gravity, and
+//            compared with the threshold as e*(-v_free) for one that thresholds the rebound;
+//            at most max_rebound)
 //   gap >= 0: target = rest - gap/h                   (speculative: may close the gap this step)
 //   gap <  0: push = min(erp*d/h, max_push)           (push-out of the depth)
 //             target = max(push, rest), or with the push in position: target = rest and the body
 //             moves h*push more (split impulse)
-//   v     <- max(v_free, target)                      (the contact only pushes)
+//   v     <- max(v_free, (cfm*v_free + target)/(1 + cfm))
+//            (the contact only pushes; a regularised row, solved against (1 + cfm) times its
+//            diagonal entry, stops 1/(1 + cfm) of the way from v_free to its target)
 // and then x += h*v. Out of contact the sphere flies as semi-implicit Euler.
 #pragma once
 
@@ -36,6 +41,13 @@ struct BounceLaw {
   // A gap of exactly 0 (a body resting on the floor's top) is a contact too, not only an overlap
   // (ours: its contacts include touching pairs, so a resting body is held from its first step).
   bool touching = false;
+  // Restitution of the approach after this step's gravity, -v_free (DART: its LCP's relative
+  // velocity is read after the unconstrained velocity update), not of the step-start approach.
+  bool free_approach = false;
+  // The threshold holds the rebound e*approach, not the approach (DART's bouncing threshold).
+  bool threshold_on_rebound = false;
+  double max_rebound = std::numeric_limits<double>::infinity();  // m/s: the restitution's cap
+  double cfm = 0.0;  // constraint force mixing relative to the contact row's diagonal entry
 };
 
 // The ideal member: restitution of the step-start approach, no push-out, no threshold.
@@ -45,9 +57,13 @@ inline constexpr BounceLaw kIdealBounce{};
 // members set.
 std::string describe(const BounceLaw& law);
 
-// Its push-out ("push-out 0.2*depth/h capped at 0.3 m/s") and speculative contact distance
-// ("speculative contact within 0.02 x the bounding half diagonal"), as describe writes them.
+// Its restitution rule ("restitution of the step-start approach speed above 0.1 m/s"), push-out
+// ("push-out 0.2*depth/h capped at 0.3 m/s"), speculative contact distance ("speculative contact
+// within 0.02 x the bounding half diagonal") and regularisation ("constraint force mixing 1e-05 of
+// the row's diagonal entry"), as describe writes them.
+std::string restitution_text(const BounceLaw& law);
 std::string push_text(const BounceLaw& law);
 std::string contact_distance_text(const BounceLaw& law);
+std::string cfm_text(const BounceLaw& law);
 
 }  // namespace dropcheck

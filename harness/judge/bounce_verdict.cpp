@@ -45,14 +45,19 @@ std::vector<std::string> departing_members(const BounceLaw& law, const BounceSet
   if (law.erp > 0.0 &&
       moves({.erp = law.erp, .max_push = law.max_push, .push_in_position = law.push_in_position}))
     out.push_back(push_text(law));
-  if (law.threshold > 0.0 && moves({.threshold = law.threshold}))
-    out.push_back(printf_string("restitution threshold %.6g m/s", law.threshold));
+  if ((law.threshold > 0.0 || law.free_approach || std::isfinite(law.max_rebound)) &&
+      moves({.threshold = law.threshold,
+             .free_approach = law.free_approach,
+             .threshold_on_rebound = law.threshold_on_rebound,
+             .max_rebound = law.max_rebound}))
+    out.push_back(restitution_text(law));
   if ((law.contact_distance > 0.0 || law.contact_distance_per_size > 0.0) &&
       moves({.contact_distance = law.contact_distance,
              .contact_distance_per_size = law.contact_distance_per_size}))
     out.push_back(contact_distance_text(law) +
                   printf_string(" (%.4g m here)",
                                 law.contact_distance + law.contact_distance_per_size * s.size));
+  if (law.cfm > 0.0 && moves({.cfm = law.cfm})) out.push_back(cfm_text(law));
   return out;
 }
 

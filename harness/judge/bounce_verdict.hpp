@@ -45,7 +45,8 @@ struct BounceVerdict {
   bool energy_rises = false;   // an apex above the height before it (h0 for the first)
   double law_to_ideal = 0.0;   // m: the largest gap difference between its law and the ideal's
   // The members of its law that move its path off the ideal one (each alone, the other removed):
-  // "push-out 0.2*depth/h capped at 0.3 m/s", "restitution threshold 1 m/s".
+  // "push-out 0.2*depth/h capped at 0.3 m/s", "restitution of the step-start approach speed above
+  // 1 m/s".
   std::vector<std::string> causes;
   // "hits at step 27 at 4.41 m/s, leaves at 2.205 m/s, apexes 0.2378, 0.05942, 0.01482 m; its law
   // (restitution of ...): the same to 2e-08 m; the ideal law's apexes ...; continuous ...", with

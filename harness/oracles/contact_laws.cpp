@@ -254,14 +254,17 @@ class BounceStepper {
     const double v_free = v_ - g_ * h_;
     double moved = 0.0;  // a push in position
     if (in_contact(law_, gap_, reach_)) {
-      const double rest = -v_ > law_.threshold ? e_ * -v_ : 0.0;
+      const double approach = law_.free_approach ? -v_free : -v_;
+      const double rebound = e_ * approach;
+      const bool restitutes = (law_.threshold_on_rebound ? rebound : approach) > law_.threshold;
+      const double rest = restitutes ? std::min(rebound, law_.max_rebound) : 0.0;
       double target = rest - gap_ / h_;  // speculative: the gap may close this step
       if (gap_ < 0.0) {
         const double push = std::min(law_.erp * -gap_ / h_, law_.max_push);
         target = law_.push_in_position ? rest : std::max(push, rest);
         if (law_.push_in_position) moved = h_ * push;
       }
-      v_ = std::max(v_free, target);
+      v_ = std::max(v_free, (law_.cfm * v_free + target) / (1.0 + law_.cfm));
     } else {
       v_ = v_free;
     }

@@ -8,6 +8,7 @@
 
 #include "adapter_test_support.hpp"
 #include "harness/core/registry.hpp"
+#include "harness/judge/bounce_verdict.hpp"
 #include "harness/judge/landing_expectation.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/oracles/landing.hpp"
@@ -107,11 +108,12 @@ TEST_CASE("DART's slides follow the box pyramid's clamp law under its relative C
   }
 }
 
-TEST_CASE("DART runs the slides and the landings and says why it runs no stack",
+TEST_CASE("DART runs the slides, the landings and the bounces and says why it runs no stack",
           "[dart][contact]") {
   ENGINE_OR_RETURN(engine, "dart");
-  for (const char* name : {"slide_stop", "incline_slide", "incline_hold", "slide_diagonal",
-                           "drop_on_floor", "drop_on_floor_undamped"})
+  for (const char* name :
+       {"slide_stop", "incline_slide", "incline_hold", "slide_diagonal", "drop_on_floor",
+        "drop_on_floor_undamped", "bounce_e01", "bounce_e05", "bounce_e09"})
     CHECK(engine->cannot_run(scenario(name)).empty());
   CHECK_THAT(engine->cannot_run(scenario("stack_rest")), Catch::Contains("a stack"));
 }
@@ -145,4 +147,33 @@ TEST_CASE("A DART landing climbs out of the floor at its capped push-out, step b
       CHECK(off_climb(run, setup, *landing_expectation(wrong, scene, h, setup).climb) > 2e-3);
     }
   }
+}
+
+TEST_CASE("DART's bounce follows its law: the rebound of the post-gravity approach, regularised",
+          "[dart][contact]") {
+  ENGINE_OR_RETURN(engine, "dart");
+  // The impact step starts 4.41 m/s down; its LCP sees the approach after that step's gravity,
+  // 4.41 + g*h, asks for e times it and, regularised, stops 1/(1 + cfm) of the way there from the
+  // free velocity: (e - cfm)*(4.41 + g*h)/(1 + cfm). The apexes are those of that law stepped by
+  // hand (a separate script, not bounce_path). Measured off the law at 1/60: 3.3e-16, 6.0e-16 and
+  // 2.7e-15 m. At e = 0.1 the sphere leaves from 7 cm deep at 0.457 m/s and never clears the floor:
+  // it climbs out at the push-out's cap, so there is no apex.
+  const double approach = 4.41 + 9.8 / 60.0;
+  const auto out = [&](double e) { return (e - 1e-5) * approach / (1.0 + 1e-5); };
+  check_bounces(*engine, {{"bounce_e01", 1e-15, out(0.1), -2.0},
+                          {"bounce_e05", 1e-15, out(0.5), 0.2568173268267318},
+                          {"bounce_e09", 3e-15, out(0.9), 0.8698401243765337}});
+  // Each member matters: the step-start approach, or no regularisation, or e 2 % off, leaves it.
+  const Scene scene = scenario("bounce_e05");
+  const double h = scene.timestep.seconds;
+  const Trajectory run = run_scene(*engine, scene, h);
+  const BounceSetup setup = bounce_setups(scene).at(0);
+  BounceLaw start = engine->info().bounce_law, rigid = start;
+  start.free_approach = false;
+  rigid.cfm = 0.0;
+  CHECK_FALSE(judge_bounce(run, setup, start, h).follows);
+  CHECK_FALSE(judge_bounce(run, setup, rigid, h).follows);
+  BounceSetup off = setup;
+  off.e *= 1.02;
+  CHECK_FALSE(judge_bounce(run, off, engine->info().bounce_law, h).follows);
 }

@@ -144,10 +144,26 @@ TEST_CASE("an engine that collides materials and spheres announces them with its
   CHECK(info.bounce_law.threshold == 0.5);
   CHECK(info.bounce_law.contact_distance_per_size == 0.02);
   CHECK(protocol_refusal(handshake({"bounce-law 0 inf position 0 0 0"})) == "(accepted)");
-  for (const char* bad : {"bounce-law 1.5 inf velocity 0 0 0", "bounce-law 0.2 0 velocity 0 0 0",
-                          "bounce-law 0.2 inf sideways 0 0 0", "bounce-law 0.2 inf velocity -1 0 0",
-                          "bounce-law 0.2 inf velocity nan 0 0", "bounce-law 0.2 inf velocity 0 0",
-                          "friction-model pyramid"})
+  // DART's law, with the four optional members.
+  EngineInfo dart;
+  HandshakeReader dart_reader(dart, false, {"ours"});
+  for (const std::string& line :
+       handshake({"capabilities contacts restitution spheres",
+                  "bounce-law 0.01 0.001 velocity 0.1 0 0 after-gravity rebound 100 1e-05"}))
+    dart_reader.take(line);
+  CHECK(dart.bounce_law.free_approach);
+  CHECK(dart.bounce_law.threshold_on_rebound);
+  CHECK(dart.bounce_law.max_rebound == 100.0);
+  CHECK(dart.bounce_law.cfm == 1e-5);
+  for (const char* bad :
+       {"bounce-law 1.5 inf velocity 0 0 0", "bounce-law 0.2 0 velocity 0 0 0",
+        "bounce-law 0.2 inf sideways 0 0 0", "bounce-law 0.2 inf velocity -1 0 0",
+        "bounce-law 0.2 inf velocity nan 0 0", "bounce-law 0.2 inf velocity 0 0",
+        "bounce-law 0 inf velocity 0 0 0 after-gravity rebound 100",
+        "bounce-law 0 inf velocity 0 0 0 late rebound 100 0",
+        "bounce-law 0 inf velocity 0 0 0 step-start speed 100 0",
+        "bounce-law 0 inf velocity 0 0 0 step-start approach 0 0",
+        "bounce-law 0 inf velocity 0 0 0 step-start approach inf -1", "friction-model pyramid"})
     CHECK_THAT(protocol_refusal(handshake({bad})), Contains("garbage from the engine"));
   CHECK_THAT(protocol_refusal(handshake({"capabilities restitution spheres"})),
              Contains("without 'contacts'"));

@@ -223,6 +223,32 @@ TEST_CASE(
   CHECK(s.gap[28] == Approx(s.gap[27] + kH * 2.205 + 0.2 * -s.gap[27]).epsilon(1e-12));
 }
 
+TEST_CASE(
+    "bounce paths: restitution of the post-gravity approach, a rebound threshold, a cap and a "
+    "regularised row",
+    "[contact][reference]") {
+  // After the 1 m fall the impact step starts at -4.41 m/s; with the approach taken after its
+  // gravity the rebound is e*(4.41 + g*h), and a row regularised by cfm stops 1/(1 + cfm) of the
+  // way there from v_free = -(4.41 + g*h).
+  const double in = 4.41 + kG * kH;
+  const BouncePath after = bounce_path({.free_approach = true}, 1.0, 0.5, kG, kH, 28);
+  CHECK(after.v[28] == Approx(0.5 * in).epsilon(1e-12));
+  const double cfm = 1e-3;
+  const BouncePath soft = bounce_path({.free_approach = true, .cfm = cfm}, 1.0, 0.5, kG, kH, 28);
+  CHECK(soft.v[28] == Approx((cfm * -in + 0.5 * in) / (1.0 + cfm)).epsilon(1e-12));
+  // A threshold of 0.5 m/s on the rebound stops e = 0.1's 0.457 m/s; on the approach it does not.
+  const BouncePath on_rebound =
+      bounce_path({.threshold = 0.5, .free_approach = true, .threshold_on_rebound = true}, 1.0, 0.1,
+                  kG, kH, 28);
+  const BouncePath on_approach =
+      bounce_path({.threshold = 0.5, .free_approach = true}, 1.0, 0.1, kG, kH, 28);
+  CHECK(on_rebound.v[28] == 0.0);
+  CHECK(on_approach.v[28] == Approx(0.1 * in).epsilon(1e-12));
+  // A cap of 1 m/s holds e = 0.5's rebound to it.
+  const BouncePath capped = bounce_path({.max_rebound = 1.0}, 1.0, 0.5, kG, kH, 28);
+  CHECK(capped.v[28] == 1.0);
+}
+
 TEST_CASE("a bounce turned by a speculative contact is observed at the step before the push",
           "[contact][reference]") {
   // Dropped 0.96 m with Bullet's members (r = 0.5 m: contact within 0.0173 m): step 26 ends
