@@ -110,6 +110,34 @@ BounceVerdict judge_paths(const BouncePath& seen, const BouncePath& predicted, c
   return v;
 }
 
+// The neighbouring members of a departing run's bounce law, tried in turn: the first whose path
+// the run follows names the cause (BounceVerdict::instead).
+void name_bounce_neighbour(BounceVerdict& v, const BouncePath& seen, const BounceSetup& s,
+                           const BounceLaw& law, double h) {
+  const auto steps = static_cast<std::int64_t>(seen.gap.size()) - 1;
+  const auto take = [&](const BounceLaw& member, double e, const std::string& text) {
+    if (!v.instead.empty()) return;
+    const PathGap g = path_gap(seen, bounce_path(member, s.h0, e, s.g, h, steps, s.size));
+    if (g.worst > tolerance::kBouncePath) return;
+    v.instead = text;
+    v.instead_off = g.worst;
+  };
+  take(kIdealBounce, s.e, "the ideal law (" + describe(kIdealBounce) + ")");
+  take(law, 2.0 * s.e,
+       printf_string("its law with the restitution applied twice (a rebound of 2e = %.4g of the "
+                     "approach)",
+                     2.0 * s.e));
+  BounceLaw other = law;
+  other.free_approach = !law.free_approach;
+  take(other, s.e,
+       law.free_approach ? "its law with the restitution of the step-start approach"
+                         : "its law with the restitution of the approach after the step's gravity "
+                           "(applied one step late)");
+  take({.erp = 1.0, .push_in_position = true, .touching = true}, s.e,
+       "the law that snaps the body to the surface at contact (" +
+           describe(BounceLaw{.erp = 1.0, .push_in_position = true, .touching = true}) + ")");
+}
+
 }  // namespace
 
 BounceVerdict judge_bounce(const Trajectory& run, const BounceSetup& s, const BounceLaw& law,
@@ -140,6 +168,7 @@ BounceVerdict judge_bounce(const Trajectory& run, const BounceSetup& s, const Bo
     v.causes = departing_members(law, s, h, bounce_path(kIdealBounce, s.h0, s.e, s.g, h, steps));
     if (v.causes.empty()) v.causes.push_back("its members together (none alone)");
   }
+  if (!v.follows) name_bounce_neighbour(v, seen, s, law, h);
   return v;
 }
 
@@ -212,7 +241,14 @@ std::string BounceVerdict::sentence() const {
                         : printf_string("; one step from its own state: %.3g m at step %lld, "
                                         "%.3g m/s)",
                                         step_gap, static_cast<long long>(step_worst), step_speed));
-  if (!follows && follows_ideal) text += ": it follows the ideal law instead";
+  if (!follows && !instead.empty())
+    text += ": it follows " + instead + printf_string(" instead (to %.2g m)", instead_off);
+  else if (!follows && !solver)
+    text +=
+        ": UNEXPLAINED, no neighbouring member fits (the ideal law, the restitution applied twice, "
+        "the approach read on the other side of the step's gravity, the body snapped to the "
+        "surface); `dropcheck identify SCENE --engine E` lays its run beside every declared "
+        "bounce law";
   if (law_to_ideal > tolerance::kBouncePath) {
     text += printf_string("; its law is %.3g m off the ideal law (apexes ", law_to_ideal) +
             apex_text(ideal.apexes) + ")";

@@ -42,8 +42,13 @@ struct BounceVerdict {
   std::int64_t decided_step = -1;
   double run_gap_there = 0.0, law_gap_there = 0.0;  // m
   bool follows_ideal = false;  // the run is within that tolerance of the ideal law too
-  bool energy_rises = false;   // an apex above the height before it (h0 for the first)
-  double law_to_ideal = 0.0;   // m: the largest gap difference between its law and the ideal's
+  // When it departs: the neighbouring member of its law whose path it follows instead (the ideal
+  // law, the restitution applied twice, the approach read before or after the step's gravity, the
+  // body snapped to the surface), and how close; empty if none fits.
+  std::string instead;
+  double instead_off = 0.0;   // m
+  bool energy_rises = false;  // an apex above the height before it (h0 for the first)
+  double law_to_ideal = 0.0;  // m: the largest gap difference between its law and the ideal's
   // The members of its law that move its path off the ideal one (each alone, the other removed):
   // "push-out 0.2*depth/h capped at 0.3 m/s", "restitution of the step-start approach speed above
   // 1 m/s".

@@ -62,9 +62,41 @@ LawFit fit_path(const SlidePath& run, const SlideObservation& seen, const SlideP
 }
 
 LawFit fit(const SlidePath& run, const SlideObservation& seen, const SlideSetup& s,
-           FrictionModel model, double h, PositionUpdate position, const RelativeCfm& soft) {
+           FrictionModel model, double h, PositionUpdate position, const RelativeCfm& soft,
+           bool after_position = false) {
   const auto steps = static_cast<std::int64_t>(run.s.size()) - 1;
-  return fit_path(run, seen, slide_path(s, model, h, steps, position, soft));
+  return fit_path(run, seen, slide_path(s, model, h, steps, position, soft, after_position));
+}
+
+// The neighbouring members of a departing run's slide law, tried in turn: the first whose path it
+// follows names the cause (SlideVerdict::instead).
+void name_slide_neighbour(SlideVerdict& v, const SlidePath& path, const SlideSetup& s, double h,
+                          PositionUpdate position, const RelativeCfm& soft) {
+  const auto take = [&](const LawFit& f, const std::string& member) {
+    if (!f.follows || !v.instead.empty()) return;
+    v.instead = member;
+    v.instead_off = f.off;
+  };
+  for (FrictionModel other : kFrictionModels)
+    if (other != v.model && exact_slide_angle(other, s.angle)) {
+      take(fit(path, v.seen, s, other, h, position, soft),
+           "the " + std::string(to_string(other)) + "'s clamp law");
+      if (!v.instead.empty() && !v.instead_model) v.instead_model = other;
+    }
+  take(fit(path, v.seen, s, v.model, h, position, soft, true),
+       "its law with the friction resolved after the position update (the position moves with "
+       "the speed before the friction)");
+  if (s.pull != 0.0) {
+    SlideSetup whole = s;
+    whole.g = std::hypot(s.g, s.pull);
+    take(fit(path, v.seen, whole, v.model, h, position, soft),
+         printf_string("its law with the grip mu*|g| = %.6g m/s^2: the normal force ignores the "
+                       "incline (mu*g*cos(theta) = %.6g m/s^2)",
+                       s.mu * whole.g, s.mu * s.g));
+  }
+  if (position != PositionUpdate::Explicit)
+    take(fit(path, v.seen, s, v.model, h, PositionUpdate::Explicit, soft),
+         "its law with the position moved by the step-start speed (explicit)");
 }
 
 // The clamp law's closed forms of the verdict, for a path of `steps` steps.
@@ -136,10 +168,7 @@ SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& s, FrictionMod
   v.follows =
       v.off_steps <= tolerance::kSlideDistance && v.off_steps_speed <= tolerance::kStepSpeed;
   if (v.follows) return v;
-  for (FrictionModel other : kFrictionModels)
-    if (other != model && exact_slide_angle(other, s.angle) &&
-        fit(path, v.seen, s, other, h, position, soft).follows)
-      v.instead = other;
+  name_slide_neighbour(v, path, s, h, position, soft);
   return v;
 }
 
@@ -203,8 +232,14 @@ std::string SlideVerdict::sentence() const {
   if (first_off >= 0)
     text += printf_string(" at step %lld (first over %.2g m)", static_cast<long long>(first_off),
                           tolerance::kSlideDistance);
-  if (instead) text += std::string(": it follows the ") + to_string(*instead) + "'s law instead";
-  return text;
+  if (!instead.empty())
+    return text + ": it follows " + instead + printf_string(" instead (to %.2g m)", instead_off);
+  if (solver) return text;
+  return text +
+         ": UNEXPLAINED, no neighbouring member fits (another friction model, the friction after "
+         "the position update, the grip of the whole gravity, an explicit position update); "
+         "`dropcheck identify SCENE --engine E` names the friction model and position update "
+         "its run fits best";
 }
 
 }  // namespace dropcheck

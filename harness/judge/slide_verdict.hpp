@@ -39,12 +39,17 @@ struct SlideVerdict {
   // When the path leaves its law's: the largest distance between the run and its law one step
   // ahead of the run's own state (slide_steps). A float engine's path drifts from the law's in
   // double by its rounding while every step follows the law.
-  double off_steps = -1.0;               // m (-1: not needed, the path follows)
-  double off_steps_speed = 0.0;          // m/s: the same for the speed along the slip
-  std::optional<FrictionModel> instead;  // another model whose law the run follows, if any
+  double off_steps = -1.0;       // m (-1: not needed, the path follows)
+  double off_steps_speed = 0.0;  // m/s: the same for the speed along the slip
+  // The neighbouring member of the slide law the run follows instead, when it departs: another
+  // friction model ("the cone's clamp law"), the friction resolved after the position update, the
+  // grip of the whole gravity on an incline, an explicit position update; empty if none fits.
+  std::optional<FrictionModel> instead_model;  // when that member is another friction model
+  std::string instead;
+  double instead_off = 0.0;  // m: the run's largest distance from it
   // "stops at step 62, 2.509472 m; its box pyramid's clamp law: stops at step 62, 2.509472 m
-  // (continuous: 1.0204 s, 2.551 m), 9.1e-12 m off it", with " DEPARTS: it follows the cone's law
-  // instead" when it does not.
+  // (continuous: 1.0204 s, 2.551 m), 9.1e-12 m off it", with " DEPARTS at step 1 (...): it
+  // follows the cone's clamp law instead (to 1e-15 m)" when it does not.
   std::string sentence() const;
 };
 

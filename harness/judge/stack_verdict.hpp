@@ -28,7 +28,9 @@ struct StackBodyVerdict {
   bool above_floor = false;  // its centre ends above the floor's top (finite)
   // Some contact of the column has a residual over kUnheldResidual (`limiting`): the solver is not
   // expected to hold the load, a named limit for every body of the column. It waives the sink,
-  // drift and stillness bounds, not the floor: a squeezed-out body must still end above it.
+  // drift and stillness bounds, not the floor: a squeezed-out body must still end above it. Or an
+  // exact law sinks a box past its face contact (StackPrediction::past_faces): the same limit,
+  // the floor waived where the law ends the body below it too.
   bool unheld = false;
   StackPrediction limiting;
   bool holds() const { return sink_ok && drift_ok && still_ok; }

@@ -128,11 +128,11 @@ namespace {
 // One step of the clamp law, the friction taking at most grip_h off the slip; a step that stops
 // the slip leaves `stick` of it.
 void slide_step(const SlideSetup& setup, double grip_h, double stick, double h,
-                PositionUpdate position, double& s, double& v) {
+                PositionUpdate position, bool after_position, double& s, double& v) {
   const double v_start = v;
   const double v_free = v + setup.pull * h;
   v = std::abs(v_free) <= grip_h ? stick * v_free : v_free - std::copysign(grip_h, v_free);
-  s += h * (position == PositionUpdate::Explicit ? v_start : v);
+  s += h * (after_position ? v_free : position == PositionUpdate::Explicit ? v_start : v);
 }
 
 // The normal side of the law over steps 0..steps: each step's grip*h, scaled by that step's normal
@@ -160,13 +160,15 @@ NormalSide normal_side(const SlideSetup& setup, FrictionModel model, double h, s
 }  // namespace
 
 SlidePath slide_path(const SlideSetup& setup, FrictionModel model, double h, std::int64_t steps,
-                     PositionUpdate position, const RelativeCfm& soft) {
+                     PositionUpdate position, const RelativeCfm& soft,
+                     bool friction_after_position) {
   const NormalSide normal = normal_side(
       setup, model, h, static_cast<std::size_t>(std::max<std::int64_t>(steps, 0)), soft);
   SlidePath p;
   double s = 0.0, v = setup.v0;
   for (std::size_t n = 0; n < normal.grip_h.size(); ++n) {
-    if (n > 0) slide_step(setup, normal.grip_h[n], normal.stick, h, position, s, v);
+    if (n > 0)
+      slide_step(setup, normal.grip_h[n], normal.stick, h, position, friction_after_position, s, v);
     p.s.push_back(s);
     p.v.push_back(v);
     p.off.push_back(normal.off[n]);
@@ -181,7 +183,7 @@ SlidePath slide_steps(const SlideSetup& setup, FrictionModel model, double h, co
   SlidePath p;
   for (std::size_t n = 0; n < from.s.size(); ++n) {
     double s = n == 0 ? 0.0 : from.s[n - 1], v = n == 0 ? setup.v0 : from.v[n - 1];
-    if (n > 0) slide_step(setup, normal.grip_h[n], normal.stick, h, position, s, v);
+    if (n > 0) slide_step(setup, normal.grip_h[n], normal.stick, h, position, false, s, v);
     p.s.push_back(s);
     p.v.push_back(v);
     p.off.push_back(normal.off[n]);

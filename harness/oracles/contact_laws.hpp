@@ -93,10 +93,12 @@ struct SlidePath {
 // (Chipmunk: by step n it has moved h*(v0 - v_n) further, h*v0 for a slide that has stopped).
 // Under relative constraint force mixing `soft` (DART: harness/core/relative_cfm.hpp) the grip of
 // each step is scaled by that step's normal impulse, a stopping step leaves cfm/(1 + cfm) of the
-// slip, and off[n] is the sink since step 1.
+// slip, and off[n] is the sink since step 1. With `friction_after_position` (a neighbour no
+// shipped engine declares: an engine that moves its bodies before it resolves their contacts) the
+// position moves with v_free, the speed before the friction.
 SlidePath slide_path(const SlideSetup& setup, FrictionModel model, double h, std::int64_t steps,
                      PositionUpdate position = PositionUpdate::SemiImplicit,
-                     const RelativeCfm& soft = {});
+                     const RelativeCfm& soft = {}, bool friction_after_position = false);
 
 // The law one step ahead of a path (a run's): step n + 1 of the result is the law's step from
 // `from`'s state after step n. A run that rounds differently from the law in double (a float

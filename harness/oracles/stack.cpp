@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "harness/oracles/contact_laws.hpp"
 #include "harness/oracles/landing.hpp"
@@ -43,6 +44,13 @@ bool stackable(const Scene& scene, std::size_t i) {
   return !b.is_static && b.shape == Shape::box && b.velocity == Vec3::Zero() && !pushed(scene, i);
 }
 
+// The normal velocity a unit impulse at a corner (+-c.x, +-c.z from the body's centre, on its top
+// or bottom face) makes there through the body's rotation: with n = y, r x n = (-r_z, 0, r_x).
+double corner_turn(const Body& b, const Vec3& c) {
+  const Vec3 moments = inertia_of(b);
+  return c.z() * c.z() / moments.x() + c.x() * c.x() / moments.z();
+}
+
 }  // namespace
 
 std::vector<StackSetup> stack_setups(const Scene& scene) {
@@ -59,7 +67,8 @@ std::vector<StackSetup> stack_setups(const Scene& scene) {
                  l.floor_top,
                  -g.y(),
                  scene.world.damping_rate,
-                 {{l.body, 1, l.rest_height, first.mass, 0.0, 0.0}}};
+                 {{l.body, 1, l.rest_height, first.mass, 0.0, 0.0,
+                   corner_turn(first, first.half_extents), true, 0.0}}};
     for (;;) {
       const StackLevel& under_level = s.levels.back();
       const Body& under = scene.bodies[under_level.body];
@@ -72,9 +81,13 @@ std::vector<StackSetup> stack_setups(const Scene& scene) {
       }
       if (next < 0) break;
       const Body& b = scene.bodies[static_cast<std::size_t>(next)];
-      s.levels.push_back({static_cast<std::size_t>(next), under_level.level + 1,
-                          under_level.rest_height + under.half_extents.y() + b.half_extents.y(),
-                          b.mass, 0.0, under.mass});
+      const Vec3 corner = b.half_extents.cwiseMin(under.half_extents);
+      s.levels.push_back(
+          {static_cast<std::size_t>(next), under_level.level + 1,
+           under_level.rest_height + under.half_extents.y() + b.half_extents.y(), b.mass, 0.0,
+           under.mass, corner_turn(b, corner) + corner_turn(under, corner),
+           b.position.x() == under.position.x() && b.position.z() == under.position.z(),
+           bottom_of(b) - top_of(under)});
     }
     if (s.levels.size() < 2 || !closed(scene, s)) continue;
     double load = 0.0;  // top down: each body and everything above it
@@ -84,9 +97,109 @@ std::vector<StackSetup> stack_setups(const Scene& scene) {
   return out;
 }
 
+namespace {
+
+// The impulses X_k >= 0 of the contacts found (`found`) that meet every row's target
+// (relative_cfm_column): rows k of M*X = b with M tridiagonal, solved with the contacts whose
+// impulse would pull left out, one at a time (the most negative first) until none pulls.
+std::vector<double> column_impulses(const std::vector<double>& mass,
+                                    const std::vector<double>& soft, const std::vector<double>& b,
+                                    std::vector<bool> found) {
+  const std::size_t n = mass.size();
+  for (;;) {
+    // M: row k couples X_(k-1), X_k, X_(k+1) through the bodies k - 1 and k it joins. A contact
+    // left out has the row X_k = 0.
+    std::vector<double> lower(n, 0.0), diag(n, 1.0), upper(n, 0.0), rhs(n, 0.0);
+    for (std::size_t k = 0; k < n; ++k) {
+      if (!found[k]) continue;
+      diag[k] = 1.0 / mass[k] + (k > 0 ? 1.0 / mass[k - 1] : 0.0) + soft[k];
+      if (k > 0 && found[k - 1]) lower[k] = -1.0 / mass[k - 1];
+      if (k + 1 < n && found[k + 1]) upper[k] = -1.0 / mass[k];
+      rhs[k] = b[k];
+    }
+    // The Thomas algorithm (M is symmetric and diagonally dominant).
+    for (std::size_t k = 1; k < n; ++k) {
+      const double f = lower[k] / diag[k - 1];
+      diag[k] -= f * upper[k - 1];
+      rhs[k] -= f * rhs[k - 1];
+    }
+    std::vector<double> x(n, 0.0);
+    for (std::size_t k = n; k-- > 0;)
+      x[k] = (rhs[k] - (k + 1 < n ? upper[k] * x[k + 1] : 0.0)) / diag[k];
+    const auto worst = std::min_element(x.begin(), x.end());
+    if (*worst >= 0.0) return x;
+    found[static_cast<std::size_t>(worst - x.begin())] = false;
+  }
+}
+
+}  // namespace
+
+ColumnPath relative_cfm_column(const StackSetup& setup, const RelativeCfm& law, double h,
+                               std::int64_t steps, std::int64_t from) {
+  if (!(law.cfm > 0.0)) throw std::invalid_argument("relative_cfm_column: a law without CFM");
+  const std::size_t n = setup.levels.size();
+  std::vector<double> mass, soft, half;  // half: each box's half height, from the rest heights
+  for (std::size_t k = 0; k < n; ++k) {
+    const StackLevel& l = setup.levels[k];
+    if (!l.centred) throw std::invalid_argument("relative_cfm_column: a level not centred");
+    mass.push_back(l.mass);
+    const double a = 1.0 / l.mass + (l.mass_below > 0.0 ? 1.0 / l.mass_below : 0.0) + l.corner_turn;
+    soft.push_back(law.cfm * a / 4.0);
+    half.push_back(k == 0 ? l.rest_height - setup.floor_top
+                          : l.rest_height - setup.levels[k - 1].rest_height - half[k - 1]);
+  }
+  const double phi = std::exp(-setup.damping_rate * h);
+  std::vector<double> v(n, 0.0), d(n, 0.0), v_free(n), b(n), lo(n, INFINITY), hi(n, -INFINITY);
+  std::vector<bool> found(n);
+  ColumnPath path{std::vector<double>(n, 0.0), std::vector<StillFigures>(n), -1};
+  for (std::size_t k = 0; k < n; ++k) d[k] = -setup.levels[k].gap;  // dropped: above it
+  // Each level's sink below its rest height, and its stillness figures from `from` on.
+  const auto watch = [&](std::int64_t step) {
+    for (std::size_t k = 0; k < n; ++k) {
+      path.sink[k] = d[k] + (k > 0 ? path.sink[k - 1] : 0.0);
+      if (step < from) continue;
+      path.still[k].speed = std::max(path.still[k].speed, std::abs(v[k]));
+      lo[k] = std::min(lo[k], -path.sink[k]);
+      hi[k] = std::max(hi[k], -path.sink[k]);
+      path.still[k].range = hi[k] - lo[k];
+      if (path.past_faces < 0 && d[k] >= half[k]) path.past_faces = step;
+    }
+  };
+  watch(0);
+  for (std::int64_t step = 1; step <= steps; ++step) {
+    for (std::size_t k = 0; k < n; ++k) v_free[k] = phi * (v[k] - setup.g * h);
+    for (std::size_t k = 0; k < n; ++k) {
+      found[k] = d[k] >= 0.0;
+      const double below = k > 0 ? v_free[k - 1] : 0.0;
+      b[k] = std::min(law.erp * d[k] / h, law.max_push) - (v_free[k] - below);
+    }
+    const std::vector<double> x = column_impulses(mass, soft, b, found);
+    for (std::size_t k = 0; k < n; ++k)
+      v[k] = v_free[k] + (x[k] - (k + 1 < n ? x[k + 1] : 0.0)) / mass[k];
+    for (std::size_t k = 0; k < n; ++k) d[k] -= h * (v[k] - (k > 0 ? v[k - 1] : 0.0));
+    watch(step);
+  }
+  return path;
+}
+
+std::string stack_law_text(const EngineInfo& info) {
+  if (info.relative_cfm.cfm > 0.0)
+    return "a centred column stepped exactly under " + describe(info.relative_cfm);
+  return describe(info.stack_law);
+}
+
 StackPrediction predict_stack(const StackSetup& setup, std::size_t level, const EngineInfo& info,
-                              double h) {
+                              double h, std::int64_t steps, std::int64_t from) {
   StackPrediction p;
+  if (info.relative_cfm.cfm > 0.0) {
+    const ColumnPath path = relative_cfm_column(setup, info.relative_cfm, h, steps, from);
+    p.sink = path.sink.at(level);
+    p.still = path.still.at(level);
+    p.past_faces = path.past_faces;
+    p.exact = true;
+    p.offset = static_cast<double>(level + 1) * info.rest_offset;
+    return p;
+  }
   for (std::size_t k = 0; k <= level && k < setup.levels.size(); ++k) {
     const StackLevel& l = setup.levels[k];
     p.sink += contact_sink(info.stack_law, setup.g * l.load, l.mass, l.mass_below, h);

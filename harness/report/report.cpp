@@ -61,8 +61,10 @@ std::string summary(const ReportInput& in) {
          "section), bounce law (the same at a bounce: the engines' bounce laws differ, as the "
          "scene's "
          "bounce table says), UNEXPLAINED (a residual beyond rounding: look at it). Error: max "
-         "|dx| against the closed form, or (*) against the same engine at a fine step where "
-         "there is no closed form.\n\n" +
+         "|dx| against the closed form (on a contact scene the rigid continuous answer: Coulomb's "
+         "stop, apexes e^(2n)*h0, a landing at rest, a stack that stays; how far the engine is "
+         "from the physics, whether or not it follows its own law), or (*) against the same "
+         "engine at a fine step where there is no closed form.\n\n" +
          t.str() + "\n";
 }
 
@@ -96,8 +98,11 @@ std::string method(const ReportInput& in) {
   std::string md = "## How this report is made\n\n";
   md +=
       "- Oracle 1, closed form: the continuous model m*x'' = m*g + F - k*m*x' (+ springs) "
-      "solved exactly (harness/oracles/analytic.hpp); absent with contacts or a spring with a rest "
-      "length.\n";
+      "solved exactly (harness/oracles/analytic.hpp); with contacts, the rigid answer of each "
+      "body's role (harness/oracles/contact_closed_form.hpp: a slide under Coulomb's cone, a "
+      "bounce with apexes e^(2n)*h0, a landing that stops on the floor, a stack that stays), so "
+      "that each engine's error is its distance from the physics beside whether it follows its own "
+      "law; absent for a body that turns or has no such role, or a spring with a rest length.\n";
   md +=
       "- Oracle 2, own discrete law: each engine's declared update order iterated in long "
       "double (harness/oracles/discrete_law.hpp); free flight only. Departing from it beyond "

@@ -59,10 +59,10 @@ std::string slide_section(const SceneEvaluation& se) {
              v.exact ? stop_cell(v.solver ? v.clamp_seen : v.law_seen) : kNone,
              v.exact ? closed_form_cell(v) : kNone,
              v.exact ? printf_string("%.2g", v.off_law) : kNone,
-             !v.exact    ? "not judged: " + v.not_judged
-             : v.follows ? "yes"
-             : v.instead ? std::string("**NO**: the ") + to_string(*v.instead) + "'s law"
-                         : std::string("**NO**")});
+             !v.exact             ? "not judged: " + v.not_judged
+             : v.follows          ? "yes"
+             : !v.instead.empty() ? "**NO**: " + v.instead
+                                  : std::string("**NO**")});
     }
   }
   return "#### Slides at h = " + se.scene.timestep.text +
@@ -106,10 +106,10 @@ std::string bounce_section(const SceneEvaluation& se) {
              apex_text(v.seen.apexes), apex_text(v.predicted.apexes), apex_text(v.ideal.apexes),
              printf_string("%.2g", v.worst_gap), why,
              !v.not_judged.empty() ? "not judged: " + v.not_judged
-             : v.follows           ? "yes"
-             : v.follows_ideal
-                 ? std::string("**NO**: the ideal law's path")
-                 : printf_string("**NO**: step %lld", static_cast<long long>(v.first_step))});
+             : v.follows
+                 ? "yes"
+                 : printf_string("**NO**: step %lld", static_cast<long long>(v.first_step)) +
+                       (v.instead.empty() ? "" : ", " + v.instead)});
     }
   }
   return "#### Bounces at h = " + se.scene.timestep.text +
@@ -145,7 +145,7 @@ std::string stack_section(const SceneEvaluation& se) {
                printf_string("%.4g", v.predicted.sink), printf_string("%.4g", v.predicted.offset),
                mark(v.drift_ok, printf_string("%.2g", v.drift)),
                mark(v.still_ok, printf_string("%.2g", v.still.speed)),
-               mark(v.still_ok, printf_string("%.2g", v.still.range)), describe(ev.info.stack_law),
+               mark(v.still_ok, printf_string("%.2g", v.still.range)), stack_law_text(ev.info),
                v.holds()                   ? "yes"
                : v.unheld && v.above_floor ? "no: " + v.limit_text() + " (a limit)"
                : v.unheld                  ? std::string("**NO**: through the floor")

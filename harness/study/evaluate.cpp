@@ -10,6 +10,7 @@
 #include "harness/core/trajectory_hash.hpp"
 #include "harness/judge/own_law.hpp"
 #include "harness/oracles/analytic.hpp"
+#include "harness/oracles/contact_closed_form.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
 #include "harness/run/runner.hpp"
@@ -29,7 +30,7 @@ class References {
  public:
   References(const Scene& scene, const std::vector<Timestep>& sweep)
       : scene_(scene), sweep_(sweep) {
-    for (const Timestep& h : sweep) analytic_.push_back(analytic_trajectory(scene, h.seconds));
+    for (const Timestep& h : sweep) analytic_.push_back(closed_form_trajectory(scene, h.seconds));
   }
   // Oracle 1 at sweep step i (nullopt without a closed form).
   const std::optional<Trajectory>& analytic(std::size_t i) const { return analytic_[i]; }
@@ -218,14 +219,14 @@ SceneEvaluation prepare(const Scene& scene, const EvaluateOptions& options) {
   SceneEvaluation se(scene);
   se.sweep = sorted_sweep(scene);
   se.default_index = default_index(se.sweep, scene);
-  se.no_analytic = analytic_unavailable(scene);
+  se.no_analytic = closed_form_unavailable(scene);
   se.uses_law = !scene.world.contacts;
   if (!se.no_analytic.empty()) {
     const std::optional<Timestep> fine = fine_step(scene, se.sweep.back(), options.fine_factor);
     se.uses_fine = fine.has_value();
     if (fine) se.fine_step = *fine;
   }
-  se.analytic = analytic_trajectory(scene, scene.timestep.seconds);
+  se.analytic = closed_form_trajectory(scene, scene.timestep.seconds);
   return se;
 }
 

@@ -3,11 +3,15 @@
 // ours/physics.hpp behind the unchanged adapter would:
 //   none                      the step of ours/physics.hpp (ApplyPhysicsWithCollisions)
 //   friction_after_position   the positions move before the contacts are resolved
-//   restitution_twice         the restitution impulse applied twice (e*(1 + e) of the approach)
+//   restitution_twice         the rebound's impulse applied twice (2e of the approach)
+//   grip_whole_gravity        the friction bounded by mu*m*|g| on an incline, not mu*m*g*cos(theta)
+//                             (its coefficient scaled by |g|/g_n: the normal force ignores the
+//                             incline)
 //   turned_through_centre     a turned box's impulse through its centre (its arm forgotten)
 //   turned_before_contact     the orientation turned by the angular velocity before the contacts
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -21,6 +25,7 @@ enum class ContactBug {
   none,
   friction_after_position,
   restitution_twice,
+  grip_whole_gravity,
   turned_through_centre,
   turned_before_contact,
 };
@@ -39,6 +44,8 @@ class BuggyContactOurs final : public Engine {
     world_.angularDrag = angular_decay_per_step(scene, h);
     world_.collisions = scene.world.contacts;
     world_.friction = scene_material(scene).friction.value_or(0.0);
+    if (bug_ == ContactBug::grip_whole_gravity)
+      world_.friction *= scene.world.gravity.norm() / std::abs(scene.world.gravity.y());
     world_.restitution = scene_material(scene).restitution.value_or(0.0);
     models_.assign(scene.bodies.size(), ours::Model<double>{});
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {

@@ -177,17 +177,27 @@ TEST_CASE("The guard sees contact: friction after the position update and a doub
   // The double without a bug is ours' step: the tier passes on both scenes.
   CHECK(physics("slide_stop", ContactBug::none).verdict == TierVerdict::passed);
   CHECK(physics("bounce_e05", ContactBug::none).verdict == TierVerdict::passed);
+  CHECK(physics("incline_slide", ContactBug::none).verdict == TierVerdict::passed);
   const TierResult slide = physics("slide_stop", ContactBug::friction_after_position);
   const TierResult bounce = physics("bounce_e05", ContactBug::restitution_twice);
+  const TierResult incline = physics("incline_slide", ContactBug::grip_whole_gravity);
   std::cout << "What `ctest -L regression` says about the contact bugs:\n  " << slide.message
-            << "\n  " << bounce.message << "\n";
+            << "\n  " << bounce.message << "\n  " << incline.message << "\n";
+  // Each names its first departing step and the neighbouring member it follows instead.
   REQUIRE(slide.verdict == TierVerdict::failed);
   CHECK_THAT(slide.message, Catch::StartsWith("slide_stop / ours-f64 / physics: contact: slide") &&
-                                Catch::Contains("DEPARTS"));
+                                Catch::Contains("DEPARTS at step 1 ") &&
+                                Catch::Contains("the friction resolved after the position update"));
   REQUIRE(bounce.verdict == TierVerdict::failed);
   CHECK_THAT(bounce.message,
              Catch::StartsWith("bounce_e05 / ours-f64 / physics: contact: bounce") &&
-                 Catch::Contains("DEPARTS at step"));
+                 Catch::Contains("DEPARTS at step 28 ") &&
+                 Catch::Contains("the restitution applied twice (a rebound of 2e = 1 of"));
+  REQUIRE(incline.verdict == TierVerdict::failed);
+  CHECK_THAT(incline.message,
+             Catch::StartsWith("incline_slide / ours-f64 / physics: contact: slide") &&
+                 Catch::Contains("DEPARTS at step 1 ") &&
+                 Catch::Contains("the normal force ignores the incline"));
 }
 
 TEST_CASE("The guard sees a tumbling landing: a turned box's arm forgotten, its turn misplaced",

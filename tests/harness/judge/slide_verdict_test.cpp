@@ -63,12 +63,14 @@ TEST_CASE("a slide following its model's clamp law passes; another model's is na
   const SlideVerdict wrong = judge_slide(clamp_run(scene, slides[0], FrictionModel::cone),
                                          slides[0], FrictionModel::box_pyramid, h);
   CHECK_FALSE(wrong.follows);
-  REQUIRE(wrong.instead.has_value());
-  CHECK(*wrong.instead == FrictionModel::cone);
-  CHECK_THAT(wrong.sentence(),
-             Catch::Contains("stops at step 62, 2.509472 m") &&
-                 Catch::Contains(
-                     "DEPARTS at step 1 (first over 1e-06 m): it follows the cone's law instead"));
+  REQUIRE(wrong.instead_model.has_value());
+  CHECK(*wrong.instead_model == FrictionModel::cone);
+  CHECK(wrong.instead == "the cone's clamp law");
+  CHECK_THAT(
+      wrong.sentence(),
+      Catch::Contains("stops at step 62, 2.509472 m") &&
+          Catch::Contains(
+              "DEPARTS at step 1 (first over 1e-06 m): it follows the cone's clamp law instead"));
   const SlideVerdict sum = judge_slide(clamp_run(scene, slides[0], FrictionModel::sum_pyramid),
                                        slides[0], FrictionModel::sum_pyramid, h);
   CHECK(sum.follows);

@@ -34,7 +34,8 @@ TEST_CASE("a stack that sinks as its law says holds; more, a drift or a jitter f
   ode.stack_law = {.compliance = 1e-10 / 0.2, .points = 4, .sink_bound = 1e-12};
   // The stack as its law says: the medium cube 4.083e-11 m down, the small one 6.125e-11 m.
   std::vector<Vec3> law(scene.bodies.size(), Vec3::Zero());
-  for (std::size_t k = 0; k < 2; ++k) law[s.levels[k].body].y() = -predict_stack(s, k, ode, h).sink;
+  for (std::size_t k = 0; k < 2; ++k)
+    law[s.levels[k].body].y() = -predict_stack(s, k, ode, h, steps).sink;
   CHECK(law[2].y() == Approx(-6.125e-11).epsilon(1e-3));
   for (const StackBodyVerdict& v :
        judge_stack(testing::displaced_run(scene, steps, law), s, ode, h)) {

@@ -69,10 +69,10 @@ TEST_CASE("stack laws: ODE's constraint force mixing and MuJoCo's soft sag", "[c
   EngineInfo ode;
   ode.stack_law = kOdeStack;
   const double bottom = contact_sink(kOdeStack, 100001.0 * kGravity, 1.0, 0.0, kH);
-  CHECK(predict_stack(s, 0, ode, kH).sink == bottom);
-  CHECK(predict_stack(s, 1, ode, kH).sink ==
+  CHECK(predict_stack(s, 0, ode, kH, 300).sink == bottom);
+  CHECK(predict_stack(s, 1, ode, kH, 300).sink ==
         Approx(bottom + contact_sink(kOdeStack, 1e5 * kGravity, 1e5, 1.0, kH)).epsilon(1e-15));
-  CHECK(predict_stack(s, 1, ode, kH).residual == 0.0);  // a direct solver converges
+  CHECK(predict_stack(s, 1, ode, kH, 300).residual == 0.0);  // a direct solver converges
 }
 
 TEST_CASE("an iterative solver's sweeps: the residual L/(L + m) per sweep", "[contact][stack]") {
@@ -86,8 +86,64 @@ TEST_CASE("an iterative solver's sweeps: the residual L/(L + m) per sweep", "[co
   const StackSetup s = stack_setups(testing::shipped("extreme/mass_ratio"))[0];
   EngineInfo box2d;
   box2d.stack_law = {.iterations = 8};
-  const StackPrediction p = predict_stack(s, 1, box2d, kH);
+  const StackPrediction p = predict_stack(s, 1, box2d, kH, 300);
   CHECK(p.residual == Approx(std::pow(1000.0 / 1001.0, 8)));
   CHECK(p.load == 1000.0);
   CHECK(p.mass == 1.0);
+}
+
+TEST_CASE("a relative CFM column: one box as the floor contact's law, two as their closed forms",
+          "[contact][stack]") {
+  const RelativeCfm dart{.cfm = 1e-5, .erp = 0.01, .max_push = 1e-3};
+  Scene scene = testing::shipped("stack_rest");
+  scene.world.damping_rate = 0.0;
+  StackSetup s = stack_setups(scene).at(0);
+  // Corner turning of a cube of side 2a and mass m at its corner (+-a, +-a): 2a^2/(m*(2a)^2/6) =
+  // 3/m; the small cube's corners on the medium one's top, 0.5 m off its axis: 2*0.25/(1.5^2/6).
+  CHECK(s.levels[0].corner_turn == Approx(3.0).epsilon(1e-15));
+  CHECK(s.levels[1].corner_turn == Approx(3.0 + 0.5 / (2.25 / 6.0)).epsilon(1e-15));
+  CHECK(s.levels[1].centred);
+  // One box alone: its corner row's diagonal entry is 4/m, so the row stops 1/(1 + cfm) of the way
+  // from v_free to the push-out: the floor contact's law (harness/core/relative_cfm.hpp) step by
+  // step.
+  StackSetup one = s;
+  one.levels.resize(1);
+  one.levels[0].load = one.levels[0].mass;
+  for (const std::int64_t steps : {1, 2, 10, 300}) {
+    NormalState m;
+    for (std::int64_t k = 0; k < steps; ++k) normal_step(dart, kGravity, kH, m);
+    CHECK(relative_cfm_column(one, dart, kH, steps).sink.at(0) == Approx(m.d).epsilon(1e-9));
+  }
+  // Two: at rest each corner carries W_k*h/4 and its push-out erp*d_k/h meets cfm*A_k*W_k*h/4, so
+  // d_k = cfm/erp*h^2*W_k*A_k/4, reached by about (1 - erp) a step.
+  const ColumnPath settled_path = relative_cfm_column(s, dart, kH, 6000, 5000);
+  const std::vector<double>& settled = settled_path.sink;
+  CHECK(settled_path.past_faces == -1);
+  CHECK(settled_path.still[1].speed < 1e-15);
+  const double a0 = 1.0 + 3.0, a1 = 2.0 + s.levels[1].corner_turn;
+  const double d0 = 1e-3 * kH * kH * 2.0 * kGravity * a0 / 4.0;
+  const double d1 = 1e-3 * kH * kH * 1.0 * kGravity * a1 / 4.0;
+  CHECK(settled[0] == Approx(d0).epsilon(1e-9));
+  CHECK(settled[1] == Approx(d0 + d1).epsilon(1e-9));
+  // An off-centre column is outside the law.
+  s.levels[1].centred = false;
+  CHECK_THROWS_AS(relative_cfm_column(s, dart, kH, 1), std::invalid_argument);
+}
+
+TEST_CASE("a relative CFM column whose capped push-out cannot carry its load sinks past its faces",
+          "[contact][stack]") {
+  // A 1 kg cube under 1e5 kg: at rest its corners would need a push-out of cfm*A*W*h/4 = 0.16 m/s
+  // against DART's cap of 1e-3 m/s, so the column sinks on, and the heavy cube's centre passes the
+  // light one's top within the 5 s run; under 1e3 kg each contact sinks at about 0.6 mm/s, within
+  // its faces.
+  const RelativeCfm dart{.cfm = 1e-5, .erp = 0.01, .max_push = 1e-3};
+  const std::vector<StackSetup> columns = stack_setups(testing::shipped("extreme/mass_ratio"));
+  REQUIRE(columns.size() == 2);
+  const ColumnPath light = relative_cfm_column(columns[0], dart, kH, 300, 180);
+  const ColumnPath heavy = relative_cfm_column(columns[1], dart, kH, 300, 180);
+  CHECK(light.past_faces == -1);
+  CHECK(light.still[0].speed == Approx(6e-4).epsilon(0.2));  // the run: 6e-4 and 1.2e-3 m/s
+  CHECK(light.still[1].speed == Approx(1.2e-3).epsilon(0.2));
+  CHECK(heavy.past_faces > 100);
+  CHECK(heavy.past_faces <= 202);  // DART leaves the law at step 202 (measured)
 }

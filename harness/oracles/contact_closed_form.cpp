@@ -1,0 +1,177 @@
+#include "harness/oracles/contact_closed_form.hpp"
+
+#include <cmath>
+#include <functional>
+#include <vector>
+
+#include "harness/oracles/analytic.hpp"
+#include "harness/oracles/contact_laws.hpp"
+#include "harness/oracles/landing.hpp"
+#include "harness/oracles/stack.hpp"
+
+namespace dropcheck {
+namespace {
+
+// One body's continuous state at time t.
+using BodyPath = std::function<BodyState(double)>;
+
+// At rest at `at` from the start.
+BodyPath resting(const Vec3& at) {
+  return [at](double) { return BodyState{at, Vec3::Zero()}; };
+}
+
+// Its free flight (the scene without contacts) until `landing` s, then at rest `rest_height` high
+// where the flight put it.
+BodyPath falls_then_rests(const Scene& free, std::size_t body, double landing, double rest_height) {
+  return [&free, body, landing, rest_height](double t) {
+    if (!(t >= landing)) return analytic_state(free, body, t);
+    Vec3 at = analytic_state(free, body, landing).position;
+    at.y() = rest_height;
+    return BodyState{at, Vec3::Zero()};
+  };
+}
+
+// The speed along the slip of slide_distance_continuous's motion (its derivative).
+double slide_speed(double v0, double pull, double grip, double t) {
+  if (v0 > 0.0) {
+    const double a = grip - pull;
+    if (a <= 0.0 || t <= v0 / a) return v0 - a * t;
+    t -= v0 / a;
+  }
+  if (std::abs(pull) <= grip) return 0.0;
+  return std::copysign((std::abs(pull) - grip) * t, pull);
+}
+
+BodyPath slides(const Body& b, const SlideSetup& s) {
+  return [start = b.position, s](double t) {
+    const double grip = s.mu * s.g;  // the Coulomb cone's
+    return BodyState{start + s.direction * slide_distance_continuous(s.v0, s.pull, grip, t),
+                     s.direction * slide_speed(s.v0, s.pull, grip, t)};
+  };
+}
+
+// A sphere dropped from rest h0 above the floor: the fall, then flights of 2*e^n*t_fall leaving at
+// e^n times the impact speed, then at rest once their sum is spent.
+BodyPath bounces(const Body& b, const BounceSetup& s) {
+  return [start = b.position, s](double t) {
+    const double fall = std::sqrt(2.0 * s.h0 / s.g), v_in = s.g * fall;
+    const double ground = s.floor_top + s.radius;
+    Vec3 at = start;
+    if (t <= fall) {
+      at.y() = start.y() - 0.5 * s.g * t * t;
+      return BodyState{at, Vec3(0.0, -s.g * t, 0.0)};
+    }
+    t -= fall;
+    for (double speed = s.e * v_in; speed > 0.0; speed *= s.e) {
+      const double flight = 2.0 * speed / s.g;
+      if (t <= flight) {
+        at.y() = ground + speed * t - 0.5 * s.g * t * t;
+        return BodyState{at, Vec3(0.0, speed - s.g * t, 0.0)};
+      }
+      t -= flight;
+      if (flight < 1e-12) break;  // the rest of the geometric series lies within rounding
+    }
+    at.y() = ground;
+    return BodyState{at, Vec3::Zero()};
+  };
+}
+
+template <typename Setup>
+const Setup* role_of(const std::vector<Setup>& setups, std::size_t body) {
+  for (const Setup& s : setups)
+    if (s.body == body) return &s;
+  return nullptr;
+}
+
+const StackLevel* level_of(const std::vector<StackSetup>& stacks, std::size_t body) {
+  for (const StackSetup& s : stacks)
+    for (const StackLevel& l : s.levels)
+      if (l.body == body) return &l;
+  return nullptr;
+}
+
+// Every dynamic body's path, or why one has none.
+struct Paths {
+  std::vector<BodyPath> of;  // indexed like Scene::bodies
+  std::string why_none;
+};
+
+Paths paths(const Scene& scene, const Scene& free) {
+  Paths p;
+  if (!scene.world.contacts) {
+    p.why_none = "no contacts";
+    return p;
+  }
+  if (needs_rotation(scene)) {
+    p.why_none = "a body turns";
+    return p;
+  }
+  if (const std::string why = analytic_unavailable(free); !why.empty()) {
+    p.why_none = why;
+    return p;
+  }
+  const std::vector<StackSetup> stacks = stack_setups(scene);
+  const std::vector<SlideSetup> slide = slide_setups(scene);
+  const std::vector<BounceSetup> bounce = bounce_setups(scene);
+  const std::vector<LandingSetup> landing = landing_setups(scene);
+  const double k = scene.world.damping_rate, a = scene.world.gravity.y();
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const Body& b = scene.bodies[i];
+    if (b.is_static) {
+      p.of.push_back(resting(b.position));
+    } else if (const StackLevel* l = level_of(stacks, i)) {
+      const double lands =
+          l->gap > 0.0 ? contact_time_continuous(b.position.y(), 0.0, a, k, l->rest_height) : 0.0;
+      p.of.push_back(falls_then_rests(free, i, lands, l->rest_height));
+    } else if (const SlideSetup* s = role_of(slide, i)) {
+      p.of.push_back(slides(b, *s));
+    } else if (const BounceSetup* s = role_of(bounce, i)) {
+      p.of.push_back(bounces(b, *s));
+    } else if (const LandingSetup* l = role_of(landing, i);
+               l && b.velocity.x() == 0.0 && b.velocity.z() == 0.0 && !pushed(scene, i) &&
+               level_gravity(scene)) {
+      p.of.push_back(falls_then_rests(free, i, l->contact_time, l->rest_height));
+    } else {
+      p.why_none = "'" + b.name + "' is no resting stack, slide, bounce or straight landing";
+      return p;
+    }
+  }
+  return p;
+}
+
+}  // namespace
+
+std::string contact_closed_form_unavailable(const Scene& scene) {
+  Scene free = scene;
+  free.world.contacts = false;
+  return paths(scene, free).why_none;
+}
+
+std::optional<Trajectory> contact_closed_form(const Scene& scene, double h) {
+  Scene free = scene;
+  free.world.contacts = false;
+  const Paths p = paths(scene, free);
+  if (!p.why_none.empty()) return std::nullopt;
+  Trajectory t;
+  t.engine = "closed form";
+  t.scene = scene.name;
+  t.h = h;
+  t.steps = step_count(scene, h);
+  for (const Body& b : scene.bodies) t.body_names.push_back(b.name);
+  for (std::int64_t n = 0; n <= t.steps; ++n) {
+    t.recorded.push_back(n);
+    for (const BodyPath& path : p.of) t.states.push_back(path(static_cast<double>(n) * h));
+  }
+  return t;
+}
+
+std::optional<Trajectory> closed_form_trajectory(const Scene& scene, double h) {
+  return scene.world.contacts ? contact_closed_form(scene, h) : analytic_trajectory(scene, h);
+}
+
+std::string closed_form_unavailable(const Scene& scene) {
+  return scene.world.contacts ? contact_closed_form_unavailable(scene)
+                              : analytic_unavailable(scene);
+}
+
+}  // namespace dropcheck
