@@ -223,6 +223,14 @@ class OdeEngine final : public Engine {
     // Its bounce (mapping above): restitution of the step-start approach (bounce_vel 0), the
     // push-out of world ERP 0.2 capped at kMaxCorrectingVel. Measured on the bounces at e = 0.1,
     // 0.5, 0.9: within 1.0e-9, 2.0e-8 and 7.1e-8 m of this law over 3 s (ode_test.cpp).
+    // Read in ODE's ode/src/lcp.cpp (dSolveLCP): when a pivot's step length s is not positive the
+    // solver stops ("if we just keep going then we're going to get stuck in an infinite loop"),
+    // zeroes x and w of the rows it has not reached and returns what it has.
+    i.known_messages = {
+        {"ODE message 3: LCP internal error, s <= 0",
+         "ODE's LCP solver (lcp.cpp dSolveLCP) met a pivot step s <= 0, stopped and "
+         "left zero impulse on the rows it had not reached: that step's contacts "
+         "are not its law's"}};
     i.bounce_law = {.erp = 0.2, .max_push = kMaxCorrectingVel, .threshold = 0.0};
     i.rotation_law = {Gyroscopic::linearly_implicit, OrientationUpdate::first_order};
     i.damping_mapping =

@@ -71,6 +71,12 @@ struct EngineInfo {
   DampingForm arithmetic = DampingForm::other;  // its operation order, when the harness copies it
   std::string damping_mapping;   // how k becomes the engine's parameter, e.g. "d = 1 - exp(-k)"
   std::string contact_settings;  // contact model and parameters used when contacts = true
+  // What lines the engine prints mean, read in its source: a line that starts with `starts` means
+  // `meaning` (the report and a departing contact verdict quote it beside the count).
+  struct KnownMessage {
+    std::string starts, meaning;
+  };
+  std::vector<KnownMessage> known_messages;
   // How its contact solver bounds friction (docs/contact.md), for an engine that maps materials.
   FrictionModel friction_model = FrictionModel::cone;
   // How its contact solver reaches a step's impulses (harness/core/contact_solver.hpp): exactly,

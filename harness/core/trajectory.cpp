@@ -1,5 +1,6 @@
 #include "harness/core/trajectory.hpp"
 
+#include <algorithm>
 #include <cstdint>
 
 namespace dropcheck {
@@ -63,6 +64,28 @@ Trajectory failed_trajectory(const std::string& engine, const Scene& scene, doub
   t.failure = failure;
   t.failed_step = step;
   return t;
+}
+
+std::string Trajectory::messages_text() const {
+  if (messages.empty()) return {};
+  std::vector<const Message*> by_count;
+  for (const Message& m : messages) by_count.push_back(&m);
+  std::stable_sort(by_count.begin(), by_count.end(),
+                   [](const Message* a, const Message* b) { return a->count > b->count; });
+  std::string text = engine + " printed ";
+  const std::size_t shown = std::min<std::size_t>(3, by_count.size());
+  for (std::size_t i = 0; i < shown; ++i) {
+    const Message& m = *by_count[i];
+    text += (i == 0           ? ""
+             : i + 1 == shown ? " and "
+                              : ", ") +
+            ("'" + m.text + "' ") +
+            (m.count == 1 ? std::string("once") : std::to_string(m.count) + " times");
+  }
+  std::int64_t more = other_lines;
+  for (std::size_t i = shown; i < by_count.size(); ++i) more += by_count[i]->count;
+  if (more > 0) text += " (and " + std::to_string(more) + " other lines)";
+  return text;
 }
 
 }  // namespace dropcheck

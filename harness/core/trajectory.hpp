@@ -49,6 +49,19 @@ struct Trajectory {
   // one per step of h; 0 for a fixed-step engine, whose steps are the run's.
   std::int64_t engine_steps = 0;
   double wall_seconds = 0.0;  // stepping loop (forces, step, read, sampling), not load
+  // The lines the engine wrote to stderr during an isolated run (harness/run/isolated_run.hpp),
+  // each distinct one once with how often, in order of first appearance: at most kKeptMessages of
+  // them, each cut to 300 bytes, controls escaped; the lines past those counted in `other_lines`.
+  struct Message {
+    std::string text;
+    std::int64_t count = 0;
+  };
+  static constexpr std::size_t kKeptMessages = 16;
+  std::vector<Message> messages;
+  std::int64_t other_lines = 0;
+  // "ode printed 'ODE message 3: LCP internal error, s <= 0' 352 times" (the three most frequent
+  // lines, and how many more); "" when it printed nothing.
+  std::string messages_text() const;
 
   std::size_t samples() const { return recorded.size(); }
   // Every step from 0 was kept (sample k is step k), as the contact laws' step-by-step checks need.

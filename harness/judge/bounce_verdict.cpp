@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "harness/core/number_format.hpp"
+#include "harness/judge/engine_messages.hpp"
 #include "harness/judge/tolerances.hpp"
 #include "harness/oracles/replayed_contact.hpp"
 
@@ -174,7 +175,11 @@ BounceVerdict judge_bounce(const Trajectory& run, const BounceSetup& s, const Bo
 
 BounceVerdict judge_bounce(const Trajectory& run, const Scene& scene, const BounceSetup& s,
                            const EngineInfo& info, double h) {
-  if (!replayed(info.contact_solver)) return judge_bounce(run, s, info.bounce_law, h);
+  if (!replayed(info.contact_solver)) {
+    BounceVerdict v = judge_bounce(run, s, info.bounce_law, h);
+    if (!v.follows && v.instead.empty()) v.engine_said = engine_said(run, info);
+    return v;
+  }
   const auto not_judged = [&](const std::string& why) {
     return unjudged(why, info.contact_solver);
   };
@@ -243,6 +248,8 @@ std::string BounceVerdict::sentence() const {
                                         step_gap, static_cast<long long>(step_worst), step_speed));
   if (!follows && !instead.empty())
     text += ": it follows " + instead + printf_string(" instead (to %.2g m)", instead_off);
+  else if (!follows && !engine_said.empty())
+    text += ": no neighbouring member of its law fits; " + engine_said;
   else if (!follows && !solver)
     text +=
         ": UNEXPLAINED, no neighbouring member fits (the ideal law, the restitution applied twice, "

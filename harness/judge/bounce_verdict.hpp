@@ -46,7 +46,9 @@ struct BounceVerdict {
   // law, the restitution applied twice, the approach read before or after the step's gravity, the
   // body snapped to the surface), and how close; empty if none fits.
   std::string instead;
-  double instead_off = 0.0;   // m
+  double instead_off = 0.0;  // m
+  // When none fits: what the engine printed during the run and what that means (engine_said).
+  std::string engine_said;
   bool energy_rises = false;  // an apex above the height before it (h0 for the first)
   double law_to_ideal = 0.0;  // m: the largest gap difference between its law and the ideal's
   // The members of its law that move its path off the ideal one (each alone, the other removed):

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "harness/core/number_format.hpp"
+#include "harness/judge/engine_messages.hpp"
 #include "harness/judge/tolerances.hpp"
 #include "harness/oracles/replayed_contact.hpp"
 
@@ -174,8 +175,12 @@ SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& s, FrictionMod
 
 SlideVerdict judge_slide(const Trajectory& run, const Scene& scene, const SlideSetup& s,
                          const EngineInfo& info, double h) {
-  if (!replayed(info.contact_solver))
-    return judge_slide(run, s, info.friction_model, h, info.law.position, info.relative_cfm);
+  if (!replayed(info.contact_solver)) {
+    SlideVerdict v =
+        judge_slide(run, s, info.friction_model, h, info.law.position, info.relative_cfm);
+    if (!v.follows && v.instead.empty()) v.engine_said = engine_said(run, info);
+    return v;
+  }
   SlideVerdict v;
   v.model = info.friction_model;
   const SlidePath path = observed_slide_path(run, s);
@@ -235,6 +240,8 @@ std::string SlideVerdict::sentence() const {
   if (!instead.empty())
     return text + ": it follows " + instead + printf_string(" instead (to %.2g m)", instead_off);
   if (solver) return text;
+  if (!engine_said.empty())
+    return text + ": no neighbouring member of its law fits; " + engine_said;
   return text +
          ": UNEXPLAINED, no neighbouring member fits (another friction model, the friction after "
          "the position update, the grip of the whole gravity, an explicit position update); "

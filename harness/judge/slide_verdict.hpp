@@ -47,6 +47,9 @@ struct SlideVerdict {
   std::optional<FrictionModel> instead_model;  // when that member is another friction model
   std::string instead;
   double instead_off = 0.0;  // m: the run's largest distance from it
+  // When none fits: what the engine printed during the run, and what its adapter says that means
+  // (harness/judge/engine_messages.hpp); "" when it printed nothing.
+  std::string engine_said;
   // "stops at step 62, 2.509472 m; its box pyramid's clamp law: stops at step 62, 2.509472 m
   // (continuous: 1.0204 s, 2.551 m), 9.1e-12 m off it", with " DEPARTS at step 1 (...): it
   // follows the cone's clamp law instead (to 1e-15 m)" when it does not.

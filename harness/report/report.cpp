@@ -8,6 +8,7 @@
 
 #include "harness/io/atomic_file.hpp"
 #include "harness/report/report_format.hpp"
+#include "harness/report/report_messages.hpp"
 #include "harness/report/report_scene.hpp"
 #include "harness/report/report_summary.hpp"
 #include "harness/timing/calibration.hpp"
@@ -336,9 +337,9 @@ std::string report_markdown(const ReportInput& in, const PlotOutcomes& plots) {
   const std::vector<std::vector<ReportPlot>> all = report_plots(in);
   const TimingRecord now =
       in.timing ? timing_record(in.scenes, in.provenance, in.machine) : TimingRecord{};
-  std::string md = intro(in) + summary(in) + provenance(in.provenance) + engines(in) + method(in) +
-                   overhead(in) + reproducibility(in, now) + slowdown_section(in, now) +
-                   "## Scenes\n\n";
+  std::string md = intro(in) + summary(in) + provenance(in.provenance) + engines(in) +
+                   engine_messages_section(in) + method(in) + overhead(in) +
+                   reproducibility(in, now) + slowdown_section(in, now) + "## Scenes\n\n";
   for (std::size_t i = 0; i < in.scenes.size(); ++i)
     md += scene_section(in.scenes[i], all[i], plots, in.timing);
   return md + determinism(in) + stability(in);

@@ -110,8 +110,8 @@ class ProgressEngine final : public ForwardingEngine {
   ::_exit(code);
 }
 
-// The parent's side of the two pipes: reads the result while passing the child's stderr on to
-// ours (so that neither pipe fills and blocks the child), until a deadline.
+// The parent's side of the two pipes: reads the result while reading the child's stderr into
+// counted lines (so that neither pipe fills and blocks the child), until a deadline.
 class ChildPipes {
  public:
   ChildPipes(int result_fd, int err_fd, Clock::time_point deadline)
@@ -141,7 +141,7 @@ class ChildPipes {
     return true;
   }
 
-  // Waits for both pipes to close (the child exited), passing stderr on; false at the deadline.
+  // Waits for both pipes to close (the child exited), reading stderr; false at the deadline.
   bool drain() {
     char sink[4096];
     while (result_ >= 0 || err_ >= 0) {
@@ -174,7 +174,7 @@ class ChildPipes {
     fd = -1;
   }
 
-  // Polls both open pipes until one is ready or the deadline passes; stderr is passed on at once.
+  // Polls both open pipes until one is ready or the deadline passes; stderr is read at once.
   bool wait() {
     for (;;) {
       const auto left =
@@ -194,24 +194,65 @@ class ChildPipes {
     }
   }
 
+  // The child's stderr, read as it comes: kept as counted lines (Trajectory::messages), not
+  // passed on, so that an engine's chatter does not flood the terminal.
   void pass_on_stderr() {
     char buf[4096];
     const ssize_t n = ::read(err_, buf, sizeof buf);
     if (n < 0 && errno == EINTR) return;
     if (n <= 0) {
       close_fd(err_);
+      if (!partial_.empty()) count_line(partial_);
+      partial_.clear();
       return;
     }
-    write_all(STDERR_FILENO, buf, static_cast<std::size_t>(n));
     tail_.append(buf, static_cast<std::size_t>(n));
     if (tail_.size() > kTail) tail_.erase(0, tail_.size() - kTail);
+    for (ssize_t i = 0; i < n; ++i) {
+      if (buf[i] != '\n') {
+        if (partial_.size() < kLineBytes) partial_ += buf[i];
+        continue;
+      }
+      count_line(partial_);
+      partial_.clear();
+    }
   }
 
+  // One line of the child's stderr into the counted lines.
+  void count_line(const std::string& raw) {
+    std::string line = raw;
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    if (line.empty()) return;
+    const bool cut = line.size() > 300;
+    line = escape_controls(cut ? line.substr(0, 300) : line) + (cut ? "..." : "");
+    for (Trajectory::Message& m : messages_)
+      if (m.text == line) {
+        ++m.count;
+        return;
+      }
+    if (messages_.size() < Trajectory::kKeptMessages)
+      messages_.push_back({line, 1});
+    else
+      ++other_lines_;
+  }
+
+ public:
+  // What the child wrote to stderr, as counted lines, into `t`.
+  void give_messages(Trajectory& t) const {
+    t.messages = messages_;
+    t.other_lines = other_lines_;
+  }
+
+ private:
   int result_, err_;
   Clock::time_point deadline_;
   bool timed_out_ = false;
   bool result_ready_ = false;
   std::string tail_;
+  static constexpr std::size_t kLineBytes = 4096;  // a longer line is cut (then to 300 bytes)
+  std::string partial_;                            // the line being read
+  std::vector<Trajectory::Message> messages_;
+  std::int64_t other_lines_ = 0;
 };
 
 // Waits for `pid` to end, unregisters it from the signal handler while it is still a zombie (so
@@ -356,8 +397,12 @@ Trajectory run_isolated(Engine& engine, const Scene& scene, double h, const RunO
   if (pipes.timed_out()) ::kill(pid, SIGKILL);
   const int status = reap(pid, kill_on_signal);
   const bool clean = status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
-  if (got && clean && !pipes.timed_out()) return t;
+  if (got && clean && !pipes.timed_out()) {
+    pipes.give_messages(t);
+    return t;
+  }
   failed.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  pipes.give_messages(failed);
   return child_failure(std::move(failed), status, pipes, *progress, limit);
 }
 

@@ -3,8 +3,9 @@
 // "timed out at step 40") instead of the end of dropcheck. The child runs the ordinary in-process
 // loop (run_scene_in_process) on its copy of the engine, counts completed steps in a shared page
 // and sends the Trajectory back over a pipe (harness/io/trajectory_wire.hpp); its stderr (an
-// assertion message, a sanitizer report) is passed on to ours and its last line quoted in the
-// failure. No threads: safe with AddressSanitizer.
+// engine's warnings, an assertion message, a sanitizer report) is kept as counted lines
+// (Trajectory::messages) instead of flooding ours, and its last line quoted in a failure. No
+// threads: safe with AddressSanitizer.
 #pragma once
 
 #include "harness/run/runner.hpp"

@@ -26,7 +26,7 @@ using Catch::Matchers::StartsWith;
 
 namespace {
 
-enum class Misdeed { none, abort, segfault, exit7, hang, bad_alloc, say_and_abort };
+enum class Misdeed { none, abort, segfault, exit7, hang, bad_alloc, say_and_abort, chatter };
 
 // The free-flight double (tests/fake_engine.hpp) with one misdeed at step `at` (or during load when
 // at == 0). No scene here has a force, so it moves by x += h*v.
@@ -39,7 +39,7 @@ class UnrulyEngine final : public testing::FakeEngine {
     if (at_ == 0) misbehave();
   }
   void before_move(std::int64_t step) override {
-    if (step == at_) misbehave();
+    if (step == at_ || (what_ == Misdeed::chatter && step > at_)) misbehave();
   }
   void misbehave() {
     switch (what_) {
@@ -59,6 +59,11 @@ class UnrulyEngine final : public testing::FakeEngine {
       case Misdeed::say_and_abort:
         std::fputs("engine.cpp:12: solver: Assertion `mass > 0' failed.\n", stderr);
         std::abort();
+      case Misdeed::chatter:  // every step from `at` on: one line thrice, another once
+        for (int i = 0; i < 3; ++i) std::fputs("solver: LCP internal error\n", stderr);
+        std::fputs("step done\x1b[2J\n", stderr);
+        std::fflush(stderr);
+        return;
     }
   }
   Misdeed what_;
@@ -147,6 +152,25 @@ TEST_CASE("the last line the engine wrote to stderr before dying is quoted in th
           "[isolation]") {
   const Trajectory t = isolated(Misdeed::say_and_abort, 3);
   CHECK(t.failure == "SIGABRT at step 3 (engine.cpp:12: solver: Assertion `mass > 0' failed.)");
+}
+
+TEST_CASE("what an engine prints is counted per distinct line, escaped, and kept from the terminal",
+          "[isolation]") {
+  // Steps 3 to 10 print: 8 steps, 24 and 8 lines.
+  const Trajectory t = isolated(Misdeed::chatter, 3);
+  REQUIRE(t.status == RunStatus::ok);
+  REQUIRE(t.messages.size() == 2);
+  CHECK(t.messages[0].text == "solver: LCP internal error");
+  CHECK(t.messages[0].count == 24);
+  CHECK(t.messages[1].text == "step done\\x1b[2J");
+  CHECK(t.messages[1].count == 8);
+  CHECK(t.other_lines == 0);
+  CHECK(t.messages_text() ==
+        "unruly printed 'solver: LCP internal error' 24 times and 'step done\\x1b[2J' 8 times");
+  // In process nothing is kept (the lines go where the engine writes them).
+  UnrulyEngine quiet(Misdeed::none, 3);
+  CHECK(
+      run_scene(quiet, ten_steps(), 0.1, {.isolation = Isolation::child_process}).messages.empty());
 }
 
 TEST_CASE("a hung engine is killed at the time limit, reaped, and reported with its step",
