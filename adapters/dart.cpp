@@ -74,7 +74,9 @@
 //                          a contact takes the product of its two (computeRestitutionCoefficient),
 //                          e exactly against a static body; two moving bodies with restitution
 //                          would meet at e^2 and are not run (contact_limit). The contact bounces
-//                          when the product exceeds 1e-3 (DART_RESTITUTION_COEFF_THRESHOLD). In
+//                          when the product exceeds 1e-3 (DART_RESTITUTION_COEFF_THRESHOLD; the
+//                          bounce law leaves that out: an e <= 1e-3 would need an approach over
+//                          100 m/s to matter). In
 //                          getInformation, the normal row's target is e times the approach its
 //                          LCP sees, -J*v after integrateVelocities (the step's gravity applied),
 //                          when that rebound exceeds 0.1 m/s (DART_BOUNCING_VELOCITY_THRESHOLD) and
@@ -121,7 +123,8 @@ bool centred_stack(const Body& a, const Body& b) {
          upper.position.y() - upper.half_extents.y() >= lower.position.y() + lower.half_extents.y();
 }
 
-// Why DART's contacts in `scene` are not judged, or "": no restitution between two moving bodies,
+// Why DART's contacts in `scene` are not judged, or "": restitution only on one sphere dropped from
+// rest (no restitution between two moving bodies),
 // no dynamic body may start beside or off-centre on another (the stack law is a centred column's;
 // bodies that meet later, sliding into each other, would fail their checks
 // rather than pass wrongly), and no force may push one (the climb path of a landing takes gravity
@@ -138,6 +141,10 @@ std::string contact_limit(const Scene& scene) {
     if (scene_material(scene).restitution && moving > 1)
       return "restitution among two moving bodies: DART multiplies the two shapes' coefficients, "
              "so they would meet at e^2";
+    if (scene_material(scene).restitution &&
+        (b.shape != Shape::sphere || b.velocity != Vec3::Zero()))
+      return "restitution on a box or a launched sphere: DART's rebound is judged on a sphere "
+             "dropped from rest (its bounce law), a landing by a climb path without restitution";
     for (const Body& o : scene.bodies)
       if (&o != &b && !o.is_static && stacked_or_touching(b, o) && !centred_stack(b, o))
         return "moving boxes that touch side by side or stand off-centre on each other: the "

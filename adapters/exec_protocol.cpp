@@ -68,14 +68,16 @@ bool valid_name(const std::string& name) {
 }
 
 // "bounce-law ERP MAX_PUSH velocity|position THRESHOLD DISTANCE DISTANCE_PER_SIZE
-// [step-start|after-gravity approach|rebound MAX_REBOUND CFM]" (harness/core/bounce_law.hpp): ERP
+// [step-start|after-gravity approach|rebound MAX_REBOUND CFM overlap|touch]"
+// (harness/core/bounce_law.hpp): ERP
 // in [0, 1], MAX_PUSH and MAX_REBOUND > 0 or "inf", the rest finite and >= 0.
 BounceLaw parse_bounce_law(const std::vector<std::string>& k, const std::string& line) {
   const char* form =
       "'bounce-law ERP MAX_PUSH velocity|position THRESHOLD DISTANCE DISTANCE_PER_SIZE "
-      "[step-start|after-gravity approach|rebound MAX_REBOUND CFM]' (ERP in [0, 1], MAX_PUSH and "
+      "[step-start|after-gravity approach|rebound MAX_REBOUND CFM overlap|touch]' (ERP in [0, 1], "
+      "MAX_PUSH and "
       "MAX_REBOUND > 0 or inf, the others >= 0)";
-  if ((k.size() != 7 && k.size() != 11) || (k[3] != "velocity" && k[3] != "position"))
+  if ((k.size() != 7 && k.size() != 12) || (k[3] != "velocity" && k[3] != "position"))
     garbage(form, line);
   BounceLaw law;
   law.push_in_position = k[3] == "position";
@@ -88,10 +90,11 @@ BounceLaw parse_bounce_law(const std::vector<std::string>& k, const std::string&
   number(k[4], law.threshold, false);
   number(k[5], law.contact_distance, false);
   number(k[6], law.contact_distance_per_size, false);
-  if (k.size() == 11) {
+  if (k.size() == 12) {
     if ((k[7] != "step-start" && k[7] != "after-gravity") ||
-        (k[8] != "approach" && k[8] != "rebound"))
+        (k[8] != "approach" && k[8] != "rebound") || (k[11] != "overlap" && k[11] != "touch"))
       garbage(form, line);
+    law.touching = k[11] == "touch";
     law.free_approach = k[7] == "after-gravity";
     law.threshold_on_rebound = k[8] == "rebound";
     number(k[9], law.max_rebound, true);

@@ -9,9 +9,9 @@
 // (or gap <= 0 for an engine whose touching pairs are contacts):
 //   v_free = v - g*h                                  (this step's gravity)
 //   rest   = e*(-v)  when -v > threshold, else 0      (restitution of the step-start approach;
-//            of -v_free for an engine that takes its approach after the step's gravity, and
-//            compared with the threshold as e*(-v_free) for one that thresholds the rebound;
-//            at most max_rebound)
+//            of -v_free for an engine that takes its approach after the step's gravity; the
+//            threshold compared with e times that approach for one that thresholds the
+//            rebound; at most max_rebound)
 //   gap >= 0: target = rest - gap/h                   (speculative: may close the gap this step)
 //   gap <  0: push = min(erp*d/h, max_push)           (push-out of the depth)
 //             target = max(push, rest), or with the push in position: target = rest and the body

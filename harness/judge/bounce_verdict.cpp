@@ -119,7 +119,7 @@ void name_bounce_neighbour(BounceVerdict& v, const BouncePath& seen, const Bounc
   const auto take = [&](const BounceLaw& member, double e, const std::string& text) {
     if (!v.instead.empty()) return;
     const PathGap g = path_gap(seen, bounce_path(member, s.h0, e, s.g, h, steps, s.size));
-    if (g.worst > tolerance::kBouncePath) return;
+    if (!(g.worst <= tolerance::kBouncePath)) return;  // NaN: no member fits
     v.instead = text;
     v.instead_off = g.worst;
   };

@@ -98,9 +98,9 @@ std::string StackBodyVerdict::sentence() const {
 std::string StackBodyVerdict::limit_text() const {
   if (limiting.past_faces >= 0)
     return printf_string(
-        "not held, as its law predicts: its regularised contacts, their push-out capped, cannot "
-        "carry the load, and by step %lld the law sinks a box's centre below the top of the one "
-        "under it (%.4g m down here by the end), past the face contacts the law steps",
+        "beyond its law: by step %lld the law sinks a box's centre below the top of the one "
+        "under it (%.4g m down here by the end: a load its capped push-out cannot carry, or a "
+        "landing that deep), past the face contacts the law steps",
         static_cast<long long>(limiting.past_faces), limiting.sink);
   return printf_string(
       "not held, as its solver's sweeps predict: each sweep leaves %.4g of the error between "

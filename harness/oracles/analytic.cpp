@@ -1,5 +1,6 @@
 #include "harness/oracles/analytic.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <variant>
 
@@ -119,23 +120,29 @@ BodyState analytic_state(const Scene& scene, std::size_t index, double t) {
   return l.stiffness > 0.0 ? spring_flight(b, l, k, t) : drag_flight(b, l.accel, k, t);
 }
 
-std::optional<Trajectory> analytic_trajectory(const Scene& scene, double h,
-                                              const RunOptions& options) {
-  if (!analytic_unavailable(scene).empty()) return std::nullopt;
+Trajectory sampled_answer(const Scene& scene, double h, std::int64_t every, const char* engine,
+                          const std::function<BodyState(std::size_t, double)>& state) {
   Trajectory t;
-  t.engine = "analytic";
+  t.engine = engine;
   t.scene = scene.name;
   t.h = h;
   t.steps = step_count(scene, h);
   for (const Body& b : scene.bodies) t.body_names.push_back(b.name);
-  const std::int64_t every = options.record_every < 1 ? 1 : options.record_every;
+  every = std::max<std::int64_t>(every, 1);
   for (std::int64_t n = 0; n <= t.steps; ++n) {
     if (n % every != 0 && n != t.steps) continue;
     t.recorded.push_back(n);
     for (std::size_t i = 0; i < scene.bodies.size(); ++i)
-      t.states.push_back(analytic_state(scene, i, static_cast<double>(n) * h));
+      t.states.push_back(state(i, static_cast<double>(n) * h));
   }
   return t;
+}
+
+std::optional<Trajectory> analytic_trajectory(const Scene& scene, double h,
+                                              const RunOptions& options) {
+  if (!analytic_unavailable(scene).empty()) return std::nullopt;
+  return sampled_answer(scene, h, options.record_every, "analytic",
+                        [&scene](std::size_t i, double t) { return analytic_state(scene, i, t); });
 }
 
 }  // namespace dropcheck

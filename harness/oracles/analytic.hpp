@@ -9,6 +9,7 @@
 // Both are solved in closed form below; springs with rest_length > 0 are nonlinear: no oracle.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -23,6 +24,11 @@ std::string analytic_unavailable(const Scene& scene);
 
 // The exact state of body `index` at time t. Precondition: analytic_unavailable(scene).empty().
 BodyState analytic_state(const Scene& scene, std::size_t index, double t);
+
+// A continuous answer `state(body, t)` sampled at the steps a run at h records every `every` steps
+// (and the last), as a trajectory named `engine`: analytic_trajectory's and contact_closed_form's.
+Trajectory sampled_answer(const Scene& scene, double h, std::int64_t every, const char* engine,
+                          const std::function<BodyState(std::size_t, double)>& state);
 
 // The exact solution sampled at the steps a run at h records; nullopt when there is none.
 std::optional<Trajectory> analytic_trajectory(const Scene& scene, double h,

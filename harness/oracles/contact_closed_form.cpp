@@ -1,5 +1,6 @@
 #include "harness/oracles/contact_closed_form.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <vector>
@@ -62,17 +63,23 @@ BodyPath bounces(const Body& b, const BounceSetup& s) {
       return BodyState{at, Vec3(0.0, -s.g * t, 0.0)};
     }
     t -= fall;
-    for (double speed = s.e * v_in; speed > 0.0; speed *= s.e) {
-      const double flight = 2.0 * speed / s.g;
-      if (t <= flight) {
-        at.y() = ground + speed * t - 0.5 * s.g * t * t;
-        return BodyState{at, Vec3(0.0, speed - s.g * t, 0.0)};
-      }
-      t -= flight;
-      if (flight < 1e-12) break;  // the rest of the geometric series lies within rounding
+    // Flight n (n = 0, 1, ...) lasts F0*e^n, F0 = 2*e*v_in/g: the first n flights take
+    // F0*(1 - e^n)/(1 - e) (n*F0 when e = 1), all of them F0/(1 - e).
+    const double f0 = 2.0 * s.e * v_in / s.g;
+    double speed = s.e * v_in;
+    if (!(f0 > 0.0) || (s.e < 1.0 && t >= f0 / (1.0 - s.e))) {
+      at.y() = ground;
+      return BodyState{at, Vec3::Zero()};
     }
-    at.y() = ground;
-    return BodyState{at, Vec3::Zero()};
+    if (s.e >= 1.0) {
+      t = std::fmod(t, f0);
+    } else {
+      const double n = std::floor(std::log1p(-t * (1.0 - s.e) / f0) / std::log(s.e));
+      t = std::max(0.0, t - f0 * (1.0 - std::pow(s.e, n)) / (1.0 - s.e));
+      speed *= std::pow(s.e, n);
+    }
+    at.y() = ground + speed * t - 0.5 * s.g * t * t;
+    return BodyState{at, Vec3(0.0, speed - s.g * t, 0.0)};
   };
 }
 
@@ -88,6 +95,15 @@ const StackLevel* level_of(const std::vector<StackSetup>& stacks, std::size_t bo
     for (const StackLevel& l : s.levels)
       if (l.body == body) return &l;
   return nullptr;
+}
+
+// Whether body i starts at rest on what holds it: a stack level without a gap, or a landing whose
+// bottom is on its floor.
+bool at_rest(const std::vector<LandingSetup>& landing, const std::vector<StackSetup>& stacks,
+             std::size_t i) {
+  if (const StackLevel* l = level_of(stacks, i)) return l->gap == 0.0;
+  const LandingSetup* l = role_of(landing, i);
+  return l && l->contact_time == 0.0;
 }
 
 // Every dynamic body's path, or why one has none.
@@ -114,22 +130,29 @@ Paths paths(const Scene& scene, const Scene& free) {
   const std::vector<SlideSetup> slide = slide_setups(scene);
   const std::vector<BounceSetup> bounce = bounce_setups(scene);
   const std::vector<LandingSetup> landing = landing_setups(scene);
+  const std::vector<LandingExclusion> excluded = landing_exclusions(scene);
   const double k = scene.world.damping_rate, a = scene.world.gravity.y();
+  // With restitution only a bounce setup's sphere, or a body that never leaves its rest, has the
+  // answer below: every other landing would rebound.
+  const bool restitutes = scene_material(scene).restitution.value_or(0.0) > 0.0;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const Body& b = scene.bodies[i];
     if (b.is_static) {
       p.of.push_back(resting(b.position));
+    } else if (const BounceSetup* s = role_of(bounce, i)) {
+      p.of.push_back(bounces(b, *s));
+    } else if (restitutes && !(b.velocity == Vec3::Zero() && at_rest(landing, stacks, i))) {
+      p.why_none = "'" + b.name + "' lands with restitution outside a bounce setup";
+      return p;
     } else if (const StackLevel* l = level_of(stacks, i)) {
       const double lands =
           l->gap > 0.0 ? contact_time_continuous(b.position.y(), 0.0, a, k, l->rest_height) : 0.0;
       p.of.push_back(falls_then_rests(free, i, lands, l->rest_height));
     } else if (const SlideSetup* s = role_of(slide, i)) {
       p.of.push_back(slides(b, *s));
-    } else if (const BounceSetup* s = role_of(bounce, i)) {
-      p.of.push_back(bounces(b, *s));
     } else if (const LandingSetup* l = role_of(landing, i);
-               l && b.velocity.x() == 0.0 && b.velocity.z() == 0.0 && !pushed(scene, i) &&
-               level_gravity(scene)) {
+               l && role_of(excluded, i) == nullptr && b.velocity.x() == 0.0 &&
+               b.velocity.z() == 0.0 && !pushed(scene, i) && level_gravity(scene)) {
       p.of.push_back(falls_then_rests(free, i, l->contact_time, l->rest_height));
     } else {
       p.why_none = "'" + b.name + "' is no resting stack, slide, bounce or straight landing";
@@ -152,17 +175,8 @@ std::optional<Trajectory> contact_closed_form(const Scene& scene, double h) {
   free.world.contacts = false;
   const Paths p = paths(scene, free);
   if (!p.why_none.empty()) return std::nullopt;
-  Trajectory t;
-  t.engine = "closed form";
-  t.scene = scene.name;
-  t.h = h;
-  t.steps = step_count(scene, h);
-  for (const Body& b : scene.bodies) t.body_names.push_back(b.name);
-  for (std::int64_t n = 0; n <= t.steps; ++n) {
-    t.recorded.push_back(n);
-    for (const BodyPath& path : p.of) t.states.push_back(path(static_cast<double>(n) * h));
-  }
-  return t;
+  return sampled_answer(scene, h, 1, "closed form",
+                        [&p](std::size_t i, double t) { return p.of[i](t); });
 }
 
 std::optional<Trajectory> closed_form_trajectory(const Scene& scene, double h) {

@@ -68,7 +68,7 @@ std::vector<StackSetup> stack_setups(const Scene& scene) {
                  -g.y(),
                  scene.world.damping_rate,
                  {{l.body, 1, l.rest_height, first.mass, 0.0, 0.0,
-                   corner_turn(first, first.half_extents), true, 0.0}}};
+                   corner_turn(first, first.half_extents), true, bottom_of(first) - l.floor_top}}};
     for (;;) {
       const StackLevel& under_level = s.levels.back();
       const Body& under = scene.bodies[under_level.body];
@@ -106,7 +106,7 @@ std::vector<double> column_impulses(const std::vector<double>& mass,
                                     const std::vector<double>& soft, const std::vector<double>& b,
                                     std::vector<bool> found) {
   const std::size_t n = mass.size();
-  for (;;) {
+  for (std::size_t pass = 0; pass <= n; ++pass) {
     // M: row k couples X_(k-1), X_k, X_(k+1) through the bodies k - 1 and k it joins. A contact
     // left out has the row X_k = 0.
     std::vector<double> lower(n, 0.0), diag(n, 1.0), upper(n, 0.0), rhs(n, 0.0);
@@ -126,10 +126,18 @@ std::vector<double> column_impulses(const std::vector<double>& mass,
     std::vector<double> x(n, 0.0);
     for (std::size_t k = n; k-- > 0;)
       x[k] = (rhs[k] - (k + 1 < n ? upper[k] * x[k + 1] : 0.0)) / diag[k];
-    const auto worst = std::min_element(x.begin(), x.end());
-    if (*worst >= 0.0) return x;
-    found[static_cast<std::size_t>(worst - x.begin())] = false;
+    // The found contact whose impulse pulls most; none: done. At most n passes (each drops one).
+    std::size_t worst = n;
+    for (std::size_t k = 0; k < n; ++k) {
+      if (!found[k]) continue;
+      if (!std::isfinite(x[k]))
+        throw std::invalid_argument("relative_cfm_column: a non-finite impulse");
+      if (x[k] < 0.0 && (worst == n || x[k] < x[worst])) worst = k;
+    }
+    if (worst == n) return x;
+    found[worst] = false;
   }
+  throw std::logic_error("column_impulses: more passes than contacts");
 }
 
 }  // namespace
@@ -157,12 +165,12 @@ ColumnPath relative_cfm_column(const StackSetup& setup, const RelativeCfm& law, 
   const auto watch = [&](std::int64_t step) {
     for (std::size_t k = 0; k < n; ++k) {
       path.sink[k] = d[k] + (k > 0 ? path.sink[k - 1] : 0.0);
+      if (path.past_faces < 0 && d[k] >= half[k]) path.past_faces = step;
       if (step < from) continue;
       path.still[k].speed = std::max(path.still[k].speed, std::abs(v[k]));
       lo[k] = std::min(lo[k], -path.sink[k]);
       hi[k] = std::max(hi[k], -path.sink[k]);
       path.still[k].range = hi[k] - lo[k];
-      if (path.past_faces < 0 && d[k] >= half[k]) path.past_faces = step;
     }
   };
   watch(0);

@@ -237,8 +237,11 @@ class ChildPipes {
   }
 
  public:
-  // What the child wrote to stderr, as counted lines, into `t`.
-  void give_messages(Trajectory& t) const {
+  // What the child wrote to stderr, as counted lines, into `t` (a last line without its newline
+  // too: a killed child's).
+  void give_messages(Trajectory& t) {
+    if (!partial_.empty()) count_line(partial_);
+    partial_.clear();
     t.messages = messages_;
     t.other_lines = other_lines_;
   }

@@ -149,21 +149,23 @@ TEST_CASE("an engine that collides materials and spheres announces them with its
   HandshakeReader dart_reader(dart, false, {"ours"});
   for (const std::string& line :
        handshake({"capabilities contacts restitution spheres",
-                  "bounce-law 0.01 0.001 velocity 0.1 0 0 after-gravity rebound 100 1e-05"}))
+                  "bounce-law 0.01 0.001 velocity 0.1 0 0 after-gravity rebound 100 1e-05 touch"}))
     dart_reader.take(line);
   CHECK(dart.bounce_law.free_approach);
   CHECK(dart.bounce_law.threshold_on_rebound);
   CHECK(dart.bounce_law.max_rebound == 100.0);
   CHECK(dart.bounce_law.cfm == 1e-5);
-  for (const char* bad :
-       {"bounce-law 1.5 inf velocity 0 0 0", "bounce-law 0.2 0 velocity 0 0 0",
-        "bounce-law 0.2 inf sideways 0 0 0", "bounce-law 0.2 inf velocity -1 0 0",
-        "bounce-law 0.2 inf velocity nan 0 0", "bounce-law 0.2 inf velocity 0 0",
-        "bounce-law 0 inf velocity 0 0 0 after-gravity rebound 100",
-        "bounce-law 0 inf velocity 0 0 0 late rebound 100 0",
-        "bounce-law 0 inf velocity 0 0 0 step-start speed 100 0",
-        "bounce-law 0 inf velocity 0 0 0 step-start approach 0 0",
-        "bounce-law 0 inf velocity 0 0 0 step-start approach inf -1", "friction-model pyramid"})
+  CHECK(dart.bounce_law.touching);
+  for (const char* bad : {"bounce-law 1.5 inf velocity 0 0 0", "bounce-law 0.2 0 velocity 0 0 0",
+                          "bounce-law 0.2 inf sideways 0 0 0", "bounce-law 0.2 inf velocity -1 0 0",
+                          "bounce-law 0.2 inf velocity nan 0 0", "bounce-law 0.2 inf velocity 0 0",
+                          "bounce-law 0 inf velocity 0 0 0 after-gravity rebound 100 0",
+                          "bounce-law 0 inf velocity 0 0 0 late rebound 100 0 touch",
+                          "bounce-law 0 inf velocity 0 0 0 step-start speed 100 0 touch",
+                          "bounce-law 0 inf velocity 0 0 0 step-start approach 100 0 contact",
+                          "bounce-law 0 inf velocity 0 0 0 step-start approach 0 0 touch",
+                          "bounce-law 0 inf velocity 0 0 0 step-start approach inf -1 touch",
+                          "friction-model pyramid"})
     CHECK_THAT(protocol_refusal(handshake({bad})), Contains("garbage from the engine"));
   CHECK_THAT(protocol_refusal(handshake({"capabilities restitution spheres"})),
              Contains("without 'contacts'"));

@@ -88,3 +88,33 @@ TEST_CASE("a resting stack stays; a turning scene has no continuous contact answ
                            "bounce_e01", "bounce_e09", "drop_on_floor_undamped"})
     CHECK(contact_closed_form_unavailable(testing::shipped(name)) == "");
 }
+
+TEST_CASE("a bounce's continuous answer in closed form: e = 1 keeps bouncing, e = 0 stops",
+          "[contact][closed-form]") {
+  Scene scene = testing::shipped("bounce_e05");
+  for (Body& b : scene.bodies)
+    if (b.restitution) b.restitution = 1.0;
+  const Trajectory elastic = *contact_closed_form(scene, kClosedH);
+  // Every flight returns to the drop height: 1 m above the floor, the centre at 1.5 m, after a
+  // fall and a whole number of 2*sqrt(2/g) flights.
+  const double fall = std::sqrt(2.0 / kClosedG);
+  double highest_late = 0.0;
+  for (std::int64_t n = 0; n <= elastic.steps; ++n)
+    if (static_cast<double>(n) * kClosedH > fall)
+      highest_late = std::max(highest_late, at(elastic, n, "ball").position.y());
+  CHECK(highest_late <= 1.5 + 1e-12);
+  CHECK(highest_late > 1.5 - 0.5 * kClosedG * kClosedH * kClosedH);
+  for (Body& b : scene.bodies)
+    if (b.restitution) b.restitution = 0.0;
+  const Trajectory dead = *contact_closed_form(scene, kClosedH);
+  CHECK(at(dead, dead.steps, "ball").position.y() == 0.5);
+}
+
+TEST_CASE("a box dropped onto another box, or landing with restitution, has no contact answer",
+          "[contact][closed-form]") {
+  Scene drop = testing::shipped("drop_on_floor");
+  for (Body& b : drop.bodies)
+    if (!b.is_static) b.restitution = 0.5;
+  CHECK_THAT(contact_closed_form_unavailable(drop),
+             Catch::Contains("lands with restitution outside a bounce setup"));
+}
