@@ -13,6 +13,7 @@
 #include "harness/oracles/contact_closed_form.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
+#include "harness/process/stderr_capture.hpp"
 #include "harness/run/runner.hpp"
 #include "harness/study/sweep.hpp"
 
@@ -303,7 +304,12 @@ void time_evaluations(std::vector<SceneEvaluation>& scenes, const std::vector<En
         cell.emplace_back(ev.name, engines[e].make);
         targets.push_back(&ev.sweep[i]);
       }
+      // The engines run in this process while timed: what they print is counted, not shown.
+      StderrCapture printed;
       const std::vector<Timing> t = time_engines(cell, se.scene, se.sweep[i].seconds, options);
+      for (const auto& [line, times] : printed.finish())
+        say(progress, "timing cell " + std::to_string(c) + ": '" + line + "' printed " +
+                          std::to_string(times) + " times (kept from the terminal)");
       for (std::size_t k = 0; k < t.size(); ++k) targets[k]->timing = t[k];
     }
 }
