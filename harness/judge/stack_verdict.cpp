@@ -24,12 +24,14 @@ std::vector<StackBodyVerdict> judge_stack(const Trajectory& run, const StackSetu
           landing, contact_time_continuous(y0, 0.0, -setup.g, setup.damping_rate, l.rest_height));
   }
   const bool still_judged = static_cast<double>(from) * h > landing;  // false for NaN
+  const std::vector<StackPrediction> predicted =
+      predict_stack(setup, info, h, run.recorded.back(), from);
   for (std::size_t k = 0; k < setup.levels.size(); ++k) {
     const StackLevel& l = setup.levels[k];
     StackBodyVerdict v;
     v.body = l.body;
     v.level = l.level;
-    v.predicted = predict_stack(setup, k, info, h, run.recorded.back(), from);
+    v.predicted = predicted[k];
     const Vec3 start = run.at(0, l.body).position;
     for (std::size_t s = 0; s < run.samples(); ++s) {
       const Vec3& p = run.at(s, l.body).position;

@@ -1,5 +1,6 @@
 #include "harness/oracles/stack.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -100,41 +101,34 @@ std::vector<StackSetup> stack_setups(const Scene& scene) {
 namespace {
 
 // The impulses X_k >= 0 of the contacts found (`found`) that meet every row's target
-// (relative_cfm_column): rows k of M*X = b with M tridiagonal, solved with the contacts whose
-// impulse would pull left out, one at a time (the most negative first) until none pulls.
+// (relative_cfm_column): rows k of M*X = b, M tridiagonal (row k couples X_(k-1), X_k, X_(k+1)
+// through the bodies k - 1 and k it joins), solved with the contacts whose impulse would pull left
+// out, one at a time (the most negative first) until none pulls. A contact left out has the row
+// X_k = 0.
 std::vector<double> column_impulses(const std::vector<double>& mass,
                                     const std::vector<double>& soft, const std::vector<double>& b,
                                     std::vector<bool> found) {
-  const std::size_t n = mass.size();
-  for (std::size_t pass = 0; pass <= n; ++pass) {
-    // M: row k couples X_(k-1), X_k, X_(k+1) through the bodies k - 1 and k it joins. A contact
-    // left out has the row X_k = 0.
-    std::vector<double> lower(n, 0.0), diag(n, 1.0), upper(n, 0.0), rhs(n, 0.0);
-    for (std::size_t k = 0; k < n; ++k) {
+  const auto n = static_cast<Eigen::Index>(mass.size());
+  for (Eigen::Index pass = 0; pass <= n; ++pass) {
+    Eigen::MatrixXd m = Eigen::MatrixXd::Identity(n, n);
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
+    for (Eigen::Index k = 0; k < n; ++k) {
       if (!found[k]) continue;
-      diag[k] = 1.0 / mass[k] + (k > 0 ? 1.0 / mass[k - 1] : 0.0) + soft[k];
-      if (k > 0 && found[k - 1]) lower[k] = -1.0 / mass[k - 1];
-      if (k + 1 < n && found[k + 1]) upper[k] = -1.0 / mass[k];
+      m(k, k) = 1.0 / mass[k] + (k > 0 ? 1.0 / mass[k - 1] : 0.0) + soft[k];
+      if (k > 0 && found[k - 1]) m(k, k - 1) = -1.0 / mass[k - 1];
+      if (k + 1 < n && found[k + 1]) m(k, k + 1) = -1.0 / mass[k];
       rhs[k] = b[k];
     }
-    // The Thomas algorithm (M is symmetric and diagonally dominant).
-    for (std::size_t k = 1; k < n; ++k) {
-      const double f = lower[k] / diag[k - 1];
-      diag[k] -= f * upper[k - 1];
-      rhs[k] -= f * rhs[k - 1];
-    }
-    std::vector<double> x(n, 0.0);
-    for (std::size_t k = n; k-- > 0;)
-      x[k] = (rhs[k] - (k + 1 < n ? upper[k] * x[k + 1] : 0.0)) / diag[k];
+    const Eigen::VectorXd x = m.ldlt().solve(rhs);  // symmetric positive definite
     // The found contact whose impulse pulls most; none: done. At most n passes (each drops one).
-    std::size_t worst = n;
-    for (std::size_t k = 0; k < n; ++k) {
+    Eigen::Index worst = n;
+    for (Eigen::Index k = 0; k < n; ++k) {
       if (!found[k]) continue;
       if (!std::isfinite(x[k]))
         throw std::invalid_argument("relative_cfm_column: a non-finite impulse");
       if (x[k] < 0.0 && (worst == n || x[k] < x[worst])) worst = k;
     }
-    if (worst == n) return x;
+    if (worst == n) return {x.data(), x.data() + n};
     found[worst] = false;
   }
   throw std::logic_error("column_impulses: more passes than contacts");
@@ -196,31 +190,38 @@ std::string stack_law_text(const EngineInfo& info) {
   return describe(info.stack_law);
 }
 
-StackPrediction predict_stack(const StackSetup& setup, std::size_t level, const EngineInfo& info,
-                              double h, std::int64_t steps, std::int64_t from) {
-  StackPrediction p;
-  if (info.relative_cfm.cfm > 0.0) {
+std::vector<StackPrediction> predict_stack(const StackSetup& setup, const EngineInfo& info,
+                                           double h, std::int64_t steps, std::int64_t from) {
+  std::vector<StackPrediction> out;
+  if (info.relative_cfm.cfm > 0.0) {  // stepped once for every level
     const ColumnPath path = relative_cfm_column(setup, info.relative_cfm, h, steps, from);
-    p.sink = path.sink.at(level);
-    p.still = path.still.at(level);
-    p.past_faces = path.past_faces;
-    p.exact = true;
-    p.offset = static_cast<double>(level + 1) * info.rest_offset;
-    return p;
+    for (std::size_t k = 0; k < setup.levels.size(); ++k)
+      out.push_back({.sink = path.sink[k],
+                     .exact = true,
+                     .still = path.still[k],
+                     .past_faces = path.past_faces,
+                     .offset = static_cast<double>(k + 1) * info.rest_offset});
+    return out;
   }
-  for (std::size_t k = 0; k <= level && k < setup.levels.size(); ++k) {
-    const StackLevel& l = setup.levels[k];
+  StackPrediction p;  // each level adds its lower contact to the ones under it
+  for (const StackLevel& l : setup.levels) {
     p.sink += contact_sink(info.stack_law, setup.g * l.load, l.mass, l.mass_below, h);
     p.offset += info.rest_offset;
-    if (l.mass_below <= 0.0) continue;  // on the static floor: nothing to sweep against
-    const double r = sweep_residual(info.stack_law, l.load, l.mass_below);
-    if (r > p.residual) {
+    const double r =
+        l.mass_below > 0.0 ? sweep_residual(info.stack_law, l.load, l.mass_below) : 0.0;
+    if (r > p.residual) {  // on the static floor nothing is swept against
       p.residual = r;
       p.load = l.load;
       p.mass = l.mass_below;
     }
+    out.push_back(p);
   }
-  return p;
+  return out;
+}
+
+StackPrediction predict_stack(const StackSetup& setup, std::size_t level, const EngineInfo& info,
+                              double h, std::int64_t steps, std::int64_t from) {
+  return predict_stack(setup, info, h, steps, from).at(level);
 }
 
 }  // namespace dropcheck

@@ -66,6 +66,10 @@ struct StackPrediction {
   double residual = 0.0;
   double load = 0.0, mass = 0.0;  // kg: the load and the body of the contact with that residual
 };
+// Every level's prediction at once (an exact law steps its column once for all of them).
+std::vector<StackPrediction> predict_stack(const StackSetup& setup, const EngineInfo& info,
+                                           double h, std::int64_t steps, std::int64_t from = 0);
+
 // `steps`: the run's last step, where an exact law is stepped to; `from`: the first step of the
 // window its stillness is taken over.
 StackPrediction predict_stack(const StackSetup& setup, std::size_t level, const EngineInfo& info,

@@ -27,8 +27,8 @@ StderrCapture::~StderrCapture() {
   (void)finish();
 }
 
-std::vector<std::pair<std::string, std::int64_t>> StderrCapture::finish() {
-  std::vector<std::pair<std::string, std::int64_t>> lines;
+CountedLines StderrCapture::finish() {
+  CountedLines lines;
   if (capture_ < 0) return lines;
   std::fflush(stderr);
   ::dup2(saved_, STDERR_FILENO);
@@ -40,22 +40,32 @@ std::vector<std::pair<std::string, std::int64_t>> StderrCapture::finish() {
     text.append(buf, static_cast<std::size_t>(n));
   ::close(capture_);
   saved_ = capture_ = -1;
-  std::size_t start = 0;
-  while (start < text.size()) {
-    std::size_t end = text.find('\n', start);
-    if (end == std::string::npos) end = text.size();
-    std::string line = escape_controls(
-        std::string_view(text).substr(start, std::min<std::size_t>(end - start, 300)));
-    start = end + 1;
-    if (line.empty()) continue;
-    auto same =
-        std::find_if(lines.begin(), lines.end(), [&](const auto& l) { return l.first == line; });
-    if (same != lines.end())
-      ++same->second;
-    else if (lines.size() < 16)
-      lines.emplace_back(std::move(line), 1);
-  }
+  lines.add_text(text);
   return lines;
+}
+
+void CountedLines::add(std::string_view raw) {
+  while (!raw.empty() && (raw.back() == '\r' || raw.back() == ' ')) raw.remove_suffix(1);
+  if (raw.empty()) return;
+  const bool cut = raw.size() > 300;
+  const std::string line = escape_controls(raw.substr(0, 300)) + (cut ? "..." : "");
+  for (Trajectory::Message& m : messages_)
+    if (m.text == line) {
+      ++m.count;
+      return;
+    }
+  if (messages_.size() < Trajectory::kKeptMessages)
+    messages_.push_back({line, 1});
+  else
+    ++other_lines_;
+}
+
+void CountedLines::add_text(std::string_view text) {
+  while (!text.empty()) {
+    const std::size_t end = std::min(text.find('\n'), text.size());
+    add(text.substr(0, end));
+    text.remove_prefix(std::min(end + 1, text.size()));
+  }
 }
 
 }  // namespace dropcheck

@@ -24,6 +24,7 @@
 #include "harness/io/fd_write.hpp"
 #include "harness/io/trajectory_wire.hpp"
 #include "harness/process/signal_cleanup.hpp"
+#include "harness/process/stderr_capture.hpp"
 #include "harness/run/run_limits.hpp"
 
 namespace dropcheck {
@@ -202,7 +203,7 @@ class ChildPipes {
     if (n < 0 && errno == EINTR) return;
     if (n <= 0) {
       close_fd(err_);
-      if (!partial_.empty()) count_line(partial_);
+      lines_.add(partial_);
       partial_.clear();
       return;
     }
@@ -213,37 +214,19 @@ class ChildPipes {
         if (partial_.size() < kLineBytes) partial_ += buf[i];
         continue;
       }
-      count_line(partial_);
+      lines_.add(partial_);
       partial_.clear();
     }
-  }
-
-  // One line of the child's stderr into the counted lines.
-  void count_line(const std::string& raw) {
-    std::string line = raw;
-    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-    if (line.empty()) return;
-    const bool cut = line.size() > 300;
-    line = escape_controls(cut ? line.substr(0, 300) : line) + (cut ? "..." : "");
-    for (Trajectory::Message& m : messages_)
-      if (m.text == line) {
-        ++m.count;
-        return;
-      }
-    if (messages_.size() < Trajectory::kKeptMessages)
-      messages_.push_back({line, 1});
-    else
-      ++other_lines_;
   }
 
  public:
   // What the child wrote to stderr, as counted lines, into `t` (a last line without its newline
   // too: a killed child's).
   void give_messages(Trajectory& t) {
-    if (!partial_.empty()) count_line(partial_);
+    lines_.add(partial_);
     partial_.clear();
-    t.messages = messages_;
-    t.other_lines = other_lines_;
+    t.messages = lines_.messages();
+    t.other_lines = lines_.other_lines();
   }
 
  private:
@@ -254,8 +237,7 @@ class ChildPipes {
   std::string tail_;
   static constexpr std::size_t kLineBytes = 4096;  // a longer line is cut (then to 300 bytes)
   std::string partial_;                            // the line being read
-  std::vector<Trajectory::Message> messages_;
-  std::int64_t other_lines_ = 0;
+  CountedLines lines_;
 };
 
 // Waits for `pid` to end, unregisters it from the signal handler while it is still a zombie (so

@@ -307,9 +307,10 @@ void time_evaluations(std::vector<SceneEvaluation>& scenes, const std::vector<En
       // The engines run in this process while timed: what they print is counted, not shown.
       StderrCapture printed;
       const std::vector<Timing> t = time_engines(cell, se.scene, se.sweep[i].seconds, options);
-      for (const auto& [line, times] : printed.finish())
-        say(progress, "timing cell " + std::to_string(c) + ": '" + line + "' printed " +
-                          std::to_string(times) + " times (kept from the terminal)");
+      const CountedLines lines = printed.finish();
+      for (const Trajectory::Message& m : lines.messages())
+        say(progress, "timing cell " + std::to_string(c) + ": '" + m.text + "' printed " +
+                          std::to_string(m.count) + " times (kept from the terminal)");
       for (std::size_t k = 0; k < t.size(); ++k) targets[k]->timing = t[k];
     }
 }

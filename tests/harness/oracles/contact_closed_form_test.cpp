@@ -28,14 +28,17 @@ TEST_CASE("a slide's continuous answer: Coulomb's stop at v0^2/(2*mu*g) after v0
           "[contact][closed-form]") {
   const Trajectory t = *contact_closed_form(testing::shipped("slide_stop"), kClosedH);
   // 5 m/s on mu = 0.5: stops after 1.0204 s at 2.5510 m, then stays.
-  const double stop = 5.0 / (0.5 * kClosedG), reach = 25.0 / (2.0 * 0.5 * kClosedG);
+  const double reach = 25.0 / (2.0 * 0.5 * kClosedG);
   const BodyState& half = at(t, 30, "cube");
   CHECK(half.position.x() == Approx(5.0 * 0.5 - 0.25 * kClosedG * 0.25).epsilon(1e-14));
   CHECK(half.velocity.x() == Approx(5.0 - 0.5 * kClosedG * 0.5).epsilon(1e-14));
   CHECK(half.position.y() == 0.5);
   CHECK(at(t, 120, "cube").position.x() == Approx(reach).epsilon(1e-14));
+  // Stopped after 5/(0.5*g) = 1.0204 s: moving at step 61 (1.0167 s), still from step 62.
+  CHECK(at(t, 61, "cube").velocity.x() > 0.0);
+  CHECK(at(t, 62, "cube").velocity.x() == 0.0);
+  CHECK(at(t, 62, "cube").position.x() == Approx(reach).epsilon(1e-14));
   CHECK(at(t, 120, "cube").velocity.x() == 0.0);
-  CHECK(stop == Approx(1.0204).epsilon(1e-4));
 }
 
 TEST_CASE("a bounce's continuous answer: apexes e^(2n)*h0, at rest after t_fall*(1 + e)/(1 - e)",

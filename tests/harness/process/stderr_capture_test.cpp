@@ -26,11 +26,12 @@ TEST_CASE("stderr is captured as counted lines and given back", "[process]") {
   CHECK(stderr_inode() != before);
   for (int i = 0; i < 3; ++i) std::fputs("LCP internal error\n", stderr);
   std::fputs("\x1b[2J\n\nlast without a newline", stderr);
-  const auto lines = capture.finish();
+  const std::vector<Trajectory::Message> lines = capture.finish().messages();
   CHECK(stderr_inode() == before);
   REQUIRE(lines.size() == 3);
-  CHECK(lines[0] == std::pair<std::string, std::int64_t>{"LCP internal error", 3});
-  CHECK(lines[1].first == "\\x1b[2J");
-  CHECK(lines[2].first == "last without a newline");
-  CHECK(capture.finish().empty());  // once only
+  CHECK(lines[0].text == "LCP internal error");
+  CHECK(lines[0].count == 3);
+  CHECK(lines[1].text == "\\x1b[2J");
+  CHECK(lines[2].text == "last without a newline");
+  CHECK(capture.finish().messages().empty());  // once only
 }
