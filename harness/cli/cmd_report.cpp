@@ -227,7 +227,7 @@ int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ost
   in.machine = this_machine();
   describe_engines(slots, in);
   if (args.has("--timing-smoke")) {
-    in.timing_options.body_steps_per_run = 1;
+    in.timing_options.min_run_seconds = 0.0;
     in.timing_options.min_sample_seconds = 0.0;
     in.timing_options.warmups = 0;
     in.timing_options.samples = 2;

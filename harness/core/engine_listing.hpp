@@ -15,6 +15,8 @@ struct EngineListing {
   bool compiled_in = false;
   // Nominal ns per body-step of its bare loop, sizing the timing plan (harness/timing/timing.cpp).
   double nominal_ns_per_body_step = 0.0;
+  // The same in a scene with contacts, where colliding costs most of a step.
+  double nominal_contact_ns_per_body_step = 0.0;
   // The report's slowdown alert threshold (harness/report/timing_record.cpp); 0 where unmeasured.
   double slowdown_threshold = 0.0;
   std::string packages;  // the Debian packages its library needs, comma-separated; "" for none

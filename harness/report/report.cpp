@@ -118,22 +118,26 @@ std::string method(const ReportInput& in) {
   if (in.timing)
     md += printf_string(
         "- Timing (⏱ wall time): wall seconds per simulated second, the minimum (the headline; "
-        "also the median and interquartile range) of %d timed runs after %d warm-up round, and "
+        "also the median and interquartile range) of %d timed runs after %d warm-up round (%d "
+        "runs and no warm-up for an engine whose sample lasts over %.0f ms at its nominal cost), "
+        "and "
         "the same minimum divided by the minimum of a calibration loop timed in the same rounds "
         "(%d particles, %d steps of semi-implicit Euler: harness/timing/calibration.hpp), a "
         "ratio to compare across machines. The work of one run is "
-        "fixed by the scene, h and engine name alone: the scene replicated side by side, the "
-        "smallest power "
-        "of two copies (at most %d) that holds %.0f body-steps, run back to back a power of two "
-        "times (at most %d) so that a sample lasts %.0f ms at the engine's nominal cost per "
-        "body-step, a constant per engine name (harness/timing/timing.hpp): cheap engines are "
-        "timed over milliseconds, not microseconds. Cell after cell, every round times the "
+        "fixed by the scene, h and engine name alone, from the engine's nominal cost per "
+        "body-step (a constant per engine name, one for free flight and one with contacts: "
+        "adapters/engines.txt): the scene replicated side by side, the smallest power of two "
+        "copies (at most %d) that lasts %.0f us, run back to back a power of two times (at most "
+        "%d) so that a sample lasts %.0f ms: cheap engines are timed over milliseconds, not "
+        "microseconds, and expensive ones on the scene as written. Cell after cell, every round "
+        "times the "
         "calibration loop, then runs each engine once, in alternating order: an untimed bare "
-        "loop to warm it, then the timed full and bare loops. "
+        "loop to warm it (not a long one), then the timed full and bare loops. "
         "Harness overhead = full loop (forces, step, read, NaN check, sampling) / bare step() "
         "loop - 1, from the medians.\n",
-        o.samples, o.warmups, kCalibrationParticles, kCalibrationSteps, o.max_replicas,
-        o.body_steps_per_run, o.max_repeats, 1e3 * o.min_sample_seconds);
+        o.samples, o.warmups, o.long_samples, 1e3 * o.long_sample_seconds, kCalibrationParticles,
+        kCalibrationSteps, o.max_replicas, 1e6 * o.min_run_seconds, o.max_repeats,
+        1e3 * o.min_sample_seconds);
   md += std::string("- Plots: gnuplot (Debian's gnuplot-nox), `") + kPlotTerminal +
         "`; the data are written with %.9g to a temporary file, and each SVG is moved into "
         "place only when gnuplot succeeded.\n\n";

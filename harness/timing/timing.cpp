@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <ctime>
+#include <map>
 #include <variant>
 
 #include "harness/core/engine_listing.hpp"
@@ -177,29 +178,54 @@ double Timing::overhead() const {
   return bare_median > 0 ? of(Statistic::median) / bare_median - 1 : 0;
 }
 
-int replicas_for(const Scene& scene, double h, const TimingOptions& options) {
-  const double per_copy = body_steps_per_copy(scene, h);
+int replicas_for(const Scene& scene, double h, const std::string& engine,
+                 const TimingOptions& options) {
+  const double per_copy =
+      body_steps_per_copy(scene, h) * 1e-9 * nominal_ns_per_body_step(engine, scene.world.contacts);
   int copies = 1;
-  while (copies < options.max_replicas && copies * per_copy < options.body_steps_per_run)
-    copies *= 2;
+  while (copies < options.max_replicas && copies * per_copy < options.min_run_seconds) copies *= 2;
   return std::min(copies, std::max(options.max_replicas, 1));
 }
 
-double nominal_ns_per_body_step(const std::string& engine) {
+double nominal_ns_per_body_step(const std::string& engine, bool contacts) {
   // Each engine's figure is declared with it (adapters/engines.txt, where it was measured); an
   // engine not in the list (an external one) is planned as a slow one.
   const EngineListing* listing = find_engine_listing(engine);
-  return listing ? listing->nominal_ns_per_body_step : 1000.0;
+  if (!listing) return 1000.0;
+  return contacts ? listing->nominal_contact_ns_per_body_step : listing->nominal_ns_per_body_step;
 }
 
 int repeats_for(const Scene& scene, double h, const std::string& engine, int replicas,
                 const TimingOptions& options) {
   const double sample = body_steps_per_copy(scene, h) * std::max(replicas, 1) * 1e-9 *
-                        nominal_ns_per_body_step(engine);
+                        nominal_ns_per_body_step(engine, scene.world.contacts);
   int repeats = 1;
   while (repeats < options.max_repeats && repeats * sample < options.min_sample_seconds)
     repeats *= 2;
   return std::min(repeats, std::max(options.max_repeats, 1));
+}
+
+namespace {
+
+// The nominal length (s) of one sample of `engine` on `scene` at step h.
+double nominal_sample_seconds(const Scene& scene, double h, const std::string& engine,
+                              const TimingOptions& options) {
+  const int copies = replicas_for(scene, h, engine, options);
+  return body_steps_per_copy(scene, h) * copies * repeats_for(scene, h, engine, copies, options) *
+         1e-9 * nominal_ns_per_body_step(engine, scene.world.contacts);
+}
+
+bool long_sample(const Scene& scene, double h, const std::string& engine,
+                 const TimingOptions& options) {
+  return nominal_sample_seconds(scene, h, engine, options) > options.long_sample_seconds;
+}
+
+}  // namespace
+
+int samples_for(const Scene& scene, double h, const std::string& engine,
+                const TimingOptions& options) {
+  return long_sample(scene, h, engine, options) ? std::min(options.long_samples, options.samples)
+                                                : options.samples;
 }
 
 namespace {
@@ -211,11 +237,13 @@ struct TimingCell {
   const std::vector<std::pair<std::string, EngineFactory>>& engines;
 };
 
-// One cell while it is being timed: its replicated scene, each engine's repeats and samples.
+// One cell while it is being timed: each engine's copies and repeats, the replicated scenes (one
+// per distinct number of copies), and the samples.
 struct CellRun {
-  int replicas = 1;
-  Scene copies;
-  std::vector<int> repeats;
+  std::vector<int> replicas, repeats, samples;
+  std::vector<bool> warm;  // warmed by an untimed run before each sample (not a long one)
+  std::map<int, Scene> copies;
+  const Scene& copies_of(std::size_t e) const { return copies.at(replicas[e]); }
   std::vector<std::vector<double>> full, bare;
   std::vector<double> calibration;  // one per timed round
   std::vector<int> disturbed;
@@ -224,14 +252,18 @@ struct CellRun {
 CellRun start_cell(const TimingCell& cell, const TimingOptions& options) {
   CellRun run;
   const std::size_t ne = cell.engines.size();
-  run.replicas = replicas_for(*cell.scene, cell.h, options);
-  run.copies = replicate(*cell.scene, run.replicas);
   run.full.resize(ne);
   run.bare.resize(ne);
   run.disturbed.assign(ne, 0);
-  for (std::size_t e = 0; e < ne; ++e)
-    run.repeats.push_back(
-        repeats_for(*cell.scene, cell.h, cell.engines[e].first, run.replicas, options));
+  for (std::size_t e = 0; e < ne; ++e) {
+    const std::string& name = cell.engines[e].first;
+    const int copies = replicas_for(*cell.scene, cell.h, name, options);
+    run.replicas.push_back(copies);
+    run.repeats.push_back(repeats_for(*cell.scene, cell.h, name, copies, options));
+    run.samples.push_back(samples_for(*cell.scene, cell.h, name, options));
+    run.warm.push_back(!long_sample(*cell.scene, cell.h, name, options));
+    if (!run.copies.count(copies)) run.copies.emplace(copies, replicate(*cell.scene, copies));
+  }
   return run;
 }
 
@@ -246,14 +278,16 @@ void time_round(const TimingCell& cell, CellRun& run, int round, const TimingOpt
   if (round >= 0) run.calibration.push_back(c);
   for (std::size_t k = 0; k < ne; ++k) {
     const std::size_t e = (round % 2 == 0) ? k : ne - 1 - k;
+    if (round >= run.samples[e] || (round < 0 && !run.warm[e])) continue;
     std::unique_ptr<Engine> engine = cell.engines[e].second();
-    time_bare(*engine, run.copies, cell.h, 1);
+    const Scene& copies = run.copies_of(e);
+    if (run.warm[e]) time_bare(*engine, copies, cell.h, 1);
     const int n = run.repeats[e];
     int& d = run.disturbed[e];
     const double f =
-        undisturbed([&] { return time_full(*engine, run.copies, cell.h, n); }, options.retries, d);
+        undisturbed([&] { return time_full(*engine, copies, cell.h, n); }, options.retries, d);
     const double b =
-        undisturbed([&] { return time_bare(*engine, run.copies, cell.h, n); }, options.retries, d);
+        undisturbed([&] { return time_bare(*engine, copies, cell.h, n); }, options.retries, d);
     if (round >= 0) run.full[e].push_back(f), run.bare[e].push_back(b);
   }
 }
@@ -263,13 +297,15 @@ Timing summarise(const TimingCell& cell, const CellRun& run, std::size_t e) {
   Timing t;
   t.engine = cell.engines[e].first;
   t.h = cell.h;
-  t.replicas = run.replicas;
+  t.replicas = run.replicas[e];
   t.repeats = run.repeats[e];
   t.disturbed = run.disturbed[e];
-  const double per = 1.0 / (cell.scene->duration * run.replicas * run.repeats[e]);
+  const double per = 1.0 / (cell.scene->duration * run.replicas[e] * run.repeats[e]);
   for (double s : run.full[e]) t.full.push_back(s * per);
   for (double s : run.bare[e]) t.bare.push_back(s * per);
-  t.calibration = run.calibration;
+  // The calibration loops of the rounds it ran (the first ones).
+  t.calibration.assign(run.calibration.begin(),
+                       run.calibration.begin() + static_cast<std::ptrdiff_t>(t.full.size()));
   return t;
 }
 

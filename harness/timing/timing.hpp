@@ -1,6 +1,7 @@
 // Run-time measurement: wall time per simulated second, from repeated runs after a warm-up. The
 // work timed in one run is fixed by the scene, h and the engine's name alone (replicas_for,
-// repeats_for): never re-chosen from a measurement, so two runs of the report time the same work.
+// repeats_for, from each engine's nominal cost per body-step): never re-chosen from a measurement,
+// so two runs of the report time the same work.
 // Every round also times a fixed calibration loop (calibration.hpp), so that each engine's cost is
 // also stated relative to a reference measured in the same rounds: a ratio a reader on another
 // machine can compare.
@@ -16,9 +17,12 @@
 namespace dropcheck {
 
 struct TimingOptions {
-  // Body-steps one timed run should hold at least: the scene is replicated (a power of two copies,
-  // at most max_replicas) until copies * dynamic bodies * steps reaches it.
-  double body_steps_per_run = 8000;
+  // A timed run should last at least this long (s) at the engine's nominal cost per body-step: the
+  // scene is replicated (a power of two copies, at most max_replicas) until it does, so that a
+  // cheap engine's run holds thousands of body-steps and an expensive one runs the scene as it
+  // is written (copies cost an engine with a poor broad phase more than their share: DART's
+  // bounce at 256 copies cost 12 times its cost at 16 per copy and step).
+  double min_run_seconds = 5e-5;
   int max_replicas = 4096;
   // A timed sample should last at least this long (s) at the engine's nominal cost per body-step
   // (nominal_ns_per_body_step): the replicated run is repeated back to back (repeats_for), so that
@@ -27,6 +31,12 @@ struct TimingOptions {
   int max_repeats = 256;
   int warmups = 1;  // untimed rounds first (page faults, lazy initialisation)
   int samples = 8;  // timed rounds
+  // An engine whose sample lasts longer than this (s) at its nominal cost is timed in the first
+  // long_samples rounds only, without warm-up: a run that long warms itself in its first
+  // milliseconds and varies less from sample to sample (simbody on Gazebo's boxes at 0.2 ms: one
+  // run of 10 simulated seconds lasts 0.66 s, and 9 rounds of it cost 18 s of a report's 160).
+  double long_sample_seconds = 2e-2;
+  int long_samples = 3;
   // A run during which another process took the core (wall time beyond the thread's CPU time) is
   // run again, at most this many times.
   int retries = 1;
@@ -77,16 +87,19 @@ struct Timing {
   double overhead() const;
 };
 
-// Copies of `scene` one timed run holds at step h: the smallest power of two with
-// copies * (dynamic bodies, at least 1) * step_count(scene, h) >= options.body_steps_per_run,
-// at most options.max_replicas. A function of the scene and h only.
-int replicas_for(const Scene& scene, double h, const TimingOptions& options);
+// Copies of `scene` one timed run of `engine` holds at step h: the smallest power of two with
+// copies * (dynamic bodies, at least 1) * step_count(scene, h) * nominal_ns_per_body_step >=
+// options.min_run_seconds, at most options.max_replicas. A function of the scene, h and the
+// engine's name only.
+int replicas_for(const Scene& scene, double h, const std::string& engine,
+                 const TimingOptions& options);
 
-// A rough cost of one body-step of `engine`'s bare loop (ns), fixed in code from
-// bench/results/debian12-2core-vm.csv (rounded down, so a sample lasts at least as long as
-// targeted on a similar machine), never measured at run time; 1000 ns for an engine not listed
-// (an external engine pays ~8 us per step for the protocol alone).
-double nominal_ns_per_body_step(const std::string& engine);
+// A rough cost of one body-step of `engine`'s bare loop (ns), declared with the engine
+// (adapters/engines.txt, where each was measured: free cubes, and the report's contact cells for
+// a scene with contacts), rounded down so that a sample lasts at least as long as targeted on a
+// similar machine, never measured at run time; 1000 ns for an engine not listed (an external
+// engine pays ~8 us per step for the protocol alone).
+double nominal_ns_per_body_step(const std::string& engine, bool contacts = false);
 
 // Back-to-back runs of the `replicas`-copy scene summed into one timed sample: the smallest power
 // of two with repeats * replicas * body-steps per copy * nominal_ns_per_body_step(engine) >=
@@ -100,6 +113,12 @@ int repeats_for(const Scene& scene, double h, const std::string& engine, int rep
 // copies never touch and a planar scene stays planar; every force duplicated onto the copies (a
 // spring's anchor shifted with its body).
 Scene replicate(const Scene& scene, int copies);
+
+// The timed rounds of `engine` on `scene` at step h: options.samples, or options.long_samples for
+// a sample longer than options.long_sample_seconds at its nominal cost. A function of the scene,
+// h and the engine's name only.
+int samples_for(const Scene& scene, double h, const std::string& engine,
+                const TimingOptions& options);
 
 // Times every engine on `scene` at step h (one cell of the report): the rounds back to back
 // (warm-ups first, untimed), each round timing the calibration loop, then running every engine

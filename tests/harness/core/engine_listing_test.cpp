@@ -16,7 +16,7 @@ namespace {
 struct Row {
   std::string name, source, find, packages;
   double ns = 0.0;
-  std::string slowdown;
+  std::string contact_ns, slowdown;
 };
 
 std::vector<Row> engines_txt() {
@@ -27,7 +27,7 @@ std::vector<Row> engines_txt() {
     if (line.empty() || line[0] == '#') continue;
     std::istringstream fields(line);
     Row r;
-    fields >> r.name >> r.source >> r.find >> r.packages >> r.ns >> r.slowdown;
+    fields >> r.name >> r.source >> r.find >> r.packages >> r.ns >> r.contact_ns >> r.slowdown;
     rows.push_back(r);
   }
   return rows;
@@ -44,6 +44,8 @@ TEST_CASE("the engine listing is adapters/engines.txt, row for row", "[engine][l
     INFO(rows[i].name);
     CHECK(listing[i].name == rows[i].name);
     CHECK(listing[i].nominal_ns_per_body_step == rows[i].ns);
+    CHECK(listing[i].nominal_contact_ns_per_body_step ==
+          (rows[i].contact_ns == "-" ? rows[i].ns : std::stod(rows[i].contact_ns)));
     CHECK(listing[i].slowdown_threshold ==
           (rows[i].slowdown == "-" ? 0.0 : std::stod(rows[i].slowdown)));
     CHECK(listing[i].packages == (rows[i].packages == "-" ? "" : rows[i].packages));

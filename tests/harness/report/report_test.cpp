@@ -151,7 +151,7 @@ TEST_CASE("with timings the run-time table has marked columns and a work-precisi
           "[report]") {
   ScratchDir dir("timing");
   ReportInput in;  // as little timing work as possible: this checks the plumbing only
-  in.timing_options.body_steps_per_run = 1;
+  in.timing_options.min_run_seconds = 0.0;
   in.timing_options.warmups = 0;
   in.timing_options.samples = 2;
   std::vector<EngineSlot> engines;
@@ -184,7 +184,7 @@ TEST_CASE("a report written again into its folder states how far each median mov
   // work as possible: this checks the plumbing, not the figures.
   const auto write = [&] {
     ReportInput in;
-    in.timing_options.body_steps_per_run = 1;
+    in.timing_options.min_run_seconds = 0.0;
     in.timing_options.warmups = 0;
     in.timing_options.samples = 4;
     in.provenance.commit = "abc1234";

@@ -3,6 +3,7 @@
 // flake.
 #include "harness/timing/timing.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <variant>
 
@@ -81,7 +82,7 @@ TEST_CASE("every copy of a scene replicated for timing moves like the original",
 TEST_CASE("timing returns positive figures for every engine", "[timing]") {
   const Scene s = timing_scene();
   TimingOptions fast;  // as little work as possible: this checks the plumbing, not the machine
-  fast.body_steps_per_run = 1;
+  fast.min_run_seconds = 0.0;
   fast.min_sample_seconds = 0.0;
   fast.warmups = 0;
   fast.samples = 4;
@@ -112,30 +113,39 @@ TEST_CASE("timing returns positive figures for every engine", "[timing]") {
   }
 }
 
-TEST_CASE("the work of a timed run depends on the scene and h only, never on a measurement",
+TEST_CASE("the work of a timed run depends on the scene, h and engine name, never on a measurement",
           "[timing]") {
-  const Scene s = timing_scene();  // 2 dynamic bodies, 0.5 s
+  const Scene s = timing_scene();  // 2 dynamic bodies, 0.5 s, no contacts
   TimingOptions o;
-  o.body_steps_per_run = 1000;
-  // 1/60: 30 steps * 2 bodies = 60 body-steps per copy; 16 copies hold 960 < 1000, 32 hold 1920.
-  CHECK(replicas_for(s, 1.0 / 60, o) == 32);
-  // 1/240: 120 steps * 2 = 240 per copy; 4 copies hold 960, 8 hold 1920.
-  CHECK(replicas_for(s, 1.0 / 240, o) == 8);
+  o.min_run_seconds = 1e-5;
+  // ours at 3.5 ns, 1/60: 30 steps * 2 bodies = 60 body-steps, 210 ns per copy; 32 copies last
+  // 6.7 us < 10 us, 64 last 13.4 us.
+  CHECK(replicas_for(s, 1.0 / 60, "ours", o) == 64);
+  // 1/240: 240 body-steps, 840 ns per copy; 8 copies last 6.7 us, 16 last 13.4 us.
+  CHECK(replicas_for(s, 1.0 / 240, "ours", o) == 16);
+  // bullet at 580 ns: one copy lasts 34.8 us already; an unlisted engine (1000 ns) too.
+  CHECK(replicas_for(s, 1.0 / 60, "bullet", o) == 1);
+  CHECK(replicas_for(s, 1.0 / 60, "exec:python3 engine.py", o) == 1);
   o.max_replicas = 4;
-  CHECK(replicas_for(s, 1.0 / 60, o) == 4);
-  o.body_steps_per_run = 10;
-  CHECK(replicas_for(s, 1.0 / 60, o) == 1);
+  CHECK(replicas_for(s, 1.0 / 60, "ours", o) == 4);
+  o.min_run_seconds = 1e-7;
+  CHECK(replicas_for(s, 1.0 / 60, "ours", o) == 1);
   // A scene of static bodies only counts as one body, so it is still timed on enough steps.
   Scene still = s;
   for (Body& b : still.bodies) b.is_static = true;
   still.forces.clear();
   o.max_replicas = 4096;
-  o.body_steps_per_run = 1000;
-  CHECK(replicas_for(still, 1.0 / 60, o) == 64);  // 30 per copy: 32 hold 960, 64 hold 1920
+  o.min_run_seconds = 1e-5;
+  CHECK(replicas_for(still, 1.0 / 60, "ours", o) == 128);  // 105 ns per copy: 128 last 13.4 us
+  // With contacts, the engine's contact cost: ours at 230 ns, 13.8 us per copy.
+  Scene touching = s;
+  touching.world.contacts = true;
+  CHECK(nominal_ns_per_body_step("ours", true) == 230.0);
+  CHECK(replicas_for(touching, 1.0 / 60, "ours", o) == 1);
   // The same answer however often it is asked, unlike a search timed on the machine.
   const TimingOptions d;
-  CHECK(replicas_for(s, 1.0 / 60, d) == replicas_for(s, 1.0 / 60, d));
-  CHECK(replicas_for(s, 1.0 / 60, d) == 256);  // 8000: 60 per copy; 128 hold 7680, 256 hold 15360
+  CHECK(replicas_for(s, 1.0 / 60, "ours", d) == replicas_for(s, 1.0 / 60, "ours", d));
+  CHECK(replicas_for(s, 1.0 / 60, "ours", d) == 256);  // 50 us: 128 last 26.9 us, 256 53.8 us
 }
 
 TEST_CASE("a cheap engine's timed sample repeats the run by a count fixed in code, not measured",
@@ -158,15 +168,57 @@ TEST_CASE("a cheap engine's timed sample repeats the run by a count fixed in cod
   // The defaults: a 2 ms sample. At ours's 256 copies x 60 body-steps x 3.5 ns = 54 us per run,
   // 32 runs hold 1.72 ms < 2 ms, 64 hold 3.4 ms.
   const TimingOptions d;
-  CHECK(repeats_for(s, 1.0 / 60, "ours", replicas_for(s, 1.0 / 60, d), d) == 64);
-  CHECK(repeats_for(s, 1.0 / 60, "mujoco", replicas_for(s, 1.0 / 60, d), d) == 1);
+  CHECK(repeats_for(s, 1.0 / 60, "ours", replicas_for(s, 1.0 / 60, "ours", d), d) == 64);
+  // mujoco: 2 copies x 60 body-steps x 550 ns = 66 us per run; 16 runs hold 1.06 ms, 32 hold 2.1.
+  CHECK(replicas_for(s, 1.0 / 60, "mujoco", d) == 2);
+  CHECK(repeats_for(s, 1.0 / 60, "mujoco", replicas_for(s, 1.0 / 60, "mujoco", d), d) == 32);
+}
+
+TEST_CASE("an engine whose sample is long at its nominal cost is timed in fewer rounds, unwarmed",
+          "[timing]") {
+  Scene s = timing_scene();
+  s.duration = 200.0;  // 1/60: 12000 steps x 2 bodies = 24000 body-steps per copy
+  TimingOptions o;
+  o.samples = 5;
+  // An unlisted engine at 1000 ns: one copy, one run of 24 ms, over the 20 ms of a long sample.
+  CHECK(samples_for(s, 1.0 / 60, "exec:./slow", o) == o.long_samples);
+  // ours at 3.5 ns: 84 us per copy, one copy and 32 runs: 2.7 ms.
+  CHECK(samples_for(s, 1.0 / 60, "ours", o) == 5);
+  o.samples = 2;  // never more rounds than asked for
+  CHECK(samples_for(s, 1.0 / 60, "exec:./slow", o) == 2);
+  o.samples = 5;
+  o.min_sample_seconds = 0.0;
+  o.min_run_seconds = 0.0;
+  std::string made;
+  const auto engine = [&made](char tag) {
+    return [&made, tag] {
+      made += tag;
+      return make_engine("ours");
+    };
+  };
+  // Named as a slow external engine, so planned as one; it runs ours.
+  const std::vector<Timing> t =
+      time_engines({{"ours", engine('o')}, {"exec:./slow", engine('x')}}, s, 1.0 / 60, o);
+  REQUIRE(t.size() == 2);
+  CHECK(t[0].samples() == 5);
+  CHECK(t[1].samples() == 3);
+  CHECK(t[1].calibration.size() == 3);  // the rounds it ran
+  CHECK(std::equal(t[1].calibration.begin(), t[1].calibration.end(), t[0].calibration.begin()));
+  // The warm-up round makes ours only; the long one runs in the first three timed rounds.
+  CHECK(made ==
+        "o"
+        "ox"
+        "xo"
+        "ox"
+        "o"
+        "o");
 }
 
 TEST_CASE("a timing with repeats reports per copy and per run, and says how many it summed",
           "[timing]") {
   const Scene s = timing_scene();
   TimingOptions o;
-  o.body_steps_per_run = 1;
+  o.min_run_seconds = 0.0;
   o.min_sample_seconds = 1e-5;  // ours: 64 repeats of 210 ns (above)
   o.warmups = 0;
   o.samples = 4;
@@ -201,7 +253,7 @@ TEST_CASE("a timing's statistics are order statistics of its samples", "[timing]
 TEST_CASE("timing runs every engine once a round, alternating from round to round", "[timing]") {
   const Scene s = timing_scene();
   TimingOptions o;
-  o.body_steps_per_run = 1;
+  o.min_run_seconds = 0.0;
   o.min_sample_seconds = 0.0;
   o.warmups = 1;
   o.samples = 4;
