@@ -22,6 +22,7 @@
 #include "harness/report/report_sweep.hpp"
 #include "harness/report/stability_report.hpp"
 #include "harness/report/sweep_results.hpp"
+#include "harness/run/forked_text.hpp"
 #include "harness/scene/scene_files.hpp"
 #include "harness/scene/scene_loader.hpp"
 #include "selection.hpp"
@@ -103,6 +104,9 @@ void evaluate_all(const std::vector<Scene>& scenes, const std::vector<EngineSlot
       err << prefix << what << " ...\n" << std::flush;
     }));
   }
+}
+
+void time_all(const std::vector<EngineSlot>& slots, ReportInput& in, std::ostream& err) {
   if (!in.timing) return;
   time_evaluations(in.scenes, slots, in.timing_options, [&](const std::string& what) {
     err << what << " ...\n" << std::flush;
@@ -244,12 +248,17 @@ int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ost
       in.compare = {read_timing_record(args.value("--compare-timings")), "", ""};
   }
   const std::size_t total = scenes.size() + (files.extreme.empty() ? 0 : 1);
-  evaluate_all(scenes, slots, options, total, in, err);
+  // The stability section in a child process on the other core while this one evaluates the
+  // scenes; both end before the timing starts, which wants the machine to itself.
+  std::optional<ForkedText> stability;
   if (!files.extreme.empty()) {
     err << "[" << total << "/" << total << "] stability: " << files.extreme.size()
-        << " extreme scenes ...\n";
-    in.stability = stability_report_section(files.extreme, slots, err);
+        << " extreme scenes, beside the others ...\n";
+    stability.emplace([&] { return stability_report_section(files.extreme, slots, err); });
   }
+  evaluate_all(scenes, slots, options, total, in, err);
+  if (stability) in.stability = stability->get();
+  time_all(slots, in, err);
 
   StagingDir staging(out_dir);
   write_report(in, staging.path(),

@@ -35,7 +35,7 @@ struct TimingOptions {
   // long_samples rounds only, without warm-up: a run that long warms itself in its first
   // milliseconds and varies less from sample to sample (simbody on Gazebo's boxes at 0.2 ms: one
   // run of 10 simulated seconds lasts 0.66 s, and 9 rounds of it cost 18 s of a report's 160).
-  double long_sample_seconds = 2e-2;
+  double long_sample_seconds = 1e-2;
   int long_samples = 3;
   // A run during which another process took the core (wall time beyond the thread's CPU time) is
   // run again, at most this many times.

@@ -180,7 +180,7 @@ TEST_CASE("an engine whose sample is long at its nominal cost is timed in fewer 
   s.duration = 200.0;  // 1/60: 12000 steps x 2 bodies = 24000 body-steps per copy
   TimingOptions o;
   o.samples = 5;
-  // An unlisted engine at 1000 ns: one copy, one run of 24 ms, over the 20 ms of a long sample.
+  // An unlisted engine at 1000 ns: one copy, one run of 24 ms, over the 10 ms of a long sample.
   CHECK(samples_for(s, 1.0 / 60, "exec:./slow", o) == o.long_samples);
   // ours at 3.5 ns: 84 us per copy, one copy and 32 runs: 2.7 ms.
   CHECK(samples_for(s, 1.0 / 60, "ours", o) == 5);
