@@ -45,7 +45,16 @@
 //            inside them), or a btSphereShape of a sphere's radius; restitution sqrt(e) per body
 //            for the scene's restitution e (0 when unset), friction sqrt(0.5) per body: Bullet
 //            combines both as the product (btManifoldResult::calculateCombinedRestitution and
-//            ::calculateCombinedFriction), so every pair gets e and mu = 0.5. Solver: sequential
+//            ::calculateCombinedFriction), so every pair gets e and mu = 0.5. A scene's friction
+//            mu: with one dynamic body, mu on it and 1 on every static body (the product is mu
+//            exactly); with more, sqrt(mu) on every body (mu to an ulp).
+//            Friction (btSequentialImpulseConstraintSolver.cpp, 3.24: convertContact,
+//            solveSingleIteration): one row per contact along that contact's slip before the
+//            solve (SOLVER_USE_2_FRICTION_DIRECTIONS is off by default), solved after every
+//            normal row in each of the 10 iterations and clamped to mu times the contact's
+//            accumulated normal impulse; a row whose contact has no normal impulse is skipped,
+//            keeping what earlier iterations gave it. A cone, held to Coulomb's law step by step
+//            from the run's momentum (ContactSolverKind::bullet_3). Solver: sequential
 //            impulse, 10 iterations (defaults), split impulse for every penetration:
 //            m_splitImpulsePenetrationThreshold 0 instead of -0.04 m. Bullet's default pushes
 //            penetrations shallower than 4 cm out with a Baumgarte velocity (ERP 0.2 * depth / h)
@@ -56,10 +65,12 @@
 //            and mask 0, so the broadphase never pairs anything: no contact shapes, no contacts.
 #include <btBulletDynamicsCommon.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -163,6 +174,7 @@ class BulletEngine final : public Engine {
     i.capabilities = {.contacts = true,
                       .planar_only = false,
                       .rotation = Rotation::full,
+                      .friction = true,
                       .restitution = true,
                       .spheres = true};
     i.law = DampingOrder::BeforeForces;
@@ -172,7 +184,9 @@ class BulletEngine final : public Engine {
     i.damping_mapping = "setDamping(d = 1 - exp(-k), d_a = 1 - exp(-k_a)); v *= (1-d)^h";
     i.contact_settings =
         "btBoxShape (margin 0.04 inside) or btSphereShape per body, restitution sqrt(e) each "
-        "(product: e, 0 unset), friction sqrt(0.5) each (product: mu = 0.5), sequential impulse 10 "
+        "(product: e, 0 unset), friction sqrt(0.5) each (product: mu = 0.5; a scene's mu: mu on "
+        "the "
+        "one dynamic body and 1 on static ones, else sqrt(mu) each), sequential impulse 10 "
         "iterations, split impulse for every "
         "penetration (threshold 0)";
     // Measured on drop_on_floor(_undamped): final y - 0.5 = -3.2e-7 / -3.5e-7 m at 1/60, from
@@ -195,6 +209,18 @@ class BulletEngine final : public Engine {
     // the last 2 s. The same stack in Bullet alone drifts 3.9 mm with 10 sweeps, 0.19 mm with 50
     // and 7.8e-13 m with 200 (docs/contact.md): the solver's residual, not the contact's law.
     i.stack_law = {.iterations = 10, .sink_bound = 5e-5, .drift_bound = 1e-2, .still_bound = 3e-3};
+    // A slide: its friction is mu times the step's normal impulse while the box slides flat, but
+    // a box rocking on its manifold's corners spreads the contacts' slip directions (a step's
+    // friction along the slip up to 33 % short of mu*N) and a corner that loses its normal impulse
+    // mid-step keeps its friction (up to 26 % over), on a minority of steps: over a whole slide
+    // the friction is 0.997 to 1.067 of mu*N, but the median step's is mu*N to 1.9e-5 (43 slides:
+    // slide_stop, incline_hold, incline_slide and slide_diagonal at 1/60, 1/120 and 1/240, and
+    // scenarios/friction/); a coefficient 2 % off moves it to 0.98 or 1.02.
+    i.friction_model = FrictionModel::cone;
+    i.contact_solver = {.kind = ContactSolverKind::bullet_3,
+                        .velocity_iterations = 10,
+                        .coulomb_median_bound = 1e-3,
+                        .keeps_stale_friction = true};
     // Bullet has CCD (btCollisionObject::setCcdMotionThreshold / setCcdSweptSphereRadius), but the
     // adapter leaves the threshold at its default 0, which disables it: overlap is tested at step
     // ends only.
@@ -218,6 +244,9 @@ class BulletEngine final : public Engine {
     // Position recovery by split impulse for any penetration depth (see the mapping at the top).
     w_->world.getSolverInfo().m_splitImpulsePenetrationThreshold = 0;
     restitution_ = scene_material(scene).restitution.value_or(0.0);
+    friction_ = scene_material(scene).friction;
+    dynamic_bodies_ = static_cast<int>(std::count_if(scene.bodies.begin(), scene.bodies.end(),
+                                                     [](const Body& b) { return !b.is_static; }));
     for (const Body& b : scene.bodies) add_body(scene, b);
   }
 
@@ -298,9 +327,7 @@ class BulletEngine final : public Engine {
                                                 local_inertia(b));
     ci.m_startWorldTransform = start;
     ci.m_restitution = btScalar(std::sqrt(restitution_));
-    // identify --combine: the body's own coefficient, Bullet's product makes the pair's.
-    ci.m_friction =
-        body_materials_ && b.friction ? btScalar(*b.friction) : btScalar(std::sqrt(kFriction));
+    ci.m_friction = friction_of(b);
     auto body = std::make_unique<btRigidBody>(ci);
     // dv/dt = -k*v over 1 s: v *= exp(-k), so d = 1 - exp(-k) is the fraction lost per second;
     // Bullet applies v *= (1 - d)^h per step = exp(-k*h).
@@ -316,8 +343,19 @@ class BulletEngine final : public Engine {
     w_->bodies.push_back(std::move(body));
   }
 
+  // Each body's friction, so that Bullet's product is the pair's mu (the mapping at the top).
+  btScalar friction_of(const Body& b) const {
+    // identify --combine: the body's own coefficient, Bullet's product makes the pair's.
+    if (body_materials_ && b.friction) return btScalar(*b.friction);
+    if (!friction_) return btScalar(std::sqrt(kFriction));
+    if (dynamic_bodies_ == 1) return b.is_static ? btScalar(1) : btScalar(*friction_);
+    return btScalar(std::sqrt(*friction_));
+  }
+
   btScalar h_ = btScalar(1.0 / 60.0);
   double restitution_ = 0.0;  // the scene's e; each body gets sqrt(e) (Bullet multiplies the two)
+  std::optional<double> friction_;  // the scene's mu, when it sets one
+  int dynamic_bodies_ = 0;
   bool body_materials_ = false;  // Engine::use_body_materials
   std::unique_ptr<BulletWorld> w_;
 };

@@ -15,6 +15,9 @@ std::string describe(const ContactSolver& solver) {
              " iterations, cached impulses), replayed";
     case ContactSolverKind::mujoco_2_2:
       return "MuJoCo 2.2 soft contact (pyramidal cone, its convex step problem re-solved)";
+    case ContactSolverKind::bullet_3:
+      return "Bullet 3 sequential impulses (" + std::to_string(solver.velocity_iterations) +
+             " iterations), bounded by Coulomb's law";
   }
   return "unknown";
 }

@@ -22,17 +22,31 @@
 //             constant; its Newton solver converges to the problem's minimum, which the harness
 //             re-solves exactly from the same collisions. The softness lets a sliding box lift off
 //             its leading edge and a held box creep: re-solved, not bounded.
+// bullet_3    Bullet 3's sequential impulses (btSequentialImpulseConstraintSolver): per iteration
+//             every contact's normal row, then every contact's friction row along that contact's
+//             slip, clamped by mu times its accumulated normal impulse; a friction row is solved
+//             only while its normal impulse is positive. Its box-box manifold gains and loses
+//             corners as the box rocks, so a slide's normal impulse varies from step to step; the
+//             harness does not replay it but holds each step to Coulomb's law with the step's own
+//             normal impulse, read from the run's momentum (harness/oracles/slide_impulses.hpp):
+//             bounded, not replayed.
 #pragma once
 
 #include <string>
 
 namespace dropcheck {
 
-enum class ContactSolverKind { exact, box2d_2_4, chipmunk_7, mujoco_2_2 };
+enum class ContactSolverKind { exact, box2d_2_4, chipmunk_7, mujoco_2_2, bullet_3 };
 
 struct ContactSolver {
   ContactSolverKind kind = ContactSolverKind::exact;
   int velocity_iterations = 0;  // per step (0: solved or re-solved exactly)
+  // bullet_3: how far the median slipping step's friction may be from mu times its normal impulse
+  // (relative; single steps stray further: a rocking box spreads its contacts' slip directions,
+  // below mu*N, and a contact that loses its normal impulse mid-step keeps its friction, above),
+  // and whether the solver keeps such friction.
+  double coulomb_median_bound = 0.0;
+  bool keeps_stale_friction = false;
   int position_iterations = 0;  // per step, after the positions are updated (Box2D)
 };
 

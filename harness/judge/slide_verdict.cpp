@@ -135,6 +135,68 @@ SlideVerdict judge_replayed(const Trajectory& run, const SlidePath& path, const 
   return v;
 }
 
+// Against Coulomb's law step by step, each step's normal impulse read from the run's momentum
+// (harness/oracles/slide_impulses.hpp), within the bounds the engine declares.
+SlideVerdict judge_by_momentum(const Trajectory& run, const SlidePath& path, const SlideSetup& s,
+                               const EngineInfo& info, SlideVerdict v, double h) {
+  const ContactSolver& solver = info.contact_solver;
+  const auto steps = static_cast<std::int64_t>(path.s.size()) - 1;
+  v.solver = solver;
+  std::vector<BodyState> states;
+  for (std::size_t k = 0; k < run.samples(); ++k) states.push_back(run.at(k, s.body));
+  const std::vector<SlideImpulse> impulses = slide_impulses(states, s, h);
+  v.coulomb = coulomb_certificate(impulses, s.mu, s.g, h, solver.coulomb_median_bound);
+  const SlidePath own = coulomb_path(impulses, s, s.mu, h);
+  v.law_seen = observe(own);
+  for (std::size_t n = 0; n < path.s.size(); ++n)
+    v.off_law = std::max(v.off_law, std::abs(path.s[n] - own.s[n]));
+  v.first_off = v.coulomb->first_bad;
+  v.follows = v.coulomb->holds;
+  clamp_figures(v, s, h, path.s.size());
+  v.clamp_seen = observe(slide_path(s, v.model, h, steps, info.law.position));
+  return v;
+}
+
+// "Coulomb's law from its momentum: over its 61 slipping steps the friction against the slip is
+// 1.00331 of mu*N (bound 0.01); ...": the certificate of a momentum verdict.
+std::string coulomb_text(const CoulombCertificate& c, const ContactSolver& solver) {
+  std::string t = printf_string(
+      "Coulomb's law from its momentum: its median slipping step's friction against the slip is "
+      "%.7g of mu*N (bound %.0e; over all %d, %.5g)",
+      c.median_ratio, solver.coulomb_median_bound, c.slipping, c.mean_ratio);
+  t += printf_string("; mu*N to %.0e on %d steps", kCoulombRounding, c.exact);
+  if (c.worst_short_step > 0)
+    t += printf_string(", at most %.2g below (step %lld: its contacts slip apart as it rocks)",
+                       c.worst_short, static_cast<long long>(c.worst_short_step));
+  if (c.stale > 0)
+    t += printf_string(", above on %d (by up to %.2g %% at step %lld%s)", c.stale,
+                       100.0 * c.worst_over, static_cast<long long>(c.worst_over_step),
+                       solver.keeps_stale_friction
+                           ? ": a contact that lost its normal impulse mid-step keeps the friction "
+                             "earlier iterations gave it"
+                           : "");
+  if (c.held > 0)
+    t += printf_string("; %d held steps, creeping at up to %.2g m/s (step %lld)", c.held, c.creep,
+                       static_cast<long long>(c.creep_step));
+  t += printf_string("; its normal impulse %.3g to %.3g of m*g*h", c.min_normal, c.max_normal);
+  return t;
+}
+
+// Why a momentum verdict departs, at its first bad step.
+std::string coulomb_departure(const CoulombCertificate& c, const ContactSolver& solver) {
+  if (c.pull_step >= 0 && c.pull_step == c.first_bad)
+    return "its contact pulls (a negative normal impulse)";
+  if (solver.coulomb_median_bound > 0.0)
+    return printf_string(
+        "its median slipping step's friction is %.6g of mu*N, beyond the bound of %.0e: another "
+        "coefficient or combine rule than the scene's mu",
+        c.median_ratio, solver.coulomb_median_bound);
+  return printf_string(
+      "its friction is %.2g below or %.2g above mu*N on a step, where Coulomb's law holds it to "
+      "%.0e",
+      c.worst_short, c.worst_over, kCoulombRounding);
+}
+
 }  // namespace
 
 SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& s, FrictionModel model, double h,
@@ -175,6 +237,18 @@ SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& s, FrictionMod
 
 SlideVerdict judge_slide(const Trajectory& run, const Scene& scene, const SlideSetup& s,
                          const EngineInfo& info, double h) {
+  if (info.contact_solver.kind == ContactSolverKind::bullet_3) {
+    SlideVerdict v;
+    v.model = info.friction_model;
+    const SlidePath path = observed_slide_path(run, s);
+    v.seen = observe(path);
+    v.exact = run.keeps_every_step();
+    if (!v.exact) {
+      v.not_judged = "the run did not keep every step";
+      return v;
+    }
+    return judge_by_momentum(run, path, s, info, v, h);
+  }
   if (!replayed(info.contact_solver)) {
     SlideVerdict v =
         judge_slide(run, s, info.friction_model, h, info.law.position, info.relative_cfm);
@@ -204,7 +278,10 @@ std::string SlideVerdict::sentence() const {
       law.stops && law.stop_step > 0
           ? printf_string(" (continuous: %.5g s, %.5g m)", law.stop_time, law.distance)
           : printf_string(" (continuous: %.7g m by the end)", end_continuous);
-  if (solver)
+  if (coulomb)
+    text += "; its " + describe(*solver) + ": " + coulomb_text(*coulomb, *solver) +
+            "; that law with its normal impulses: " + stop_text(law_seen);
+  else if (solver)
     text += "; its " + describe(*solver) + ": " + stop_text(law_seen);
   else
     text += "; its " + clamp + stop_text(law_seen) + continuous;
@@ -225,7 +302,7 @@ std::string SlideVerdict::sentence() const {
   if (solver) {
     // What the solver leaves: the clamp law, and the replay with more iterations.
     text += "; the " + clamp + stop_text(clamp_seen) + continuous;
-    if (more_iterations > 0)
+    if (more_iterations > 0 && !coulomb)
       text += printf_string(
                   ", %s at %d velocity iterations: ",
                   more_seen.stop_step == clamp_seen.stop_step ? "as the replay" : "the replay",
@@ -234,6 +311,9 @@ std::string SlideVerdict::sentence() const {
   }
   if (follows) return text;
   text += " DEPARTS";
+  if (coulomb)
+    return text + printf_string(" at step %lld: ", static_cast<long long>(first_off)) +
+           coulomb_departure(*coulomb, *solver);
   if (first_off >= 0)
     text += printf_string(" at step %lld (first over %.2g m)", static_cast<long long>(first_off),
                           tolerance::kSlideDistance);

@@ -11,6 +11,7 @@
 #include "harness/core/engine.hpp"
 #include "harness/core/friction_model.hpp"
 #include "harness/oracles/contact_laws.hpp"
+#include "harness/oracles/slide_impulses.hpp"
 
 namespace dropcheck {
 
@@ -47,6 +48,10 @@ struct SlideVerdict {
   std::optional<FrictionModel> instead_model;  // when that member is another friction model
   std::string instead;
   double instead_off = 0.0;  // m: the run's largest distance from it
+  // A solver held to Coulomb's law from the run's momentum (ContactSolverKind::bullet_3): the
+  // certificate of every step; law_seen is then the clamp law with the run's own normal impulses
+  // (coulomb_path) and off_law the run's largest distance from it along the slip.
+  std::optional<CoulombCertificate> coulomb;
   // When none fits: what the engine printed during the run, and what its adapter says that means
   // (harness/judge/engine_messages.hpp); "" when it printed nothing.
   std::string engine_said;

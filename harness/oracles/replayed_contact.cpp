@@ -17,7 +17,9 @@
 namespace dropcheck {
 
 bool replayed(const ContactSolver& solver) {
-  return solver.kind != ContactSolverKind::exact;
+  return solver.kind == ContactSolverKind::box2d_2_4 ||
+         solver.kind == ContactSolverKind::chipmunk_7 ||
+         solver.kind == ContactSolverKind::mujoco_2_2;
 }
 
 namespace {
@@ -144,6 +146,7 @@ std::vector<BodyState> replayed_states(const Scene& scene, std::size_t body,
     case ContactSolverKind::mujoco_2_2:
       return mujoco_states(scene, body, h, steps, run);
     case ContactSolverKind::exact:
+    case ContactSolverKind::bullet_3:
       break;
   }
   throw std::invalid_argument("replayed_states: the solver is not replayed");

@@ -13,7 +13,7 @@
 
 namespace dropcheck {
 
-// True for a solver the harness replays (every kind but exact).
+// True for a solver the harness replays or re-solves (Box2D, Chipmunk, MuJoCo).
 bool replayed(const ContactSolver& solver);
 
 // The state of body `body` after steps 0..steps at step h under `solver`, as the engine reports it.

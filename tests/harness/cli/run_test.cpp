@@ -298,18 +298,17 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "identify --combine names each engine's rule for two bodies' friction, and the model of "
-    "an engine whose adapter does not map friction",
+    "identify --combine names each engine's rule for two bodies' friction, and each engine's "
+    "friction model",
     "[cli][identify][contact]") {
   const std::string scene = DROPCHECK_SOURCE_DIR "/scenarios/slide_stop.toml";
   // The cube 0.2 on a floor of 0.8, each passed verbatim: measured 0.16, 0.4 and 0.8.
   const Result bullet = cli({"identify", scene, "--engine", "bullet", "--combine"});
   CHECK(bullet.code == 0);
   CHECK_THAT(bullet.out, Contains("combine rule: mu 0.16 ") && Contains("0.8): product;"));
-  // Its model, from slides with each body's own coefficient (the cube 0.5 on the adapter's
-  // sqrt(0.5)): ratio 0.99988, a cone.
-  CHECK_THAT(bullet.out, Contains("the pair's 0.35355") && Contains("): cone;") &&
-                             Contains("declared: none (its adapter does not map friction)"));
+  // Its model, from the scene's slides at 0 and 45 degrees: ratio 1.0063 (its box rocks on its
+  // manifold's corners), a cone, as its adapter declares.
+  CHECK_THAT(bullet.out, Contains("): cone;") && Contains("declared cone: matches"));
   const Result box2d = cli({"identify", scene, "--engine", "box2d", "--combine"});
   CHECK_THAT(box2d.out, Contains("combine rule: mu 0.4 ") && Contains("): geometric mean;"));
   // MuJoCo's default pyramidal cone: the sum pyramid, ratio 1.421.
