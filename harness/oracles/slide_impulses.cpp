@@ -69,7 +69,11 @@ CoulombCertificate coulomb_certificate(std::span<const SlideImpulse> steps, doub
     }
     const double grip = mu * std::max(k.normal, 0.0);
     const double friction = std::hypot(k.along, k.across);
-    const double over = grip > 0.0 ? friction / grip - 1.0 : (friction > 0.0 ? INFINITY : 0.0);
+    // A step off the floor (N within rounding of 0) has no grip, and no friction beyond rounding.
+    const double floor_rounding = kCoulombRounding * weight;
+    const double over = grip > floor_rounding       ? friction / grip - 1.0
+                        : friction > floor_rounding ? INFINITY
+                                                    : 0.0;
     if (over > c.worst_over) c.worst_over = over, c.worst_over_step = n;
     const bool is_over = over > kCoulombRounding;
     if (is_over) {

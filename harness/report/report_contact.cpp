@@ -37,6 +37,53 @@ std::string closed_form_cell(const SlideVerdict& v) {
 
 }  // namespace
 
+namespace {
+
+// "0.014 (step 53)": a figure and the step where it is worst.
+std::string at_step(double figure, std::int64_t step) {
+  return step > 0 ? printf_string("%.2g (step %lld)", figure, static_cast<long long>(step))
+                  : std::string("0");
+}
+
+// Every engine's slides certified from their momentum (harness/oracles/slide_impulses.hpp),
+// whatever its solver: Coulomb's law on the normal impulses the run shows.
+std::string coulomb_section(const SceneEvaluation& se, const std::vector<SlideSetup>& slides) {
+  MarkdownTable t({"engine", "body", "slipping steps", "median F/(mu*N)", "whole slide F/(mu*N)",
+                   "worst below mu*N", "worst above mu*N", "held steps", "creep (m/s)", "N/(m*g*h)",
+                   "contact pulls"},
+                  "ll");
+  const double h = se.scene.timestep.seconds;
+  for (const EngineEvaluation& ev : se.engines) {
+    if (!ev.ran() || ev.at_default().run.status != RunStatus::ok) continue;
+    const Trajectory& run = ev.at_default().run;
+    if (!run.keeps_every_step()) continue;
+    for (const SlideSetup& s : slides) {
+      std::vector<BodyState> states;
+      for (std::size_t k = 0; k < run.samples(); ++k) states.push_back(run.at(k, s.body));
+      const CoulombCertificate c =
+          coulomb_certificate(slide_impulses(states, s, h), s.mu, s.g, h, 0.0);
+      t.add({ev.name, se.scene.bodies[s.body].name, std::to_string(c.slipping),
+             c.slipping ? printf_string("%.9g", c.median_ratio) : kNone,
+             c.slipping ? printf_string("%.6g", c.mean_ratio) : kNone,
+             at_step(c.worst_short, c.worst_short_step), at_step(c.worst_over, c.worst_over_step),
+             std::to_string(c.held), at_step(c.creep, c.creep_step),
+             printf_string("%.3g .. %.3g", c.min_normal, c.max_normal),
+             c.pull_step > 0 ? "**step " + std::to_string(c.pull_step) + "**" : "no"});
+    }
+  }
+  return "#### Coulomb's law from the momentum, every engine\n\nEach step's contact impulse is "
+         "what gravity does not explain of the body's velocity change, m*(v_n - v_(n-1) - g*h): "
+         "its part along the floor's normal is the normal impulse N, the rest the friction F. A "
+         "step whose slip needs more than mu*N to cancel slips, with F = mu*N against the slip; "
+         "any other is held, with no slip left (the creep is what is left). Below and above "
+         "mu*N are relative, on one step; an exact solver is mu*N to rounding on every step, an "
+         "iterative one strays on some (docs/contact.md). No engine has to expose its impulses "
+         "for this.\n\n" +
+         t.str() + "\n";
+}
+
+}  // namespace
+
 std::string slide_section(const SceneEvaluation& se) {
   const std::vector<SlideSetup> slides = slide_setups(se.scene);
   if (slides.empty()) return {};
@@ -77,7 +124,8 @@ std::string slide_section(const SceneEvaluation& se) {
          "or a step problem re-solved (the 'its law' column names which); the clamp law's stop "
          "beside it shows what the solver leaves. The run is compared "
          "with its law at every step, within " +
-         printf_string("%.0e", tolerance::kSlideDistance) + " m.\n\n" + t.str() + "\n";
+         printf_string("%.0e", tolerance::kSlideDistance) + " m.\n\n" + t.str() + "\n" +
+         coulomb_section(se, slides);
 }
 
 std::string bounce_section(const SceneEvaluation& se) {
