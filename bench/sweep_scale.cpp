@@ -2,7 +2,9 @@
 //  1. cells per second of `dropcheck sweep` (run_cells: one worker process for the shard, a cell
 //     it dies in rerun alone, records sorted and written whole) against the same cells run in one
 //     loop in this process (no isolation, no file), on sweeps/small.toml's 256 cells;
-//  2. a plan of 10^5 cells: planned, its records (synthetic: right format, key and plan, 600 bytes
+//  2. the same 256 cells on 1, 2 and every usable core's worth of workers (`sweep --jobs`),
+//     pulling from one queue: cells per second and the speed-up over one worker;
+//  3. a plan of 10^5 cells: planned, its records (synthetic: right format, key and plan, 600 bytes
 //     each, no runs) split into 1000 shard files by their keys, then merged: the merge's wall time
 //     and the process's peak resident memory.
 //   dropcheck_sweep_scale [SOURCE_DIR]
@@ -20,6 +22,7 @@
 #include "harness/plan/cell_record.hpp"
 #include "harness/plan/merge.hpp"
 #include "harness/plan/shard.hpp"
+#include "harness/plan/worker.hpp"
 #include "harness/run/isolated_run.hpp"
 
 namespace fs = std::filesystem;
@@ -55,6 +58,27 @@ void sweep_against_loop(const std::string& source, const fs::path& tmp) {
         "round %d: %zu cells: one loop %.3f s (%.0f cells/s), sweep path %.3f s (%.0f "
         "cells/s): %.0f %%\n",
         round + 1, all.size(), loop, n / loop, sweep, n / sweep, 100.0 * loop / sweep);
+  }
+}
+
+void sweep_on_cores(const std::string& source, const fs::path& tmp) {
+  const Plan plan = make_plan(load_sweep(source + "/sweeps/small.toml", known_engine_names()));
+  std::vector<std::size_t> all(plan.cell_count());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  std::vector<int> jobs{1, 2};
+  if (usable_cores() > 2) jobs.push_back(usable_cores());
+  std::ostringstream quiet;
+  for (int round = 0; round < 3; ++round) {
+    double one = 0.0;
+    for (int j : jobs) {
+      const auto t = Clock::now();
+      run_cells(plan, all, (tmp / "jobs.jsonl").string(), quiet, "", j);
+      const double s = seconds_since(t);
+      if (j == 1) one = s;
+      std::printf("round %d: %zu cells on %d worker%s: %.3f s (%.0f cells/s), %.2f x one\n",
+                  round + 1, all.size(), j, j == 1 ? "" : "s", s,
+                  static_cast<double>(all.size()) / s, one / s);
+    }
   }
 }
 
@@ -103,6 +127,7 @@ int main(int argc, char** argv) {
       fs::temp_directory_path() / ("dropcheck-sweep-scale-" + std::to_string(getpid()));
   fs::create_directories(tmp);
   sweep_against_loop(source, tmp);
+  sweep_on_cores(source, tmp);
   merge_at_scale(source, tmp);
   fs::remove_all(tmp);
   return 0;

@@ -8,8 +8,12 @@
 #include "harness/io/atomic_file.hpp"
 #include "harness/io/output_plan.hpp"
 #include "harness/plan/shard.hpp"
+#include "harness/plan/worker.hpp"
 
 namespace dropcheck {
+
+// More workers than this is a mistake, not a machine.
+inline constexpr int kMaxJobs = 1024;
 
 const CommandSpec& sweep_spec() {
   static const CommandSpec spec{
@@ -27,6 +31,9 @@ const CommandSpec& sweep_spec() {
        {"--cells-from", "FILE", "run the cells FILE lists instead"},
        {"--out", "DIR", "the folder of shard files (created when missing)"},
        {"--cache", "DIR", "reuse records this build made for the same cells (in any plan)"},
+       {"--jobs", "J",
+        "run J cells side by side (default: every core this process may use, as its CPU "
+        "affinity says: what a Slurm task or taskset gives it)"},
        {"--quiet", "", "no progress line per cell"}}};
   return spec;
 }
@@ -37,6 +44,22 @@ int cmd_sweep(const std::vector<std::string>& argv, std::ostream& out, std::ostr
   if (dir.empty()) throw InputError("", 0, "--out", "required: the folder of shard files");
   if (args.has("--shard") == args.has("--cells-from"))
     throw InputError("", 0, "--shard", "give either --shard I/N or --cells-from FILE");
+  int jobs = usable_cores();
+  if (args.has("--jobs")) {
+    const std::string j = args.value("--jobs");
+    std::size_t used = 0;
+    int parsed = 0;
+    try {
+      parsed = std::stoi(j, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != j.size() || parsed < 1 || parsed > kMaxJobs)
+      throw InputError("", 0, "--jobs",
+                       "expected a whole number of workers from 1 to " + std::to_string(kMaxJobs) +
+                           ", got " + excerpt(j));
+    jobs = parsed;
+  }
   const Plan plan = read_plan(args.positional[0]);
   std::vector<std::size_t> cells;
   std::string name;
@@ -64,7 +87,7 @@ int cmd_sweep(const std::vector<std::string>& argv, std::ostream& out, std::ostr
     throw InputError("", 0, "--out", excerpt(dir) + " is not a folder and cannot be made one");
   std::ostream null_stream(nullptr);
   const ShardSummary s = run_cells(plan, cells, target, args.has("--quiet") ? null_stream : err,
-                                   args.value("--cache"));
+                                   args.value("--cache"), jobs);
   out << "sweep " << plan.hash << ": " << s.cells << " cells (" << s.ok << " ok, " << s.failed
       << " not ok, " << s.skipped << " skipped";
   if (args.has("--cache")) out << "; " << s.cached << " from the cache";

@@ -113,7 +113,8 @@ void cache_record(const std::string& cache, const std::string& entry, const std:
 }  // namespace
 
 ShardSummary run_cells(const Plan& plan, const std::vector<std::size_t>& cells,
-                       const std::string& out, std::ostream& progress, const std::string& cache) {
+                       const std::string& out, std::ostream& progress, const std::string& cache,
+                       int jobs) {
   ShardSummary s;
   std::vector<std::string> keys, entries(cells.size());
   std::vector<CellRecord> got(cells.size());
@@ -143,12 +144,15 @@ ShardSummary run_cells(const Plan& plan, const std::vector<std::size_t>& cells,
     ++s.cached;
     report(at);
   }
-  run_cells_in_worker(plan, todo, [&](std::size_t k, const CellRecord& r) {
-    const std::size_t at = todo_at[k];
-    got[at] = r;
-    if (!entries[at].empty()) cache_record(cache, entries[at], r.line, progress);
-    report(at);
-  });
+  run_cells_in_worker(
+      plan, todo,
+      [&](std::size_t k, const CellRecord& r) {
+        const std::size_t at = todo_at[k];
+        got[at] = r;
+        if (!entries[at].empty()) cache_record(cache, entries[at], r.line, progress);
+        report(at);
+      },
+      kWorkerSilenceLimit, nullptr, jobs);
   std::vector<std::pair<std::string, std::string>> records;  // key, record
   for (std::size_t at = 0; at < cells.size(); ++at)
     records.emplace_back(std::move(keys[at]), std::move(got[at].line));

@@ -44,8 +44,10 @@ std::vector<std::size_t> cells_from(const Plan& plan, const std::string& path,
 struct ShardSummary {
   std::size_t cells = 0, ok = 0, failed = 0, skipped = 0, cached = 0;
 };
+// `jobs` workers run the cells side by side (run_cells_in_worker); the file is the same bytes
+// whatever their number.
 ShardSummary run_cells(const Plan& plan, const std::vector<std::size_t>& cells,
                        const std::string& out, std::ostream& progress,
-                       const std::string& cache = "");
+                       const std::string& cache = "", int jobs = 1);
 
 }  // namespace dropcheck

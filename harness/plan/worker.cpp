@@ -2,15 +2,19 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <sched.h>
+#include <sys/mman.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
+#include <memory>
 #include <optional>
 #include <string>
 #include <system_error>
@@ -30,21 +34,43 @@ bool put_text(int fd, const std::string& s) {
   return write_all(fd, &n, sizeof n) && write_all(fd, s.data(), s.size());
 }
 
-// The worker: crash signals to their defaults (the parent reads a death, not a handler's report),
-// killed with its parent, each cell run in this process; one frame per record.
+bool put_index(int fd, char tag, std::uint64_t i) {
+  return write_all(fd, &tag, 1) && write_all(fd, &i, sizeof i);
+}
+
+// The queue every worker pulls from: the next position in `cells`, in memory shared by the forked
+// workers, so that a worker that finishes early takes the next cell instead of idling while a
+// slower one works through a fixed share.
+struct SharedQueue {
+  std::atomic<std::uint64_t> next{0};
+};
+
+// A worker: crash signals to their defaults (the parent reads a death, not a handler's report),
+// killed with its parent; it takes cell after cell from the queue and runs each in this process,
+// sending 'S' and the cell's position before it runs, 'R', the position, the status and the record
+// after it.
 [[noreturn]] void worker_main(const Plan& plan, const std::vector<std::size_t>& cells,
-                              std::size_t from, int fd) {
+                              SharedQueue& queue, int fd) {
   child_signals_to_defaults();
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
   int code = 0;
   try {
-    for (std::size_t i = from; i < cells.size() && code == 0; ++i) {
+    for (;;) {
+      const std::uint64_t i = queue.next.fetch_add(1);
+      if (i >= cells.size()) break;
+      if (!put_index(fd, 'S', i)) {
+        code = 3;
+        break;
+      }
       // The run limit of a cell run alone, checked after every step: a slow cell times out here
       // as it would there (its record names the limit, not the step); a step that never returns
       // is the parent's watchdog's.
       const CellRecord r =
           run_cell(plan, plan.cell(cells[i]), Isolation::in_process, kDefaultRunTimeLimitSeconds);
-      if (!put_text(fd, r.status) || !put_text(fd, r.line)) code = 3;
+      if (!put_index(fd, 'R', i) || !put_text(fd, r.status) || !put_text(fd, r.line)) {
+        code = 3;
+        break;
+      }
     }
   } catch (...) {
     code = 4;
@@ -79,69 +105,160 @@ std::optional<std::string> get_text(int fd, int wait_ms) {
   return s;
 }
 
-// Runs cells[from..] in one worker; returns how many records it sent before it ended.
-std::size_t one_worker(const Plan& plan, const std::vector<std::size_t>& cells, std::size_t from,
-                       std::vector<CellRecord>& out,
-                       const std::function<void(std::size_t, const CellRecord&)>& done,
-                       int wait_ms) {
+using Clock = std::chrono::steady_clock;
+constexpr std::size_t kNoCell = static_cast<std::size_t>(-1);
+
+// One worker as the parent sees it: its pipe, the cell it announced and has not answered, and
+// when it last said anything.
+struct WorkerSlot {
+  pid_t pid = -1;
+  int fd = -1;
+  std::unique_ptr<KillOnSignal> kill_on_signal;  // (not movable itself)
+  std::size_t current = kNoCell;
+  Clock::time_point heard;
+};
+
+WorkerSlot start_worker(const Plan& plan, const std::vector<std::size_t>& cells,
+                        SharedQueue& queue) {
   int pipe[2];
   if (::pipe2(pipe, O_CLOEXEC) != 0)
     throw std::system_error(errno, std::generic_category(), "pipe");
   std::fflush(nullptr);
-  std::optional<KillOnSignal> kill_on_signal;
-  pid_t pid = -1;
+  WorkerSlot w;
   {
     SignalsDeferred deferred;
-    pid = ::fork();
-    if (pid == 0) {
+    w.pid = ::fork();
+    if (w.pid == 0) {
       ::close(pipe[0]);
-      worker_main(plan, cells, from, pipe[1]);
+      worker_main(plan, cells, queue, pipe[1]);
     }
-    if (pid > 0) kill_on_signal.emplace(pid);
+    if (w.pid > 0) w.kill_on_signal = std::make_unique<KillOnSignal>(w.pid);
   }
   ::close(pipe[1]);
-  if (pid < 0) {
+  if (w.pid < 0) {
     ::close(pipe[0]);
     throw std::system_error(errno, std::generic_category(), "fork");
   }
-  std::size_t sent = 0;
-  for (std::size_t i = from; i < cells.size(); ++i) {
-    std::optional<std::string> status = get_text(pipe[0], wait_ms);
-    std::optional<std::string> line = status ? get_text(pipe[0], wait_ms) : std::nullopt;
-    if (!line) break;
-    out[i] = {std::move(*status), std::move(*line)};
-    if (done) done(i, out[i]);
-    ++sent;
-  }
-  ::close(pipe[0]);
-  ::kill(pid, SIGKILL);  // ended, or silent past the limit: either way it goes
+  w.fd = pipe[0];
+  w.heard = Clock::now();
+  return w;
+}
+
+// Ends a worker (done, dead or silent past the limit): killed, reaped, its pipe closed.
+void stop_worker(WorkerSlot& w) {
+  ::close(w.fd);
+  ::kill(w.pid, SIGKILL);
   int wstatus = 0;
-  while (::waitpid(pid, &wstatus, 0) < 0 && errno == EINTR) {
+  while (::waitpid(w.pid, &wstatus, 0) < 0 && errno == EINTR) {
   }
-  return sent;
+  w.kill_on_signal.reset();
+  w.fd = -1;
+  w.pid = -1;
+}
+
+// Reads one frame from a worker whose pipe is readable; false when it ended or sent garbage.
+bool read_frame(WorkerSlot& w, std::vector<CellRecord>& out, std::size_t cells,
+                const std::function<void(std::size_t, const CellRecord&)>& done, int wait_ms) {
+  char tag = 0;
+  std::uint64_t i = 0;
+  if (!read_exact(w.fd, &tag, 1, wait_ms) || !read_exact(w.fd, &i, sizeof i, wait_ms) || i >= cells)
+    return false;
+  w.heard = Clock::now();
+  if (tag == 'S') {
+    w.current = static_cast<std::size_t>(i);
+    return true;
+  }
+  if (tag != 'R' || i != w.current) return false;
+  std::optional<std::string> status = get_text(w.fd, wait_ms);
+  std::optional<std::string> line = status ? get_text(w.fd, wait_ms) : std::nullopt;
+  if (!line) return false;
+  out[i] = {std::move(*status), std::move(*line)};
+  w.current = kNoCell;
+  if (done) done(static_cast<std::size_t>(i), out[i]);
+  return true;
 }
 
 }  // namespace
 
+int usable_cores() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (::sched_getaffinity(0, sizeof set, &set) != 0) return 1;
+  return std::max(1, CPU_COUNT(&set));
+}
+
 std::vector<CellRecord> run_cells_in_worker(
     const Plan& plan, const std::vector<std::size_t>& cells,
     const std::function<void(std::size_t, const CellRecord&)>& done,
-    std::chrono::milliseconds silence, WorkerStats* stats) {
+    std::chrono::milliseconds silence, WorkerStats* stats, int jobs) {
   const int wait_ms = static_cast<int>(std::clamp<std::int64_t>(silence.count(), 1, INT32_MAX));
   WorkerStats local;
   WorkerStats& count = stats ? *stats : local;
   std::vector<CellRecord> out(cells.size());
-  std::size_t next = 0;
-  while (next < cells.size()) {
-    ++count.workers;
-    next += one_worker(plan, cells, next, out, done, wait_ms);
-    if (next >= cells.size()) break;
-    ++count.rerun_alone;
-    // The worker died in cells[next] or outlasted its limit there: that cell the per-cell way.
-    out[next] = run_cell(plan, plan.cell(cells[next]), Isolation::child_process);
-    if (done) done(next, out[next]);
-    ++next;
+  if (cells.empty()) return out;
+  // The queue in memory the forked workers share (an anonymous shared mapping).
+  void* shared = ::mmap(nullptr, sizeof(SharedQueue), PROT_READ | PROT_WRITE,
+                        MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+  if (shared == MAP_FAILED) throw std::system_error(errno, std::generic_category(), "mmap");
+  SharedQueue* queue = new (shared) SharedQueue;
+  const auto left = [&] { return queue->next.load() < cells.size(); };
+  std::vector<WorkerSlot> slots;
+  const std::size_t wanted =
+      std::min<std::size_t>(static_cast<std::size_t>(std::max(jobs, 1)), cells.size());
+  try {
+    for (std::size_t k = 0; k < wanted; ++k) {
+      slots.push_back(start_worker(plan, cells, *queue));
+      ++count.workers;
+    }
+    while (!slots.empty()) {
+      std::vector<pollfd> fds;
+      for (const WorkerSlot& w : slots) fds.push_back({w.fd, POLLIN, 0});
+      // Wake at the earliest silence limit among the workers.
+      Clock::time_point deadline = Clock::time_point::max();
+      for (const WorkerSlot& w : slots) deadline = std::min(deadline, w.heard + silence);
+      const auto until =
+          std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
+      const int ready =
+          ::poll(fds.data(), fds.size(),
+                 static_cast<int>(std::clamp<std::int64_t>(until.count(), 0, wait_ms)));
+      if (ready < 0 && errno != EINTR)
+        throw std::system_error(errno, std::generic_category(), "poll");
+      for (std::size_t k = slots.size(); k-- > 0;) {
+        WorkerSlot& w = slots[k];
+        bool ended = false;
+        if (ready > 0 && fds[k].revents != 0)
+          ended = !read_frame(w, out, cells.size(), done, wait_ms);
+        else if (Clock::now() - w.heard >= silence)
+          ended = true;
+        if (!ended) continue;
+        const std::size_t lost = w.current;
+        stop_worker(w);
+        slots.erase(slots.begin() + static_cast<std::ptrdiff_t>(k));
+        if (lost == kNoCell) continue;  // it took no cell it did not answer: it finished
+        ++count.rerun_alone;
+        // The worker died in that cell or outlasted its limit there: the cell the per-cell way,
+        // and a new worker for the cells still queued.
+        out[lost] = run_cell(plan, plan.cell(cells[lost]), Isolation::child_process);
+        if (done) done(lost, out[lost]);
+        if (left()) {
+          slots.push_back(start_worker(plan, cells, *queue));
+          ++count.workers;
+        }
+      }
+    }
+  } catch (...) {
+    for (WorkerSlot& w : slots) stop_worker(w);
+    ::munmap(shared, sizeof(SharedQueue));
+    throw;
   }
+  ::munmap(shared, sizeof(SharedQueue));
+  // A worker that died between taking a cell and announcing it left that cell unanswered.
+  for (std::size_t k = 0; k < cells.size(); ++k)
+    if (out[k].line.empty()) {
+      ++count.rerun_alone;
+      out[k] = run_cell(plan, plan.cell(cells[k]), Isolation::child_process);
+      if (done) done(k, out[k]);
+    }
   return out;
 }
 

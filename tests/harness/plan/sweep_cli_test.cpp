@@ -81,6 +81,14 @@ TEST_CASE("sweep: the merged result is the same bytes for 1, 7, 20 and 1000 shar
   REQUIRE(run_sweep_cli({"sweep", plan, "--shard", "3/7", "--out", d.file("shards-7"), "--quiet"})
               .code == 0);
   CHECK(slurp(d.file("shards-7/shard-3-of-7.jsonl")) == first);
+  // Side by side on 1, 2 and 5 workers: the same bytes (the records are sorted by key).
+  for (const char* jobs : {"1", "2", "5"}) {
+    const std::string dir = d.file(std::string("jobs-") + jobs);
+    REQUIRE(
+        run_sweep_cli({"sweep", plan, "--shard", "1/1", "--out", dir, "--jobs", jobs, "--quiet"})
+            .code == 0);
+    CHECK(slurp(dir + "/shard-1-of-1.jsonl") == slurp(d.file("shards-1/shard-1-of-1.jsonl")));
+  }
 }
 
 TEST_CASE("merge lists missing cells, and sweep --cells-from runs just those", "[plan][cli]") {
@@ -149,6 +157,10 @@ TEST_CASE("sweep and plan refuse bad arguments with exit 2", "[plan][cli]") {
   CHECK_THAT(run_sweep_cli({"sweep", plan, "--shard", "0/7", "--out", d.file("x")}).err,
              Contains("--shard: expected 1 <= I <= N"));
   CHECK(run_sweep_cli({"sweep", plan, "--shard", "8/7", "--out", d.file("x")}).code == 2);
+  for (const char* jobs : {"0", "-1", "2x", "99999"})
+    CHECK_THAT(
+        run_sweep_cli({"sweep", plan, "--shard", "1/1", "--out", d.file("x"), "--jobs", jobs}).err,
+        Contains("--jobs: expected a whole number of workers from 1 to 1024"));
   CHECK(run_sweep_cli({"sweep", plan, "--out", d.file("x")}).code ==
         2);  // neither --shard nor --cells-from
   CHECK(run_sweep_cli({"sweep", d.write("junk.plan", "{}"), "--shard", "1/1", "--out", d.file("x")})

@@ -256,6 +256,14 @@ TEST_CASE(
   CHECK(worker[3].status == "non-finite");  // (1e12 N/m: Inf by step 33)
   for (std::size_t k = 0; k < cells.size(); ++k)
     CHECK(worker[k].line == run_cell(plan, plan.cell(cells[k]), Isolation::child_process).line);
+  // Two workers side by side: the one that dies is replaced while cells are left, and every
+  // record is the same.
+  WorkerStats two;
+  const std::vector<CellRecord> side =
+      run_cells_in_worker(plan, cells, {}, kWorkerSilenceLimit, &two, 2);
+  CHECK(two.rerun_alone == 1);
+  CHECK(two.workers >= 2);
+  for (std::size_t k = 0; k < cells.size(); ++k) CHECK(side[k].line == worker[k].line);
 }
 
 TEST_CASE(
