@@ -8,6 +8,7 @@
 #include "harness/judge/slide_verdict.hpp"
 #include "harness/judge/stack_verdict.hpp"
 #include "harness/judge/tolerances.hpp"
+#include "harness/oracles/normal_impulses.hpp"
 #include "harness/report/report_format.hpp"
 
 namespace dropcheck {
@@ -84,6 +85,44 @@ std::string coulomb_section(const SceneEvaluation& se, const std::vector<SlideSe
 
 }  // namespace
 
+std::string momentum_section(const SceneEvaluation& se, const std::vector<FallingBody>& bodies) {
+  if (bodies.empty()) return {};
+  MarkdownTable t({"engine", "body", "pushing steps", "pulls (N < 0)", "widest gap pushed at (m)",
+                   "deepest overlap (m)", "largest rebound / approach"},
+                  "ll");
+  const double h = se.scene.timestep.seconds;
+  const double g = -se.scene.world.gravity.y();
+  for (const EngineEvaluation& ev : se.engines) {
+    if (!ev.ran() || ev.at_default().run.status != RunStatus::ok) continue;
+    const Trajectory& run = ev.at_default().run;
+    if (!run.keeps_every_step()) continue;
+    for (const FallingBody& b : bodies) {
+      std::vector<BodyState> states;
+      for (std::size_t k = 0; k < run.samples(); ++k) states.push_back(run.at(k, b.body));
+      const double epsilon = ev.info.scalar == Scalar::f32 ? 1.2e-7 : 2.2e-16;
+      const NormalCertificate c =
+          normal_certificate(states, b.bottom_offset, b.floor_top, g, h, epsilon);
+      t.add({ev.name, se.scene.bodies[b.body].name, std::to_string(c.contact_steps),
+             c.pull_step > 0 ? printf_string("**step %lld** (%.3g of m*g*h)",
+                                             static_cast<long long>(c.pull_step), c.worst_pull)
+                             : std::string("no"),
+             at_step(c.widest_gap, c.widest_gap_step), at_step(c.deepest, c.deepest_step),
+             c.rebound_step > 0 ? printf_string("%.4g (step %lld)", c.rebound,
+                                                static_cast<long long>(c.rebound_step))
+                                : kNone});
+    }
+  }
+  if (t.empty()) return {};
+  return "#### Contact from the momentum, every engine\n\nEach step's normal impulse is what "
+         "gravity does not explain of the body's vertical velocity change, m*(v_n - v_(n-1) + "
+         "g*h), set beside the body's gap to the floor after the step: a contact pushes and never "
+         "pulls (Signorini), pushes only when touching (an engine with a contact distance pushes "
+         "from a gap on purpose: Bullet's speculative contact), and an impact's rebound over its "
+         "approach is at most the restitution (more is energy made). No engine has to expose its "
+         "impulses for this (docs/contact.md).\n\n" +
+         t.str() + "\n";
+}
+
 std::string slide_section(const SceneEvaluation& se) {
   const std::vector<SlideSetup> slides = slide_setups(se.scene);
   if (slides.empty()) return {};
@@ -131,6 +170,8 @@ std::string slide_section(const SceneEvaluation& se) {
 std::string bounce_section(const SceneEvaluation& se) {
   const std::vector<BounceSetup> bounces = bounce_setups(se.scene);
   if (bounces.empty()) return {};
+  std::vector<FallingBody> falling;
+  for (const BounceSetup& s : bounces) falling.push_back({s.body, s.radius, s.floor_top});
   const double h = se.scene.timestep.seconds;
   MarkdownTable t(
       {"engine", "body", "contact step", "in (m/s)", "out (m/s)", "apexes", "its law: apexes",
@@ -170,7 +211,7 @@ std::string bounce_section(const SceneEvaluation& se) {
          " m: the ideal law (restitution of the speed the contact step ended with) and the members "
          "its contact adds, named where they move its path off the ideal one (docs/contact.md). "
          "The closed form: " +
-         closed + ".\n\n" + t.str() + "\n";
+         closed + ".\n\n" + t.str() + "\n" + momentum_section(se, falling);
 }
 
 std::string stack_section(const SceneEvaluation& se) {

@@ -17,6 +17,18 @@ std::string slide_section(const SceneEvaluation& se);
 // The bounce table at the default step ("" when the scene has no bouncing sphere).
 std::string bounce_section(const SceneEvaluation& se);
 
+// A body falling onto a level static floor alone, as the momentum table takes it.
+struct FallingBody {
+  std::size_t body = 0;
+  double bottom_offset = 0.0;  // m: centre to lowest point (half height, radius)
+  double floor_top = 0.0;      // m
+};
+
+// Every engine's contact conditions on those bodies from their momentum at the default step
+// (harness/oracles/normal_impulses.hpp): pushes, pulls, the widest gap pushed at, the deepest
+// overlap, the largest rebound over its approach, each with its step ("" for no body).
+std::string momentum_section(const SceneEvaluation& se, const std::vector<FallingBody>& bodies);
+
 // The stack table at the default step ("" when the scene has no resting stack).
 std::string stack_section(const SceneEvaluation& se);
 

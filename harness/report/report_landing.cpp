@@ -4,9 +4,12 @@
 // stillness.
 #include "harness/report/report_landing.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "harness/judge/turned_verdict.hpp"
+#include "harness/oracles/landing.hpp"
+#include "harness/report/report_contact.hpp"
 #include "harness/report/report_format.hpp"
 #include "harness/report/report_scene.hpp"
 
@@ -135,6 +138,15 @@ std::string landing_section(const SceneEvaluation& se) {
   }
   const std::string excluded = exclusions(se.scene);
   if (t.empty() && excluded.empty()) return {};
+  // The bodies that fall alone onto their floor (none on or under another), with nothing but
+  // gravity and the contact on them: no damping, no force.
+  std::vector<FallingBody> falling;
+  const std::vector<LandingExclusion> stacked = landing_exclusions(se.scene);
+  const bool undamped = se.scene.world.damping_rate == 0.0 && se.scene.forces.empty();
+  for (const LandingSetup& l : landing_setups(se.scene))
+    if (undamped && std::none_of(stacked.begin(), stacked.end(),
+                                 [&](const LandingExclusion& x) { return x.body == l.body; }))
+      falling.push_back({l.body, l.half_height, l.floor_top});
   return "#### Landing at h = " + se.scene.timestep.text +
          "\n\nFirst contact: first recorded step with the body's bottom at or below the "
          "floor's top, raised by the engine's expected rest offset where that is positive "
@@ -149,7 +161,7 @@ std::string landing_section(const SceneEvaluation& se) {
          "body that tunnels through the floor as its engine's own law predicts (no end-of-step "
          "position overlaps the floor) on an engine without continuous collision meets a limit "
          "of that engine, not a fault.\n\n" +
-         (t.empty() ? "" : t.str() + "\n") + excluded;
+         (t.empty() ? "" : t.str() + "\n") + excluded + momentum_section(se, falling);
 }
 
 }  // namespace dropcheck
