@@ -72,6 +72,13 @@ struct Trajectory {
   const BodyState& at(std::size_t sample, std::size_t body) const {
     return states[sample * bodies() + body];
   }
+  // Body `body`'s state at every sample, in order.
+  std::vector<BodyState> body_states(std::size_t body) const {
+    std::vector<BodyState> out;
+    out.reserve(samples());
+    for (std::size_t k = 0; k < samples(); ++k) out.push_back(at(k, body));
+    return out;
+  }
   const RotationState& rotation_at(std::size_t sample, std::size_t body) const {
     return rotations[sample * bodies() + body];
   }

@@ -142,9 +142,7 @@ SlideVerdict judge_by_momentum(const Trajectory& run, const SlidePath& path, con
   const ContactSolver& solver = info.contact_solver;
   const auto steps = static_cast<std::int64_t>(path.s.size()) - 1;
   v.solver = solver;
-  std::vector<BodyState> states;
-  for (std::size_t k = 0; k < run.samples(); ++k) states.push_back(run.at(k, s.body));
-  const std::vector<SlideImpulse> impulses = slide_impulses(states, s, h);
+  const std::vector<SlideImpulse> impulses = slide_impulses(run.body_states(s.body), s, h);
   v.coulomb = coulomb_certificate(impulses, s.mu, s.g, h, solver.coulomb_median_bound);
   const SlidePath own = coulomb_path(impulses, s, s.mu, h);
   v.law_seen = observe(own);

@@ -211,10 +211,7 @@ SlidePath slide_path_of(std::span<const BodyState> states, const SlideSetup& set
 }
 
 SlidePath observed_slide_path(const Trajectory& run, const SlideSetup& setup) {
-  std::vector<BodyState> states;
-  states.reserve(run.samples());
-  for (std::size_t k = 0; k < run.samples(); ++k) states.push_back(run.at(k, setup.body));
-  return slide_path_of(states, setup);
+  return slide_path_of(run.body_states(setup.body), setup);
 }
 
 SlideObservation observe_slide(const SlidePath& path, double stopped_speed, double settled) {
@@ -425,10 +422,7 @@ BouncePath bounce_path_of(std::span<const BodyState> states, const BounceSetup& 
 }
 
 BouncePath observed_path(const Trajectory& run, const BounceSetup& setup) {
-  std::vector<BodyState> states;
-  states.reserve(run.samples());
-  for (std::size_t k = 0; k < run.samples(); ++k) states.push_back(run.at(k, setup.body));
-  return bounce_path_of(states, setup);
+  return bounce_path_of(run.body_states(setup.body), setup);
 }
 
 }  // namespace dropcheck

@@ -46,6 +46,16 @@ std::string at_step(double figure, std::int64_t step) {
                   : std::string("0");
 }
 
+// Calls f(ev, run) for each engine whose default-step run finished and kept every step: what the
+// momentum tables read.
+template <class F>
+void each_kept_run(const SceneEvaluation& se, F f) {
+  for (const EngineEvaluation& ev : se.engines) {
+    if (!ev.ran() || ev.at_default().run.status != RunStatus::ok) continue;
+    if (ev.at_default().run.keeps_every_step()) f(ev, ev.at_default().run);
+  }
+}
+
 // Every engine's slides certified from their momentum (harness/oracles/slide_impulses.hpp),
 // whatever its solver: Coulomb's law on the normal impulses the run shows.
 std::string coulomb_section(const SceneEvaluation& se, const std::vector<SlideSetup>& slides) {
@@ -54,15 +64,10 @@ std::string coulomb_section(const SceneEvaluation& se, const std::vector<SlideSe
                    "contact pulls"},
                   "ll");
   const double h = se.scene.timestep.seconds;
-  for (const EngineEvaluation& ev : se.engines) {
-    if (!ev.ran() || ev.at_default().run.status != RunStatus::ok) continue;
-    const Trajectory& run = ev.at_default().run;
-    if (!run.keeps_every_step()) continue;
+  each_kept_run(se, [&](const EngineEvaluation& ev, const Trajectory& run) {
     for (const SlideSetup& s : slides) {
-      std::vector<BodyState> states;
-      for (std::size_t k = 0; k < run.samples(); ++k) states.push_back(run.at(k, s.body));
       const CoulombCertificate c =
-          coulomb_certificate(slide_impulses(states, s, h), s.mu, s.g, h, 0.0);
+          coulomb_certificate(slide_impulses(run.body_states(s.body), s, h), s.mu, s.g, h, 0.0);
       t.add({ev.name, se.scene.bodies[s.body].name, std::to_string(c.slipping),
              c.slipping ? printf_string("%.9g", c.median_ratio) : kNone,
              c.slipping ? printf_string("%.6g", c.mean_ratio) : kNone,
@@ -71,7 +76,7 @@ std::string coulomb_section(const SceneEvaluation& se, const std::vector<SlideSe
              printf_string("%.3g .. %.3g", c.min_normal, c.max_normal),
              c.pull_step > 0 ? "**step " + std::to_string(c.pull_step) + "**" : "no"});
     }
-  }
+  });
   return "#### Coulomb's law from the momentum, every engine\n\nEach step's contact impulse is "
          "what gravity does not explain of the body's velocity change, m*(v_n - v_(n-1) - g*h): "
          "its part along the floor's normal is the normal impulse N, the rest the friction F. A "
@@ -92,16 +97,11 @@ std::string momentum_section(const SceneEvaluation& se, const std::vector<Fallin
                   "ll");
   const double h = se.scene.timestep.seconds;
   const double g = -se.scene.world.gravity.y();
-  for (const EngineEvaluation& ev : se.engines) {
-    if (!ev.ran() || ev.at_default().run.status != RunStatus::ok) continue;
-    const Trajectory& run = ev.at_default().run;
-    if (!run.keeps_every_step()) continue;
+  each_kept_run(se, [&](const EngineEvaluation& ev, const Trajectory& run) {
     for (const FallingBody& b : bodies) {
-      std::vector<BodyState> states;
-      for (std::size_t k = 0; k < run.samples(); ++k) states.push_back(run.at(k, b.body));
       const double epsilon = ev.info.scalar == Scalar::f32 ? 1.2e-7 : 2.2e-16;
       const NormalCertificate c =
-          normal_certificate(states, b.bottom_offset, b.floor_top, g, h, epsilon);
+          normal_certificate(run.body_states(b.body), b.bottom_offset, b.floor_top, g, h, epsilon);
       t.add({ev.name, se.scene.bodies[b.body].name, std::to_string(c.contact_steps),
              c.pull_step > 0 ? printf_string("**step %lld** (%.3g of m*g*h)",
                                              static_cast<long long>(c.pull_step), c.worst_pull)
@@ -111,7 +111,7 @@ std::string momentum_section(const SceneEvaluation& se, const std::vector<Fallin
                                                 static_cast<long long>(c.rebound_step))
                                 : kNone});
     }
-  }
+  });
   if (t.empty()) return {};
   return "#### Contact from the momentum, every engine\n\nEach step's normal impulse is what "
          "gravity does not explain of the body's vertical velocity change, m*(v_n - v_(n-1) + "

@@ -31,6 +31,14 @@ Scene timing_scene() {
   return s;
 }
 
+// A factory of ours that appends `tag` to `made` each time it makes one: the order engines ran in.
+EngineFactory tagged_ours(std::string& made, char tag) {
+  return [&made, tag] {
+    made += tag;
+    return make_engine("ours");
+  };
+}
+
 }  // namespace
 
 TEST_CASE("timing replicates every body and force, shifted along x", "[timing]") {
@@ -190,12 +198,7 @@ TEST_CASE("an engine whose sample is long at its nominal cost is timed in fewer 
   o.min_sample_seconds = 0.0;
   o.min_run_seconds = 0.0;
   std::string made;
-  const auto engine = [&made](char tag) {
-    return [&made, tag] {
-      made += tag;
-      return make_engine("ours");
-    };
-  };
+  const auto engine = [&made](char tag) { return tagged_ours(made, tag); };
   // Named as a slow external engine, so planned as one; it runs ours.
   const std::vector<Timing> t =
       time_engines({{"ours", engine('o')}, {"exec:./slow", engine('x')}}, s, 1.0 / 60, o);
@@ -258,12 +261,7 @@ TEST_CASE("timing runs every engine once a round, alternating from round to roun
   o.warmups = 1;
   o.samples = 4;
   std::string order;  // one letter per engine made: one per engine and round
-  const auto engine = [&order](char tag) {
-    return [&order, tag] {
-      order += tag;
-      return make_engine("ours");
-    };
-  };
+  const auto engine = [&order](char tag) { return tagged_ours(order, tag); };
   const std::vector<Timing> t =
       time_engines({{"ours", engine('b')}, {"ours-again", engine('c')}}, s, 1.0 / 120, o);
   // Five rounds back to back; engines alternate, the warm-up round (-1) backward.
