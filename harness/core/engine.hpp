@@ -26,6 +26,11 @@ namespace dropcheck {
 
 enum class Scalar { f32, f64 };
 
+// Machine epsilon of the scalar: the spacing of numbers in [1, 2).
+constexpr double machine_epsilon(Scalar s) {
+  return s == Scalar::f32 ? 0x1p-23 : 0x1p-52;
+}
+
 // Which rotations an engine's adapter carries out (and reads back with Engine::read_rotation).
 enum class Rotation {
   none,    // bodies never turn: a scene that needs rotation is not run

@@ -13,11 +13,6 @@
 namespace dropcheck {
 namespace {
 
-// Machine epsilon of the scalar: the spacing of numbers in [1, 2).
-double epsilon(Scalar s) {
-  return s == Scalar::f32 ? 0x1p-23 : 0x1p-52;
-}
-
 struct Scales {
   double x = 0.0, v = 0.0;
 };
@@ -50,7 +45,8 @@ OwnLawTolerance tolerance_for(Scalar scalar, bool copied, const Trajectory& law)
   // One scale for positions and velocities: the largest magnitude the run carries (a body at rest
   // still rounds its position, a body near the origin its velocity).
   const double scale = std::max(s.x, s.v);
-  OwnLawTolerance t{ulps * epsilon(scalar) * scale, ulps * epsilon(scalar) * scale, {}};
+  OwnLawTolerance t{
+      ulps * machine_epsilon(scalar) * scale, ulps * machine_epsilon(scalar) * scale, {}};
   if (!t.finite()) {
     t.rule = "none: the law reaches Inf or NaN within the steps compared";
     return t;
@@ -109,7 +105,7 @@ void judge_rotation(const EngineInfo& info, const Trajectory& run, const Traject
   const RotationResidual d = rotation_residual(run, own.rotations, samples);
   r.residual_angle = d.angle;
   r.residual_w = d.w;
-  r.tolerance_angle = ulps * epsilon(info.scalar) * own.amplification;
+  r.tolerance_angle = ulps * machine_epsilon(info.scalar) * own.amplification;
   r.tolerance_w = r.tolerance_angle * d.w_scale;
   r.rotation_rule =
       g3(ulps) + " ulps x amplification " + g3(own.amplification) + " (" + to_string(info.scalar) +

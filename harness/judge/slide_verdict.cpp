@@ -143,7 +143,8 @@ SlideVerdict judge_by_momentum(const Trajectory& run, const SlidePath& path, con
   const auto steps = static_cast<std::int64_t>(path.s.size()) - 1;
   v.solver = solver;
   const std::vector<SlideImpulse> impulses = slide_impulses(run.body_states(s.body), s, h);
-  v.coulomb = coulomb_certificate(impulses, s.mu, s.g, h, solver.coulomb_median_bound);
+  v.coulomb = coulomb_certificate(impulses, s.mu, s.g, h, solver.coulomb_median_bound,
+                                  machine_epsilon(info.scalar));
   const SlidePath own = coulomb_path(impulses, s, s.mu, h);
   v.law_seen = observe(own);
   for (std::size_t n = 0; n < path.s.size(); ++n)

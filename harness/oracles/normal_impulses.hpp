@@ -1,8 +1,8 @@
 // A landing's normal impulses read from its momentum, and the contact conditions checked on them
 // (ContactBench's criteria, on a shipping engine's run): for one body falling straight onto a level
-// static floor, with only gravity and the contact acting on it, the contact's impulse over step n
-// is m*(v_n - v_(n-1) - g*h); its vertical part is the normal impulse N. Beside the body's gap to
-// the floor after each step that shows:
+// static floor, with only gravity (g downward) and the contact acting on it, the contact's impulse
+// over step n is m*(v_n - v_(n-1) + g*h) along the vertical: the normal impulse N. Beside the
+// body's gap to the floor after each step that shows:
 //   Signorini           N >= 0: a contact pushes, never pulls;
 //   complementarity     N > 0 only in contact: the largest gap at which a step still pushed (a
 //                       speculative contact pushes from a distance by design: Bullet's);

@@ -14,16 +14,18 @@ std::vector<SlideImpulse> slide_impulses(std::span<const BodyState> states, cons
     const Vec3 v0 = states[n - 1].velocity, v1 = states[n].velocity;
     const Vec3 j = v1 - v0 - h * gravity;
     const Vec3 tangent(j.x(), 0.0, j.z());
-    // The slip the step starts with, along the slide's direction (a slide's slip stays on it).
-    const Vec3 start(v0.x(), 0.0, v0.z());
-    const double start_along = start.dot(s.direction);
-    const Vec3 slip_dir = start_along >= 0.0 ? s.direction : Vec3(-s.direction);
+    // The slip friction must cancel: the step-start slip plus the pull's h*pull, along the
+    // slide's direction (a slide's slip stays on it); friction opposes it, also on the step a
+    // slide launched against its pull turns back.
+    const double free_along = Vec3(v0.x(), 0.0, v0.z()).dot(s.direction) + s.pull * h;
+    const Vec3 slip_dir = free_along >= 0.0 ? s.direction : Vec3(-s.direction);
     SlideImpulse k;
     k.normal = j.y();
     k.along = tangent.dot(slip_dir);
     k.across = (tangent - k.along * slip_dir).norm();
-    k.needed = std::abs(start_along + s.pull * h);
+    k.needed = std::abs(free_along);
     k.slip = Vec3(v1.x(), 0.0, v1.z()).norm();
+    k.speeds = v0.norm() + v1.norm();
     out.push_back(k);
   }
   return out;
@@ -46,7 +48,7 @@ SlidePath coulomb_path(std::span<const SlideImpulse> steps, const SlideSetup& s,
 }
 
 CoulombCertificate coulomb_certificate(std::span<const SlideImpulse> steps, double mu, double g,
-                                       double h, double median_bound) {
+                                       double h, double median_bound, double epsilon) {
   const bool strict = median_bound <= 0.0;
   std::int64_t first_slipping = -1;
   CoulombCertificate c;
@@ -62,7 +64,11 @@ CoulombCertificate coulomb_certificate(std::span<const SlideImpulse> steps, doub
     const double nw = k.normal / weight;
     c.min_normal = i == 0 ? nw : std::min(c.min_normal, nw);
     c.max_normal = i == 0 ? nw : std::max(c.max_normal, nw);
-    if (k.normal < -kCoulombRounding * weight) {
+    // Rounding: relative in double; in float the speeds' own rounding, 16 epsilon of them.
+    const double rounding =
+        std::max(kCoulombRounding * weight, 16.0 * epsilon * (k.speeds + weight));
+    const double relative = rounding / weight;
+    if (k.normal < -rounding) {
       if (c.pull_step < 0) c.pull_step = n;
       bad(n);
       continue;
@@ -70,17 +76,17 @@ CoulombCertificate coulomb_certificate(std::span<const SlideImpulse> steps, doub
     const double grip = mu * std::max(k.normal, 0.0);
     const double friction = std::hypot(k.along, k.across);
     // A step off the floor (N within rounding of 0) has no grip, and no friction beyond rounding.
-    const double floor_rounding = kCoulombRounding * weight;
+    const double floor_rounding = rounding;
     const double over = grip > floor_rounding       ? friction / grip - 1.0
                         : friction > floor_rounding ? INFINITY
                                                     : 0.0;
     if (over > c.worst_over) c.worst_over = over, c.worst_over_step = n;
-    const bool is_over = over > kCoulombRounding;
+    const bool is_over = over > relative;
     if (is_over) {
       ++c.stale;
       if (strict) bad(n);
     }
-    if (k.needed > grip * (1.0 + kCoulombRounding)) {
+    if (k.needed > grip * (1.0 + relative)) {
       ++c.slipping;
       if (first_slipping < 0) first_slipping = n;
       friction_sum -= k.along;
@@ -89,7 +95,7 @@ CoulombCertificate coulomb_certificate(std::span<const SlideImpulse> steps, doub
       // Against the slip, the whole grip: -along = grip, to the bounds.
       const double short_by = grip > 0.0 ? 1.0 + k.along / grip : 0.0;
       if (short_by > c.worst_short) c.worst_short = short_by, c.worst_short_step = n;
-      if (short_by <= kCoulombRounding && !is_over)
+      if (short_by <= relative && !is_over)
         ++c.exact;
       else if (strict)
         bad(n);

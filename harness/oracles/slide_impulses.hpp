@@ -18,10 +18,11 @@ namespace dropcheck {
 // One step's impulses per unit mass (m/s).
 struct SlideImpulse {
   double normal = 0.0;  // N/m along +y
-  double along = 0.0;   // F/m along the slip the step starts with (negative: against it)
+  double along = 0.0;   // F/m along the slip friction must cancel (negative: against it)
   double across = 0.0;  // |F/m| across it
   double needed = 0.0;  // the step-start slip plus the pull's h*pull: what friction must cancel
   double slip = 0.0;    // the speed along the floor at the step's end
+  double speeds = 0.0;  // |v| at the step's start and end, summed: the scale of its rounding
 };
 
 // Entry n - 1 holds step n, for n = 1 .. states.size() - 1 (`states`: the slide's body after each
@@ -70,8 +71,9 @@ inline constexpr double kCoulombRounding = 1e-9;
 // spreads its contacts' slip directions, a contact that lost its normal impulse keeps friction)
 // single steps are only reported, and the median slipping step must keep
 // |median_ratio - 1| <= median_bound: a coefficient or combine rule 2 % off moves every step, and
-// the median with them. A contact that pulls fails either way.
+// the median with them. A contact that pulls fails either way. `epsilon`: the engine's arithmetic
+// (2.2e-16 double, 1.2e-7 float); a float engine's steps are held to 16 epsilon of their speeds.
 CoulombCertificate coulomb_certificate(std::span<const SlideImpulse> steps, double mu, double g,
-                                       double h, double median_bound);
+                                       double h, double median_bound, double epsilon = 2.2e-16);
 
 }  // namespace dropcheck

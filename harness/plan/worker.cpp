@@ -234,16 +234,21 @@ std::vector<CellRecord> run_cells_in_worker(
         const std::size_t lost = w.current;
         stop_worker(w);
         slots.erase(slots.begin() + static_cast<std::ptrdiff_t>(k));
-        if (lost == kNoCell) continue;  // it took no cell it did not answer: it finished
-        ++count.rerun_alone;
-        // The worker died in that cell or outlasted its limit there: the cell the per-cell way,
-        // and a new worker for the cells still queued.
-        out[lost] = run_cell(plan, plan.cell(cells[lost]), Isolation::child_process);
-        if (done) done(lost, out[lost]);
+        // A worker that ended while cells are queued died (one that finishes found the queue
+        // empty): a new one takes its place.
         if (left()) {
           slots.push_back(start_worker(plan, cells, *queue));
           ++count.workers;
         }
+        if (lost == kNoCell) continue;  // it left no announced cell unanswered
+        ++count.rerun_alone;
+        // The worker died in that cell or outlasted its limit there: the cell the per-cell way.
+        // That may take minutes in which no worker is heard: each is given its silence afresh,
+        // and the pipes are polled again before any is judged.
+        out[lost] = run_cell(plan, plan.cell(cells[lost]), Isolation::child_process);
+        if (done) done(lost, out[lost]);
+        for (WorkerSlot& other : slots) other.heard = Clock::now();
+        break;
       }
     }
   } catch (...) {

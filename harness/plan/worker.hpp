@@ -1,10 +1,10 @@
 // A shard's cells run in worker processes instead of one process per run: each worker, forked
-// once, runs cell after cell in its own process (no further fork) and streams each record back. A
-// cell during which the worker dies or that outlasts the run time limit is run again the per-cell
-// way (run_cell with each run in a child process), so its record (crashed, timed out) is the one
-// the per-cell path writes; a new worker continues at the next cell. The records are therefore the
-// same bytes either way, at the cost of one fork per shard instead of one per cell (about 2 ms a
-// cell: bench/sweep_scale.cpp).
+// once, takes cell after cell from a queue the workers share, runs each in its own process (no
+// further fork) and streams each record back. A cell during which a worker dies or that outlasts
+// the run time limit is run again the per-cell way (run_cell with each run in a child process), so
+// its record (crashed, timed out) is the one the per-cell path writes; a new worker takes the dead
+// one's place. The records are therefore the same bytes either way, at the cost of one fork per
+// worker instead of one per cell (bench/sweep_scale.cpp prints what that saves).
 #pragma once
 
 #include <chrono>

@@ -27,7 +27,9 @@ Slot g_slots[kSlots];
 
 // Child processes to kill first (0: a free slot; -pid: the process group pid leads). One per
 // external engine alive at once, one per isolated run, one gnuplot.
-constexpr int kChildSlots = 64;
+// Children and process groups: a sweep's workers (up to --jobs 1024), each with a rerun's isolated
+// child at most, and the rest of dropcheck's helpers.
+constexpr int kChildSlots = 2048;
 std::atomic<pid_t> g_children[kChildSlots];
 
 constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};

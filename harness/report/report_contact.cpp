@@ -67,7 +67,8 @@ std::string coulomb_section(const SceneEvaluation& se, const std::vector<SlideSe
   each_kept_run(se, [&](const EngineEvaluation& ev, const Trajectory& run) {
     for (const SlideSetup& s : slides) {
       const CoulombCertificate c =
-          coulomb_certificate(slide_impulses(run.body_states(s.body), s, h), s.mu, s.g, h, 0.0);
+          coulomb_certificate(slide_impulses(run.body_states(s.body), s, h), s.mu, s.g, h, 0.0,
+                              machine_epsilon(ev.info.scalar));
       t.add({ev.name, se.scene.bodies[s.body].name, std::to_string(c.slipping),
              c.slipping ? printf_string("%.9g", c.median_ratio) : kNone,
              c.slipping ? printf_string("%.6g", c.mean_ratio) : kNone,
@@ -99,9 +100,9 @@ std::string momentum_section(const SceneEvaluation& se, const std::vector<Fallin
   const double g = -se.scene.world.gravity.y();
   each_kept_run(se, [&](const EngineEvaluation& ev, const Trajectory& run) {
     for (const FallingBody& b : bodies) {
-      const double epsilon = ev.info.scalar == Scalar::f32 ? 1.2e-7 : 2.2e-16;
       const NormalCertificate c =
-          normal_certificate(run.body_states(b.body), b.bottom_offset, b.floor_top, g, h, epsilon);
+          normal_certificate(run.body_states(b.body), b.bottom_offset, b.floor_top, g, h,
+                             machine_epsilon(ev.info.scalar));
       t.add({ev.name, se.scene.bodies[b.body].name, std::to_string(c.contact_steps),
              c.pull_step > 0 ? printf_string("**step %lld** (%.3g of m*g*h)",
                                              static_cast<long long>(c.pull_step), c.worst_pull)

@@ -1,5 +1,6 @@
 #include "harness/run/forked_text.hpp"
 
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -15,6 +16,8 @@ namespace {
 
 // The child's message: one status byte ('+' the text follows, '!' an error message follows).
 [[noreturn]] void forked_child_main(const std::function<std::string()>& work, int fd) {
+  // A process group of its own: stopping it stops the isolated runs and engines it started too.
+  ::setpgid(0, 0);
   child_signals_to_defaults();
   std::string message;
   char status = '+';
@@ -36,7 +39,7 @@ namespace {
 
 ForkedText::ForkedText(const std::function<std::string()>& work) {
   int p[2];
-  if (::pipe(p) != 0) {
+  if (::pipe2(p, O_CLOEXEC) != 0) {  // an engine the child execs must not hold the pipe open
     text_ = work();
     return;
   }
@@ -48,7 +51,10 @@ ForkedText::ForkedText(const std::function<std::string()>& work) {
       ::close(p[0]);
       forked_child_main(work, p[1]);
     }
-    if (pid_ > 0) kill_on_signal_.emplace(pid_);
+    if (pid_ > 0) {
+      ::setpgid(pid_, pid_);  // (also in the child: whichever runs first)
+      kill_on_signal_.emplace(-pid_);
+    }
   }
   ::close(p[1]);
   if (pid_ < 0) {
@@ -62,7 +68,7 @@ ForkedText::ForkedText(const std::function<std::string()>& work) {
 ForkedText::~ForkedText() {
   if (fd_ >= 0) ::close(fd_);
   if (pid_ > 0) {
-    ::kill(pid_, SIGKILL);
+    ::kill(-pid_, SIGKILL);  // the child's whole group
     while (::waitpid(pid_, nullptr, 0) < 0 && errno == EINTR) {
     }
   }

@@ -20,7 +20,8 @@ class ForkedText {
   // Starts `work` in a child process; where fork fails, runs it here and now instead, so the
   // caller gets the same text either way.
   explicit ForkedText(const std::function<std::string()>& work);
-  // Kills and reaps a child whose text was never collected.
+  // Kills a child whose text was never collected, with every process it started (it leads a
+  // process group of its own), and reaps it.
   ~ForkedText();
   ForkedText(const ForkedText&) = delete;
   ForkedText& operator=(const ForkedText&) = delete;

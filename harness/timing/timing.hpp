@@ -124,8 +124,8 @@ int samples_for(const Scene& scene, double h, const std::string& engine,
 // (warm-ups first, untimed), each round timing the calibration loop, then running every engine
 // once (an untimed bare loop to warm its code and data, then the timed full loop and the timed bare
 // loop), in alternating order from round to round, so that drift of the machine hits all engines
-// alike and each engine's samples are spread over the cell's whole window. One Timing per engine,
-// in order.
+// alike and each engine's samples are spread over the cell's window (an engine with long samples,
+// samples_for, runs unwarmed in the first rounds only). One Timing per engine, in order.
 std::vector<Timing> time_engines(const std::vector<std::pair<std::string, EngineFactory>>& engines,
                                  const Scene& scene, double h, const TimingOptions& options = {});
 

@@ -110,3 +110,21 @@ TEST_CASE("a held box's slip after a sticking step is its creep", "[impulses]") 
   CHECK(c.creep == Approx(2e-4));
   CHECK(c.creep_step == 80);
 }
+
+TEST_CASE("a slide launched against its pull turns back, and friction opposes it both ways",
+          "[impulses]") {
+  // Launched up a slope at 1 m/s: the pull (3 m/s^2 down it) outgrips mu*g = 0.1*9.8, so it stops
+  // and slides back; the step it turns, friction must oppose the slip friction has to cancel.
+  SlideSetup s = slide_stop_setup();
+  s.v0 = 1.0;
+  s.mu = 0.1;
+  s.pull = -3.0;
+  const SlidePath law = slide_path(s, FrictionModel::cone, kSixtieth, 120);
+  REQUIRE(law.v.back() < 0.0);  // it turned
+  const CoulombCertificate c = coulomb_certificate(slide_impulses(level_states(law), s, kSixtieth),
+                                                   s.mu, s.g, kSixtieth, 0.0);
+  CHECK(c.holds);
+  CHECK(c.slipping == 120);
+  CHECK(c.exact == 120);
+  CHECK(c.worst_short < 1e-9);
+}
