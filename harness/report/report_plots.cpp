@@ -6,6 +6,7 @@
 #include <cmath>
 #include <set>
 
+#include "harness/oracles/contact_laws.hpp"
 #include "harness/report/report.hpp"
 #include "harness/report/report_format.hpp"
 
@@ -37,8 +38,57 @@ PlotSeries height_series(const Trajectory& t, std::size_t body, const std::strin
   return s;
 }
 
-// Height against time at the default step, per engine and dynamic body, with the closed form.
+// A slide scene's plot: the distance each sliding body has covered along its slip against time,
+// per engine, with Coulomb's continuous answer (a cone: the physics, whatever an engine's model).
+// Its height would be a flat line.
+PlotSpec slide_plot(const SceneEvaluation& se, const std::vector<SlideSetup>& slides) {
+  PlotSpec p;
+  p.title = se.scene.name + ": distance slid along the slip at h = " + se.scene.timestep.text;
+  p.xlabel = "t (s)";
+  p.ylabel = "s (m)";
+  const auto title = [&](const std::string& who, const SlideSetup& s) {
+    return slides.size() > 1 ? who + ", " + se.scene.bodies[s.body].name : who;
+  };
+  for (std::size_t e = 0; e < se.engines.size(); ++e) {
+    const EngineEvaluation& ev = se.engines[e];
+    if (!ev.ran()) continue;
+    const Trajectory& run = ev.at_default().run;
+    for (std::size_t k = 0; k < slides.size(); ++k) {
+      PlotSeries s;
+      s.title = title(ev.name, slides[k]);
+      s.x.reserve(run.samples());
+      const SlidePath path = slide_path_of(run.body_states(slides[k].body), slides[k]);
+      for (std::size_t i = 0; i < run.samples(); ++i) s.x.push_back(run.time(i));
+      s.y = path.s;
+      s.color = static_cast<int>(e);
+      s.dash = static_cast<int>(k);
+      s.width = width_of(e, se.engines.size());
+      p.series.push_back(std::move(s));
+    }
+  }
+  // The closed form on a fine grid of the scene's duration.
+  constexpr int kPoints = 400;
+  for (const SlideSetup& sl : slides) {
+    PlotSeries s;
+    s.title = title("closed form", sl);
+    const double grip = slide_grip(sl.mu, sl.g, FrictionModel::cone, sl.angle);
+    for (int i = 0; i <= kPoints; ++i) {
+      const double t = se.scene.duration * i / kPoints;
+      s.x.push_back(t);
+      s.y.push_back(slide_distance_continuous(sl.v0, sl.pull, grip, t));
+    }
+    s.color = kAnalyticColour;
+    s.dash = 2;
+    p.series.push_back(std::move(s));
+  }
+  return p;
+}
+
+// Height against time at the default step, per engine and dynamic body, with the closed form; a
+// slide scene's distance slid instead (slide_plot).
 PlotSpec trajectory_plot(const SceneEvaluation& se) {
+  const std::vector<SlideSetup> slides = slide_setups(se.scene);
+  if (!slides.empty()) return slide_plot(se, slides);
   PlotSpec p;
   p.title = se.scene.name + ": height of each body at h = " + se.scene.timestep.text;
   p.xlabel = "t (s)";

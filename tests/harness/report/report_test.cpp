@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +17,7 @@
 #include "harness/core/registry.hpp"
 #include "harness/io/output_dir.hpp"
 #include "harness/report/report_contact.hpp"
+#include "harness/report/report_plots.hpp"
 #include "harness/report/report_summary.hpp"
 #include "harness/scene/scene_loader.hpp"
 #include "tests/harness/report/has_gnuplot.hpp"
@@ -284,4 +286,27 @@ TEST_CASE("the summary flags an engine off its slide law, once per engine", "[re
   CHECK(departed_laws(se, se.engines[0]).empty());
   CHECK(departed_laws(se, se.engines[1]) == std::vector<ContactLaw>{ContactLaw::slide});
   CHECK(summarize(se).verdict == "**OFF SLIDE LAW**: ode-as-cone");
+}
+
+TEST_CASE("a slide scene's trajectory plot is the distance slid, with Coulomb's closed form",
+          "[report]") {
+  ReportInput in;
+  std::vector<EngineSlot> engines{{"ours-f64", [] { return make_engine("ours-f64"); }, ""}};
+  in.scenes.push_back(
+      evaluate_scene(load_scene(DROPCHECK_SOURCE_DIR "/scenarios/slide_stop.toml"), engines));
+  for (const EngineSlot& e : engines) in.engines.push_back(e.make()->info());
+  const std::vector<std::vector<ReportPlot>> plots = report_plots(in);
+  REQUIRE(plots.size() == 1);
+  const auto it = std::find_if(plots[0].begin(), plots[0].end(), [](const ReportPlot& p) {
+    return p.file == "slide_stop-trajectory.svg";
+  });
+  REQUIRE(it != plots[0].end());
+  CHECK(it->spec.ylabel == "s (m)");
+  REQUIRE(it->spec.series.size() == 2);  // ours-f64 and the closed form
+  // ours-f64 follows the clamp law: 2.509472 m by step 62, and no farther.
+  CHECK(it->spec.series[0].y.back() == Approx(2.509472).margin(1e-6));
+  // The closed form: v0^2/(2*mu*g) = 25/9.8 = 2.5510 m once stopped, at t = 4 s.
+  CHECK(it->spec.series[1].title == "closed form");
+  CHECK(it->spec.series[1].x.back() == Approx(4.0));
+  CHECK(it->spec.series[1].y.back() == Approx(25.0 / 9.8).epsilon(1e-12));
 }
