@@ -13,7 +13,7 @@ namespace dropcheck {
 // The meaning `info` declares for `line`; "" when it declares none.
 std::string message_meaning(const EngineInfo& info, const std::string& line);
 
-// "ode printed 'ODE message 3: LCP internal error, s <= 0 (s=-0.0000e+00)' once: ODE's LCP solver
+// "ode printed 'ODE message 3: LCP internal error, s <= 0' once: ODE's LCP solver
 // ..."; "" when the run printed nothing.
 std::string engine_said(const Trajectory& run, const EngineInfo& info);
 

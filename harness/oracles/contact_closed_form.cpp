@@ -132,8 +132,9 @@ Paths paths(const Scene& scene, const Scene& free) {
   const std::vector<LandingSetup> landing = landing_setups(scene);
   const std::vector<LandingExclusion> excluded = landing_exclusions(scene);
   const double k = scene.world.damping_rate, a = scene.world.gravity.y();
-  // With restitution only a bounce setup's sphere, or a body that never leaves its rest, has the
-  // answer below: every other landing would rebound.
+  // With restitution only a bounce setup's sphere, a slide (launched along its floor, it never
+  // leaves it), or a body that never leaves its rest, has the answer below: every other landing
+  // would rebound.
   const bool restitutes = scene_material(scene).restitution.value_or(0.0) > 0.0;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const Body& b = scene.bodies[i];
@@ -141,6 +142,8 @@ Paths paths(const Scene& scene, const Scene& free) {
       p.of.push_back(resting(b.position));
     } else if (const BounceSetup* s = role_of(bounce, i)) {
       p.of.push_back(bounces(b, *s));
+    } else if (const SlideSetup* s = role_of(slide, i)) {
+      p.of.push_back(slides(b, *s));
     } else if (restitutes && !(b.velocity == Vec3::Zero() && at_rest(landing, stacks, i))) {
       p.why_none = "'" + b.name + "' lands with restitution outside a bounce setup";
       return p;
@@ -148,8 +151,6 @@ Paths paths(const Scene& scene, const Scene& free) {
       const double lands =
           l->gap > 0.0 ? contact_time_continuous(b.position.y(), 0.0, a, k, l->rest_height) : 0.0;
       p.of.push_back(falls_then_rests(free, i, lands, l->rest_height));
-    } else if (const SlideSetup* s = role_of(slide, i)) {
-      p.of.push_back(slides(b, *s));
     } else if (const LandingSetup* l = role_of(landing, i);
                l && role_of(excluded, i) == nullptr && b.velocity.x() == 0.0 &&
                b.velocity.z() == 0.0 && !pushed(scene, i) && level_gravity(scene)) {

@@ -142,10 +142,11 @@ std::string landing_section(const SceneEvaluation& se) {
   // gravity and the contact on them: no damping, no force.
   std::vector<FallingBody> falling;
   const std::vector<LandingExclusion> stacked = landing_exclusions(se.scene);
-  const bool undamped = se.scene.world.damping_rate == 0.0 && se.scene.forces.empty();
+  const bool undamped = se.scene.world.damping_rate == 0.0;
   for (const LandingSetup& l : landing_setups(se.scene))
-    if (undamped && std::none_of(stacked.begin(), stacked.end(),
-                                 [&](const LandingExclusion& x) { return x.body == l.body; }))
+    if (undamped && !pushed(se.scene, l.body) &&
+        std::none_of(stacked.begin(), stacked.end(),
+                     [&](const LandingExclusion& x) { return x.body == l.body; }))
       falling.push_back({l.body, l.half_height, l.floor_top});
   return "#### Landing at h = " + se.scene.timestep.text +
          "\n\nFirst contact: first recorded step with the body's bottom at or below the "

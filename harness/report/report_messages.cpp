@@ -17,18 +17,14 @@ struct Count {
 // Adds what `run` printed to `counts`, keyed by engine and line.
 void count_run(const Trajectory& run, const EngineInfo& info,
                std::map<std::pair<std::string, std::string>, Count>& counts) {
-  for (const Trajectory::Message& m : run.messages) {
-    Count& c = counts[{info.name, m.text}];
-    c.times += m.count;
+  const auto bump = [&](const std::string& line, std::int64_t times) {
+    Count& c = counts[{info.name, line}];
+    c.times += times;
     ++c.runs;
     c.info = &info;
-  }
-  if (run.other_lines > 0) {
-    Count& c = counts[{info.name, "(other lines)"}];
-    c.times += run.other_lines;
-    ++c.runs;
-    c.info = &info;
-  }
+  };
+  for (const Trajectory::Message& m : run.messages) bump(m.text, m.count);
+  if (run.other_lines > 0) bump("(other lines)", run.other_lines);
 }
 
 }  // namespace
@@ -44,10 +40,12 @@ std::string engine_messages_section(const ReportInput& in) {
   MarkdownTable t({"engine", "line", "times", "runs", "what it means"}, "llrrl");
   for (const auto& [key, c] : counts)
     t.add({key.first, "`" + key.second + "`", std::to_string(c.times), std::to_string(c.runs),
-           c.info ? message_meaning(*c.info, key.second) : std::string()});
+           message_meaning(*c.info, key.second)});
   return "## What the engines printed\n\nLines the engines wrote to stderr during this report's "
          "runs, each distinct line counted over every run instead of shown (each run keeps its "
-         "first 16 distinct lines); a contact verdict that no member of its law explains quotes "
+         "first " +
+         std::to_string(Trajectory::kKeptMessages) +
+         " distinct lines); a contact verdict that no member of its law explains quotes "
          "them.\n\n" +
          t.str() + "\n";
 }

@@ -292,6 +292,7 @@ void time_evaluations(std::vector<SceneEvaluation>& scenes, const std::vector<En
   // against 93-100 % cell after cell: between two samples of a cell every other cell ran, and its
   // engines met the caches, heap and clock in another state each time.
   std::size_t cells = 0, c = 0;
+  std::map<std::string, std::int64_t> total;  // what the engines printed, counted over all cells
   for (const SceneEvaluation& se : scenes) cells += se.sweep.size();
   for (SceneEvaluation& se : scenes)
     for (std::size_t i = 0; i < se.sweep.size(); ++i) {
@@ -308,11 +309,14 @@ void time_evaluations(std::vector<SceneEvaluation>& scenes, const std::vector<En
       StderrCapture printed;
       const std::vector<Timing> t = time_engines(cell, se.scene, se.sweep[i].seconds, options);
       const CountedLines lines = printed.finish();
-      for (const Trajectory::Message& m : lines.messages())
-        say(progress, "timing cell " + std::to_string(c) + ": '" + m.text + "' printed " +
-                          std::to_string(m.count) + " times (kept from the terminal)");
+      for (const Trajectory::Message& m : lines.messages()) total[m.text] += m.count;
       for (std::size_t k = 0; k < t.size(); ++k) targets[k]->timing = t[k];
     }
+  // One line per distinct message over the whole timing, not one per cell: an engine that
+  // complains in every cell would flood the terminal again.
+  for (const auto& [text, count] : total)
+    say(progress, "timing: '" + text + "' printed " + std::to_string(count) +
+                      " times over the timing cells (kept from the terminal)");
 }
 
 }  // namespace dropcheck

@@ -205,27 +205,16 @@ int repeats_for(const Scene& scene, double h, const std::string& engine, int rep
   return std::min(repeats, std::max(options.max_repeats, 1));
 }
 
-namespace {
-
-// The nominal length (s) of one sample of `engine` on `scene` at step h.
-double nominal_sample_seconds(const Scene& scene, double h, const std::string& engine,
-                              const TimingOptions& options) {
-  const int copies = replicas_for(scene, h, engine, options);
-  return body_steps_per_copy(scene, h) * copies * repeats_for(scene, h, engine, copies, options) *
-         1e-9 * nominal_ns_per_body_step(engine, scene.world.contacts);
-}
-
-bool long_sample(const Scene& scene, double h, const std::string& engine,
-                 const TimingOptions& options) {
-  return nominal_sample_seconds(scene, h, engine, options) > options.long_sample_seconds;
-}
-
-}  // namespace
-
-int samples_for(const Scene& scene, double h, const std::string& engine,
-                const TimingOptions& options) {
-  return long_sample(scene, h, engine, options) ? std::min(options.long_samples, options.samples)
-                                                : options.samples;
+TimingPlan timing_plan(const Scene& scene, double h, const std::string& engine,
+                       const TimingOptions& options) {
+  TimingPlan p;
+  p.replicas = replicas_for(scene, h, engine, options);
+  p.repeats = repeats_for(scene, h, engine, p.replicas, options);
+  const double sample = body_steps_per_copy(scene, h) * p.replicas * p.repeats * 1e-9 *
+                        nominal_ns_per_body_step(engine, scene.world.contacts);
+  p.warmed = sample <= options.long_sample_seconds;
+  p.samples = p.warmed ? options.samples : std::min(options.long_samples, options.samples);
+  return p;
 }
 
 namespace {
@@ -237,13 +226,12 @@ struct TimingCell {
   const std::vector<std::pair<std::string, EngineFactory>>& engines;
 };
 
-// One cell while it is being timed: each engine's copies and repeats, the replicated scenes (one
-// per distinct number of copies), and the samples.
+// One cell while it is being timed: each engine's plan, the replicated scenes (one per distinct
+// number of copies), and the samples.
 struct CellRun {
-  std::vector<int> replicas, repeats, samples;
-  std::vector<bool> warm;  // warmed by an untimed run before each sample (not a long one)
+  std::vector<TimingPlan> plans;
   std::map<int, Scene> copies;
-  const Scene& copies_of(std::size_t e) const { return copies.at(replicas[e]); }
+  const Scene& copies_of(std::size_t e) const { return copies.at(plans[e].replicas); }
   std::vector<std::vector<double>> full, bare;
   std::vector<double> calibration;  // one per timed round
   std::vector<int> disturbed;
@@ -256,13 +244,10 @@ CellRun start_cell(const TimingCell& cell, const TimingOptions& options) {
   run.bare.resize(ne);
   run.disturbed.assign(ne, 0);
   for (std::size_t e = 0; e < ne; ++e) {
-    const std::string& name = cell.engines[e].first;
-    const int copies = replicas_for(*cell.scene, cell.h, name, options);
-    run.replicas.push_back(copies);
-    run.repeats.push_back(repeats_for(*cell.scene, cell.h, name, copies, options));
-    run.samples.push_back(samples_for(*cell.scene, cell.h, name, options));
-    run.warm.push_back(!long_sample(*cell.scene, cell.h, name, options));
-    if (!run.copies.count(copies)) run.copies.emplace(copies, replicate(*cell.scene, copies));
+    const TimingPlan& p =
+        run.plans.emplace_back(timing_plan(*cell.scene, cell.h, cell.engines[e].first, options));
+    if (!run.copies.count(p.replicas))
+      run.copies.emplace(p.replicas, replicate(*cell.scene, p.replicas));
   }
   return run;
 }
@@ -278,11 +263,12 @@ void time_round(const TimingCell& cell, CellRun& run, int round, const TimingOpt
   if (round >= 0) run.calibration.push_back(c);
   for (std::size_t k = 0; k < ne; ++k) {
     const std::size_t e = (round % 2 == 0) ? k : ne - 1 - k;
-    if (round >= run.samples[e] || (round < 0 && !run.warm[e])) continue;
+    const TimingPlan& plan = run.plans[e];
+    if (round >= plan.samples || (round < 0 && !plan.warmed)) continue;
     std::unique_ptr<Engine> engine = cell.engines[e].second();
     const Scene& copies = run.copies_of(e);
-    if (run.warm[e]) time_bare(*engine, copies, cell.h, 1);
-    const int n = run.repeats[e];
+    if (plan.warmed) time_bare(*engine, copies, cell.h, 1);
+    const int n = plan.repeats;
     int& d = run.disturbed[e];
     const double f =
         undisturbed([&] { return time_full(*engine, copies, cell.h, n); }, options.retries, d);
@@ -297,10 +283,10 @@ Timing summarise(const TimingCell& cell, const CellRun& run, std::size_t e) {
   Timing t;
   t.engine = cell.engines[e].first;
   t.h = cell.h;
-  t.replicas = run.replicas[e];
-  t.repeats = run.repeats[e];
+  t.replicas = run.plans[e].replicas;
+  t.repeats = run.plans[e].repeats;
   t.disturbed = run.disturbed[e];
-  const double per = 1.0 / (cell.scene->duration * run.replicas[e] * run.repeats[e]);
+  const double per = 1.0 / (cell.scene->duration * t.replicas * t.repeats);
   for (double s : run.full[e]) t.full.push_back(s * per);
   for (double s : run.bare[e]) t.bare.push_back(s * per);
   // The calibration loops of the rounds it ran (the first ones).

@@ -114,18 +114,23 @@ int repeats_for(const Scene& scene, double h, const std::string& engine, int rep
 // spring's anchor shifted with its body).
 Scene replicate(const Scene& scene, int copies);
 
-// The timed rounds of `engine` on `scene` at step h: options.samples, or options.long_samples for
-// a sample longer than options.long_sample_seconds at its nominal cost. A function of the scene,
-// h and the engine's name only.
-int samples_for(const Scene& scene, double h, const std::string& engine,
-                const TimingOptions& options);
+// How one engine is timed on `scene` at step h: its copies (replicas_for), its runs per sample
+// (repeats_for), and its timed rounds: options.samples, or for a sample longer than
+// options.long_sample_seconds at its nominal cost options.long_samples rounds, unwarmed. A
+// function of the scene, h and the engine's name only.
+struct TimingPlan {
+  int replicas = 1, repeats = 1, samples = 0;
+  bool warmed = true;  // an untimed run before each sample (and the warm-up rounds)
+};
+TimingPlan timing_plan(const Scene& scene, double h, const std::string& engine,
+                       const TimingOptions& options);
 
 // Times every engine on `scene` at step h (one cell of the report): the rounds back to back
 // (warm-ups first, untimed), each round timing the calibration loop, then running every engine
 // once (an untimed bare loop to warm its code and data, then the timed full loop and the timed bare
 // loop), in alternating order from round to round, so that drift of the machine hits all engines
 // alike and each engine's samples are spread over the cell's window (an engine with long samples,
-// samples_for, runs unwarmed in the first rounds only). One Timing per engine, in order.
+// timing_plan, runs unwarmed in the first rounds only). One Timing per engine, in order.
 std::vector<Timing> time_engines(const std::vector<std::pair<std::string, EngineFactory>>& engines,
                                  const Scene& scene, double h, const TimingOptions& options = {});
 

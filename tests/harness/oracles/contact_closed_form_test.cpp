@@ -121,3 +121,11 @@ TEST_CASE("a box dropped onto another box, or landing with restitution, has no c
   CHECK_THAT(contact_closed_form_unavailable(drop),
              Catch::Contains("lands with restitution outside a bounce setup"));
 }
+
+TEST_CASE("a slide keeps its answer in a scene with restitution: it never leaves its floor",
+          "[contact][closed-form]") {
+  Scene slide = testing::shipped("slide_stop");
+  for (Body& b : slide.bodies)
+    if (!b.is_static) b.restitution = 0.5;
+  CHECK(contact_closed_form_unavailable(slide).empty());
+}

@@ -167,10 +167,15 @@ TEST_CASE("what an engine prints is counted per distinct line, escaped, and kept
   CHECK(t.other_lines == 0);
   CHECK(t.messages_text() ==
         "unruly printed 'solver: LCP internal error' 24 times and 'step done\\x1b[2J' 8 times");
-  // In process nothing is kept (the lines go where the engine writes them).
+  // A quiet engine's isolated run keeps nothing; in process nothing is kept either (the chatter
+  // goes where the engine writes it: this test's stderr).
   UnrulyEngine quiet(Misdeed::none, 3);
   CHECK(
       run_scene(quiet, ten_steps(), 0.1, {.isolation = Isolation::child_process}).messages.empty());
+  UnrulyEngine chatty(Misdeed::chatter, 3);
+  const Trajectory here = run_scene(chatty, ten_steps(), 0.1, {.isolation = Isolation::in_process});
+  CHECK(here.status == RunStatus::ok);
+  CHECK(here.messages.empty());
 }
 
 TEST_CASE("a hung engine is killed at the time limit, reaped, and reported with its step",

@@ -189,11 +189,18 @@ TEST_CASE("an engine whose sample is long at its nominal cost is timed in fewer 
   TimingOptions o;
   o.samples = 5;
   // An unlisted engine at 1000 ns: one copy, one run of 24 ms, over the 10 ms of a long sample.
-  CHECK(samples_for(s, 1.0 / 60, "exec:./slow", o) == o.long_samples);
+  const TimingPlan slow = timing_plan(s, 1.0 / 60, "exec:./slow", o);
+  CHECK(slow.samples == o.long_samples);
+  CHECK_FALSE(slow.warmed);
+  CHECK(slow.replicas == 1);
+  CHECK(slow.repeats == 1);
   // ours at 3.5 ns: 84 us per copy, one copy and 32 runs: 2.7 ms.
-  CHECK(samples_for(s, 1.0 / 60, "ours", o) == 5);
+  const TimingPlan ours = timing_plan(s, 1.0 / 60, "ours", o);
+  CHECK(ours.samples == 5);
+  CHECK(ours.warmed);
+  CHECK(ours.repeats == 32);
   o.samples = 2;  // never more rounds than asked for
-  CHECK(samples_for(s, 1.0 / 60, "exec:./slow", o) == 2);
+  CHECK(timing_plan(s, 1.0 / 60, "exec:./slow", o).samples == 2);
   o.samples = 5;
   o.min_sample_seconds = 0.0;
   o.min_run_seconds = 0.0;
