@@ -12,9 +12,9 @@
 //                          (DampingOrder::AfterForces); the same per rotational dof, whose mass is
 //                          the moment I_i (the mass matrix of a free body is diagonal: m, m, m,
 //                          Ixx, Iyy, Izz)
-//   mass, inertia, box  -> <inertial mass="m" diaginertia="Ixx Iyy Izz"> (exactly m and the
+//   mass, inertia, shape-> <inertial mass="m" diaginertia="Ixx Iyy Izz"> (exactly m and the
 //                          scene's moments; a geom-derived mass goes through density*volume) and a
-//                          box geom of the half extents
+//                          box geom of the half extents or a sphere geom of the radius
 //   rotation            -> qpos[3..6] = (qw, qx, qy, qz); qvel[3..5] is the angular velocity in the
 //                          BODY frame (engine_core_smooth.c: the free joint's rotational axes are
 //                          the body's), written as R^T*w and read back as R*w_b. Torque: the
@@ -33,9 +33,11 @@
 // an EngineError with MuJoCo's message; a warning counted in d->warning during a step (bad qpos,
 // qvel, qacc: MuJoCo then resets the state, hiding the instability) is an EngineError "MuJoCo
 // warning: ...". The warning handler only records the text: throwing from it would leave mj_step
-// half done. Contacts (soft, docs/engines.md 5): box geoms, solimp "0.9999 0.9999 0.001" (impedance
-// ~1: stiff), solref "2h 1" (time constant 2h, the smallest MuJoCo accepts without disabling
-// refsafe; critically damped), the scene's friction on every geom (MuJoCo mixes by max), all
+// half done. Contacts (soft, docs/engines.md 5): box and sphere geoms, solimp "0.9999 0.9999 0.001"
+// (impedance ~1: stiff), solref "2h 1" (time constant 2h, the smallest MuJoCo accepts without
+// disabling refsafe; critically damped) or, with the scene's restitution, the same stiffness with
+// the damping of a spring-damper that returns e (MuJoCo has no coefficient of restitution), the
+// scene's friction on every geom (MuJoCo mixes by max), all
 // declared once in harness/core/mujoco_world.hpp, where the re-solve of the step reads them.
 // Landing, measured (unit cube from 10 m onto a box floor, no drag, 60 Hz): collisions are found at
 // the start of a step (no continuous collision), so the step that crosses the floor ends 0.218 m
@@ -138,7 +140,7 @@ std::string geom_defaults(const MujocoWorld& w) {
   const MujocoSoftContact& c = w.contact;
   return R"(<default><geom solimp=")" + num(c.solimp[0]) + " " + num(c.solimp[1]) + " " +
          num(c.solimp[2]) + " " + num(c.solimp[3]) + " " + num(c.solimp[4]) + R"(" solref=")" +
-         num(c.timeconst) + " " + num(c.dampratio) + R"("/></default>)";
+         num(c.solref[0]) + " " + num(c.solref[1]) + R"("/></default>)";
 }
 
 // A geom's friction: its sliding value and MuJoCo's default torsional and rolling ones.
@@ -147,8 +149,14 @@ std::string friction_xml(const MujocoBody& b) {
          num(kMujocoRollingFriction) + R"(")";
 }
 
+// A dynamic body's geom: a sphere of its radius or a box of its half extents.
+std::string shape_xml(const MujocoBody& b) {
+  return b.radius > 0.0 ? R"( type="sphere" size=")" + num(b.radius) + R"(")"
+                        : R"( type="box" size=")" + vec(b.half_extents) + R"(")";
+}
+
 // A static body is a box geom of the worldbody; a dynamic one a body with a free joint, its exact
-// inertial and a box geom. Both are named after the scene's body (MuJoCo's messages name them).
+// inertial and its geom. Both are named after the scene's body (MuJoCo's messages name them).
 std::string body_xml(const MujocoBody& b) {
   const std::string name = R"( name=")" + xml_escaped(b.name) + R"(")";
   if (b.is_static)
@@ -158,8 +166,7 @@ std::string body_xml(const MujocoBody& b) {
   return "<body" + name + R"( pos=")" + vec(b.position) + R"(">)" +
          R"(<joint type="free" damping=")" + num(b.damping) + R"("/>)" +
          R"(<inertial pos="0 0 0" mass=")" + num(b.mass) + R"(" diaginertia=")" + vec(b.inertia) +
-         R"("/>)" + "<geom" + friction_xml(b) + R"( type="box" size=")" + vec(b.half_extents) +
-         R"("/></body>)";
+         R"("/>)" + "<geom" + friction_xml(b) + shape_xml(b) + "/></body>";
 }
 
 // The world as MJCF.
@@ -248,15 +255,21 @@ EngineInfo MujocoEngine::info() const {
   i.name = "mujoco";
   i.version = mj_versionString();
   i.scalar = Scalar::f64;
-  i.capabilities = {
-      .contacts = true, .planar_only = false, .rotation = Rotation::full, .friction = true};
+  i.capabilities = {.contacts = true,
+                    .planar_only = false,
+                    .rotation = Rotation::full,
+                    .friction = true,
+                    .restitution = true,
+                    .spheres = true};
   i.law = DampingOrder::AfterForces;
   i.rotation_law = {Gyroscopic::explicit_term, OrientationUpdate::exponential_map};
   i.damping_mapping =
       "free joint damping b = m*(exp(k*h) - 1)/h, rotational dofs I_i*(exp(k_a*h) - 1)/h; Euler";
   i.contact_settings =
-      "box geoms, solimp 0.9999 0.9999 0.001, solref 2h 1 (soft, critically damped), "
-      "friction mu on every geom (max mix; 0.5 unset), pyramidal cone, impratio 1";
+      "box and sphere geoms, solimp 0.9999 0.9999 0.001, solref 2h 1 (soft, critically damped); "
+      "restitution e as the direct solref -1/(2h)^2 -zeta/h, zeta = -ln e/sqrt(pi^2 + ln^2 e) "
+      "(a spring-damper returning e); friction mu on every geom (max mix; 0.5 unset), pyramidal "
+      "cone, impratio 1";
   // The pyramid's edges are n +- mu*t_i on the contact frame's two tangents
   // (engine_core_constraint.c mj_instantiateContact): |f_1| + |f_2| <= mu*N.
   i.friction_model = FrictionModel::sum_pyramid;

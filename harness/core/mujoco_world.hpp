@@ -7,13 +7,15 @@
 //                       I_i*(exp(k_a*h) - 1)/h on its 3 rotational ones: mj_Euler's implicit
 //                       v/(1 + h*b/m) is then exp(-k*h)
 //   dynamic body        a body with a free joint, inertial mass m and diaginertia (Ixx, Iyy, Izz),
-//                       one box geom of the half extents
+//                       one box geom of the half extents or one sphere geom of the radius
 //   static body         a box geom of the worldbody
 //   friction            the scene's mu as every geom's sliding friction (0.5 unset), torsional
 //                       0.005 and rolling 0.0001 (MuJoCo's defaults): MuJoCo takes the larger of
 //                       two geoms' values, so every pair gets mu
 //   soft contact        solref (2h, 1): time constant 2h (the smallest refsafe lets through) and
-//                       critically damped; solimp (0.9999, 0.9999, 0.001, 0.5, 2): impedance
+//                       critically damped; with the scene's restitution e, the same stiffness and
+//                       the damping of a spring-damper that returns e (restitution_solref below);
+//                       solimp (0.9999, 0.9999, 0.001, 0.5, 2): impedance
 //                       0.9999 at every depth (stiff); impratio 1; pyramidal cone; condim 3
 //   solver              Newton, tolerance 1e-8 (MuJoCo's defaults): its iterate stops up to 5e-12
 //                       of the velocity away from the step problem's minimum (measured on
@@ -30,12 +32,14 @@
 
 namespace dropcheck {
 
-// MuJoCo's soft contact (engine_core_constraint.c): each contact's rows get the impedance
-// imp = solimp, R = (1 - imp)/imp * diagApprox, and the reference acceleration
-// aref = -B*(J*v) - K*imp*dist with K = 1/(dmax^2*timeconst^2*dampratio^2), B = 2/(dmax*timeconst).
+// MuJoCo's soft contact (engine_core_constraint.c, getsolparam and mj_makeImpedance): each
+// contact's rows get the impedance imp = solimp, R = (1 - imp)/imp * diagApprox, and the reference
+// acceleration aref = -B*(J*v) - K*imp*dist. solref in the standard format (timeconst, dampratio),
+// both positive: K = 1/(dmax^2*timeconst^2*dampratio^2), B = 2/(dmax*timeconst), the time constant
+// raised to 2h at least (refsafe). In the direct format (-stiffness, -damping), neither positive:
+// K = stiffness/dmax^2, B = damping/dmax.
 struct MujocoSoftContact {
-  double timeconst = 0.0;  // s (solref[0])
-  double dampratio = 1.0;  // solref[1]
+  std::array<double, 2> solref{0.0, 1.0};
   std::array<double, 5> solimp{0.9999, 0.9999, 0.001, 0.5, 2.0};
   double impratio = 1.0;
   bool pyramidal = true;  // <option cone="pyramidal"> (MuJoCo's default), else elliptic
@@ -44,6 +48,7 @@ struct MujocoSoftContact {
 struct MujocoBody {
   std::string name;
   bool is_static = false;
+  double radius = 0.0;  // > 0: a sphere geom (dynamic bodies only), else a box
   Vec3 half_extents = Vec3::Zero();
   Vec3 position = Vec3::Zero();
   Quat orientation = Quat::Identity();        // qpos (w, x, y, z)
@@ -70,6 +75,16 @@ inline constexpr double kMujocoDefaultFriction = 0.5;
 // MuJoCo's default torsional and rolling friction, written beside the sliding one.
 inline constexpr double kMujocoTorsionalFriction = 0.005;
 inline constexpr double kMujocoRollingFriction = 0.0001;
+
+// Restitution e as a direct solref (-K, -B) at step h. A contact row pushes the body as the linear
+// spring-damper r'' = -B*r' - K*r (with impedance ~1 the solver meets aref), which leaves after one
+// half oscillation with e = exp(-zeta*pi/sqrt(1 - zeta^2)) of the speed it met, zeta = B/(2*w0)
+// and w0^2 = K: so zeta = -ln(e)/sqrt(pi^2 + ln(e)^2), 1 (critical, no rebound) at e = 0 and 0 at
+// e = 1. K = 1/(2h)^2 is the adapter's contact without restitution (solref (2h, 1)) and B = 2*zeta*
+// sqrt(K) = zeta/h: e = 0 is that contact again. The step resolves the oscillation (w0*h = 1/2,
+// about 6 steps per half period) but only to first order: a bounce's own figure is MuJoCo's step
+// re-solved, and its distance from e is the physics' error, reported beside it.
+MujocoSoftContact restitution_solref(double e, double h);
 
 // `scene` at step h as the adapter builds it. With `body_materials` (identify --combine) each geom
 // carries its body's own friction where it sets one, so that MuJoCo's max makes each pair's value.

@@ -290,14 +290,19 @@ class BounceWatch {
 
   // The state after step n (n = 0, 1, ... in order); true once `bounces` apexes are seen.
   bool add(std::int64_t n, double gap, double v) {
-    if (n > 0 && o_.contact_step < 0 && v > v_ - gh_ + 1e-3 * gh_) {
+    const bool pushed = n > 0 && v > v_ - gh_ + 1e-3 * gh_;
+    if (pushed && o_.contact_step < 0) {
       // The floor pushed in step n: the impact is the step before (it ended in, or speculatively
       // near, the floor).
       o_.contact_step = n - 1;
       o_.speed_in = -v_;
       o_.speed_out = v;
-    } else if (o_.contact_step >= 0 && v_ > 0.0 && v <= 0.0) {
-      o_.apexes.push_back(gap_);
+      impact_ = true;
+    } else if (pushed && impact_) {
+      o_.speed_out = v;  // a soft contact pushes over several steps
+    } else {
+      impact_ = false;
+      if (o_.contact_step >= 0 && v_ > 0.0 && v <= 0.0) o_.apexes.push_back(gap_);
     }
     gap_ = gap;
     v_ = v;
@@ -309,6 +314,7 @@ class BounceWatch {
   double gh_;
   int bounces_;
   double gap_ = 0.0, v_ = 0.0;
+  bool impact_ = false;  // every step since the first impact's has pushed
   BounceObservation o_;
 };
 

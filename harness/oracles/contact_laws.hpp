@@ -150,8 +150,10 @@ struct BounceObservation {
   // step's gravity leaves, by over 0.1 % of g*h): the step that ended in the floor, or near it
   // with a speculative contact.
   std::int64_t contact_step = -1;
-  double speed_in = 0.0;       // m/s: its downward speed then
-  double speed_out = 0.0;      // m/s: its upward speed one step later
+  double speed_in = 0.0;  // m/s: its downward speed then
+  // m/s: its speed after the last step of that impact in which the floor pushed (one step later
+  // for a rigid contact; a soft contact pushes over several steps)
+  double speed_out = 0.0;
   std::vector<double> apexes;  // m: the highest gap of each flight after an impact
 };
 // gap[i] and v[i] are those after step i, under gravity g at step h; at most `bounces` apexes. An

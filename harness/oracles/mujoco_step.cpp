@@ -633,10 +633,56 @@ int box_box(const GeomPose& g1, const GeomPose& g2, Contact* con, Branch branch,
   return n;
 }
 
+// ---- Collision: _SphereBox (engine_collision_box.c, mjc_SphereBox), line by line ----
+
+// The contact of sphere g1 (size[0] its radius) and box g2 (margin 0), the normal from the sphere
+// to the box: the box point nearest the sphere's centre, or the nearest face when the centre is
+// inside the box; its depth from that point; the position halfway between the two surfaces.
+int sphere_box(const GeomPose& g1, const GeomPose& g2, Contact* con) {
+  const double margin = 0.0;
+  const double *size1 = g1.size, *size2 = g2.size, *mat2 = g2.mat;
+  double tmp[3], center[3], clamped[3], deepest[3], nearest[3], pos[3];
+  for (int k = 0; k < 3; ++k) tmp[k] = g1.pos[k] - g2.pos[k];
+  rot_vec_mat_t(center, tmp, mat2);
+  copy3(clamped, center);
+  for (int k = 0; k < 3; ++k)  // mju_clampVec: a positive limit only
+    if (size2[k] > 0) clamped[k] = std::clamp(clamped[k], -size2[k], size2[k]);
+  copy3(deepest, center);
+  for (int k = 0; k < 3; ++k) tmp[k] = clamped[k] - center[k];
+  const double dist = normalize3(tmp);
+  if (dist - size1[0] > margin) return 0;
+  if (dist <= kMinVal) {
+    // The centre inside the box: out through the nearest face.
+    double closest = (size2[0] + size2[1] + size2[2]) * 2;
+    int face = 0;
+    for (int i = 0; i < 6; ++i) {
+      const double d = std::fabs((i % 2 ? 1 : -1) * size2[i / 2] - center[i / 2]);
+      if (closest > d) closest = d, face = i;
+    }
+    nearest[0] = nearest[1] = nearest[2] = 0;
+    nearest[face / 2] = face % 2 ? -1 : 1;
+    copy3(pos, center);
+    add_to_scl3(pos, nearest, (size1[0] - closest) / 2);
+    rot_vec_mat(con[0].frame, nearest, mat2);
+  } else {
+    add_to_scl3(deepest, tmp, size1[0]);
+    pos[0] = pos[1] = pos[2] = 0;
+    add_to_scl3(pos, clamped, 0.5);
+    add_to_scl3(pos, deepest, 0.5);
+    rot_vec_mat(con[0].frame, tmp, mat2);
+  }
+  rot_vec_mat(tmp, pos, mat2);
+  for (int k = 0; k < 3; ++k) con[0].pos[k] = tmp[k] + g2.pos[k];
+  con[0].dist = dist - size1[0];
+  con[0].frame[3] = con[0].frame[4] = con[0].frame[5] = 0;
+  return 1;
+}
+
 // ---- The step ----
 
 struct Geom {
   int body;       // dynamic body index (into the dof blocks), -1 for a static box
+  bool sphere;    // a sphere (size[0] its radius), else a box
   double pos[3];  // geom_xpos
   Mat9 mat;       // geom_xmat
   double size[3];
@@ -670,7 +716,8 @@ std::vector<Geom> geoms_of(const MujocoWorld& w, const std::vector<Pose>& poses,
       Geom g{};
       g.body = b.is_static ? -1 : dof_block[i];
       g.friction = b.friction;
-      for (int k = 0; k < 3; ++k) g.size[k] = b.half_extents[k];
+      g.sphere = b.radius > 0.0;
+      for (int k = 0; k < 3; ++k) g.size[k] = g.sphere ? b.radius : b.half_extents[k];
       if (b.is_static) {
         // A worldbody geom: its pos as given, no rotation (the adapter writes none).
         for (int k = 0; k < 3; ++k) g.pos[k] = b.position[k];
@@ -689,7 +736,8 @@ std::vector<Geom> geoms_of(const MujocoWorld& w, const std::vector<Pose>& poses,
 }
 
 // mj_collision: every pair of geoms on different bodies (static geoms share the worldbody), the
-// lower geom first; box-box contacts with repeated positions removed, and those not inside the
+// lower geom first, or the sphere first in a sphere-box pair (mj_collideGeoms orders a pair by geom
+// type); box-box contacts with repeated positions removed, and those not inside the
 // other geom (dist >= 0) excluded as mj_collideGeoms excludes them. A pair numbered in `flip`
 // takes the branch mjc_BoxBox did not, if it is undecided; `undecided` gets the numbers of the
 // undecided pairs (pairs numbered in the order they are tested).
@@ -699,13 +747,18 @@ std::vector<PairContact> collide(const std::vector<Geom>& geoms, const std::vect
   int pair = 0;
   for (std::size_t a = 0; a < geoms.size(); ++a)
     for (std::size_t b = a + 1; b < geoms.size(); ++b) {
-      const Geom &g1 = geoms[a], &g2 = geoms[b];
+      const bool swap = geoms[b].sphere && !geoms[a].sphere;
+      const Geom &g1 = geoms[swap ? b : a], &g2 = geoms[swap ? a : b];
       if (g1.body < 0 && g2.body < 0) continue;
+      if (g1.sphere && g2.sphere)
+        throw std::invalid_argument("MuJoCo's re-solve collides no sphere with a sphere");
       const bool flipped = std::find(flip.begin(), flip.end(), pair) != flip.end();
       Contact con[kMaxConPair];
       bool tie = false;
-      const int num = box_box({g1.pos, g1.mat.data(), g1.size}, {g2.pos, g2.mat.data(), g2.size},
-                              con, flipped ? Branch::other : Branch::as_mujoco, &tie);
+      const GeomPose p1{g1.pos, g1.mat.data(), g1.size}, p2{g2.pos, g2.mat.data(), g2.size};
+      const int num = g1.sphere
+                          ? sphere_box(p1, p2, con)
+                          : box_box(p1, p2, con, flipped ? Branch::other : Branch::as_mujoco, &tie);
       if (tie) undecided->push_back(pair);
       ++pair;
       for (int i = 0; i < num; ++i) {
@@ -763,15 +816,23 @@ Rows rows_of(const MujocoWorld& w, const std::vector<PairContact>& contacts,
   rows.D.resize(static_cast<Eigen::Index>(per * contacts.size()));
   rows.aref.resize(static_cast<Eigen::Index>(per * contacts.size()));
   rows.elliptic = !s.pyramidal;
-  // getsolparam: refsafe keeps the time constant at 2h at least; solimp clamped; flat impedance.
-  const double tc = std::max(s.timeconst, 2 * w.h);
+  // getsolparam: a mixed solref format is replaced by the default; refsafe keeps a standard time
+  // constant at 2h at least; solimp clamped; flat impedance. mj_makeImpedance: K and B from the
+  // standard (timeconst, dampratio) or the direct (-stiffness, -damping) format.
+  if ((s.solref[0] > 0) != (s.solref[1] > 0))
+    throw std::invalid_argument("MuJoCo's re-solve takes no mixed solref format");
+  const bool standard = s.solref[0] > 0;
+  const double tc = standard ? std::max(s.solref[0], 2 * w.h) : s.solref[0];
   const double dmin = std::clamp(s.solimp[0], 0.0001, 0.9999);
   const double dmax = std::clamp(s.solimp[1], 0.0001, 0.9999);
   if (dmin != dmax && s.solimp[2] > kMinVal)
     throw std::invalid_argument("MuJoCo's re-solve takes a flat impedance (solimp[0] = solimp[1])");
   const double imp = 0.5 * (dmin + dmax);
-  const double K = 1 / std::max(kMinVal, dmax * dmax * tc * tc * s.dampratio * s.dampratio);
-  const double B = 2 / std::max(kMinVal, dmax * tc);
+  const double K = standard
+                       ? 1 / std::max(kMinVal, dmax * dmax * tc * tc * s.solref[1] * s.solref[1])
+                       : -tc / std::max(kMinVal, dmax * dmax);
+  const double B =
+      standard ? 2 / std::max(kMinVal, dmax * tc) : -s.solref[1] / std::max(kMinVal, dmax);
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const PairContact& pc = contacts[c];
     Eigen::MatrixXd jac = Eigen::MatrixXd::Zero(3, nv), dif = Eigen::MatrixXd::Zero(3, nv);

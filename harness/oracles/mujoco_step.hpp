@@ -17,9 +17,9 @@
 // iteration improves the cost by less than its tolerance (1e-8, scaled); tests measure how close
 // that leaves it (tests/adapters/mujoco_test.cpp).
 //
-// Scope: boxes (no spheres), a pyramidal cone, face contacts (a box that touches another along an
-// edge, mjc_BoxBox's edge-edge branch, is outside it and throws), no forces or torques of the
-// scene.
+// Scope: boxes (mjc_BoxBox's face and edge branches) and spheres on boxes (mjc_SphereBox; no sphere
+// on a sphere), either cone, solref in either format, a flat impedance, no forces or torques of
+// the scene.
 #pragma once
 
 #include <cstdint>

@@ -117,9 +117,6 @@ std::vector<BodyState> chipmunk_states(const Scene& scene, std::size_t body,
 // The body's states under MuJoCo's re-solved step, steered through undecided collisions by `run`.
 std::vector<BodyState> mujoco_states(const Scene& scene, std::size_t body, double h,
                                      std::int64_t steps, const Trajectory* run) {
-  if (has_spheres(scene))
-    throw std::invalid_argument(
-        "MuJoCo's re-solve collides boxes only (the adapter builds no spheres)");
   for (std::size_t i = 0; i < scene.bodies.size(); ++i)
     if (pushed(scene, i))
       throw std::invalid_argument("MuJoCo's re-solve takes no forces of the scene");

@@ -70,8 +70,10 @@ ContactLawIdentity identify_bounce_law(const Scene& scene, Engine& engine, doubl
   };
   add(own.bounce_law, "");
   add(kIdealBounce, "");
+  // A replayed solver's engine declares no member of the law: its replay is its law.
   for (const EngineInfo& info : declared_members())
-    if (info.capabilities.restitution) add(info.bounce_law, info.name);  // else: the default
+    if (info.capabilities.restitution && !replayed(info.contact_solver))
+      add(info.bounce_law, info.name);
   for (const auto& [law, engines] : members) {
     const BounceVerdict v = judge_bounce(*run, setup, law, h);
     id.fits.push_back({describe(law), engines, true, v.follows, bounce_detail(v)});

@@ -288,8 +288,8 @@ inline BounceVerdict judged_bounce(const std::string& name, const Scene& scene,
 }
 
 // Checks that engine `name` (a replayed solver) bounces on each shipped bounce scene as its replay
-// does, bit for bit, and departs from it when the restitution is 2 % off.
-inline void check_replayed_bounces(const std::string& name) {
+// does, to `max_gap` m (0: bit for bit), and departs from it when the restitution is 2 % off.
+inline void check_replayed_bounces(const std::string& name, double max_gap = 0.0) {
   for (const char* scene_name : {"bounce_e01", "bounce_e05", "bounce_e09"}) {
     const Scene scene = scenario(scene_name);
     const BounceVerdict v = judged_bounce(name, scene, scene);
@@ -297,7 +297,7 @@ inline void check_replayed_bounces(const std::string& name) {
     CHECK(v.solver.has_value());
     CHECK(v.not_judged.empty());
     CHECK(v.follows);
-    CHECK(v.worst_gap == 0.0);  // the same operations in the same order
+    CHECK(v.worst_gap <= max_gap);
     Scene off = scene;
     for (Body& b : off.bodies)
       if (b.restitution) *b.restitution *= 1.02;
