@@ -18,21 +18,36 @@
 //   step h              -> World::setTimeStep(h); DART's default is 0.001 s (World.cpp).
 //   mass, inertia       -> BodyNode::setInertia(Inertia(m, 0, diag(I))): the scene's mass and
 //                          principal moments, centre of mass at the body origin.
-//   position, velocity  -> FreeJoint::setTransform (translation, identity rotation) and
+//   position, velocity  -> FreeJoint::setTransform (translation and rotation) and
 //                          FreeJoint::setLinearVelocity (world frame); read back with
 //                          BodyNode::getWorldTransform().translation() and getLinearVelocity().
 //   force this step     -> BodyNode::addExtForce(F) (world frame, at the body origin) before the
 //                          step; World::step(true) clears it after.
 //   static body         -> no skeleton: read back at its position, at rest.
 //   one step            -> World::step().
-// Rotation: not run yet. Tried (2026-11-26): with the orientation, angular velocity, torque and
-// rotational joint damping mapped as MuJoCo's are, `identify` names DART's rotation
-// explicit/exp-map on Gazebo's tumble (8.9e-11 rad; runner-up 1.2e-4 rad away). But the FreeJoint
-// keeps its orientation as a rotation vector (its positions' head, logMap(R), wrapping at pi) and
-// rebuilds R from it every step; that round trip loses digits near a half turn: a spin at 5 rad/s
-// for 10 s at 1 ms strays up to 1.2e-10 rad from the exact turn, jumping where the angle passes pi,
-// and Gazebo's simple box ends 2.1e-7 rad off its member, beyond the own-law rounding budget. Until
-// that rounding is modelled, a scene that needs rotation is not run.
+// Rotation (FreeJoint.cpp integratePositions, GenericJoint's implicit damping):
+//   orientation q       -> FreeJoint::setTransform (rotation and translation); the joint stores
+//                          it as a rotation vector, logMap(R) (Eigen's AngleAxis), and rebuilds
+//                          R = expMapRot(p) from it every step
+//   angular velocity w  -> FreeJoint::setAngularVelocity (world frame): the joint keeps R^T*w
+//   torque this step    -> BodyNode::addExtTorque(tau) (world frame), cleared by World::step(true)
+//   angular damping k_a -> setDampingCoefficient(i, I_i*(exp(k_a*h) - 1)/h) on DOFs 0, 1, 2
+//                          (body axes), implicit as the translational ones: the order AfterForces
+//   law                 -> the gyroscopic term at the step start (explicit), then
+//                          R' = R*expMapRot(h*w_b): the exponential map, with the rounding of the
+//                          rotation vector's round trip every step, which the own-law prediction
+//                          repeats in double (harness/oracles/own_arithmetic.cpp,
+//                          rotate_as_rotation_vector). Measured against a scratch replica of that
+//                          round trip: 0 rad on a steady spin over 10000 steps at 1 ms, 5e-13 rad
+//                          on a tumble; the world-frame translation of a tumbling body stays
+//                          semi-implicit Euler to 7e-12 m after 4000 steps.
+//   read back           -> BodyNode::getWorldTransform().linear() and getAngularVelocity()
+//   rounding            -> the gyroscopic force comes from the spatial velocity (w, v_b) in body
+//                          coordinates, v_b x m*v_b included: zero exactly, but it rounds to
+//                          2*eps*m*|v|^2 of torque a step. On Gazebo's complex box at 1/60 (|v| up
+//                          to 90 m/s, I_min 0.14) that is 3000 ulps of |w| a step, and takes the
+//                          replica 1e-8 rad from DART; with DART's own v_b in it, 6e-11 rad. The
+//                          own-law tolerance counts it (RotationLaw::spatial_bias).
 //
 // Contacts, read in DART 6.12's dart/constraint/ContactConstraint.cpp and BoxedLcpConstraintSolver:
 //   shapes              -> a BoxShape of the scene's full sides on each body, collided by DART's
@@ -165,11 +180,15 @@ class DartEngine final : public Engine {
     i.scalar = Scalar::f64;
     i.capabilities = {.contacts = true,
                       .planar_only = false,
-                      .rotation = Rotation::none,
+                      .rotation = Rotation::full,
                       .friction = true,
                       .restitution = true,
                       .spheres = true};
     i.law = DampingOrder::AfterForces;
+    i.rotation_law = {.gyroscopic = Gyroscopic::explicit_term,
+                      .orientation = OrientationUpdate::exponential_map,
+                      .rotation_vector = true,
+                      .spatial_bias = true};
     i.friction_model = FrictionModel::box_pyramid;
     i.relative_cfm = kContact;
     // The column is stepped exactly (relative_cfm_column): held to its path to 1e-12 m (measured
@@ -230,6 +249,20 @@ class DartEngine final : public Engine {
       if (bodies_[i]) bodies_[i]->addExtForce(forces[i]);
   }
 
+  void set_torques(std::span<const Vec3> torques) override {
+    for (std::size_t i = 0; i < bodies_.size(); ++i)
+      if (bodies_[i]) bodies_[i]->addExtTorque(torques[i]);
+  }
+
+  void read_rotation(std::span<RotationState> out) const override {
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+      out[i] = RotationState{};
+      if (!bodies_[i]) continue;
+      out[i].orientation = Quat(bodies_[i]->getWorldTransform().linear());
+      out[i].angular_velocity = bodies_[i]->getAngularVelocity();
+    }
+  }
+
   void step() override { world_->step(); }
 
   // Seconds of `steps` calls of World::step alone (bare_step_loop in adapters.hpp).
@@ -283,10 +316,14 @@ class DartEngine final : public Engine {
     node->setInertia(dart::dynamics::Inertia(b.mass, Vec3::Zero(), moments.asDiagonal()));
     const double d = b.mass * std::expm1(scene.world.damping_rate * h_) / h_;
     for (std::size_t dof = 3; dof < 6; ++dof) joint->setDampingCoefficient(dof, d);
+    const double c_a = std::expm1(scene.world.angular_damping_rate * h_) / h_;
+    for (std::size_t dof = 0; dof < 3; ++dof) joint->setDampingCoefficient(dof, moments[dof] * c_a);
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = b.orientation.toRotationMatrix();
     pose.translation() = b.position;
     joint->setTransform(pose);
     joint->setLinearVelocity(b.velocity);
+    joint->setAngularVelocity(b.angular_velocity);
     world_->addSkeleton(skeleton);
     return node;
   }

@@ -55,13 +55,16 @@ std::string to_string(RotationLaw law) {
   }
   switch (law.orientation) {
     case OrientationUpdate::first_order:
-      return s + "; q = normalize(q + h/2*(0,w)*q)";
+      s += "; q = normalize(q + h/2*(0,w)*q)";
+      break;
     case OrientationUpdate::exponential_map:
-      return s + "; q = exp(h/2*(0,w))*q";
+      s += "; q = exp(h/2*(0,w))*q";
+      break;
     case OrientationUpdate::rk4:
-      return s + "; q by RK4 stages";
+      s += "; q by RK4 stages";
+      break;
   }
-  return s;
+  return law.rotation_vector ? s + ", kept as a rotation vector" : s;
 }
 
 std::string rotation_law_key(RotationLaw law) {

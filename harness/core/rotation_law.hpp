@@ -61,7 +61,18 @@ enum class OrientationUpdate {
 struct RotationLaw {
   Gyroscopic gyroscopic = Gyroscopic::explicit_term;
   OrientationUpdate orientation = OrientationUpdate::first_order;
-  friend constexpr bool operator==(const RotationLaw&, const RotationLaw&) = default;
+  // The engine keeps the orientation as a rotation vector (angle times axis, at most pi) and
+  // rebuilds the rotation from it at every step (DART's FreeJoint). In exact arithmetic this is the
+  // same member; it changes only the rounding, which the own-law prediction repeats
+  // (harness/oracles/own_arithmetic.hpp). Members compare equal whatever they store.
+  bool rotation_vector = false;
+  // Its gyroscopic force is the bias of the body's 6-D velocity (w, v) in body coordinates (DART's
+  // spatial algebra): the torque w x I*w + v x m*v, whose second term is zero in exact arithmetic
+  // but rounds to up to 2*eps*m*|v|^2 at every step, a rounding the own-law tolerance takes in.
+  bool spatial_bias = false;
+  friend constexpr bool operator==(const RotationLaw& a, const RotationLaw& b) {
+    return a.gyroscopic == b.gyroscopic && a.orientation == b.orientation;
+  }
 };
 
 // Every member, in a fixed order (for identification).

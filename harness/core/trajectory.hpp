@@ -40,6 +40,9 @@ struct Trajectory {
   // (rotation_amplification, harness/oracles/own_rotation.hpp), the factor by which rounding may
   // grow; 1 otherwise.
   double amplification = 1.0;
+  // ... and how many ulps of the largest |w| the engine's own rotational step may round to per step
+  // beyond what any step rounds (RotationLaw::spatial_bias); 0 otherwise.
+  double rotation_step_ulps = 0.0;
   RunStatus status = RunStatus::ok;
   std::string failure;             // what went wrong, for non-ok status
   std::int64_t failed_step = -1;   // first step that failed

@@ -101,16 +101,21 @@ void judge_rotation(const EngineInfo& info, const Trajectory& run, const Traject
   r.rotation_law = to_string(info.rotation_law);
   const bool copied = info.arithmetic == DampingForm::phi_multiply;
   const double steps = static_cast<double>(std::max<std::int64_t>(own.steps, 1));
-  const double ulps = copied ? tolerance::kCopiedUlps : tolerance::kStepUlps * steps;
+  const double ulps =
+      copied ? tolerance::kCopiedUlps : (tolerance::kStepUlps + own.rotation_step_ulps) * steps;
   const RotationResidual d = rotation_residual(run, own.rotations, samples);
   r.residual_angle = d.angle;
   r.residual_w = d.w;
   r.tolerance_angle = ulps * machine_epsilon(info.scalar) * own.amplification;
   r.tolerance_w = r.tolerance_angle * d.w_scale;
-  r.rotation_rule =
-      g3(ulps) + " ulps x amplification " + g3(own.amplification) + " (" + to_string(info.scalar) +
-      (copied ? ", operation order copied)"
-              : ", order not copied: " + g3(tolerance::kStepUlps) + " ulps per step)");
+  r.rotation_rule = g3(ulps) + " ulps x amplification " + g3(own.amplification) + " (" +
+                    to_string(info.scalar) +
+                    (copied ? ", operation order copied)"
+                            : ", order not copied: " + g3(tolerance::kStepUlps) + " ulps per step" +
+                                  (own.rotation_step_ulps > 0.0
+                                       ? " + " + g3(own.rotation_step_ulps) +
+                                             " for its spatial bias v x m*v, 2*eps*m*|v|^2*h/I_min)"
+                                       : std::string(")")));
 }
 
 }  // namespace
