@@ -128,6 +128,33 @@ StackLaw parse_stack_law(const std::vector<std::string>& k, const std::string& l
           .still_bound = v[7]};
 }
 
+// "contact-solver exact", "contact-solver sequential-impulses ITERATIONS MEDIAN_BOUND" or
+// "contact-solver soft MEDIAN_BOUND" (harness/core/contact_solver.hpp): ITERATIONS an integer
+// 1-1000000, MEDIAN_BOUND in [0, 1].
+ContactSolver parse_contact_solver(const std::vector<std::string>& k, const std::string& line) {
+  const char* form =
+      "'contact-solver exact', 'contact-solver sequential-impulses ITERATIONS MEDIAN_BOUND' or "
+      "'contact-solver soft MEDIAN_BOUND' (ITERATIONS an integer 1-1000000, MEDIAN_BOUND in [0, "
+      "1])";
+  if (k.size() == 2 && k[1] == "exact") return {};
+  const auto bound = [&](const std::string& text) {
+    double b = 0.0;
+    if (!parse_number(text, b) || !(b >= 0.0 && b <= 1.0)) garbage(form, line);
+    return b;
+  };
+  if (k.size() == 4 && k[1] == "sequential-impulses") {
+    double n = 0.0;
+    if (!parse_number(k[2], n) || !(n >= 1.0 && n <= 1e6) || n != std::floor(n))
+      garbage(form, line);
+    return {.kind = ContactSolverKind::sequential_impulses,
+            .velocity_iterations = static_cast<int>(n),
+            .coulomb_median_bound = bound(k[3])};
+  }
+  if (k.size() == 3 && k[1] == "soft")
+    return {.kind = ContactSolverKind::soft, .coulomb_median_bound = bound(k[2])};
+  garbage(form, line);
+}
+
 }  // namespace
 
 std::string engine_name_problem(const std::string& name, const std::vector<std::string>& reserved) {
@@ -223,6 +250,8 @@ void HandshakeReader::key(const std::vector<std::string>& k, const std::string& 
     info_.bounce_law = parse_bounce_law(k, line);
   } else if (k[0] == "stack-law") {
     info_.stack_law = parse_stack_law(k, line);
+  } else if (k[0] == "contact-solver") {
+    info_.contact_solver = parse_contact_solver(k, line);
   } else if (k[0] == "rotation-law" && k.size() == 2 && parse_rotation_law_key(k[1])) {
     info_.rotation_law = *parse_rotation_law_key(k[1]);
     rotation_law_ = true;
@@ -231,7 +260,8 @@ void HandshakeReader::key(const std::vector<std::string>& k, const std::string& 
   } else {
     garbage(
         "name, version, scalar f32|f64, law KEY, capabilities, rotation-law KEY, "
-        "friction-model cone|box-pyramid|sum-pyramid, bounce-law, stack-law, damping-mapping or "
+        "friction-model cone|box-pyramid|sum-pyramid, bounce-law, stack-law, contact-solver, "
+        "damping-mapping or "
         "ready "
         "(law keys: after-forces, before-forces, after-position, "
         "after-forces/explicit, before-forces/explicit; rotation-law keys: "

@@ -18,8 +18,19 @@ std::string describe(const ContactSolver& solver) {
     case ContactSolverKind::bullet_3:
       return "Bullet 3 sequential impulses (" + std::to_string(solver.velocity_iterations) +
              " iterations), bounded by Coulomb's law";
+    case ContactSolverKind::sequential_impulses:
+      return "sequential impulses (" + std::to_string(solver.velocity_iterations) +
+             " iterations, declared), bounded by Coulomb's law";
+    case ContactSolverKind::soft:
+      return "a soft contact (declared), bounded by Coulomb's law";
   }
   return "unknown";
+}
+
+bool held_by_momentum(const ContactSolver& solver) {
+  return solver.kind == ContactSolverKind::bullet_3 ||
+         solver.kind == ContactSolverKind::sequential_impulses ||
+         solver.kind == ContactSolverKind::soft;
 }
 
 }  // namespace dropcheck

@@ -30,21 +30,35 @@
 //             harness does not replay it but holds each step to Coulomb's law with the step's own
 //             normal impulse, read from the run's momentum (harness/oracles/slide_impulses.hpp):
 //             bounded, not replayed.
+// sequential_impulses, soft
+//             an external engine's declaration (docs/protocol.md, contact-solver): sequential
+//             impulses of its own, or a soft (regularised) contact, which dropcheck neither replays
+//             nor re-solves. Held, as Bullet's, to Coulomb's law step by step from the run's
+//             momentum, within the median bound the engine declares (0: every slipping step at
+//             mu*N to rounding).
 #pragma once
 
 #include <string>
 
 namespace dropcheck {
 
-enum class ContactSolverKind { exact, box2d_2_4, chipmunk_7, mujoco_2_2, bullet_3 };
+enum class ContactSolverKind {
+  exact,
+  box2d_2_4,
+  chipmunk_7,
+  mujoco_2_2,
+  bullet_3,
+  sequential_impulses,
+  soft
+};
 
 struct ContactSolver {
   ContactSolverKind kind = ContactSolverKind::exact;
   int velocity_iterations = 0;  // per step (0: solved or re-solved exactly)
-  // bullet_3: how far the median slipping step's friction may be from mu times its normal impulse
-  // (relative; single steps stray further: a rocking box spreads its contacts' slip directions,
-  // below mu*N, and a contact that loses its normal impulse mid-step keeps its friction, above),
-  // and whether the solver keeps such friction.
+  // bullet_3 and the external kinds: how far the median slipping step's friction may be from mu
+  // times its normal impulse (relative; single steps stray further: a rocking box spreads its
+  // contacts' slip directions, below mu*N, and a contact that loses its normal impulse mid-step
+  // keeps its friction, above), and whether the solver keeps such friction.
   double coulomb_median_bound = 0.0;
   bool keeps_stale_friction = false;
   int position_iterations = 0;  // per step, after the positions are updated (Box2D)
@@ -54,5 +68,9 @@ struct ContactSolver {
 // warm started), replayed", "MuJoCo 2.2 soft contact (pyramidal cone, its convex step problem
 // re-solved)": the solver and how dropcheck predicts it.
 std::string describe(const ContactSolver& solver);
+
+// True for a solver held to Coulomb's law from the run's momentum (bullet_3 and the external
+// declarations), not predicted step by step.
+bool held_by_momentum(const ContactSolver& solver);
 
 }  // namespace dropcheck

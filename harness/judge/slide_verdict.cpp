@@ -174,7 +174,9 @@ std::string coulomb_text(const CoulombCertificate& c, const ContactSolver& solve
                            ? ": a contact that lost its normal impulse mid-step keeps the friction "
                              "earlier iterations gave it"
                            : "");
-  if (c.held > 0)
+  if (c.held > 0 && c.creep_step < 0)
+    t += printf_string("; %d held steps, none creeping", c.held);
+  else if (c.held > 0)
     t += printf_string("; %d held steps, creeping at up to %.2g m/s (step %lld)", c.held, c.creep,
                        static_cast<long long>(c.creep_step));
   t += printf_string("; its normal impulse %.3g to %.3g of m*g*h", c.min_normal, c.max_normal);
@@ -236,7 +238,7 @@ SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& s, FrictionMod
 
 SlideVerdict judge_slide(const Trajectory& run, const Scene& scene, const SlideSetup& s,
                          const EngineInfo& info, double h) {
-  if (info.contact_solver.kind == ContactSolverKind::bullet_3) {
+  if (held_by_momentum(info.contact_solver)) {
     SlideVerdict v;
     v.model = info.friction_model;
     const SlidePath path = observed_slide_path(run, s);

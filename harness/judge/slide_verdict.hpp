@@ -48,7 +48,7 @@ struct SlideVerdict {
   std::optional<FrictionModel> instead_model;  // when that member is another friction model
   std::string instead;
   double instead_off = 0.0;  // m: the run's largest distance from it
-  // A solver held to Coulomb's law from the run's momentum (ContactSolverKind::bullet_3): the
+  // A solver held to Coulomb's law from the run's momentum (held_by_momentum): the
   // certificate of every step; law_seen is then the clamp law with the run's own normal impulses
   // (coulomb_path) and off_law the run's largest distance from it along the slip.
   std::optional<CoulombCertificate> coulomb;

@@ -144,6 +144,8 @@ std::vector<BodyState> replayed_states(const Scene& scene, std::size_t body,
       return mujoco_states(scene, body, h, steps, run);
     case ContactSolverKind::exact:
     case ContactSolverKind::bullet_3:
+    case ContactSolverKind::sequential_impulses:
+    case ContactSolverKind::soft:
       break;
   }
   throw std::invalid_argument("replayed_states: the solver is not replayed");

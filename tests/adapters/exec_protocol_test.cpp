@@ -189,3 +189,25 @@ TEST_CASE("an engine announces its stack law", "[exec][contact][stack]") {
         "stack-law 0 4 0 0 0 0 inf 0.001", "stack-law 0 4 0 0 0 0 0.001"})
     CHECK_THAT(protocol_refusal(handshake({bad})), Contains("garbage from the engine"));
 }
+
+TEST_CASE("A contact-solver line that dropcheck cannot read is refused at the handshake",
+          "[exec][contact]") {
+  for (const char* line :
+       {"contact-solver", "contact-solver lcp", "contact-solver sequential-impulses 0 0.001",
+        "contact-solver sequential-impulses 2.5 0.001", "contact-solver soft 2",
+        "contact-solver soft nan", "contact-solver exact 1"}) {
+    EngineInfo info;
+    HandshakeReader reader(info, false, {});
+    reader.take("dropcheck-engine 1");
+    INFO(line);
+    CHECK_THROWS_WITH(reader.take(line),
+                      Catch::Contains("contact-solver sequential-impulses ITERATIONS"));
+  }
+  EngineInfo info;
+  HandshakeReader reader(info, false, {});
+  reader.take("dropcheck-engine 1");
+  reader.take("contact-solver sequential-impulses 10 0.001");
+  CHECK(info.contact_solver.kind == ContactSolverKind::sequential_impulses);
+  CHECK(info.contact_solver.velocity_iterations == 10);
+  CHECK(info.contact_solver.coulomb_median_bound == 0.001);
+}

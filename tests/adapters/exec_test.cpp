@@ -385,3 +385,40 @@ TEST_CASE(
   plain.command = {"python3", kExecSource + "/examples/python/seed_engine.py"};
   CHECK_THAT(make_exec_engine(plain)->cannot_run(exec_scene("bounce_e05")), Contains("contacts"));
 }
+
+namespace {
+
+// The slide check of scenarios/slide_stop on tests/adapters/slide_engine.py MODE ANNOUNCE.
+CheckResult slide_check(const std::string& mode, const std::string& announce) {
+  ExecSpec spec;
+  spec.command = {"python3", kExecSource + "/tests/adapters/slide_engine.py", mode, announce};
+  const Scene s = exec_scene("slide_stop");
+  return check_slide(
+      s, [&] { return make_exec_engine(spec); }, s.timestep);
+}
+
+}  // namespace
+
+TEST_CASE(
+    "An external engine declares its contact solver, and a slide is held to Coulomb's law from its "
+    "momentum within the bound it declares",
+    "[exec][contact]") {
+  // Coulomb's cone applied exactly: as the default exact solver it follows the clamp law; as
+  // declared sequential impulses or a soft contact its momentum certifies every slipping step.
+  const CheckResult exact = slide_check("coulomb", "exact");
+  CHECK(exact.passed);
+  for (const char* announce : {"sequential", "soft"}) {
+    const CheckResult held = slide_check("coulomb", announce);
+    INFO(announce << ": " << held.message);
+    CHECK(held.passed);
+    CHECK_THAT(held.message, Contains("Coulomb's law from its momentum") &&
+                                 Contains(std::string(announce) == "soft"
+                                              ? "a soft contact (declared)"
+                                              : "sequential impulses (10 iterations, declared)"));
+    // Its friction 2 % above the scene's mu: beyond the declared bound of 1e-3.
+    const CheckResult off = slide_check("mu_off", announce);
+    INFO(off.message);
+    CHECK_FALSE(off.passed);
+    CHECK_THAT(off.message, Contains("another coefficient or combine rule"));
+  }
+}
