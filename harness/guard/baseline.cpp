@@ -8,7 +8,9 @@
 #include "harness/core/trajectory_hash.hpp"
 #include "harness/judge/metrics.hpp"
 #include "harness/judge/own_law.hpp"
+#include "harness/judge/tolerances.hpp"
 #include "harness/oracles/analytic.hpp"
+#include "harness/oracles/contact_laws.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/oracles/identify_rotation.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
@@ -128,12 +130,35 @@ Baseline make_baseline(const Scene& scene, const EngineFactory& make,
     out.status = status_text(run);
     out.hash = trajectory_hash_hex(run);
     out.samples = downsample(run, out.record_every);
+    out.contact = contact_figures(scene, run);
   }
   if (!default_in_sweep) {
     const Trajectory run = run_scene(*make(), scene, scene.timestep.seconds);
     out.status = status_text(run);
     out.hash = trajectory_hash_hex(run);
     out.samples = downsample(run, out.record_every);
+    out.contact = contact_figures(scene, run);
+  }
+  return out;
+}
+
+std::vector<ContactFigure> contact_figures(const Scene& scene, const Trajectory& run) {
+  std::vector<ContactFigure> out;
+  if (!scene.world.contacts || !run.keeps_every_step()) return out;
+  for (const SlideSetup& s : slide_setups(scene)) {
+    const SlideObservation o = observe_slide(observed_slide_path(run, s), tolerance::kStoppedSpeed,
+                                             tolerance::kSlideDistance);
+    const std::string& body = scene.bodies[s.body].name;
+    out.push_back({body + ".stop_step", static_cast<double>(o.stop_step)});
+    out.push_back({body + ".distance", o.distance});
+  }
+  for (const BounceSetup& s : bounce_setups(scene)) {
+    const BouncePath path = observed_path(run, s);
+    const BounceObservation o = observe_bounce(path.gap, path.v, s.g, run.h);
+    const std::string& body = scene.bodies[s.body].name;
+    out.push_back({body + ".contact_step", static_cast<double>(o.contact_step)});
+    for (std::size_t i = 0; i < o.apexes.size(); ++i)
+      out.push_back({body + ".apex_" + std::to_string(i + 1), o.apexes[i]});
   }
   return out;
 }

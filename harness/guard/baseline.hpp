@@ -57,6 +57,13 @@ struct SweepPoint {
   int replicas = 0;  // copies of the scene in one timed run (--timing only)
 };
 
+// A figure of what a run's contacts did ("cube.stop_step" 62, "ball.apex_1" 0.2378), so that a
+// diff can say what moved in contact terms.
+struct ContactFigure {
+  std::string name;  // BODY.FIGURE
+  double value = 0.0;
+};
+
 // One scene on one engine: the golden record that the regression tiers compare a fresh run with.
 struct Baseline {
   std::string provenance;  // the "# dropcheck baseline: made by ..." line (not compared)
@@ -74,7 +81,13 @@ struct Baseline {
   std::vector<SweepPoint>
       sweep;                 // scene_sweep(scene) (harness/study/sweep.hpp): largest step first
   std::string failed_tiers;  // written as a "# FAILED ..." comment by `bless --out` (not parsed)
+  // The run at dt in contact terms (contact_figures): each slide's stop step (-1: never) and
+  // distance, each bounce's first contact step and first three apexes.
+  std::vector<ContactFigure> contact;
 };
+
+// What `run` (every step kept) shows of the slides and bounces of `scene` (contact_laws.hpp).
+std::vector<ContactFigure> contact_figures(const Scene& scene, const Trajectory& run);
 
 // How make_baseline samples and whether it times.
 struct BaselineOptions {

@@ -2,6 +2,8 @@
 // every number was printed with %.17g, which strtod reads back exactly.
 #include "harness/guard/baseline_parse.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdlib>
 #include <map>
@@ -113,6 +115,26 @@ struct Parser {
     return v;
   }
 
+  // "contact NAME VALUE": NAME of 1-80 characters from A-Z a-z 0-9 . _ + -, once each; at most
+  // kMaxContactFigures of them.
+  void contact(const std::string& rest) {
+    static constexpr std::size_t kMaxContactFigures = 256;
+    std::istringstream in(rest);
+    std::string name, value, extra;
+    if (!(in >> name >> value) || (in >> extra)) fail("contact", "expected 'contact NAME VALUE'");
+    const bool valid =
+        !name.empty() && name.size() <= 80 && std::all_of(name.begin(), name.end(), [](char c) {
+          return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '+' ||
+                 c == '-';
+        });
+    if (!valid) fail("contact", excerpt(name) + " is not a figure name");
+    if (b.contact.size() >= kMaxContactFigures)
+      fail("contact", "more than " + std::to_string(kMaxContactFigures) + " figures");
+    for (const ContactFigure& f : b.contact)
+      if (f.name == name) fail("contact", "a second " + excerpt(name));
+    b.contact.push_back({name, number(value, "contact " + excerpt(name))});
+  }
+
   void bodies(const std::string& rest) {
     // A second list would change the body count of samples already read (found by fuzzing:
     // baseline_to_text then read past the stored states).
@@ -181,6 +203,8 @@ struct Parser {
       sweep(rest);
     else if (key == "timing")
       timing(rest);
+    else if (key == "contact")
+      contact(rest);
     else if (key == "bodies")
       bodies(rest);
     else if (key == "sample")

@@ -1,5 +1,6 @@
 #include "harness/guard/result_diff.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <set>
@@ -117,6 +118,63 @@ std::string curves_section(const ResultSet& before, const ResultSet& after) {
   return out;
 }
 
+// A contact figure as its name reads: a step as an integer ("never" for -1), a distance or height
+// in m to 7 digits; "-" when the set has no such figure.
+std::string figure_text(const std::string& name, const ContactFigure* f) {
+  if (!f) return "-";
+  if (name.ends_with("_step"))
+    return f->value < 0.0 ? "never" : std::to_string(static_cast<long long>(f->value));
+  return digits(f->value, 7) + " m";
+}
+
+const ContactFigure* find_figure(const Baseline& b, const std::string& name) {
+  for (const ContactFigure& f : b.contact)
+    if (f.name == name) return &f;
+  return nullptr;
+}
+
+// Rows for each contact figure of a pair that differs between the two sets.
+std::string contact_rows(const Baseline& before, const Baseline& after, int& same) {
+  std::vector<std::string> names;
+  for (const Baseline* b : {&before, &after})
+    for (const ContactFigure& f : b->contact)
+      if (std::find(names.begin(), names.end(), f.name) == names.end()) names.push_back(f.name);
+  std::string rows;
+  for (const std::string& name : names) {
+    const ContactFigure *b = find_figure(before, name), *a = find_figure(after, name);
+    if (a && b && a->value == b->value) {
+      ++same;
+      continue;
+    }
+    rows += "| " + after.scene + " | " + after.engine + " | " + name + " | " +
+            figure_text(name, b) + " -> " + figure_text(name, a) + " |\n";
+  }
+  return rows;
+}
+
+// What moved in contact terms: each slide's stop step and distance, each bounce's first contact
+// and apexes, for every pair both sets ran.
+std::string contact_section(const ResultSet& before, const ResultSet& after) {
+  int same = 0;
+  std::string rows;
+  for (const auto& [file, a] : after.runs) {
+    const auto b = before.runs.find(file);
+    if (b == before.runs.end() || !a.skipped.empty() || !b->second.skipped.empty()) continue;
+    rows += contact_rows(b->second, a, same);
+  }
+  const std::string identical =
+      std::to_string(same) + (same == 1 ? " figure identical" : " figures identical");
+  if (rows.empty())
+    return "\n## Contact\n\nNo contact figure moved (" + identical +
+           ": slides' stop steps and distances, bounces' first contacts and apexes).\n";
+  return "\n## Contact\n\nEach slide's stop step and distance, each bounce's first contact step "
+         "and apexes, at the scene's step, where they differ (" +
+         identical +
+         ").\n\n| scene | engine | figure | before -> after |\n"
+         "|---|---|---|---|\n" +
+         rows;
+}
+
 }  // namespace
 
 ResultSet load_result_set(const std::string& dir) {
@@ -192,7 +250,7 @@ std::string diff_markdown(const ResultSet& before, const ResultSet& after) {
       "| scene | engine | verdict | max \\|dx\\| | first step over tolerance | hash before -> "
       "after |\n";
   out += "|---|---|---|---:|---|---|\n" + rows;
-  return out + curves_section(before, after);
+  return out + contact_section(before, after) + curves_section(before, after);
 }
 
 }  // namespace dropcheck

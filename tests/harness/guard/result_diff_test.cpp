@@ -4,6 +4,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "../../engine_slots.hpp"
 #include "../moved_drag_engine.hpp"
 #include "../test_dirs.hpp"
 #include "harness/guard/baseline_io.hpp"
@@ -75,4 +76,32 @@ TEST_CASE("Diff shows wall time per simulated second when the result sets carry 
 TEST_CASE("Diff refuses a result set that is not a directory", "[baseline][diff]") {
   REQUIRE_THROWS_WITH(load_result_set("/nonexistent/set"),
                       Catch::Contains("not a directory of baseline files"));
+}
+
+TEST_CASE("Diff says what moved in contact terms: a slide's stop step, a bounce's apexes",
+          "[baseline][diff][contact]") {
+  // ours with a friction bug (mu 10 % high) and a restitution bug (e 10 % high), blessed under the
+  // shipped scenes' names.
+  const ScratchDir before("diff-contact-before"), after("diff-contact-after");
+  Scene slide = shipped_scene("slide_stop"), bounce = shipped_scene("bounce_e05");
+  for (const Scene* s : {&slide, &bounce})
+    write_baseline_file(before, make_baseline(*s, factory("ours-f64")));
+  for (Body& b : slide.bodies)
+    if (b.friction) *b.friction *= 1.1;
+  for (Body& b : bounce.bodies)
+    if (b.restitution) *b.restitution *= 1.1;
+  for (const Scene* s : {&slide, &bounce})
+    write_baseline_file(after, make_baseline(*s, factory("ours-f64")));
+  const ResultSet a = load_result_set(after.path.string());
+  CHECK(a.runs.at("slide_stop.ours-f64.txt").contact.size() == 2);  // read back from the file
+  const std::string md = diff_markdown(load_result_set(before.path.string()), a);
+  INFO(md);
+  // The clamp law: 5 m/s against mu*g*h = 0.08167 m/s a step stops at step 62 (0.0898 at 0.55:
+  // step 56).
+  CHECK_THAT(md, Catch::Contains("| slide_stop | ours-f64 | cube.stop_step | 62 -> 56 |"));
+  CHECK_THAT(md, Catch::Contains("| slide_stop | ours-f64 | cube.distance | 2.509472 m -> "));
+  CHECK_THAT(md, Catch::Contains("| bounce_e05 | ours-f64 | ball.apex_1 | 0.2667"));
+  // The first contact does not move with e.
+  CHECK_THAT(md, Catch::Contains("(1 figure identical)"));
+  CHECK_THAT(md, !Catch::Contains("ball.contact_step |"));
 }
