@@ -351,13 +351,21 @@ TEST_CASE("Two engines that announce the same name are refused as the clash", "[
 
 namespace {
 
+using ContactCheck = CheckResult (*)(const Scene&, const EngineFactory&, const Timestep&);
+
+// `check` of the shipped scene `stem` on the test engine tests/adapters/SCRIPT MODE ANNOUNCE.
+CheckResult contact_check(ContactCheck check, const char* stem, const char* script,
+                          const std::string& mode, const std::string& announce) {
+  ExecSpec spec;
+  spec.command = {"python3", kExecSource + "/tests/adapters/" + script, mode, announce};
+  const Scene s = exec_scene(stem);
+  return check(
+      s, [&] { return make_exec_engine(spec); }, s.timestep);
+}
+
 // The bounce check of scenarios/bounce_e05 on tests/adapters/bounce_engine.py MODE ANNOUNCE.
 CheckResult bounce_check(const std::string& mode, const std::string& announce) {
-  ExecSpec spec;
-  spec.command = {"python3", kExecSource + "/tests/adapters/bounce_engine.py", mode, announce};
-  const Scene s = exec_scene("bounce_e05");
-  return check_bounce(
-      s, [&] { return make_exec_engine(spec); }, s.timestep);
+  return contact_check(check_bounce, "bounce_e05", "bounce_engine.py", mode, announce);
 }
 
 }  // namespace
@@ -390,11 +398,7 @@ namespace {
 
 // The slide check of scenarios/slide_stop on tests/adapters/slide_engine.py MODE ANNOUNCE.
 CheckResult slide_check(const std::string& mode, const std::string& announce) {
-  ExecSpec spec;
-  spec.command = {"python3", kExecSource + "/tests/adapters/slide_engine.py", mode, announce};
-  const Scene s = exec_scene("slide_stop");
-  return check_slide(
-      s, [&] { return make_exec_engine(spec); }, s.timestep);
+  return contact_check(check_slide, "slide_stop", "slide_engine.py", mode, announce);
 }
 
 }  // namespace

@@ -15,45 +15,12 @@ Usage: slide_engine.py MODE ANNOUNCE
 import math
 import sys
 
+sys.dont_write_bytecode = True  # nothing written beside the sources
+from contact_engine_io import floor_top, serve  # noqa: E402
+
 MODE, ANNOUNCE = sys.argv[1], sys.argv[2]
 SOLVERS = {"sequential": "contact-solver sequential-impulses 10 0.001",
            "soft": "contact-solver soft 0.001"}
-
-
-def reply(line):
-    sys.stdout.write(line + "\n")
-    sys.stdout.flush()
-
-
-def state(n, bodies):
-    return "state %d " % n + " ".join(repr(c) for b in bodies for c in b["x"] + b["v"])
-
-
-def read_scene(first):
-    n = int(first.split()[1])
-    scene = {"bodies": [], "mu": 0.0}
-    for line in sys.stdin:
-        t = line.split()
-        if t[0] == "end":
-            break
-        if t[0] == "h":
-            scene["h"] = float(t[1])
-        elif t[0] == "gravity":
-            scene["g"] = [float(c) for c in t[1:4]]
-        elif t[0] == "material":
-            scene["mu"] = 0.0 if t[1] == "-" else float(t[1])
-        elif t[0] == "body":
-            numbers = [float(c) for c in t[2:12]]
-            scene["bodies"].append({"static": t[1] == "static", "he": numbers[1:4],
-                                    "x": numbers[4:7], "v": numbers[7:10]})
-    assert len(scene["bodies"]) == n
-    return scene
-
-
-def floor_top(scene, b):
-    tops = [f["x"][1] + f["he"][1] for f in scene["bodies"] if f["static"]
-            and abs(b["x"][0] - f["x"][0]) <= f["he"][0] and abs(b["x"][2] - f["x"][2]) <= f["he"][2]]
-    return max(tops) if tops else None
 
 
 def step(scene):
@@ -76,27 +43,6 @@ def step(scene):
         b["x"] = [b["x"][k] + h * b["v"][k] for k in range(3)]
 
 
-def main():
-    reply("dropcheck-engine 1")
-    reply("name slide-" + MODE + "-" + ANNOUNCE)
-    reply("version 1")
-    reply("scalar f64")
-    reply("law after-forces")
-    reply("capabilities contacts friction")
-    if ANNOUNCE in SOLVERS:
-        reply(SOLVERS[ANNOUNCE])
-    reply("ready")
-    scene = None
-    for line in sys.stdin:
-        t = line.split()
-        if not t or t[0] == "quit":
-            return
-        if t[0] == "scene":
-            scene = read_scene(line)
-            reply(state(0, scene["bodies"]))
-        elif t[0] == "step":
-            step(scene)
-            reply(state(int(t[1]), scene["bodies"]))
-
-
-main()
+serve(["name slide-" + MODE + "-" + ANNOUNCE, "version 1", "scalar f64", "law after-forces",
+       "capabilities contacts friction"] + ([SOLVERS[ANNOUNCE]] if ANNOUNCE in SOLVERS else []),
+      step)
