@@ -45,7 +45,7 @@
 //   rounding            -> the gyroscopic force comes from the spatial velocity (w, v_b) in body
 //                          coordinates, v_b x m*v_b included: zero exactly, but it rounds to
 //                          2*eps*m*|v|^2 of torque a step. On Gazebo's complex box at 1/60 (|v| up
-//                          to 90 m/s, I_min 0.14) that is 3000 ulps of |w| a step, and takes the
+//                          to 90 m/s, I_min 0.14) that is 2,540 ulps of |w| a step, and takes the
 //                          replica 1e-8 rad from DART; with DART's own v_b in it, 6e-11 rad. The
 //                          own-law tolerance counts it (RotationLaw::spatial_bias).
 //

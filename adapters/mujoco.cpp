@@ -149,7 +149,7 @@ std::string friction_xml(const MujocoBody& b) {
          num(kMujocoRollingFriction) + R"(")";
 }
 
-// A dynamic body's geom: a sphere of its radius or a box of its half extents.
+// A body's geom: a sphere of its radius or a box of its half extents.
 std::string shape_xml(const MujocoBody& b) {
   return b.radius > 0.0 ? R"( type="sphere" size=")" + num(b.radius) + R"(")"
                         : R"( type="box" size=")" + vec(b.half_extents) + R"(")";
@@ -160,8 +160,8 @@ std::string shape_xml(const MujocoBody& b) {
 std::string body_xml(const MujocoBody& b) {
   const std::string name = R"( name=")" + xml_escaped(b.name) + R"(")";
   if (b.is_static)
-    return "<geom" + name + friction_xml(b) + R"( type="box" pos=")" + vec(b.position) +
-           R"(" size=")" + vec(b.half_extents) + R"("/>)";
+    return "<geom" + name + friction_xml(b) + shape_xml(b) + R"( pos=")" + vec(b.position) +
+           R"("/>)";
   // The free joint's damping b on all six dofs; load() sets the rotational three's.
   return "<body" + name + R"( pos=")" + vec(b.position) + R"(">)" +
          R"(<joint type="free" damping=")" + num(b.damping) + R"("/>)" +

@@ -332,8 +332,7 @@ void print_friction_model(const FrictionModelIdentity& f, std::ostream& out) {
   if (f.raw)
     out << "declared: none (its adapter does not map friction)\n";
   else
-    out << "declared " << to_string(f.declared) << ": " << match_word(f.found->named == f.declared)
-        << "\n";
+    out << "declared " << to_string(f.declared) << ": " << match_word(f.ok()) << "\n";
 }
 
 void print_combine_rule(const CombineRuleIdentity& c, std::ostream& out) {

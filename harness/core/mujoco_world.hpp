@@ -39,7 +39,7 @@ namespace dropcheck {
 // raised to 2h at least (refsafe). In the direct format (-stiffness, -damping), neither positive:
 // K = stiffness/dmax^2, B = damping/dmax.
 struct MujocoSoftContact {
-  std::array<double, 2> solref{0.0, 1.0};
+  std::array<double, 2> solref{0.02, 1.0};  // MuJoCo's default
   std::array<double, 5> solimp{0.9999, 0.9999, 0.001, 0.5, 2.0};
   double impratio = 1.0;
   bool pyramidal = true;  // <option cone="pyramidal"> (MuJoCo's default), else elliptic
@@ -48,7 +48,7 @@ struct MujocoSoftContact {
 struct MujocoBody {
   std::string name;
   bool is_static = false;
-  double radius = 0.0;  // > 0: a sphere geom (dynamic bodies only), else a box
+  double radius = 0.0;  // > 0: a sphere geom, else a box
   Vec3 half_extents = Vec3::Zero();
   Vec3 position = Vec3::Zero();
   Quat orientation = Quat::Identity();        // qpos (w, x, y, z)

@@ -145,20 +145,24 @@ Baseline make_baseline(const Scene& scene, const EngineFactory& make,
 std::vector<ContactFigure> contact_figures(const Scene& scene, const Trajectory& run) {
   std::vector<ContactFigure> out;
   if (!scene.world.contacts || !run.keeps_every_step()) return out;
+  // A run that blew up has no finite distance or apex to keep.
+  const auto add = [&](const std::string& name, double value) {
+    if (std::isfinite(value) && out.size() < kMaxContactFigures) out.push_back({name, value});
+  };
   for (const SlideSetup& s : slide_setups(scene)) {
     const SlideObservation o = observe_slide(observed_slide_path(run, s), tolerance::kStoppedSpeed,
                                              tolerance::kSlideDistance);
     const std::string& body = scene.bodies[s.body].name;
-    out.push_back({body + ".stop_step", static_cast<double>(o.stop_step)});
-    out.push_back({body + ".distance", o.distance});
+    add(body + ".stop_step", static_cast<double>(o.stop_step));
+    add(body + ".distance", o.distance);
   }
   for (const BounceSetup& s : bounce_setups(scene)) {
     const BouncePath path = observed_path(run, s);
     const BounceObservation o = observe_bounce(path.gap, path.v, s.g, run.h);
     const std::string& body = scene.bodies[s.body].name;
-    out.push_back({body + ".contact_step", static_cast<double>(o.contact_step)});
+    add(body + ".contact_step", static_cast<double>(o.contact_step));
     for (std::size_t i = 0; i < o.apexes.size(); ++i)
-      out.push_back({body + ".apex_" + std::to_string(i + 1), o.apexes[i]});
+      add(body + ".apex_" + std::to_string(i + 1), o.apexes[i]);
   }
   return out;
 }

@@ -86,7 +86,11 @@ struct Baseline {
   std::vector<ContactFigure> contact;
 };
 
-// What `run` (every step kept) shows of the slides and bounces of `scene` (contact_laws.hpp).
+// At most this many contact figures in a baseline (the reader's bound).
+inline constexpr std::size_t kMaxContactFigures = 4096;
+
+// What `run` (every step kept) shows of the slides and bounces of `scene` (contact_laws.hpp): at
+// most kMaxContactFigures, the rest left out.
 std::vector<ContactFigure> contact_figures(const Scene& scene, const Trajectory& run);
 
 // How make_baseline samples and whether it times.

@@ -2,9 +2,8 @@
 // every number was printed with %.17g, which strtod reads back exactly.
 #include "harness/guard/baseline_parse.hpp"
 
-#include <algorithm>
-#include <cctype>
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <map>
 #include <sstream>
@@ -115,24 +114,27 @@ struct Parser {
     return v;
   }
 
-  // "contact NAME VALUE": NAME of 1-80 characters from A-Z a-z 0-9 . _ + -, once each; at most
-  // kMaxContactFigures of them.
+  // "contact BODY.FIGURE VALUE" (contact_figures): BODY.FIGURE once each, at most
+  // kMaxContactFigures of them; a *_step value an integer >= -1, any other finite.
   void contact(const std::string& rest) {
-    static constexpr std::size_t kMaxContactFigures = 256;
     std::istringstream in(rest);
     std::string name, value, extra;
     if (!(in >> name >> value) || (in >> extra)) fail("contact", "expected 'contact NAME VALUE'");
-    const bool valid =
-        !name.empty() && name.size() <= 80 && std::all_of(name.begin(), name.end(), [](char c) {
-          return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '+' ||
-                 c == '-';
-        });
-    if (!valid) fail("contact", excerpt(name) + " is not a figure name");
     if (b.contact.size() >= kMaxContactFigures)
       fail("contact", "more than " + std::to_string(kMaxContactFigures) + " figures");
     for (const ContactFigure& f : b.contact)
       if (f.name == name) fail("contact", "a second " + excerpt(name));
-    b.contact.push_back({name, number(value, "contact " + excerpt(name))});
+    const std::string key = "contact " + excerpt(name);
+    double v = 0.0;
+    if (name.ends_with("_step")) {
+      const std::int64_t step = integer(value, key);
+      if (step < -1) fail(key, "a step of -1 (never) or more, got " + excerpt(value));
+      v = static_cast<double>(step);
+    } else {
+      v = number(value, key);
+      if (!std::isfinite(v)) fail(key, "a finite figure, got " + excerpt(value));
+    }
+    b.contact.push_back({name, v});
   }
 
   void bodies(const std::string& rest) {

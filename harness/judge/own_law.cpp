@@ -107,7 +107,9 @@ void judge_rotation(const EngineInfo& info, const Trajectory& run, const Traject
   r.residual_angle = d.angle;
   r.residual_w = d.w;
   r.tolerance_angle = ulps * machine_epsilon(info.scalar) * own.amplification;
-  r.tolerance_w = r.tolerance_angle * d.w_scale;
+  // A spatial bias turns even a body its law never turns: its ulps count from 1 rad/s at least.
+  r.tolerance_w =
+      r.tolerance_angle * (own.rotation_step_ulps > 0.0 ? std::max(d.w_scale, 1.0) : d.w_scale);
   r.rotation_rule = g3(ulps) + " ulps x amplification " + g3(own.amplification) + " (" +
                     to_string(info.scalar) +
                     (copied ? ", operation order copied)"

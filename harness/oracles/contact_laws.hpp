@@ -151,8 +151,8 @@ struct BounceObservation {
   // with a speculative contact.
   std::int64_t contact_step = -1;
   double speed_in = 0.0;  // m/s: its downward speed then
-  // m/s: its speed after the last step of that impact in which the floor pushed (one step later
-  // for a rigid contact; a soft contact pushes over several steps)
+  // m/s: its speed after the last of the impact's consecutive steps in which the floor pushed (one
+  // step later for a rigid contact; a soft contact pushes over several steps)
   double speed_out = 0.0;
   std::vector<double> apexes;  // m: the highest gap of each flight after an impact
 };

@@ -12,46 +12,74 @@
 namespace dropcheck {
 namespace {
 
-// The scene with its sliding body launched at the same speed at `angle` from x toward z.
+// The scene with its sliding body's launch, and its pull along the floor, turned to `angle` from
+// x toward z (the same speed and the same pull).
 Scene turned(const Scene& scene, const SlideSetup& s, double angle) {
   Scene out = scene;
-  Body& b = out.bodies[s.body];
-  b.velocity = Vec3(s.v0 * std::cos(angle), 0.0, s.v0 * std::sin(angle));
+  const Vec3 along(std::cos(angle), 0.0, std::sin(angle));
+  out.bodies[s.body].velocity = s.v0 * along;
+  Vec3& g = out.world.gravity;
+  g = Vec3(0.0, g.y(), 0.0) + std::hypot(g.x(), g.z()) * along;
   return out;
+}
+
+// Model m's clamp-law distances of `pair` at 0 and 45 degrees (mu replaced when given): to the
+// stop of a launched slide, to the run's end (`steps`) of a pulled one.
+std::pair<double, double> law_distances(const SlidePair& pair, FrictionModel m, double h,
+                                        std::int64_t steps, std::optional<double> mu) {
+  double d[2];
+  const Scene* scenes[2] = {&pair.along_axis, &pair.diagonal};
+  for (int i = 0; i < 2; ++i) {
+    SlideSetup s = slide_setups(*scenes[i]).at(0);
+    if (mu) s.mu = *mu;
+    d[i] = pair.pulled ? slide_path(s, m, h, steps).s.back()
+                       : slide_to_stop(s.v0, s.mu, s.g, h, m, s.angle).step_distance;
+  }
+  return {d[0], d[1]};
 }
 
 }  // namespace
 
 SlidePair slide_pair(const Scene& scene) {
   const std::vector<SlideSetup> slides = slide_setups(scene);
-  const auto launched =
-      std::find_if(slides.begin(), slides.end(), [](const SlideSetup& s) { return s.v0 > 0.0; });
-  if (launched == slides.end())
+  if (slides.empty())
     throw InputError(scene.name, 0, "",
-                     "has no slide to a stop (a box resting on a static box, launched "
-                     "horizontally, with a friction set: docs/contact.md)");
-  if (launched->pull != 0.0)
-    throw InputError(scene.name, 0, "world.gravity",
-                     "pulls the slide along its floor (an incline): the friction model is "
-                     "identified from a slide on a level floor, where gravity is straight down");
-  return {turned(scene, *launched, 0.0), turned(scene, *launched, std::numbers::pi / 4.0)};
+                     "has no slide (a box resting on a static box, launched along it or pulled "
+                     "along it by gravity, with a friction set: docs/contact.md)");
+  const auto launched = std::find_if(slides.begin(), slides.end(), [](const SlideSetup& s) {
+    return s.v0 > 0.0 && s.pull == 0.0;
+  });
+  const SlideSetup& s = launched != slides.end() ? *launched : slides.front();
+  return {turned(scene, s, 0.0), turned(scene, s, std::numbers::pi / 4.0), s.pull != 0.0};
 }
 
 FrictionIdentification identify_friction(const Scene& scene, double h, double distance_0,
                                          double distance_45, std::optional<double> mu) {
-  SlideSetup s = slide_setups(slide_pair(scene).along_axis).at(0);
-  if (mu) s.mu = *mu;
+  const SlidePair pair = slide_pair(scene);
+  const std::int64_t steps = step_count(pair.along_axis, h);
   FrictionIdentification id;
+  id.pulled = pair.pulled;
   id.distance_0 = distance_0;
   id.distance_45 = distance_45;
   id.ratio = distance_0 > 0.0 ? distance_45 / distance_0 : NAN;
-  int within = 0;
+  std::vector<std::pair<double, double>> laws;
+  double spread = 0.0;  // the largest clamp-law distance at 45 degrees
   for (FrictionModel m : kFrictionModels) {
-    const double d0 = slide_to_stop(s.v0, s.mu, s.g, h, m, 0.0).step_distance;
-    const double d45 = slide_to_stop(s.v0, s.mu, s.g, h, m, std::numbers::pi / 4.0).step_distance;
-    id.fits.push_back({m, d45 / d0});
-    if (std::abs(id.ratio / (d45 / d0) - 1.0) <= kFrictionRatioTolerance) {
-      id.named = m;
+    laws.push_back(law_distances(pair, m, h, steps, mu));
+    spread = std::max(spread, laws.back().second);
+  }
+  id.held = pair.pulled && laws.front().first == 0.0;
+  int within = 0;
+  for (std::size_t i = 0; i < laws.size(); ++i) {
+    const auto [d0, d45] = laws[i];
+    // Held at 0 degrees, every model's too: the distance at 45 degrees alone, within the
+    // tolerance of the largest; else the ratio, which divides out what both slides share.
+    const bool fits = id.held ? std::abs(distance_45 - d45) <= kFrictionRatioTolerance * spread
+                              : std::abs(id.ratio - d45 / d0) <=
+                                    kFrictionRatioTolerance * std::max(d45 / d0, 1.0);
+    id.fits.push_back({kFrictionModels[i], d45 / d0, d45, fits});
+    if (fits) {
+      id.named = kFrictionModels[i];
       ++within;
     }
   }
@@ -60,11 +88,20 @@ FrictionIdentification identify_friction(const Scene& scene, double h, double di
 }
 
 std::string FrictionIdentification::sentence() const {
-  std::string text = printf_string("ratio %.5g (%.7g m at 45 degrees, %.7g m at 0): ", ratio,
-                                   distance_45, distance_0);
-  text += named ? std::string(to_string(*named)) : std::string("NO MODEL within 5 %");
+  const char* what = pulled ? "by the run's end" : "to the stop";
+  std::string text =
+      held ? printf_string("held at 0 degrees; %.7g m at 45 degrees %s: ", distance_45, what)
+           : printf_string("ratio %.5g (%.7g m at 45 degrees, %.7g m at 0, %s): ", ratio,
+                           distance_45, distance_0, what);
+  std::string fitting;
   for (const FrictionModelFit& f : fits)
-    text += printf_string("; %s %.5g", to_string(f.model), f.ratio);
+    if (f.fits) fitting += (fitting.empty() ? "" : " or ") + std::string(to_string(f.model));
+  text += named             ? std::string(to_string(*named))
+          : fitting.empty() ? std::string("NO MODEL within 5 %")
+                            : fitting + " (this slide cannot tell them apart)";
+  for (const FrictionModelFit& f : fits)
+    text += held ? printf_string("; %s %.7g m", to_string(f.model), f.distance_45)
+                 : printf_string("; %s %.5g", to_string(f.model), f.ratio);
   return text;
 }
 
@@ -84,8 +121,10 @@ double pair_friction(const Scene& scene, const Trajectory& run) {
   const std::size_t n = std::min<std::size_t>(kCombineSteps, run.samples() - 1);
   // Friction impulse over normal impulse (per unit mass) over the first n steps: the x velocity
   // lost, over the y velocity gained beyond gravity's.
+  // A pull along x (an incline) adds its impulse to what the friction took.
   const Vec3 v0 = run.at(0, body).velocity, vn = run.at(n, body).velocity;
-  return (v0.x() - vn.x()) / (vn.y() - v0.y() + static_cast<double>(run.recorded[n]) * g * h);
+  const double t = static_cast<double>(run.recorded[n]) * h;
+  return (v0.x() - vn.x() + scene.world.gravity.x() * t) / (vn.y() - v0.y() + t * g);
 }
 
 CombineIdentification identify_combine(const Scene& combined, const Trajectory& run) {

@@ -7,6 +7,14 @@
 // = 0.7023 and 3.566138/2.509472 = 1.4211 for the shipped slides). A ratio divides out what both
 // slides share (a solver that stops either a little short), so it names the model of an engine
 // that does not follow the clamp law to the micrometre.
+//
+// A slide pulled along its floor (an incline: gravity with a part along the floor) is turned the
+// same way, its pull to 0 and 45 degrees, and each run measured by how far it has come at the
+// scene's end. At 45 degrees the pull meets the cone's grip mu*g, the box pyramid's sqrt(2)*mu*g
+// and the sum pyramid's mu*g/sqrt(2), so a ramp steeper than its friction slides different
+// distances under each; a box held at 0 degrees (tan < mu) is held at 45 under the cone and the box
+// pyramid, and slips under the sum pyramid when tan > mu/sqrt(2): then the distance at 45 degrees
+// names the sum pyramid or leaves the other two undecided.
 #pragma once
 
 #include <optional>
@@ -19,36 +27,45 @@
 
 namespace dropcheck {
 
-// A model fits when its ratio is within this relative distance of the observed one. The three
-// models' ratios are at least 29 % apart (0.7023, 1, 1.4211); ODE measures 0.70229 at 1/60, the box
-// pyramid's clamp-law ratio to 5 digits.
+// A model fits when its ratio is within this distance of the observed one, relative to the larger
+// of its ratio and 1 (a pulled slide that a model holds at 45 degrees has ratio 0 under it). The
+// three models' ratios are at least 29 % apart on a launched slide (0.7023, 1, 1.4211) and further
+// on the shipped ramp (0, 1, 2.8933); ODE measures 0.70229 at 1/60, the box pyramid's clamp-law
+// ratio to 5 digits.
 inline constexpr double kFrictionRatioTolerance = 0.05;
 
 struct FrictionModelFit {
   FrictionModel model = FrictionModel::cone;
-  double ratio = 0.0;  // its clamp laws' distance at 45 degrees over that at 0
+  double ratio = 0.0;        // its clamp laws' distance at 45 degrees over that at 0
+  double distance_45 = 0.0;  // m: its clamp law's at 45 degrees
+  bool fits = false;         // within kFrictionRatioTolerance of the run
 };
 
 struct FrictionIdentification {
+  bool pulled = false;                 // an incline: distances at the run's end, not stops
+  bool held = false;                   // pulled, and held at 0 degrees under every model
   double distance_0 = 0.0;             // m: the engine's stop distance at 0 degrees
   double distance_45 = 0.0;            // m: and at 45 degrees
   double ratio = 0.0;                  // distance_45 / distance_0
   std::vector<FrictionModelFit> fits;  // cone, box pyramid, sum pyramid
-  std::optional<FrictionModel> named;  // the one model within kFrictionRatioTolerance, if any
+  std::optional<FrictionModel> named;  // the one model that fits, if only one does
   // "ratio 0.7023 (1.762376 m at 45 degrees, 2.509472 m at 0): box pyramid (0.7023); cone 1,
   // sum pyramid 1.421"
   std::string sentence() const;
 };
 
-// The slide of `scene` (its first, at any angle) turned to 0 and to 45 degrees between x and z:
-// the two scenes identify_friction compares. Throws InputError when the scene has no slide.
+// The slide of `scene` (its first launched one, at any angle, else its first pulled one) turned to
+// 0 and to 45 degrees between x and z: the two scenes identify_friction compares. Throws
+// InputError when the scene has no slide.
 struct SlidePair {
   Scene along_axis;
   Scene diagonal;
+  bool pulled = false;  // an incline: its pull turned, each run measured to its end
 };
 SlidePair slide_pair(const Scene& scene);
 
-// From the two stop distances (observe_slide) at the scene's step.
+// From the two distances at the scene's step: the stops (observe_slide) of a launched slide, the
+// distances at the run's end of a pulled one.
 // `mu`: the pair's coefficient when it is not the scene's (an engine run with each body's own
 // coefficient, whose combine rule makes the pair's: identify measures it, pair_friction).
 // At step h (the runs').

@@ -215,8 +215,9 @@ std::vector<RotationState> rotate_as_rotation_vector(const Scene& scene, double 
 }
 
 // The rounding of a spatial bias torque (RotationLaw::spatial_bias) in ulps of the prediction's
-// largest |w| per step: the step turns 2*eps*m*|v|^2 of torque into h*2*eps*m*|v|^2/I_min of
-// angular velocity, with |v| the body's fastest and I_min its smallest moment.
+// largest |w| (at least 1 rad/s) per step: the step turns 2*eps*m*|v|^2 of torque into
+// h*2*eps*m*|v|^2/I_min of angular velocity, with |v| the body's fastest and I_min its smallest
+// moment.
 double spatial_bias_ulps(const Scene& scene, double h, const Trajectory& t) {
   double w_scale = 0.0;
   for (const RotationState& r : t.rotations) w_scale = std::max(w_scale, r.angular_velocity.norm());
@@ -229,7 +230,8 @@ double spatial_bias_ulps(const Scene& scene, double h, const Trajectory& t) {
       v2 = std::max(v2, t.at(s, b).velocity.squaredNorm());
     worst = std::max(worst, 2.0 * body.mass * v2 * h / inertia_of(body).minCoeff());
   }
-  return w_scale > 0.0 ? worst / w_scale : 0.0;
+  // In ulps of 1 rad/s for a body the law never turns: its w is then the bias's rounding alone.
+  return worst / std::max(w_scale, 1.0);
 }
 
 // Adds the rotation of a scene that needs it to `t`, the prediction for `info`: ours's own order

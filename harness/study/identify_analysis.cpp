@@ -125,7 +125,11 @@ EngineIdentity identify_engine(const Scene& scene, Engine& engine, double h) {
 bool FrictionModelIdentity::ok() const {
   if (planar) return true;
   if (failed || !found) return false;
-  return raw ? found->named.has_value() : found->named == declared;
+  if (raw) return found->named.has_value();
+  // A slide that cannot tell some models apart is consistent with any of them.
+  for (const FrictionModelFit& fit : found->fits)
+    if (fit.model == declared && fit.fits) return true;
+  return false;
 }
 
 namespace {
@@ -142,9 +146,14 @@ std::optional<double> slide_distance(const Scene& s, int angle, const IdentifySo
   const Trajectory run = run_scene(*fe.engine, s, h);
   if ((f.failed = run_failure(run, run.engine))) return std::nullopt;
   // The distance to the stop, or to the run's end for an engine that creeps on (Bullet ends at
-  // 9e-5 m/s); a slide still above 1 % of its launch speed at the end has no distance yet.
+  // 9e-5 m/s); a slide still above 1 % of its launch speed at the end has no distance yet. A
+  // slide pulled along its floor: the distance at the run's end.
   const SlideSetup slide = slide_setups(s).at(0);
   const SlidePath path = observed_slide_path(run, slide);
+  if (slide.pull != 0.0) {
+    if (fe.raw && angle == 0) f.mu = pair_friction(s, run);
+    return path.s.back();
+  }
   const SlideObservation seen =
       observe_slide(path, tolerance::kStoppedSpeed, tolerance::kSlideDistance);
   // Still sliding is judged on the speed alone: a creep below 1 % of the launch speed is a stop.

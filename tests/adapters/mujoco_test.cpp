@@ -306,6 +306,7 @@ TEST_CASE("MuJoCo's restitution is a spring-damper that returns e of the speed i
     const auto acc = [&](double r, double v) { return -B * v - K * r; };
     const double dt = 1e-5 * 2.0 * std::numbers::pi / std::sqrt(K);
     double r = 0.0, v = -1.0, leaves = 0.0;
+    bool crossed = false;
     for (int n = 0; n < 1'000'000; ++n) {
       const double k1r = v, k1v = acc(r, v);
       const double k2r = v + dt / 2 * k1v, k2v = acc(r + dt / 2 * k1r, v + dt / 2 * k1v);
@@ -315,11 +316,13 @@ TEST_CASE("MuJoCo's restitution is a spring-damper that returns e of the speed i
       const double v_next = v + dt / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
       if (r_next >= 0.0) {
         leaves = v + (v_next - v) * (-r / (r_next - r));
+        crossed = true;
         break;
       }
       r = r_next, v = v_next;
     }
     INFO("e = " << e << ": leaves at " << leaves);
+    CHECK(crossed == (e > 0.0));
     CHECK(leaves == Approx(e).margin(1e-6));
   }
 }

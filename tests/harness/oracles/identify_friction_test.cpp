@@ -1,5 +1,6 @@
 // Tests harness/oracles/identify_friction.cpp: the stop distances of each model's clamp law at 0
-// and 45 degrees name that model; distances that fit no model, or a slide-less scene, are said.
+// and 45 degrees name that model, on a level floor and on a ramp; distances that fit no model, or
+// a slide-less scene, are said.
 #include "harness/oracles/identify_friction.hpp"
 
 #include <catch2/catch.hpp>
@@ -45,5 +46,36 @@ TEST_CASE(
   CHECK(slide_setups(pair.along_axis).at(0).angle == 0.0);
   CHECK(slide_setups(pair.diagonal).at(0).angle == Approx(std::numbers::pi / 4.0).epsilon(1e-15));
   CHECK(slide_setups(pair.diagonal).at(0).v0 == Approx(5.0).epsilon(1e-15));
+  CHECK_FALSE(pair.pulled);
   CHECK_THROWS_AS(slide_pair(testing::shipped("free_fall")), InputError);
+}
+
+TEST_CASE("on a ramp the pull is turned, and the distances by the run's end name the model",
+          "[contact][identify]") {
+  // incline_slide (30 degrees, mu 0.5): each model's clamp law slides 2.970552 m along the axis;
+  // at 45 degrees the cone as far, the box pyramid not at all (each axis holds its part of the
+  // pull) and the sum pyramid 8.59 m.
+  const Scene ramp = testing::shipped("incline_slide");
+  const SlidePair pair = slide_pair(ramp);
+  CHECK(pair.pulled);
+  CHECK(pair.diagonal.world.gravity.x() == Approx(pair.diagonal.world.gravity.z()));
+  CHECK(slide_setups(pair.diagonal).at(0).angle == Approx(std::numbers::pi / 4.0).epsilon(1e-12));
+  const double h = ramp.timestep.seconds;
+  const FrictionIdentification cone = identify_friction(ramp, h, 2.970552, 2.970552);
+  CHECK(cone.named == FrictionModel::cone);
+  CHECK(identify_friction(ramp, h, 2.970552, 6e-4).named == FrictionModel::box_pyramid);
+  CHECK(identify_friction(ramp, h, 2.970552, 8.6).named == FrictionModel::sum_pyramid);
+  CHECK_THAT(cone.sentence(), Contains("by the run's end"));
+  // incline_hold (20 degrees, mu 0.5): held along the axis under every model; at 45 degrees the
+  // sum pyramid's grip mu*g*cos/sqrt(2) is below the pull and it slides 0.434 m; the cone and the
+  // box pyramid hold, and a held box cannot tell them apart.
+  const Scene hold = testing::shipped("incline_hold");
+  const FrictionIdentification held = identify_friction(hold, h, 0.0, 0.0);
+  CHECK(held.held);
+  CHECK_FALSE(held.named);
+  CHECK(held.fits[0].fits);
+  CHECK(held.fits[1].fits);
+  CHECK_FALSE(held.fits[2].fits);
+  CHECK_THAT(held.sentence(), Contains("cone or box pyramid (this slide cannot tell them apart)"));
+  CHECK(identify_friction(hold, h, 0.0, 0.434).named == FrictionModel::sum_pyramid);
 }
