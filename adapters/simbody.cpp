@@ -34,8 +34,13 @@
 //   position, velocity  -> setQToFitTransform, setUToFitVelocity; read with getBodyOriginLocation,
 //                          getBodyOriginVelocity, the Free mobilizer's quaternion q[0..3] over its
 //                          norm, and getBodyAngularVelocity.
-// Contacts: not mapped (Simbody's contact needs a separate contact subsystem and a compliant
-// model): a scene with contacts is not run.
+// Contacts (Simbody/src/HuntCrossleyForce.cpp, GeneralContactSubsystem): spheres only, each a
+// ContactGeometry::Sphere, each static box's top face a ContactGeometry::HalfSpace, all in one
+// contact set pushed by a HuntCrossleyForce, the compliant force law of
+// harness/core/simbody_contact.hpp (its stiffness from the step, its dissipation from the scene's
+// restitution). The integrator steps it as any force, so a bounce is predicted by that law
+// stepped the same way (hunt_crossley_states). A box's contact (a Brick under the
+// CompliantContactSubsystem) is not mapped: a scene whose moving box has contacts is not run.
 // The Simbody calls themselves are in simbody_world.cpp (C++17; simbody_world.hpp says why).
 #include <chrono>
 #include <memory>
@@ -44,6 +49,7 @@
 
 #include "adapters.hpp"
 #include "harness/core/number_format.hpp"
+#include "harness/core/simbody_contact.hpp"
 #include "simbody_world.hpp"
 
 namespace dropcheck {
@@ -94,8 +100,18 @@ class SimbodyEngine final : public Engine {
           g3(accuracy_) + "), a step ending at every h";
       return i;
     }
-    i.capabilities = {.contacts = false, .planar_only = false, .rotation = Rotation::full};
+    i.capabilities = {.contacts = true,
+                      .planar_only = false,
+                      .rotation = Rotation::full,
+                      .friction = true,
+                      .restitution = true,
+                      .spheres = true};
     i.law = DampingOrder::BeforeForces;
+    i.contact_solver = {.kind = ContactSolverKind::hunt_crossley};
+    i.contact_settings =
+        "Hunt-Crossley point contacts (HuntCrossleyForce): spheres on static boxes' top faces as "
+        "half-spaces; stiffness for a 20-step rest oscillation, dissipation (1 - e)/v at the first "
+        "impact, friction mu static and dynamic, transition velocity 0.01 m/s";
     i.rotation_law = {Gyroscopic::explicit_term, OrientationUpdate::first_order};
     i.damping_mapping =
         "MobilityLinearDamper c = m*(1 - exp(-k*h))/h per translational u, I_i*(1 - exp(-k_a*h))/h "
@@ -118,6 +134,11 @@ class SimbodyEngine final : public Engine {
     if (scene.world.angular_damping_rate != 0.0 && needs_rotation(scene) && !spins_about_z(scene))
       return "angular damping: Simbody's damper is a torque -c*w per axis, a decay by one factor "
              "only for a spin about a principal axis";
+    if (scene.world.contacts)
+      for (const Body& b : scene.bodies)
+        if (!b.is_static && b.shape == Shape::box)
+          return "contacts: Simbody's adapter collides spheres only (Hunt-Crossley point "
+                 "contacts); a moving box's contact is not mapped";
     return {};
   }
 
@@ -126,6 +147,14 @@ class SimbodyEngine final : public Engine {
     simbody::WorldSpec spec{to_array(scene.world.gravity), scene.world.damping_rate,
                             scene.world.angular_damping_rate, h};
     spec.accuracy = accuracy_;
+    if (scene.world.contacts) {
+      const SimbodyContact c = simbody_contact(scene, h);
+      spec.contact = {.on = true,
+                      .stiffness = c.stiffness,
+                      .dissipation = c.dissipation,
+                      .friction = c.friction,
+                      .transition_velocity = c.transition_velocity};
+    }
     std::vector<simbody::BodySpec> bodies;
     for (const Body& b : scene.bodies) {
       const Quat& q = b.orientation;
@@ -135,7 +164,9 @@ class SimbodyEngine final : public Engine {
                         to_array(b.position),
                         to_array(b.velocity),
                         {q.w(), q.x(), q.y(), q.z()},
-                        to_array(b.angular_velocity)});
+                        to_array(b.angular_velocity),
+                        b.shape == Shape::sphere ? b.radius : 0.0,
+                        to_array(b.half_extents)});
     }
     world_ = guarded([&] { return std::make_unique<simbody::World>(spec, bodies); });
     bodies_ = scene.bodies.size();

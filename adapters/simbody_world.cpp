@@ -2,6 +2,9 @@
 // mapping and the law are described at the top of adapters/simbody.cpp.
 #include "simbody_world.hpp"
 
+// GCC 12 reports array bounds inside Simbody's Vec and Row templates when a Transform is built
+// from a Rotation (a false positive of its -Warray-bounds on Simbody's packed matrix storage).
+#pragma GCC diagnostic ignored "-Warray-bounds"
 #include <Simbody.h>
 
 #include <cmath>
@@ -62,6 +65,7 @@ struct World::Impl {
   std::vector<SimTK::MobilizedBody> bodies;  // Ground for a static body
   std::vector<Vec> static_positions;
   Applied applied;
+  std::unique_ptr<SimTK::GeneralContactSubsystem> contacts;
   std::unique_ptr<SimTK::Integrator> integrator;
   double h = 0.0;
   std::int64_t n = 0;  // steps taken
@@ -96,6 +100,30 @@ struct World::Impl {
     bodies.push_back(free);
   }
 
+  // One contact set of every sphere and every static box's top face (a half-space, Simbody's x > 0
+  // turned to y < top), pushed by a HuntCrossleyForce with one material for all.
+  void add_contacts(const ContactSpec& c, const std::vector<BodySpec>& specs) {
+    contacts = std::make_unique<SimTK::GeneralContactSubsystem>(system);
+    const SimTK::ContactSetIndex set = contacts->createContactSet();
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+      const BodySpec& b = specs[i];
+      const SimTK::Vec3 at = b.is_static ? to_sim(b.position) : SimTK::Vec3(0);
+      if (b.radius > 0.0) {
+        contacts->addBody(set, bodies[i], SimTK::ContactGeometry::Sphere(b.radius),
+                          SimTK::Transform(at));
+      } else if (b.is_static) {
+        const SimTK::Vec3 top(b.position[0], b.position[1] + b.half_extents[1], b.position[2]);
+        contacts->addBody(set, bodies[i], SimTK::ContactGeometry::HalfSpace(),
+                          SimTK::Transform(SimTK::Rotation(-SimTK::Pi / 2, SimTK::ZAxis), top));
+      }
+    }
+    SimTK::HuntCrossleyForce force(forces, *contacts, set);
+    for (int k = 0; k < contacts->getNumBodies(set); ++k)
+      force.setBodyParameters(SimTK::ContactSurfaceIndex(k), c.stiffness, c.dissipation, c.friction,
+                              c.friction, 0.0);
+    force.setTransitionVelocity(c.transition_velocity);
+  }
+
   // stepTo(n*h) takes one step of n*h - (n - 1)*h: takeOneStep steps to tMax when it lies within
   // [0.95, 1.001]*h of t0 (AbstractIntegratorRep.cpp).
   void advance() {
@@ -114,6 +142,7 @@ World::World(const WorldSpec& world, const std::vector<BodySpec>& bodies)
   m.h = world.h;
   SimTK::Force::UniformGravity(m.forces, m.matter, to_sim(world.gravity), 0.0);
   for (const BodySpec& b : bodies) m.add_body(world, b);
+  if (world.contact.on) m.add_contacts(world.contact, bodies);
   SimTK::Force::Custom(m.forces, new AppliedForce(m.applied));
   m.system.realizeTopology();
   SimTK::State state = m.system.getDefaultState();

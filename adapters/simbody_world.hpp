@@ -20,6 +20,18 @@ struct BodySpec {
   Vec position{}, velocity{};
   std::array<double, 4> orientation{1.0, 0.0, 0.0, 0.0};  // (w, x, y, z), body to world
   Vec angular_velocity{};                                 // world frame
+  double radius = 0.0;  // > 0: a sphere's contact surface (WorldSpec::contact)
+  Vec half_extents{};   // a static box's: its top face is a contact half-space
+};
+
+// Hunt-Crossley point contacts (HuntCrossleyForce on a GeneralContactSubsystem): every sphere and
+// every static box's top face, all with the same material.
+struct ContactSpec {
+  bool on = false;
+  double stiffness = 0.0;    // E of each surface
+  double dissipation = 0.0;  // c of each surface, s/m
+  double friction = 0.0;     // static and dynamic
+  double transition_velocity = 0.01;
 };
 
 struct WorldSpec {
@@ -36,6 +48,7 @@ struct WorldSpec {
   // picks its own steps and ends one at every multiple of h (interpolation off), and the damper
   // is the continuous drag c = m*k: it integrates the continuous model, not a per-step map.
   double accuracy = 0.0;
+  ContactSpec contact{};
 };
 
 struct BodyMotion {

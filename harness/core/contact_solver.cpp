@@ -23,6 +23,8 @@ std::string describe(const ContactSolver& solver) {
              " iterations, declared), bounded by Coulomb's law";
     case ContactSolverKind::soft:
       return "a soft contact (declared), bounded by Coulomb's law";
+    case ContactSolverKind::hunt_crossley:
+      return "Simbody Hunt-Crossley force (its force law stepped as its integrator steps)";
   }
   return "unknown";
 }

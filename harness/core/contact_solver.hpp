@@ -36,6 +36,10 @@
 //             nor re-solves. Held, as Bullet's, to Coulomb's law step by step from the run's
 //             momentum, within the median bound the engine declares (0: every slipping step at
 //             mu*N to rounding).
+// hunt_crossley
+//             Simbody's compliant Hunt-Crossley force (harness/core/simbody_contact.hpp), a force
+//             the integrator steps like any other: a sphere's vertical drop is predicted by the
+//             force law stepped as SemiExplicitEuler does, replayed, not bounded.
 #pragma once
 
 #include <string>
@@ -49,7 +53,8 @@ enum class ContactSolverKind {
   mujoco_2_2,
   bullet_3,
   sequential_impulses,
-  soft
+  soft,
+  hunt_crossley
 };
 
 struct ContactSolver {

@@ -10,6 +10,7 @@
 #include "harness/core/chipmunk_world.hpp"
 #include "harness/core/mujoco_world.hpp"
 #include "harness/core/number_format.hpp"
+#include "harness/core/simbody_contact.hpp"
 #include "harness/oracles/box2d_step.hpp"
 #include "harness/oracles/chipmunk_step.hpp"
 #include "harness/oracles/mujoco_step.hpp"
@@ -19,7 +20,8 @@ namespace dropcheck {
 bool replayed(const ContactSolver& solver) {
   return solver.kind == ContactSolverKind::box2d_2_4 ||
          solver.kind == ContactSolverKind::chipmunk_7 ||
-         solver.kind == ContactSolverKind::mujoco_2_2;
+         solver.kind == ContactSolverKind::mujoco_2_2 ||
+         solver.kind == ContactSolverKind::hunt_crossley;
 }
 
 namespace {
@@ -130,6 +132,37 @@ std::vector<BodyState> mujoco_states(const Scene& scene, std::size_t body, doubl
   return out;
 }
 
+// The body's drop under Simbody's Hunt-Crossley force (harness/core/simbody_contact.hpp), stepped
+// as SemiExplicitEulerIntegrator steps it: the force from the step-start state, summed over every
+// static box's top face the sphere is in, then v = phi*v + h*(g + f/m) (the damper in udot) and
+// y += h*v. A sphere falling straight down, unturned and not spinning, nothing pushing it.
+std::vector<BodyState> hunt_crossley_states(const Scene& scene, std::size_t body, double h,
+                                            std::int64_t steps) {
+  const Body& b = scene.bodies[body];
+  const Vec3& g = scene.world.gravity;
+  if (b.shape != Shape::sphere || b.velocity.x() != 0.0 || b.velocity.z() != 0.0 ||
+      !b.angular_velocity.isZero(0.0) || g.x() != 0.0 || g.z() != 0.0 || pushed(scene, body))
+    throw std::invalid_argument(
+        "Simbody's force law is predicted for a sphere dropped straight down, not spinning, with "
+        "nothing but gravity and its floor acting");
+  const SimbodyContact c = simbody_contact(scene, h);
+  const double phi = std::exp(-scene.world.damping_rate * h);
+  std::vector<BodyState> out{{b.position, b.velocity}};
+  double y = b.position.y(), v = b.velocity.y();
+  for (std::int64_t n = 1; n <= steps; ++n) {
+    double f = 0.0;
+    for (const Body& floor : scene.bodies)
+      if (floor.is_static && floor.shape == Shape::box)
+        if (const double depth = floor.position.y() + floor.half_extents.y() - (y - b.radius);
+            depth > 0.0)
+          f += std::max(hunt_crossley_force(c, b.radius, depth, -v), 0.0);
+    v = phi * v + h * (g.y() + f / b.mass);
+    y += h * v;
+    out.push_back({Vec3(b.position.x(), y, b.position.z()), Vec3(0.0, v, 0.0)});
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<BodyState> replayed_states(const Scene& scene, std::size_t body,
@@ -142,6 +175,8 @@ std::vector<BodyState> replayed_states(const Scene& scene, std::size_t body,
       return replay_alone(chipmunk_states, scene, body, solver, h, steps);
     case ContactSolverKind::mujoco_2_2:
       return mujoco_states(scene, body, h, steps, run);
+    case ContactSolverKind::hunt_crossley:
+      return hunt_crossley_states(scene, body, h, steps);
     case ContactSolverKind::exact:
     case ContactSolverKind::bullet_3:
     case ContactSolverKind::sequential_impulses:
