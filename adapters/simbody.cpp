@@ -134,11 +134,34 @@ class SimbodyEngine final : public Engine {
     if (scene.world.angular_damping_rate != 0.0 && needs_rotation(scene) && !spins_about_z(scene))
       return "angular damping: Simbody's damper is a torque -c*w per axis, a decay by one factor "
              "only for a spin about a principal axis";
-    if (scene.world.contacts)
-      for (const Body& b : scene.bodies)
-        if (!b.is_static && b.shape == Shape::box)
-          return "contacts: Simbody's adapter collides spheres only (Hunt-Crossley point "
-                 "contacts); a moving box's contact is not mapped";
+    return scene.world.contacts ? contact_limit(scene) : std::string();
+  }
+
+  // The contacts the adapter maps: spheres dropped straight down onto one static box, with the
+  // scene's restitution (a Hunt-Crossley bounce, whose law is predicted); anything else the
+  // half-space and the force law would not model truly.
+  static std::string contact_limit(const Scene& scene) {
+    const Vec3& g = scene.world.gravity;
+    int floors = 0;
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      const Body& b = scene.bodies[i];
+      if (b.is_static) {
+        floors += b.shape == Shape::box;
+        if (b.shape != Shape::box) return "contacts: Simbody's adapter maps static boxes only";
+      } else if (b.shape == Shape::box) {
+        return "contacts: Simbody's adapter collides spheres only (Hunt-Crossley point contacts); "
+               "a moving box's contact is not mapped";
+      } else if (!b.velocity.isZero(0.0) || !b.angular_velocity.isZero(0.0) || pushed(scene, i)) {
+        return "contacts: Simbody's adapter maps a sphere dropped from rest (a Hunt-Crossley "
+               "bounce); a thrown, spinning or pushed sphere is not mapped";
+      }
+    }
+    if (floors != 1) return "contacts: Simbody's adapter maps one floor (a half-space)";
+    if (g.x() != 0.0 || g.z() != 0.0 || scene.world.damping_rate != 0.0)
+      return "contacts: Simbody's adapter maps a drop under gravity straight down, undamped";
+    if (!scene_material(scene).restitution)
+      return "contacts: Simbody's adapter maps a bounce (a restitution set): its compliant "
+             "contact sinks and rebounds where a landing rests";
     return {};
   }
 

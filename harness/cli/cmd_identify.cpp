@@ -1,5 +1,5 @@
 // dropcheck identify SCENE (--engine E | --trajectory CSV) [--dt H]
-// On a slide to a stop: the engine's friction model (harness/oracles/identify_friction.hpp).
+// On a slide: the engine's friction model (harness/oracles/identify_friction.hpp).
 // Otherwise names the discrete law behind a free-flight trajectory (harness/oracles/identify.hpp):
 // fits every member of the family with its own phi and g, prints each member's residual, and the
 // best fit, or that none fits within 2 cm, or that two fit equally. With --engine, the engine's run
@@ -35,9 +35,10 @@ const CommandSpec& identify_spec() {
       "residual and the best fit; with --engine, also the order of convergence measured at 2h, "
       "h and h/2 against the closed form. An error-controlled engine (simbody-rkm) has no "
       "fixed-step member: with --engine it gets its error against the closed form at accuracies "
-      "1e-3 to 1e-12 instead, each against that accuracy's budget. On a slide to a stop (with "
-      "--engine): the engine's friction model (cone, box pyramid or sum pyramid) from the ratio "
-      "of its stop distances at 45 and at 0 degrees. On a bounce or a tumbling landing (with "
+      "1e-3 to 1e-12 instead, each against that accuracy's budget. On a slide (with --engine): "
+      "the engine's friction model (cone, box pyramid or sum pyramid) from its distances at 45 "
+      "and at 0 degrees, to the stop on a level floor, by the run's end on a ramp. On a bounce or "
+      "a tumbling landing (with "
       "--engine): the member of the bounce law or the turned-box contact law its run follows, "
       "tried against the ideal law and every member this build's adapters declare.",
       "scene FILE",
@@ -332,7 +333,10 @@ void print_friction_model(const FrictionModelIdentity& f, std::ostream& out) {
   if (f.raw)
     out << "declared: none (its adapter does not map friction)\n";
   else
-    out << "declared " << to_string(f.declared) << ": " << match_word(f.ok()) << "\n";
+    out << "declared " << to_string(f.declared) << ": "
+        << (f.found->named || !f.ok() ? match_word(f.ok())
+                                      : "consistent (this slide cannot tell it from another model)")
+        << "\n";
 }
 
 void print_combine_rule(const CombineRuleIdentity& c, std::ostream& out) {
@@ -455,7 +459,7 @@ int run_identify(const IdentifyRequest& r, std::ostream& out) {
   const Scene scene = load_scene(r.scene_file);
   if (r.combine && slide_setups(scene).empty())
     throw InputError(r.scene_file, 0, "--combine",
-                     "applies to a slide to a stop (docs/contact.md)");
+                     "applies to a slide launched along a level floor (docs/contact.md)");
   if (r.combine) {
     const int rule = identify_combine(scene, r, out);
     return std::max(rule, identify_friction(scene, r, out));

@@ -18,9 +18,11 @@
 //                oscillates with a period of kPeriodSteps steps (its linearised stiffness
 //                1.5*K^(2/3)*(m*g)^(1/3) = m*(2*pi/(kPeriodSteps*h))^2, K = (4/3)*sqrt(R)*E_pair):
 //                stiff enough to hold it, soft enough for the step to resolve an impact
-//   dissipation  from the scene's restitution e (0 unset): Hunt and Crossley's e = 1 - c*v at an
-//                impact speed v, taken at the sphere's first impact, sqrt(v_y^2 + 2*g*gap), at
-//                least the speed of a fall from its own radius
+//   dissipation  from the scene's restitution e: the c whose continuous contact (this force, under
+//                gravity) returns e times the sphere's first impact speed, sqrt(v_y^2 + 2*g*gap)
+//                and at least the speed of a fall from its own radius, found by bisection (Hunt and
+//                Crossley's e = 1 - c*v holds for a small c*v only); e = 0 gives the largest c
+//                the bisection reaches, e = 1 none
 //   friction     the scene's mu as static and dynamic friction, no viscous part, transition
 //                velocity 0.01 m/s (Simbody's default)
 //   floor        a static box's top face as a half-space (its extent ignored)

@@ -18,8 +18,7 @@ Scene turned(const Scene& scene, const SlideSetup& s, double angle) {
   Scene out = scene;
   const Vec3 along(std::cos(angle), 0.0, std::sin(angle));
   out.bodies[s.body].velocity = s.v0 * along;
-  Vec3& g = out.world.gravity;
-  g = Vec3(0.0, g.y(), 0.0) + std::hypot(g.x(), g.z()) * along;
+  out.world.gravity = Vec3(0.0, scene.world.gravity.y(), 0.0) + s.pull * along;  // uphill: < 0
   return out;
 }
 
@@ -68,15 +67,18 @@ FrictionIdentification identify_friction(const Scene& scene, double h, double di
     laws.push_back(law_distances(pair, m, h, steps, mu));
     spread = std::max(spread, laws.back().second);
   }
+  // Held at 0 degrees under every model, and by the run within a creep: the distance at 45
+  // degrees alone, within the tolerance of the largest or a creep; else the ratio, which divides
+  // out what both slides share.
   id.held = pair.pulled && laws.front().first == 0.0;
+  const double held_tolerance = std::max(kFrictionRatioTolerance * spread, kHeldCreep);
   int within = 0;
   for (std::size_t i = 0; i < laws.size(); ++i) {
     const auto [d0, d45] = laws[i];
-    // Held at 0 degrees, every model's too: the distance at 45 degrees alone, within the
-    // tolerance of the largest; else the ratio, which divides out what both slides share.
-    const bool fits = id.held ? std::abs(distance_45 - d45) <= kFrictionRatioTolerance * spread
-                              : std::abs(id.ratio - d45 / d0) <=
-                                    kFrictionRatioTolerance * std::max(d45 / d0, 1.0);
+    const bool fits =
+        id.held
+            ? std::abs(distance_0) <= kHeldCreep && std::abs(distance_45 - d45) <= held_tolerance
+            : std::abs(id.ratio - d45 / d0) <= kFrictionRatioTolerance * std::max(d45 / d0, 1.0);
     id.fits.push_back({kFrictionModels[i], d45 / d0, d45, fits});
     if (fits) {
       id.named = kFrictionModels[i];
@@ -106,7 +108,14 @@ std::string FrictionIdentification::sentence() const {
 }
 
 Scene combine_scene(const Scene& scene) {
-  Scene out = slide_pair(scene).along_axis;
+  const SlidePair pair = slide_pair(scene);
+  if (pair.pulled)
+    throw InputError(
+        scene.name, 0, "world.gravity",
+        "pulls its slide along the floor (an incline): a held slide's friction is the "
+        "pull, not mu times its normal impulse, so the pair's coefficient is read from "
+        "a slide launched along a level floor");
+  Scene out = pair.along_axis;
   const SlideSetup s = slide_setups(out).at(0);
   out.bodies[s.body].friction = kCombineBody;
   for (const LandingSetup& l : landing_setups(out))

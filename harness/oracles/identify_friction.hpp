@@ -34,6 +34,10 @@ namespace dropcheck {
 // ratio to 5 digits.
 inline constexpr double kFrictionRatioTolerance = 0.05;
 
+// A run that moves at most this far (m) by its end counts as held: a soft or regularised contact
+// creeps (MuJoCo 0.94 mm in 3 s on incline_hold, ODE 0.6 mm at 45 degrees on incline_slide).
+inline constexpr double kHeldCreep = 0.01;
+
 struct FrictionModelFit {
   FrictionModel model = FrictionModel::cone;
   double ratio = 0.0;        // its clamp laws' distance at 45 degrees over that at 0
@@ -49,8 +53,9 @@ struct FrictionIdentification {
   double ratio = 0.0;                  // distance_45 / distance_0
   std::vector<FrictionModelFit> fits;  // cone, box pyramid, sum pyramid
   std::optional<FrictionModel> named;  // the one model that fits, if only one does
-  // "ratio 0.7023 (1.762376 m at 45 degrees, 2.509472 m at 0): box pyramid (0.7023); cone 1,
-  // sum pyramid 1.421"
+  // "ratio 0.70229 (1.762376 m at 45 degrees, 2.509472 m at 0, to the stop): box pyramid; cone
+  // 1; box pyramid 0.70229; sum pyramid 1.4211", or on a held ramp "held at 0 degrees; ... m at 45
+  // degrees by the run's end: cone or box pyramid (this slide cannot tell them apart); ..."
   std::string sentence() const;
 };
 

@@ -13,7 +13,8 @@
 
 namespace dropcheck {
 
-// True for a solver the harness replays or re-solves (Box2D, Chipmunk, MuJoCo).
+// True for a solver the harness replays or re-solves (Box2D, Chipmunk, MuJoCo), or whose force law
+// it steps (Simbody).
 bool replayed(const ContactSolver& solver);
 
 // The state of body `body` after steps 0..steps at step h under `solver`, as the engine reports it.

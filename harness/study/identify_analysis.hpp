@@ -116,13 +116,16 @@ struct FrictionModelIdentity {
   bool raw = false;                     // run with each body's own coefficient: no model declared
   std::optional<double> mu;             // raw: the pair's coefficient the slide shows
   FrictionModel declared = FrictionModel::cone;
-  std::optional<FrictionIdentification> found;  // both slides stopped: the ratio and the model
+  std::optional<FrictionIdentification> found;  // both slides measured: the ratio and the model
 
-  bool ok() const;  // a model named and, unless raw, the declared one
+  // Raw: a model named. Else the declared model fits (named alone, or among the models this slide
+  // cannot tell apart).
+  bool ok() const;
 };
 
-// The friction model of the engine `source` gives on `scene`, a slide to a stop. Throws InputError
-// when the scene's slide cannot be turned (slide_pair) or no engine can run it.
+// The friction model of the engine `source` gives on `scene`, a slide (launched, or pulled along a
+// ramp). Throws InputError when the scene's slide cannot be turned (slide_pair) or no engine can
+// run it.
 FrictionModelIdentity identify_friction_model(const Scene& scene, const IdentifySource& source);
 
 // An engine's rule for combining two bodies' friction coefficients.

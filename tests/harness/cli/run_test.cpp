@@ -296,7 +296,7 @@ TEST_CASE(
   CHECK(i.code == 0);
   CHECK_THAT(i.out, Contains("held at 0 degrees") &&
                         Contains("cone or box pyramid (this slide cannot tell them apart)") &&
-                        Contains("declared box pyramid: matches"));
+                        Contains("declared box pyramid: consistent"));
 }
 
 TEST_CASE(

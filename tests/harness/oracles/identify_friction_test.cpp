@@ -70,7 +70,8 @@ TEST_CASE("on a ramp the pull is turned, and the distances by the run's end name
   // sum pyramid's grip mu*g*cos/sqrt(2) is below the pull and it slides 0.434 m; the cone and the
   // box pyramid hold, and a held box cannot tell them apart.
   const Scene hold = testing::shipped("incline_hold");
-  const FrictionIdentification held = identify_friction(hold, h, 0.0, 0.0);
+  // A creep of 0.94 mm (MuJoCo's soft contact holds that way) is held.
+  const FrictionIdentification held = identify_friction(hold, h, 0.0, 9.4e-4);
   CHECK(held.held);
   CHECK_FALSE(held.named);
   CHECK(held.fits[0].fits);
@@ -78,4 +79,16 @@ TEST_CASE("on a ramp the pull is turned, and the distances by the run's end name
   CHECK_FALSE(held.fits[2].fits);
   CHECK_THAT(held.sentence(), Contains("cone or box pyramid (this slide cannot tell them apart)"));
   CHECK(identify_friction(hold, h, 0.0, 0.434).named == FrictionModel::sum_pyramid);
+  // A run that slides at 0 degrees where every model holds fits none.
+  CHECK_FALSE(identify_friction(hold, h, 0.5, 0.434).fits[2].fits);
+  // A ramp every model holds at 45 degrees too (3 degrees, mu 0.5): every model fits a held run.
+  const Scene gentle = testing::shipped("friction/ramp_mu05_t03");
+  const FrictionIdentification all = identify_friction(gentle, h, 0.0, 1e-3);
+  CHECK_FALSE(all.named);
+  for (const FrictionModelFit& f : all.fits) CHECK(f.fits);
+  // A launched uphill slide keeps its pull's sign when turned.
+  Scene uphill = testing::shipped("incline_slide");
+  uphill.bodies[0].velocity = Vec3(-2.0, 0.0, 0.0);
+  const SlidePair up = slide_pair(uphill);
+  CHECK(up.diagonal.world.gravity.dot(up.diagonal.bodies[0].velocity) < 0.0);
 }
