@@ -110,7 +110,8 @@ Attribution attribute(const RunWithLaws& e, const RunWithLaws& r, bool damped) {
     a.rotation_laws =
         rotation_law_key(e.info.rotation_law) + " vs " + rotation_law_key(r.info.rotation_law);
     // One member with the damping in one place: the laws are one law, and what separates the two
-    // predictions is each scalar's rounding (a float run amplified through a tumble).
+    // predictions is each engine's rounding: its scalar (a float run amplified through a tumble)
+    // and its own operation order (DART's rotation-vector round trip).
     a.same_rotation_law = e.info.rotation_law == r.info.rotation_law &&
                           law_difference(e.info.law, r.info.law).empty();
   }
@@ -156,7 +157,7 @@ std::string Attribution::sentence() const {
           g3(rotation_total), rotation_laws, g3(rotation_law_part));
     else if (same_rotation_law)
       out += printf_string(
-          "; rotation: up to %s rad apart under one rotational law (%s): the scalars' rounding, "
+          "; rotation: up to %s rad apart under one rotational law (%s): each engine's rounding, "
           "amplified by the motion",
           g3(rotation_total), rotation_laws);
     else

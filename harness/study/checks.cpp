@@ -119,7 +119,7 @@ std::string sweep_notes(const Divergence& d) {
            "), each engine follows its own";
   return out + "; rotation: one rotational law (" + a.rotation_laws + "), " + g3(a.rotation_total) +
          " rad apart at h = " + apart->h.text +
-         " from the scalars' rounding, amplified by the motion";
+         " from each engine's rounding, amplified by the motion";
 }
 
 // " (expected 0.9-1.1)": the first-order band.
