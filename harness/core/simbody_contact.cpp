@@ -56,10 +56,11 @@ SimbodyContact simbody_contact(const Scene& scene, double h) {
     if (!light || b.mass < light->mass) light = &b;
   }
   if (!light) return c;
-  // K^(2/3) = m*omega^2/(1.5*(m*g)^(1/3)); E_pair = 3*K/(4*sqrt(R)); E = 2^(3/2)*E_pair.
+  // K^(2/3) = m*omega^2/(1.5*(m*g)^(1/3)); E_pair = 3*K/(4*sqrt(R)); the pair's stiffness is
+  // linear in E, so E = E_pair/pair_stiffness(1).
   const double m = light->mass;
   const double K = std::pow(m * omega * omega / (1.5 * std::cbrt(m * g)), 1.5);
-  c.stiffness = std::pow(2.0, 1.5) * 3.0 * K / (4.0 * std::sqrt(light->radius));
+  c.stiffness = 3.0 * K / (4.0 * std::sqrt(light->radius)) / pair_stiffness(1.0);
   const double gap = std::max(first->position.y() - first->radius - floor_top(scene), 0.0);
   const double v_first = std::sqrt(first->velocity.y() * first->velocity.y() + 2.0 * g * gap);
   const double v_impact = std::max(v_first, std::sqrt(2.0 * g * first->radius));
@@ -82,13 +83,16 @@ SimbodyContact simbody_contact(const Scene& scene, double h) {
   return c;
 }
 
-double hunt_crossley_force(const SimbodyContact& c, double radius, double depth, double rate) {
-  const double e23 = std::cbrt(c.stiffness * c.stiffness);  // E^(2/3) of each surface
+double pair_stiffness(double E) {
+  const double e23 = std::cbrt(E * E);  // E^(2/3) of each surface
   const double s1 = e23 / (e23 + e23);
-  const double pair = std::pow(s1 * e23, 1.5);
-  const double dissipation = c.dissipation * s1 + c.dissipation * (1 - s1);
-  const double k = (4.0 / 3.0) * std::sqrt(radius) * pair;
-  return k * depth * std::sqrt(depth) * (1 + 1.5 * dissipation * rate);
+  return std::pow(s1 * e23, 1.5);
+}
+
+double hunt_crossley_force(const SimbodyContact& c, double radius, double depth, double rate) {
+  // Both surfaces share c: the pair's c1*s1 + c2*(1 - s1) is c.
+  const double k = (4.0 / 3.0) * std::sqrt(radius) * pair_stiffness(c.stiffness);
+  return k * depth * std::sqrt(depth) * (1 + 1.5 * c.dissipation * rate);
 }
 
 }  // namespace dropcheck

@@ -45,6 +45,10 @@ struct SimbodyContact {
 // The contact `scene` gets at step h.
 SimbodyContact simbody_contact(const Scene& scene, double h);
 
+// The pair's stiffness of two surfaces of stiffness E, as HuntCrossleyForce combines them:
+// (s1*E^(2/3))^(3/2) with s1 = 1/2, that is E/2^(3/2).
+double pair_stiffness(double E);
+
 // HuntCrossleyForce's normal force on a sphere of radius `radius` at `depth` (> 0) into a
 // half-space, penetrating at `rate` m/s (negative: leaving), before its clamp at 0.
 double hunt_crossley_force(const SimbodyContact& c, double radius, double depth, double rate);
