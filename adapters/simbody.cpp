@@ -34,13 +34,15 @@
 //   position, velocity  -> setQToFitTransform, setUToFitVelocity; read with getBodyOriginLocation,
 //                          getBodyOriginVelocity, the Free mobilizer's quaternion q[0..3] over its
 //                          norm, and getBodyAngularVelocity.
-// Contacts (Simbody/src/HuntCrossleyForce.cpp, GeneralContactSubsystem): spheres only, each a
+// Contacts (Simbody/src/HuntCrossleyForce.cpp, GeneralContactSubsystem): spheres, each a
 // ContactGeometry::Sphere, each static box's top face a ContactGeometry::HalfSpace, all in one
 // contact set pushed by a HuntCrossleyForce, the compliant force law of
 // harness/core/simbody_contact.hpp (its stiffness from the step, its dissipation from the scene's
 // restitution). The integrator steps it as any force, so a bounce is predicted by that law
-// stepped the same way (hunt_crossley_states). A box's contact (a Brick under the
-// CompliantContactSubsystem) is not mapped: a scene whose moving box has contacts is not run.
+// stepped the same way (hunt_crossley_states). Boxes instead (a scene of boxes, no sphere): each a
+// ContactGeometry::Brick under a CompliantContactSubsystem, whose BrickHalfSpacePenalty pushes at
+// the vertices of the brick's face nearest the half-space (harness/core/simbody_contact.hpp),
+// predicted by that force law stepped the same way (harness/oracles/simbody_brick_step.hpp).
 // The Simbody calls themselves are in simbody_world.cpp (C++17; simbody_world.hpp says why).
 #include <chrono>
 #include <memory>
@@ -110,8 +112,11 @@ class SimbodyEngine final : public Engine {
     i.contact_solver = {.kind = ContactSolverKind::hunt_crossley};
     i.contact_settings =
         "Hunt-Crossley point contacts (HuntCrossleyForce): spheres on static boxes' top faces as "
-        "half-spaces; stiffness for a 20-step rest oscillation, dissipation (1 - e)/v at the first "
-        "impact, friction mu static and dynamic, transition velocity 0.01 m/s";
+        "half-spaces; stiffness for a 20-step rest oscillation, dissipation for a rebound of e at "
+        "the first impact, friction mu static and dynamic, transition velocity 0.01 m/s. Boxes: "
+        "bricks (CompliantContactSubsystem, BrickHalfSpacePenalty), stiffness for a 20-step rest "
+        "oscillation on four vertices, dissipation critical at rest (or a rebound of e), "
+        "transition velocity 3*1.875*mu*|g|*h";
     i.rotation_law = {Gyroscopic::explicit_term, OrientationUpdate::first_order};
     i.damping_mapping =
         "MobilityLinearDamper c = m*(1 - exp(-k*h))/h per translational u, I_i*(1 - exp(-k_a*h))/h "
@@ -137,31 +142,59 @@ class SimbodyEngine final : public Engine {
     return scene.world.contacts ? contact_limit(scene) : std::string();
   }
 
-  // The contacts the adapter maps: spheres dropped straight down onto one static box, with the
-  // scene's restitution (a Hunt-Crossley bounce, whose law is predicted); anything else the
-  // half-space and the force law would not model truly.
+  // The contacts the adapter maps, on one static box's top face (a half-space): spheres dropped
+  // straight down from rest with the scene's restitution (a Hunt-Crossley bounce), or boxes
+  // (bricks) that start apart; anything else the half-space and the force laws would not model
+  // truly, or Simbody 3.7 tracks no contact for (brick-brick, sphere-brick).
   static std::string contact_limit(const Scene& scene) {
-    const Vec3& g = scene.world.gravity;
-    int floors = 0;
-    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-      const Body& b = scene.bodies[i];
-      if (b.is_static) {
-        floors += b.shape == Shape::box;
-        if (b.shape != Shape::box) return "contacts: Simbody's adapter maps static boxes only";
-      } else if (b.shape == Shape::box) {
-        return "contacts: Simbody's adapter collides spheres only (Hunt-Crossley point contacts); "
-               "a moving box's contact is not mapped";
-      } else if (!b.velocity.isZero(0.0) || !b.angular_velocity.isZero(0.0) || pushed(scene, i)) {
-        return "contacts: Simbody's adapter maps a sphere dropped from rest (a Hunt-Crossley "
-               "bounce); a thrown, spinning or pushed sphere is not mapped";
-      }
+    int floors = 0, spheres = 0, boxes = 0;
+    for (const Body& b : scene.bodies) {
+      if (b.is_static && b.shape != Shape::box)
+        return "contacts: Simbody's adapter maps static boxes only";
+      floors += b.is_static;
+      spheres += !b.is_static && b.shape == Shape::sphere;
+      boxes += !b.is_static && b.shape == Shape::box;
     }
     if (floors != 1) return "contacts: Simbody's adapter maps one floor (a half-space)";
+    if (spheres > 0 && boxes > 0)
+      return "contacts: Simbody 3.7 tracks no sphere-brick contact (ContactTrackerSubsystem)";
+    return boxes > 0 ? brick_limit(scene) : sphere_limit(scene);
+  }
+
+  // Bricks: any motion, but never one over another (across gravity, their reaches overlap), whose
+  // contact Simbody would not see.
+  static std::string brick_limit(const Scene& scene) {
+    const Vec3& g = scene.world.gravity;
+    const Vec3 down = g.norm() > 0.0 ? Vec3(g.normalized()) : Vec3::Zero();
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+      for (std::size_t j = i + 1; j < scene.bodies.size(); ++j) {
+        const Body& a = scene.bodies[i];
+        const Body& b = scene.bodies[j];
+        const Vec3 d = a.position - b.position;
+        if (!a.is_static && !b.is_static &&
+            (d - d.dot(down) * down).norm() < a.half_extents.norm() + b.half_extents.norm())
+          return "contacts: Simbody 3.7 tracks a brick against a half-space only (no "
+                 "brick-brick contact), and " +
+                 a.name + " starts over or within reach of " + b.name;
+      }
+    return {};
+  }
+
+  static std::string sphere_limit(const Scene& scene) {
+    const Vec3& g = scene.world.gravity;
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      const Body& b = scene.bodies[i];
+      if (!b.is_static &&
+          (!b.velocity.isZero(0.0) || !b.angular_velocity.isZero(0.0) || pushed(scene, i)))
+        return "contacts: Simbody's adapter maps a sphere dropped from rest (a Hunt-Crossley "
+               "bounce); a thrown, spinning or pushed sphere is not mapped";
+    }
     if (g.x() != 0.0 || g.z() != 0.0 || scene.world.damping_rate != 0.0)
-      return "contacts: Simbody's adapter maps a drop under gravity straight down, undamped";
+      return "contacts: Simbody's adapter maps a sphere's drop under gravity straight down, "
+             "undamped";
     if (!scene_material(scene).restitution)
-      return "contacts: Simbody's adapter maps a bounce (a restitution set): its compliant "
-             "contact sinks and rebounds where a landing rests";
+      return "contacts: Simbody's adapter maps a sphere's bounce (a restitution set): its "
+             "compliant contact sinks and rebounds where a landing rests";
     return {};
   }
 
@@ -173,6 +206,7 @@ class SimbodyEngine final : public Engine {
     if (scene.world.contacts) {
       const SimbodyContact c = simbody_contact(scene, h);
       spec.contact = {.on = true,
+                      .bricks = c.bricks,
                       .stiffness = c.stiffness,
                       .dissipation = c.dissipation,
                       .friction = c.friction,

@@ -66,6 +66,8 @@ struct World::Impl {
   std::vector<Vec> static_positions;
   Applied applied;
   std::unique_ptr<SimTK::GeneralContactSubsystem> contacts;
+  std::unique_ptr<SimTK::ContactTrackerSubsystem> tracker;
+  std::unique_ptr<SimTK::CompliantContactSubsystem> compliant;
   std::unique_ptr<SimTK::Integrator> integrator;
   double h = 0.0;
   std::int64_t n = 0;  // steps taken
@@ -98,6 +100,29 @@ struct World::Impl {
     }
     applied.index.push_back(free.getMobilizedBodyIndex());
     bodies.push_back(free);
+  }
+
+  // Every dynamic box a Brick and every static box's top face a half-space (Simbody's x > 0 turned
+  // to y < top), one material, under a CompliantContactSubsystem: its BrickHalfSpacePenalty pushes.
+  void add_bricks(const ContactSpec& c, const std::vector<BodySpec>& specs) {
+    tracker = std::make_unique<SimTK::ContactTrackerSubsystem>(system);
+    compliant = std::make_unique<SimTK::CompliantContactSubsystem>(system, *tracker);
+    compliant->setTransitionVelocity(c.transition_velocity);
+    const SimTK::ContactMaterial material(c.stiffness, c.dissipation, c.friction, c.friction, 0.0);
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+      const BodySpec& b = specs[i];
+      if (b.radius > 0.0) continue;
+      if (b.is_static) {
+        const SimTK::Vec3 top(b.position[0], b.position[1] + b.half_extents[1], b.position[2]);
+        matter.updGround().updBody().addContactSurface(
+            SimTK::Transform(SimTK::Rotation(-SimTK::Pi / 2, SimTK::ZAxis), top),
+            SimTK::ContactSurface(SimTK::ContactGeometry::HalfSpace(), material));
+      } else {
+        bodies[i].updBody().addContactSurface(
+            SimTK::Transform(),
+            SimTK::ContactSurface(SimTK::ContactGeometry::Brick(to_sim(b.half_extents)), material));
+      }
+    }
   }
 
   // One contact set of every sphere and every static box's top face (a half-space, Simbody's x > 0
@@ -142,7 +167,10 @@ World::World(const WorldSpec& world, const std::vector<BodySpec>& bodies)
   m.h = world.h;
   SimTK::Force::UniformGravity(m.forces, m.matter, to_sim(world.gravity), 0.0);
   for (const BodySpec& b : bodies) m.add_body(world, b);
-  if (world.contact.on) m.add_contacts(world.contact, bodies);
+  if (world.contact.on && world.contact.bricks)
+    m.add_bricks(world.contact, bodies);
+  else if (world.contact.on)
+    m.add_contacts(world.contact, bodies);
   SimTK::Force::Custom(m.forces, new AppliedForce(m.applied));
   m.system.realizeTopology();
   SimTK::State state = m.system.getDefaultState();

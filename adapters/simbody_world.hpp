@@ -21,14 +21,18 @@ struct BodySpec {
   std::array<double, 4> orientation{1.0, 0.0, 0.0, 0.0};  // (w, x, y, z), body to world
   Vec angular_velocity{};                                 // world frame
   double radius = 0.0;  // > 0: a sphere's contact surface (WorldSpec::contact)
-  Vec half_extents{};   // a static box's: its top face is a contact half-space
+  Vec half_extents{};   // a box's: a static box's top face is a contact half-space, a dynamic
+                        // box a brick (ContactSpec::bricks)
 };
 
 // Hunt-Crossley point contacts (HuntCrossleyForce on a GeneralContactSubsystem): every sphere and
-// every static box's top face, all with the same material.
+// every static box's top face, all with the same material. With `bricks`, every dynamic box a
+// ContactGeometry::Brick and every static box's top face a half-space under a
+// CompliantContactSubsystem (its BrickHalfSpacePenalty), one material for all.
 struct ContactSpec {
   bool on = false;
-  double stiffness = 0.0;    // E of each surface
+  bool bricks = false;
+  double stiffness = 0.0;    // E of each surface (of a brick's contact, k in N/m)
   double dissipation = 0.0;  // c of each surface, s/m
   double friction = 0.0;     // static and dynamic
   double transition_velocity = 0.01;

@@ -37,9 +37,10 @@
 //             momentum, within the median bound the engine declares (0: every slipping step at
 //             mu*N to rounding).
 // hunt_crossley
-//             Simbody's compliant Hunt-Crossley force (harness/core/simbody_contact.hpp), a force
-//             the integrator steps like any other: a sphere's vertical drop is predicted by the
-//             force law stepped as SemiExplicitEuler does, replayed, not bounded.
+//             Simbody's compliant Hunt-Crossley forces (harness/core/simbody_contact.hpp), forces
+//             the integrator steps like any other: a sphere's vertical drop, and a box's landing
+//             or slide under its brick penalty (harness/oracles/simbody_brick_step.hpp), are
+//             predicted by the force law stepped as SemiExplicitEuler does: replayed, not bounded.
 #pragma once
 
 #include <string>

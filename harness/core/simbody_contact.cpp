@@ -16,14 +16,14 @@ double floor_top(const Scene& scene) {
   return top;
 }
 
-// The speed a sphere of `radius` and `mass` leaves the floor with after meeting it at `v`, under
-// contact `c` and gravity g: the continuous contact, stepped by RK4 at 1/4000 of its rest period
-// `period` until the sphere is out again (0 if it never leaves within 100 periods).
-double rebound(const SimbodyContact& c, double radius, double mass, double g, double v,
-               double period) {
+// The speed a body leaves the floor with after meeting it at `v` under gravity g, when the floor
+// pushes it with `push`(depth, rate) per unit mass (before the clamp at 0): the continuous contact,
+// stepped by RK4 at 1/4000 of its rest period `period` until the body is out again (0 if it never
+// leaves within 100 periods).
+template <class Push>
+double rebound(Push push, double g, double v, double period) {
   const auto acc = [&](double depth, double rate) {  // d(rate)/dt, rate = d(depth)/dt
-    const double f = depth > 0.0 ? std::max(hunt_crossley_force(c, radius, depth, rate), 0.0) : 0.0;
-    return g - f / mass;
+    return g - (depth > 0.0 ? std::max(push(depth, rate), 0.0) : 0.0);
   };
   const double dt = period / 4000.0;
   double d = 0.0, r = v;
@@ -38,6 +38,64 @@ double rebound(const SimbodyContact& c, double radius, double mass, double g, do
     d = d_next, r = r_next;
   }
   return 0.0;
+}
+
+// The dissipation whose continuous contact returns e*v of an impact at v, by bisection: the
+// rebound falls as c grows. Hunt and Crossley's e = 1 - c*v (the start) holds for a small c*v
+// only. `leaves`(c) is the rebound speed with dissipation c.
+template <class Leaves>
+double dissipation_for(Leaves leaves, double e, double v) {
+  const double want = e * v;
+  double lo = 0.0, hi = (1.0 - e) / v;
+  for (int i = 0; i < 60 && hi > 0.0 && leaves(hi) > want; ++i) hi *= 2.0;
+  for (int i = 0; i < 60 && hi > 0.0; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (leaves(mid) > want ? lo : hi) = mid;
+  }
+  return hi;
+}
+
+// The first dynamic body of `shape`'s impact speed on the floor: sqrt(v_y^2 + 2*g*gap), at least
+// the speed of a fall from `least` m.
+double impact_speed(const Scene& scene, const Body& first, double g, double least) {
+  const double bottom = first.shape == Shape::sphere ? first.radius : first.half_extents.y();
+  const double gap = std::max(first.position.y() - bottom - floor_top(scene), 0.0);
+  const double v = std::sqrt(first.velocity.y() * first.velocity.y() + 2.0 * g * gap);
+  return std::max(v, std::sqrt(2.0 * g * least));
+}
+
+// The brick contact of the scene's boxes (the header says how each figure is chosen).
+SimbodyContact brick_contact(const Scene& scene, double h, double g, double omega,
+                             SimbodyContact c) {
+  c.bricks = true;
+  const Body* light = nullptr;
+  const Body* first = nullptr;
+  for (const Body& b : scene.bodies) {
+    if (b.is_static || b.shape != Shape::box) continue;
+    if (!first) first = &b;
+    if (!light || b.mass < light->mass) light = &b;
+  }
+  if (!light) return c;
+  c.stiffness = light->mass * omega * omega / 2.0;
+  if (c.friction > 0.0) c.transition_velocity = 3.0 * kStribeckSlope * c.friction * g * h;
+  const double e = scene_material(scene).restitution.value_or(0.0);
+  const double v = impact_speed(scene, *first, g, first->half_extents.y());
+  if (e == 0.0) {
+    c.dissipation = std::min(2.0 * omega / g, 1.0 / v);
+    return c;
+  }
+  const double m = first->mass;
+  c.dissipation = dissipation_for(
+      [&](double dissipation) {
+        SimbodyContact trial = c;
+        trial.dissipation = dissipation;
+        const auto push = [&](double depth, double rate) {
+          return 4.0 * brick_vertex_force(trial, depth, rate) / m;
+        };
+        return rebound(push, g, v, kPeriodSteps * h);
+      },
+      e, v);
+  return c;
 }
 
 }  // namespace
@@ -55,31 +113,23 @@ SimbodyContact simbody_contact(const Scene& scene, double h) {
     if (!first) first = &b;
     if (!light || b.mass < light->mass) light = &b;
   }
-  if (!light) return c;
+  if (!light) return brick_contact(scene, h, g, omega, c);
   // K^(2/3) = m*omega^2/(1.5*(m*g)^(1/3)); E_pair = 3*K/(4*sqrt(R)); the pair's stiffness is
   // linear in E, so E = E_pair/pair_stiffness(1).
   const double m = light->mass;
   const double K = std::pow(m * omega * omega / (1.5 * std::cbrt(m * g)), 1.5);
   c.stiffness = 3.0 * K / (4.0 * std::sqrt(light->radius)) / pair_stiffness(1.0);
-  const double gap = std::max(first->position.y() - first->radius - floor_top(scene), 0.0);
-  const double v_first = std::sqrt(first->velocity.y() * first->velocity.y() + 2.0 * g * gap);
-  const double v_impact = std::max(v_first, std::sqrt(2.0 * g * first->radius));
-  // The dissipation whose continuous contact returns e*v_impact, by bisection: the rebound falls
-  // as c grows. Hunt and Crossley's e = 1 - c*v (the start) holds for a small c*v only.
-  const double period = kPeriodSteps * h;
-  const auto leaves = [&](double dissipation) {
-    SimbodyContact trial = c;
-    trial.dissipation = dissipation;
-    return rebound(trial, first->radius, first->mass, g, v_impact, period);
-  };
-  const double want = e * v_impact;
-  double lo = 0.0, hi = (1.0 - e) / v_impact;
-  for (int i = 0; i < 60 && hi > 0.0 && leaves(hi) > want; ++i) hi *= 2.0;
-  for (int i = 0; i < 60 && hi > 0.0; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (leaves(mid) > want ? lo : hi) = mid;
-  }
-  c.dissipation = hi;
+  const double v_impact = impact_speed(scene, *first, g, first->radius);
+  c.dissipation = dissipation_for(
+      [&](double dissipation) {
+        SimbodyContact trial = c;
+        trial.dissipation = dissipation;
+        const auto push = [&](double depth, double rate) {
+          return hunt_crossley_force(trial, first->radius, depth, rate) / first->mass;
+        };
+        return rebound(push, g, v_impact, kPeriodSteps * h);
+      },
+      e, v_impact);
   return c;
 }
 
@@ -93,6 +143,17 @@ double hunt_crossley_force(const SimbodyContact& c, double radius, double depth,
   // Both surfaces share c: the pair's c1*s1 + c2*(1 - s1) is c.
   const double k = (4.0 / 3.0) * std::sqrt(radius) * pair_stiffness(c.stiffness);
   return k * depth * std::sqrt(depth) * (1 + 1.5 * c.dissipation * rate);
+}
+
+double brick_vertex_force(const SimbodyContact& c, double depth, double rate) {
+  return 0.5 * c.stiffness * depth * (1.0 + c.dissipation * rate);
+}
+
+double stribeck(double us, double ud, double slip) {
+  const auto step5 = [](double x) { return x * x * x * (10.0 + x * (6.0 * x - 15.0)); };
+  if (slip >= 3.0) return ud;
+  if (slip >= 1.0) return us - (us - ud) * step5((slip - 1.0) / 2.0);
+  return us * step5(slip);
 }
 
 }  // namespace dropcheck

@@ -10,9 +10,10 @@ namespace dropcheck {
 LandingExpectation landing_expectation(const EngineInfo& info, const Scene& scene, double h,
                                        const LandingSetup& setup) {
   LandingExpectation e{info.rest_offset, info.rest_tolerance, climb_path(info, scene, h, setup)};
+  if (!e.climb) e.climb = replayed_landing_path(info, scene, h, setup);
   if (e.climb) {
     e.rest_offset = e.climb->y.back() - setup.rest_height;
-    e.tolerance = tolerance::kClimbPath;
+    e.tolerance = e.climb->replayed.empty() ? tolerance::kClimbPath : tolerance::kReplayedPath;
   }
   return e;
 }
@@ -25,6 +26,13 @@ LandingEnd judge_landing_end(const Trajectory& run, const LandingSetup& setup,
   if (expected.climb) {
     end.off_path = off_climb(run, setup, *expected.climb);
     end.settled = end.off_path <= expected.tolerance;
+    if (!expected.climb->replayed.empty()) {
+      end.text =
+          printf_string("follows its %s: %.2g m off it at worst, ends at %.3g m/s",
+                        expected.climb->replayed.c_str(), end.off_path, expected.climb->climb) +
+          (end.settled ? "" : " DEPARTS");
+      return end;
+    }
     end.text = printf_string(
                    "climbs at %.3g m/s as its law (push-out capped at %g m/s), %.2g m "
                    "off it at worst",

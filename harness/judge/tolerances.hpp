@@ -131,6 +131,12 @@ inline constexpr long kContactStepSlack = 1;
 // climb_path: DART's capped push-out). Measured on drop_on_floor and drop_on_floor_undamped at
 // 1/30 to 1/240: 2.3e-14 m at worst (tests/adapters/dart_test.cpp); a cap twice DART's is 2 mm off.
 inline constexpr double kClimbPath = 1e-9;
+// How far a landing may be from its engine's replayed force law (harness/oracles/landing.hpp
+// replayed_landing_path: Simbody's brick penalty) at any step, m: the run and the replay share
+// every step but round apart, and impacts and creep amplify the rounding. Measured over the six box
+// contact scenes at 1/30 to 1/240: 4.7e-9 m at worst (incline_hold, incline_slide at 1/240), the
+// landings 2.9e-13 m (tests/adapters/simbody_test.cpp); a friction 2 % off is 1e-4 m off.
+inline constexpr double kReplayedPath = 1e-6;
 
 // --- Regression tier 2, harness/guard/regression.cpp --------------------------------------------
 // Absolute tolerance on samples of a fresh run against its baseline, by scalar. Measured: Debug

@@ -4,10 +4,12 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <stdexcept>
 #include <variant>
 
 #include "harness/oracles/contact_laws.hpp"
 #include "harness/oracles/discrete_law.hpp"
+#include "harness/oracles/replayed_contact.hpp"
 
 namespace dropcheck {
 namespace {
@@ -323,6 +325,22 @@ std::optional<ClimbPath> climb_path(const EngineInfo& info, const Scene& scene, 
   }
   path.climb = s.v;
   return path;
+}
+
+std::optional<ClimbPath> replayed_landing_path(const EngineInfo& info, const Scene& scene, double h,
+                                               const LandingSetup& setup) {
+  if (info.contact_solver.kind != ContactSolverKind::hunt_crossley) return std::nullopt;
+  try {
+    const std::vector<BodyState> states =
+        replayed_states(scene, setup.body, info.contact_solver, h, step_count(scene, h));
+    ClimbPath path;
+    for (const BodyState& s : states) path.y.push_back(s.position.y());
+    path.climb = states.back().velocity.y();
+    path.replayed = describe(info.contact_solver);
+    return path;
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
 }
 
 double off_climb(const Trajectory& run, const LandingSetup& setup, const ClimbPath& path) {

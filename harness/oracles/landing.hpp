@@ -143,6 +143,9 @@ std::int64_t discrete_contact_step(Law law, const Scene& scene, double h,
 struct ClimbPath {
   std::vector<double> y;  // m: centre height after steps 0..steps
   double climb = 0.0;     // m/s: the normal velocity after the last step
+  // Set for a path the engine's contact solver replays (replayed_landing_path), not a climb: what
+  // it replays.
+  std::string replayed;
 };
 
 // The climb path of `setup`'s body at step h, for an engine that declares a capped push-out and a
@@ -150,6 +153,12 @@ struct ClimbPath {
 // nullopt otherwise (the landing is judged by the declared rest offset).
 std::optional<ClimbPath> climb_path(const EngineInfo& info, const Scene& scene, double h,
                                     const LandingSetup& setup);
+
+// The landing of an engine whose contact force law the harness steps (Simbody's compliant contact,
+// harness/oracles/replayed_contact.hpp): that law's heights, every step; nullopt for other
+// engines or a landing outside the replay's scope.
+std::optional<ClimbPath> replayed_landing_path(const EngineInfo& info, const Scene& scene, double h,
+                                               const LandingSetup& setup);
 
 // The largest |y - path| of the run's body over its samples.
 double off_climb(const Trajectory& run, const LandingSetup& setup, const ClimbPath& path);

@@ -14,6 +14,7 @@
 #include "harness/oracles/box2d_step.hpp"
 #include "harness/oracles/chipmunk_step.hpp"
 #include "harness/oracles/mujoco_step.hpp"
+#include "harness/oracles/simbody_brick_step.hpp"
 
 namespace dropcheck {
 
@@ -26,7 +27,9 @@ bool replayed(const ContactSolver& solver) {
 
 namespace {
 
-// Box2D and Chipmunk replay one dynamic body on one static body. A scene of several dynamic bodies
+// Box2D and Chipmunk replay one dynamic body on one static body, and Simbody's force law pushes one
+// dynamic body from its floor (Simbody 3.7 tracks no brick-brick contact). A scene of several
+// dynamic bodies
 // that never touch one another is several such problems: Box2D solves each island of touching
 // bodies alone and a static body joins no island (b2World::Solve), and Chipmunk's arbiters each
 // change the velocity of their one dynamic body only (a static body's inverse mass is 0), with no
@@ -62,15 +65,21 @@ using ReplayOne = std::vector<BodyState> (*)(const Scene&, std::size_t, const Co
                                              double, std::int64_t);
 
 // `replay` of body `body` of `scene` with the static bodies alone, after checking that every other
-// dynamic body, replayed alone in the same way, stays kApart from it at every step.
+// dynamic body, replayed alone in the same way, stays kApart from it at every step. `in_scene`:
+// each body replayed in the whole scene instead (Simbody's force law takes its stiffness from every
+// body of the scene, and pushes each from its floor alone).
 std::vector<BodyState> replay_alone(ReplayOne replay, const Scene& scene, std::size_t body,
-                                    const ContactSolver& solver, double h, std::int64_t steps) {
-  const Alone own = alone(scene, body);
-  std::vector<BodyState> states = replay(own.scene, own.body, solver, h, steps);
+                                    const ContactSolver& solver, double h, std::int64_t steps,
+                                    bool in_scene = false) {
+  const auto replay_one = [&](std::size_t i) {
+    if (in_scene) return replay(scene, i, solver, h, steps);
+    const Alone own = alone(scene, i);
+    return replay(own.scene, own.body, solver, h, steps);
+  };
+  std::vector<BodyState> states = replay_one(body);
   for (std::size_t j = 0; j < scene.bodies.size(); ++j) {
     if (j == body || scene.bodies[j].is_static) continue;
-    const Alone other = alone(scene, j);
-    const std::vector<BodyState> theirs = replay(other.scene, other.body, solver, h, steps);
+    const std::vector<BodyState> theirs = replay_one(j);
     const double apart = reach(scene.bodies[body]) + reach(scene.bodies[j]) + kApart;
     for (std::size_t n = 0; n < std::min(states.size(), theirs.size()); ++n)
       if ((states[n].position - theirs[n].position).norm() < apart)
@@ -135,10 +144,12 @@ std::vector<BodyState> mujoco_states(const Scene& scene, std::size_t body, doubl
 // The body's drop under Simbody's Hunt-Crossley force (harness/core/simbody_contact.hpp), stepped
 // as SemiExplicitEulerIntegrator steps it: the force from the step-start state, summed over every
 // static box's top face the sphere is in, then v = phi*v + h*(g + f/m) (the damper in udot) and
-// y += h*v. A sphere falling straight down, unturned and not spinning, nothing pushing it.
-std::vector<BodyState> hunt_crossley_states(const Scene& scene, std::size_t body, double h,
-                                            std::int64_t steps) {
+// y += h*v. A sphere falling straight down, unturned and not spinning, nothing pushing it; a box
+// under its brick contact (harness/oracles/simbody_brick_step.hpp).
+std::vector<BodyState> hunt_crossley_states(const Scene& scene, std::size_t body,
+                                            const ContactSolver&, double h, std::int64_t steps) {
   const Body& b = scene.bodies[body];
+  if (b.shape == Shape::box) return simbody_brick_states(scene, body, h, steps);
   const Vec3& g = scene.world.gravity;
   if (b.shape != Shape::sphere || b.velocity.x() != 0.0 || b.velocity.z() != 0.0 ||
       !b.angular_velocity.isZero(0.0) || g.x() != 0.0 || g.z() != 0.0 || pushed(scene, body))
@@ -176,7 +187,7 @@ std::vector<BodyState> replayed_states(const Scene& scene, std::size_t body,
     case ContactSolverKind::mujoco_2_2:
       return mujoco_states(scene, body, h, steps, run);
     case ContactSolverKind::hunt_crossley:
-      return hunt_crossley_states(scene, body, h, steps);
+      return replay_alone(hunt_crossley_states, scene, body, solver, h, steps, true);
     case ContactSolverKind::exact:
     case ContactSolverKind::bullet_3:
     case ContactSolverKind::sequential_impulses:

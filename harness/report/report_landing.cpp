@@ -25,8 +25,10 @@ std::string time_or_never(double t) {
 std::string still_cell(const LandingResult& l) {
   const LandingObservation& o = l.seen;
   if (l.expected.climb)
-    return printf_string("climbs at %.3g m/s as its law, %.2g m off it", l.expected.climb->climb,
-                         l.end.off_path) +
+    return printf_string(l.expected.climb->replayed.empty()
+                             ? "climbs at %.3g m/s as its law, %.2g m off it"
+                             : "ends at %.3g m/s as its replayed force law, %.2g m off it",
+                         l.expected.climb->climb, l.end.off_path) +
            (l.end.settled ? "" : ": **NO**");
   if (o.first_contact_step >= 0 && !o.still_judged)
     return printf_string("not judged (run ends %.3g s after contact)", o.after_contact);
@@ -158,8 +160,10 @@ std::string landing_section(const SceneEvaluation& se) {
          "engine's expected rest height. Still: |v| and the position range stay within 1 mm(/s) "
          "over the last 2 s, judged only when that window lies wholly after first contact; an "
          "engine whose push-out is capped (DART) climbs out of the floor for minutes instead, and "
-         "is judged by its law's path at every step, its end the expected offset. A "
-         "body that tunnels through the floor as its engine's own law predicts (no end-of-step "
+         "is judged by its law's path at every step, its end the expected offset, as is an engine "
+         "whose "
+         "contact force law dropcheck steps as its integrator does (Simbody's compliant contact). "
+         "A body that tunnels through the floor as its engine's own law predicts (no end-of-step "
          "position overlaps the floor) on an engine without continuous collision meets a limit "
          "of that engine, not a fault.\n\n" +
          (t.empty() ? "" : t.str() + "\n") + excluded + momentum_section(se, falling);
