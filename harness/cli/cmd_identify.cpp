@@ -1,5 +1,6 @@
 // dropcheck identify SCENE (--engine E | --trajectory CSV) [--dt H]
-// On a slide: the engine's friction model (harness/oracles/identify_friction.hpp).
+// On a slide: the engine's friction model (harness/oracles/identify_friction.hpp) and the contact
+// solver its run follows (harness/study/identify_contact.hpp).
 // Otherwise names the discrete law behind a free-flight trajectory (harness/oracles/identify.hpp):
 // fits every member of the family with its own phi and g, prints each member's residual, and the
 // best fit, or that none fits within 2 cm, or that two fit equally. With --engine, the engine's run
@@ -37,7 +38,10 @@ const CommandSpec& identify_spec() {
       "fixed-step member: with --engine it gets its error against the closed form at accuracies "
       "1e-3 to 1e-12 instead, each against that accuracy's budget. On a slide (with --engine): "
       "the engine's friction model (cone, box pyramid or sum pyramid) from its distances at 45 "
-      "and at 0 degrees, to the stop on a level floor, by the run's end on a ramp. On a bounce or "
+      "and at 0 degrees, to the stop on a level floor, by the run's end on a ramp; then the "
+      "contact "
+      "solver its run follows among those dropcheck replays (Box2D's and Chipmunk's iterations, "
+      "MuJoCo's soft contact, Simbody's force law) and the exact clamp law. On a bounce or "
       "a tumbling landing (with "
       "--engine): the member of the bounce law or the turned-box contact law its run follows, "
       "tried against the ideal law and every member this build's adapters declare.",
@@ -375,6 +379,43 @@ IdentifySource source_of(const IdentifyRequest& r) {
           [&r](const Scene& s) { return step_from_flag(r.dt, s).seconds; }};
 }
 
+void print_contact_law(const ContactLawIdentity& c, std::ostream& out) {
+  if (c.failed) {
+    out << "identify " << c.scene << ": " << failure_text(*c.failed) << "\n";
+    return;
+  }
+  out << "identify " << c.scene << ": " << c.engine << "'s " << c.family
+      << " from its run at h = " << printf_string("%.6g", c.h) << " s\n";
+  for (const ContactMemberFit& f : c.fits) {
+    std::string by;
+    for (const std::string& e : f.declared_by) by += (by.empty() ? "" : ", ") + e;
+    out << (!f.judged   ? "  untried  "
+            : f.follows ? "  follows  "
+                        : "  departs  ")
+        << f.member << (by.empty() ? std::string() : " (declared by " + by + ")") << ": "
+        << f.detail << "\n";
+  }
+  if (c.undeclared)
+    out << "declared: none (its adapter declares no " << c.family
+        << "; its landing is compared, not judged)\n";
+  else
+    out << "declared " << c.declared << ": " << match_word(c.ok()) << "\n";
+}
+
+// A slide: the contact solver the engine's run follows (harness/study/identify_contact.hpp), or
+// why it is not identified (an engine that does not map the scene's friction).
+int identify_solver(const Scene& scene, const IdentifyRequest& r, std::ostream& out) {
+  std::vector<SelectedEngine> engines = select_engines({r.engine}, scene);
+  if (!engines[0].engine) {
+    out << "contact solver: not identified: " << engines[0].skipped_because << "\n";
+    return kExitOk;
+  }
+  const ContactLawIdentity c =
+      identify_contact_solver(scene, *engines[0].engine, step_from_flag(r.dt, scene).seconds);
+  print_contact_law(c, out);
+  return c.ok() ? kExitOk : kExitCheckFailed;
+}
+
 // A slide to a stop: the engine's friction model (harness/oracles/identify_friction.hpp).
 int identify_friction(const Scene& scene, const IdentifyRequest& r, std::ostream& out) {
   if (r.engine.empty())
@@ -382,7 +423,7 @@ int identify_friction(const Scene& scene, const IdentifyRequest& r, std::ostream
                      "a slide is identified from two runs, at 0 and 45 degrees: use --engine E");
   const FrictionModelIdentity f = identify_friction_model(scene, source_of(r));
   print_friction_model(f, out);
-  return f.ok() ? kExitOk : kExitCheckFailed;
+  return std::max(f.ok() ? kExitOk : kExitCheckFailed, identify_solver(scene, r, out));
 }
 
 // The engine's combine rule for friction (harness/oracles/identify_friction.hpp): the slide with
@@ -414,29 +455,6 @@ int identify_trajectory(const Scene& scene, const IdentifyRequest& r, std::ostre
   const FreeFlightIdentity f = identify_free_flight(scene, run);
   print_free_flight(f, out);
   return f.ok() ? kExitOk : kExitCheckFailed;
-}
-
-void print_contact_law(const ContactLawIdentity& c, std::ostream& out) {
-  if (c.failed) {
-    out << "identify " << c.scene << ": " << failure_text(*c.failed) << "\n";
-    return;
-  }
-  out << "identify " << c.scene << ": " << c.engine << "'s " << c.family
-      << " from its run at h = " << printf_string("%.6g", c.h) << " s\n";
-  for (const ContactMemberFit& f : c.fits) {
-    std::string by;
-    for (const std::string& e : f.declared_by) by += (by.empty() ? "" : ", ") + e;
-    out << (!f.judged   ? "  untried  "
-            : f.follows ? "  follows  "
-                        : "  departs  ")
-        << f.member << (by.empty() ? std::string() : " (declared by " + by + ")") << ": "
-        << f.detail << "\n";
-  }
-  if (c.undeclared)
-    out << "declared: none (its adapter declares no " << c.family
-        << "; its landing is compared, not judged)\n";
-  else
-    out << "declared " << c.declared << ": " << match_word(c.ok()) << "\n";
 }
 
 // A bounce or a tumbling landing: the member of the contact law family the engine's run follows.

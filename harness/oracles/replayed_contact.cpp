@@ -179,6 +179,10 @@ std::vector<BodyState> hunt_crossley_states(const Scene& scene, std::size_t body
 std::vector<BodyState> replayed_states(const Scene& scene, std::size_t body,
                                        const ContactSolver& solver, double h, std::int64_t steps,
                                        const Trajectory* run) {
+  if ((solver.kind == ContactSolverKind::box2d_2_4 ||
+       solver.kind == ContactSolverKind::chipmunk_7) &&
+      !is_planar(scene))
+    throw std::invalid_argument("the replay is planar (a 2-D engine's), and the scene is not");
   switch (solver.kind) {
     case ContactSolverKind::box2d_2_4:
       return replay_alone(box2d_states, scene, body, solver, h, steps);

@@ -16,8 +16,8 @@ const double kSignificant = std::pow(std::numeric_limits<double>::epsilon(), 0.8
 }  // namespace
 
 Wrench brick_half_space(const SimbodyContact& c, const Vec3& half_extents, const Vec3& position,
-                        const Quat& orientation, const Vec3& velocity,
-                        const Vec3& angular_velocity, const Vec3& normal, const Vec3& top) {
+                        const Quat& orientation, const Vec3& velocity, const Vec3& angular_velocity,
+                        const Vec3& normal, const Vec3& top) {
   const Eigen::Matrix3d R = orientation.toRotationMatrix();
   // The face most nearly facing -n: axis k, side s (its outward normal s*R_k).
   const Eigen::Vector3d along = R.transpose() * normal;

@@ -10,8 +10,8 @@
 //             at each of its vertices p that is x_p = n.(top - p) > 0 deep, the point c = p +
 //             (x_p/2)*n moving at u = v + w x (c - x): the normal force f = (k/2)*x_p*(1 + c*r)
 //             with r = -n.u (nothing when f <= 0) along n, and the friction f*mu(|u_t|) against
-//             the slip u_t = u - (n.u)*n when |u_t| > Simbody's SignificantReal; the force F and its
-//             moment T about the centre summed
+//             the slip u_t = u - (n.u)*n when |u_t| > Simbody's SignificantReal; the force F and
+//             its moment T about the centre summed
 //   velocity  v1 = v + h*(g + (F - c_d*v)/m) with the damper c_d = m*(1 - exp(-k_l*h))/h, and
 //             w1 = w - h*I_w^-1*(w x I_w*w) + h*I_w^-1*(T - C_a*w) (the explicit gyroscopic term,
 //             the rotational dampers C_a = I_i*(1 - exp(-k_a*h))/h per world axis)
@@ -35,8 +35,8 @@ struct Wrench {
   Vec3 moment = Vec3::Zero();
 };
 Wrench brick_half_space(const SimbodyContact& c, const Vec3& half_extents, const Vec3& position,
-                        const Quat& orientation, const Vec3& velocity,
-                        const Vec3& angular_velocity, const Vec3& normal, const Vec3& top);
+                        const Quat& orientation, const Vec3& velocity, const Vec3& angular_velocity,
+                        const Vec3& normal, const Vec3& top);
 
 // Body `body` (a box) of `scene` after steps 0..steps at step h under the adapter's brick contact:
 // its position and velocity, and its rotation in `turns` when given. Throws std::invalid_argument

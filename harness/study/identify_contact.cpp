@@ -1,10 +1,12 @@
 #include "harness/study/identify_contact.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "harness/core/number_format.hpp"
 #include "harness/core/registry.hpp"
 #include "harness/judge/bounce_verdict.hpp"
+#include "harness/judge/slide_verdict.hpp"
 #include "harness/judge/turned_verdict.hpp"
 #include "harness/oracles/replayed_contact.hpp"
 #include "harness/run/runner.hpp"
@@ -43,7 +45,89 @@ std::string bounce_detail(const BounceVerdict& v) {
                        static_cast<long long>(v.worst_step));
 }
 
+// Every slide of `scene` in `run` judged as `dropcheck check` judges an engine declaring `info`:
+// follows when each does; the detail names the first slide that does not, or the largest distance.
+ContactMemberFit slide_member_fit(const Trajectory& run, const Scene& scene, const EngineInfo& info,
+                                  double h, const std::string& member) {
+  ContactMemberFit fit{member, {}, true, true, ""};
+  double worst = 0.0;
+  std::string bound;  // a member held by momentum: its certificate, not a path
+  for (const SlideSetup& s : slide_setups(scene)) {
+    const SlideVerdict v = judge_slide(run, scene, s, info, h);
+    const std::string& body = scene.bodies[s.body].name;
+    if (!v.exact) {
+      fit.judged = fit.follows = false;
+      fit.detail = body + ": " + v.not_judged;
+      return fit;
+    }
+    worst = std::max(worst, v.off_law);
+    if (v.coulomb)
+      bound = printf_string("its median slipping step's friction %.7g of mu*N (bound %.0e)",
+                            v.coulomb->median_ratio, info.contact_solver.coulomb_median_bound);
+    if (!v.follows && fit.follows) {
+      fit.follows = false;
+      fit.detail = printf_string("%s departs at step %lld, %.3g m off it by the end", body.c_str(),
+                                 static_cast<long long>(v.first_off), v.off_law);
+    }
+  }
+  if (fit.follows) fit.detail = bound.empty() ? printf_string("its path to %.2g m", worst) : bound;
+  return fit;
+}
+
+// The replayed members an adapter declares, each once with the engines declaring it, and an
+// iterative one's neighbours in iteration count.
+std::vector<std::pair<ContactSolver, std::vector<std::string>>> replayed_members() {
+  std::vector<std::pair<ContactSolver, std::vector<std::string>>> out;
+  const auto add = [&](const ContactSolver& solver, const std::string& engine) {
+    auto same = std::find_if(out.begin(), out.end(),
+                             [&](const auto& m) { return describe(m.first) == describe(solver); });
+    if (same == out.end()) same = out.emplace(out.end(), solver, std::vector<std::string>{});
+    if (!engine.empty()) same->second.push_back(engine);
+  };
+  for (const EngineInfo& info : declared_members())
+    if (replayed(info.contact_solver)) add(info.contact_solver, info.name);
+  const std::size_t declared = out.size();
+  for (std::size_t i = 0; i < declared; ++i) {
+    const ContactSolver solver = out[i].first;
+    if (solver.velocity_iterations == 0) continue;
+    for (const double f : {0.25, 0.5, 2.0, 4.0}) {
+      ContactSolver other = solver;
+      other.velocity_iterations =
+          std::max(1, static_cast<int>(std::lround(f * solver.velocity_iterations)));
+      add(other, "");
+    }
+  }
+  return out;
+}
+
 }  // namespace
+
+ContactLawIdentity identify_contact_solver(const Scene& scene, Engine& engine, double h) {
+  ContactLawIdentity id;
+  const std::optional<Trajectory> run = identity_run(id, scene, engine, h, "contact solver");
+  const EngineInfo own = engine.info();
+  id.declared = describe(own.contact_solver);
+  if (!run) return id;
+  id.fits.push_back(slide_member_fit(*run, scene, own, h, id.declared));
+  for (const auto& [solver, engines] : replayed_members()) {
+    if (describe(solver) == id.declared) continue;
+    EngineInfo member = own;
+    member.contact_solver = solver;
+    ContactMemberFit fit = slide_member_fit(*run, scene, member, h, describe(solver));
+    fit.declared_by = engines;
+    id.fits.push_back(std::move(fit));
+  }
+  if (own.contact_solver.kind != ContactSolverKind::exact) {
+    EngineInfo exact = own;
+    exact.contact_solver = {};
+    ContactMemberFit fit = slide_member_fit(*run, scene, exact, h, describe(exact.contact_solver));
+    for (const EngineInfo& info : declared_members())
+      if (info.capabilities.friction && info.contact_solver.kind == ContactSolverKind::exact)
+        fit.declared_by.push_back(info.name);
+    id.fits.push_back(std::move(fit));
+  }
+  return id;
+}
 
 ContactLawIdentity identify_bounce_law(const Scene& scene, Engine& engine, double h) {
   ContactLawIdentity id;

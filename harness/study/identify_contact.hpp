@@ -1,6 +1,6 @@
-// `identify` on a bounce or a tumbling landing: which member of a contact law family an engine's
-// run follows, tried against every member this build's adapters declare (a fact each adapter
-// states once) and the ideal law, computed here and printed by cmd_identify.
+// `identify` on a bounce, a tumbling landing or a slide: which member of a contact law family an
+// engine's run follows, tried against every member this build's adapters declare (a fact each
+// adapter states once) and the ideal law, computed here and printed by cmd_identify.
 #pragma once
 
 #include <optional>
@@ -23,7 +23,7 @@ struct ContactMemberFit {
 
 struct ContactLawIdentity {
   std::string scene, engine;
-  std::string family;  // "bounce law", "turned-box contact law"
+  std::string family;  // "bounce law", "turned-box contact law", "contact solver"
   double h = 0.0;
   std::optional<RunFailure> failed;
   std::vector<ContactMemberFit> fits;  // every member tried, the declared one first (if any)
@@ -37,5 +37,13 @@ ContactLawIdentity identify_bounce_law(const Scene& scene, Engine& engine, doubl
 
 // The turned-box contact law its run of `scene` (a tumbling landing) at h follows.
 ContactLawIdentity identify_turned_contact(const Scene& scene, Engine& engine, double h);
+
+// The contact solver its run of `scene` (a slide, slide_setups) at h follows: its declared solver
+// judged as `dropcheck check` judges it, then every solver the harness replays or re-solves that
+// an adapter of this build declares (Box2D's and Chipmunk's sequential impulses also at a quarter,
+// half, twice and four times their iterations: the members that tell an iteration count), and the
+// exact clamp law of the engine's friction model. A member follows when every slide of the scene
+// follows it.
+ContactLawIdentity identify_contact_solver(const Scene& scene, Engine& engine, double h);
 
 }  // namespace dropcheck

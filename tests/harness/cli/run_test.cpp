@@ -289,6 +289,11 @@ TEST_CASE(
   const Result b = cli({"identify", scene, "--engine", "box2d"});
   CHECK(b.code == 0);
   CHECK_THAT(b.out, Contains("friction model: not applicable: box2d is a 2-D engine"));
+  // Its solver is named instead: its own iterations follow, a neighbour's depart.
+  CHECK_THAT(b.out, Contains("box2d's contact solver from its run") &&
+                        Contains("  follows  Box2D 2.4 sequential impulses (8 velocity") &&
+                        Contains("  departs  Box2D 2.4 sequential impulses (32 velocity") &&
+                        Contains(": matches"));
   // An incline: its pull turned to 45 degrees. ODE's box pyramid holds the cube there, as the cone
   // would; only a sum pyramid would let it slip.
   const Result i =
