@@ -18,9 +18,12 @@ LandingExpectation landing_expectation(const EngineInfo& info, const Scene& scen
   return e;
 }
 
-LandingEnd judge_landing_end(const Trajectory& run, const LandingSetup& setup,
-                             const LandingObservation& seen, const LandingExpectation& expected,
-                             const EngineInfo& info, const StillCriteria& still) {
+namespace {
+
+// Rest and stillness, or the path, without the departure.
+LandingEnd landing_end(const Trajectory& run, const LandingSetup& setup,
+                       const LandingObservation& seen, const LandingExpectation& expected,
+                       const EngineInfo& info, const StillCriteria& still) {
   LandingEnd end;
   end.rests = std::abs(seen.rest_offset - expected.rest_offset) <= expected.tolerance;
   if (expected.climb) {
@@ -50,6 +53,39 @@ LandingEnd judge_landing_end(const Trajectory& run, const LandingSetup& setup,
                        : printf_string("still: max |v| %.3g m/s, range %.3g m over the last %.3g s",
                                        seen.still_speed, seen.still_range, still.seconds) +
                              (seen.still ? "" : " NOT STILL");
+  return end;
+}
+
+// The first step the landing departs, from its first failing quantity.
+RestingDeparture landing_departure(const Trajectory& run, const LandingSetup& setup,
+                                   const LandingObservation& seen,
+                                   const LandingExpectation& expected, const LandingEnd& end,
+                                   const StillCriteria& still) {
+  const double rest_y = setup.rest_height + expected.rest_offset;
+  if (expected.climb)
+    return end.settled ? RestingDeparture{}
+                       : path_departure(run, setup.body, expected.climb->y, expected.tolerance);
+  RestingDeparture d;
+  if (end.rebounds)
+    d = rebound_departure(run, setup.body, seen.first_contact_step, rest_y, tolerance::kMaxRebound);
+  if (!end.rests)
+    d = earlier(d, rest_departure(run, setup.body, rest_y, expected.tolerance, setup.weight));
+  if (!end.settled && seen.still_judged)
+    d = earlier(d, stillness_departure(run, setup.body,
+                                       run.recorded.back() - std::llround(still.seconds / run.h),
+                                       still.max_speed));
+  return d;
+}
+
+}  // namespace
+
+LandingEnd judge_landing_end(const Trajectory& run, const LandingSetup& setup,
+                             const LandingObservation& seen, const LandingExpectation& expected,
+                             const EngineInfo& info, const StillCriteria& still) {
+  LandingEnd end = landing_end(run, setup, seen, expected, info, still);
+  end.rebounds = !expected.climb && seen.rebound - expected.rest_offset > tolerance::kMaxRebound;
+  if (!end.rests || !end.settled || end.rebounds)
+    end.departure = landing_departure(run, setup, seen, expected, end, still);
   return end;
 }
 

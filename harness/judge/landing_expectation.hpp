@@ -9,6 +9,7 @@
 
 #include "harness/core/engine.hpp"
 #include "harness/core/trajectory.hpp"
+#include "harness/judge/resting_departure.hpp"
 #include "harness/oracles/landing.hpp"
 
 namespace dropcheck {
@@ -30,6 +31,10 @@ struct LandingEnd {
   // "still: max |v| 1e-07 m/s, range 5e-09 m over the last 2 s" or "climbs at 0.000998 m/s as its
   // law (push-out capped at 0.001 m/s), 2e-13 m off it", with NOT STILL or DEPARTS when it fails.
   std::string text;
+  // When it fails (rebound, rest height, stillness, its path): the first step it departs, and how.
+  RestingDeparture departure;
+  bool rebounds = false;  // above its expected rest by more than tolerance::kMaxRebound after
+                          // first contact (a body on a path is held to the path instead)
 };
 LandingEnd judge_landing_end(const Trajectory& run, const LandingSetup& setup,
                              const LandingObservation& seen, const LandingExpectation& expected,

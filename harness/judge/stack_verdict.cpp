@@ -56,6 +56,22 @@ std::vector<StackBodyVerdict> judge_stack(const Trajectory& run, const StackSetu
     const StillFigures& law_still = v.predicted.still;
     v.still_ok = !still_judged || (v.still.speed <= law_still.speed + info.stack_law.still_bound &&
                                    v.still.range <= law_still.range + info.stack_law.still_bound);
+    if (!v.sink_ok) {
+      // Out of its band: the first step of its last stretch away from its law's rest height.
+      // The band's edge it crossed, as a distance from its law's sink.
+      const double expected_y = l.rest_height + v.predicted.offset - v.predicted.sink;
+      const double band = v.predicted.exact ? floor_bound
+                          : v.sink > v.predicted.sink
+                              ? (tolerance::kStackSink - 1.0) * v.predicted.sink + floor_bound
+                              : (1.0 - tolerance::kStackSinkLow) * v.predicted.sink + floor_bound;
+      v.departure = rest_departure(run, l.body, expected_y, band, l.load * setup.g);
+    }
+    if (!v.drift_ok)
+      v.departure = earlier(v.departure, drift_departure(run, l.body, info.stack_law.drift_bound));
+    if (!v.still_ok)
+      v.departure = earlier(
+          v.departure,
+          stillness_departure(run, l.body, from, law_still.speed + info.stack_law.still_bound));
     out.push_back(v);
   }
   // A contact the sweeps cannot hold lets the load squeeze every body of the column, those under
@@ -94,6 +110,7 @@ std::string StackBodyVerdict::sentence() const {
                        : std::string(
                              ", stillness not judged: the run ends less than 2 s after "
                              "the column's last landing");
+  if (!holds() && departure.step >= 0) text += "; " + departure.sentence();
   return text;
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "harness/core/trajectory.hpp"
+#include "harness/judge/resting_departure.hpp"
 #include "harness/oracles/landing.hpp"
 #include "harness/oracles/stack.hpp"
 
@@ -33,10 +34,13 @@ struct StackBodyVerdict {
   // the floor waived where the law ends the body below it too.
   bool unheld = false;
   StackPrediction limiting;
+  // When it does not hold: the first step it departs (sink, drift or stillness), and how.
+  RestingDeparture departure;
   bool holds() const { return sink_ok && drift_ok && still_ok; }
   bool passes() const { return holds() || (unheld && above_floor); }
   // "(level 2) sinks 4.083e-06 m (its law: 4.083e-06 m), drift 4.2e-07 m, still: 8.1e-06 m/s,
-  // 6.4e-07 m", with what is out of bounds in capitals.
+  // 6.4e-07 m", with what is out of bounds in capitals and, when it does not hold, its first
+  // departure.
   std::string sentence() const;
   // "not held, as its solver's sweeps predict: each sweep leaves 0.999 of the error between 1 kg
   // and the 1000 kg on it, 0.99 after a step's sweeps" (when unheld).

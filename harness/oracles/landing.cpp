@@ -146,6 +146,7 @@ std::vector<LandingSetup> landing_setups(const Scene& scene) {
     s.floor_bottom = bottom_of(scene.bodies[s.floor]);
     s.half_height = b.half_extents.y();
     s.rest_height = s.floor_top + s.half_height;
+    s.weight = b.mass * scene.world.gravity.norm();
     s.contact_time =
         contact_time_continuous(b.position.y(), b.velocity.y(), vertical_acceleration(scene, i),
                                 scene.world.damping_rate, s.rest_height);

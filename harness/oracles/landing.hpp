@@ -27,6 +27,7 @@ struct LandingSetup {
   double half_height = 0.0;   // m: the body's half extent along y (bottom = centre - this)
   double rest_height = 0.0;   // m: floor_top + body half extent y (centre of a resting body)
   double contact_time = 0.0;  // s: continuous model, bottom reaches floor_top; NaN if never
+  double weight = 0.0;        // N: m*|g|, what the floor carries at rest
 };
 
 // Whether a body sat still over the last `seconds` of a run (to the end).

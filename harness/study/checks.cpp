@@ -216,7 +216,8 @@ std::string landing_text(const Trajectory& run, const LandingSetup& setup, const
          (no_rebound ? "" : " TOO HIGH") +
          fmt(", rest offset %.3g m (expected %.3g +- %.3g)", o.rest_offset, expected.rest_offset,
              expected.tolerance) +
-         (end.rests ? "" : " OUT OF RANGE") + ", " + end.text;
+         (end.rests ? "" : " OUT OF RANGE") + ", " + end.text +
+         (end.departure.step >= 0 ? "; " + end.departure.sentence() : std::string());
 }
 
 // What is judged of a landing with no closed form (`why`): the run ends, and every dynamic body

@@ -50,7 +50,9 @@ TEST_CASE("a stack that sinks as its law says holds; more, a drift or a jitter f
   const auto sunk = judge_stack(testing::displaced_run(scene, steps, deeper), s, ode, h);
   CHECK(sunk[0].holds());
   CHECK_FALSE(sunk[1].holds());
-  CHECK_THAT(sunk[1].sentence(), Contains("(level 2) sinks 1e-06 m") && Contains("OUT OF BOUNDS"));
+  CHECK_THAT(sunk[1].sentence(), Contains("(level 2) sinks 1e-06 m") && Contains("OUT OF BOUNDS") &&
+                                     Contains("first departs at step 1 (rest height)") &&
+                                     Contains("a soft contact's sag"));
   // A soft contact that does not sink at all fails too: MuJoCo's law puts the 1 kg cube under
   // 1e5 kg 8.507e-3 m down at 1/60, and a run that stays at the geometry is 100 % short.
   const Scene ratio = testing::shipped("extreme/mass_ratio");
@@ -62,7 +64,12 @@ TEST_CASE("a stack that sinks as its law says holds; more, a drift or a jitter f
   // Slid 2 mm aside: beyond the 1 mm drift bound; and the jump at step 250 is in the still window.
   const auto slid = judge_stack(still_run(scene, steps, 1, {0.002, 0.0, 0.0}, 250), s, ode, h);
   CHECK_FALSE(slid[0].holds());
-  CHECK_THAT(slid[0].sentence(), Contains("drift 0.002 m TOO FAR") && Contains("NOT STILL"));
+  CHECK_THAT(slid[0].sentence(), Contains("drift 0.002 m TOO FAR") && Contains("NOT STILL") &&
+                                     Contains("first departs at step 0 (rest height): it "
+                                              "rests 4.08e-11 m above"));
+  // Its drift alone: a step of 2 mm at step 250.
+  CHECK(drift_departure(still_run(scene, steps, 1, {0.002, 0.0, 0.0}, 250), s.levels[0].body, 1e-3)
+            .step == 250);
 }
 
 TEST_CASE("a load an iterative solver cannot hold is a limit for the whole column",
