@@ -60,8 +60,7 @@ RestingDeparture rest_departure(const Trajectory& run, std::size_t body, double 
   while (first > 0 && beyond(first - 1)) --first;
   d.step = run.recorded[first];
   d.quantity = "rest height";
-  d.cause = !std::isfinite(off)
-                ? std::string("its height is no longer finite")
+  d.cause = !std::isfinite(off) ? std::string("its height is no longer finite")
             : off < 0.0
                 ? printf_string(
                       "it rests %.3g m below, and stays: a soft contact's sag, as a spring of "
@@ -135,8 +134,8 @@ RestingDeparture path_departure(const Trajectory& run, std::size_t body,
     if (!(std::abs(off) <= tolerance)) {
       d.step = run.recorded[n];
       d.quantity = "path";
-      d.cause = printf_string("%.3g m %s its law's height", std::abs(off),
-                              off > 0.0 ? "above" : "below");
+      d.cause =
+          printf_string("%.3g m %s its law's height", std::abs(off), off > 0.0 ? "above" : "below");
       return d;
     }
   }

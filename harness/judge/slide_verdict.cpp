@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "harness/core/number_format.hpp"
@@ -107,6 +108,25 @@ void clamp_figures(SlideVerdict& v, const SlideSetup& s, double h, std::size_t s
       s.v0, s.pull, slide_grip(s.mu, s.g, v.model, s.angle), h * static_cast<double>(samples - 1));
 }
 
+// How far the replayed law departs from itself when the launch speed moves by kSensitivityUlps
+// machine epsilons (relative) either way (SlideVerdict::self_off, self_first). Unsteered, all
+// three.
+void law_sensitivity(SlideVerdict& v, const Scene& scene, const SlideSetup& s,
+                     const ContactSolver& solver, double h, std::int64_t steps) {
+  const SlidePath base = replayed_slide_path(scene, s, solver, h, steps);
+  for (const double sign : {-1.0, 1.0}) {
+    Scene moved = scene;
+    Vec3& v0 = moved.bodies[s.body].velocity;
+    const double speed = v0.norm();
+    if (speed == 0.0) return;
+    v0 *= 1.0 + sign * kSensitivityUlps * std::numeric_limits<double>::epsilon();
+    const SlidePath other = replayed_slide_path(moved, s, solver, h, steps);
+    v.self_off = std::max(v.self_off, path_distance(base, other));
+    const std::int64_t first = first_apart(base, other);
+    if (first >= 0 && (v.self_first < 0 || first < v.self_first)) v.self_first = first;
+  }
+}
+
 // Against the replay of the engine's solver; the clamp law and, for an iterative solver, a replay
 // at 4 times the velocity iterations beside it.
 SlideVerdict judge_replayed(const Trajectory& run, const SlidePath& path, const Scene& scene,
@@ -121,6 +141,7 @@ SlideVerdict judge_replayed(const Trajectory& run, const SlidePath& path, const 
     v.off_law = own.off;
     v.first_off = own.first_off;
     v.follows = own.follows;
+    if (!v.follows) law_sensitivity(v, scene, s, solver, h, steps);
     ContactSolver more = solver;
     more.velocity_iterations = v.more_iterations = 4 * solver.velocity_iterations;
     if (more.velocity_iterations > 0)
@@ -320,7 +341,17 @@ std::string SlideVerdict::sentence() const {
                           tolerance::kSlideDistance);
   if (!instead.empty())
     return text + ": it follows " + instead + printf_string(" instead (to %.2g m)", instead_off);
-  if (solver) return text;
+  if (solver && self_first >= 0)
+    return text + printf_string(
+                      ": its law amplifies rounding: with its launch speed changed by %.0f "
+                      "machine epsilons it departs from itself by up to %.2g m, first at step "
+                      "%lld, so a departure of this size is rounding it amplifies, not another "
+                      "law",
+                      kSensitivityUlps, self_off, static_cast<long long>(self_first));
+  if (solver)
+    return text +
+           ": no cause named (its law holds to its own launch speed's rounding); `dropcheck "
+           "identify SCENE --engine E` tries every solver dropcheck replays";
   if (!engine_said.empty())
     return text + ": no neighbouring member of its law fits; " + engine_said;
   return text +

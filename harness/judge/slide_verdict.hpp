@@ -15,6 +15,10 @@
 
 namespace dropcheck {
 
+// The launch speed's relative change, in machine epsilons, that measures a replayed law's own
+// sensitivity (4 ulps of a speed of 2 m/s).
+inline constexpr double kSensitivityUlps = 4.0;
+
 struct SlideVerdict {
   SlideObservation seen;
   FrictionModel model = FrictionModel::cone;  // the engine's declared model
@@ -52,6 +56,13 @@ struct SlideVerdict {
   // certificate of every step; law_seen is then the clamp law with the run's own normal impulses
   // (coulomb_path) and off_law the run's largest distance from it along the slip.
   std::optional<CoulombCertificate> coulomb;
+  // A replayed solver's path the run departs from: how far that law departs from itself when the
+  // launch speed moves by kSensitivityUlps epsilons either way (the worse of the two), and the
+  // first step it is over tolerance::kSlideDistance from itself (-1: never). A law that amplifies
+  // rounding that much (MuJoCo's cube hops off its soft floor, and every landing amplifies) cannot
+  // tell a run's rounding from another law past that step.
+  double self_off = 0.0;
+  std::int64_t self_first = -1;
   // When none fits: what the engine printed during the run, and what its adapter says that means
   // (harness/judge/engine_messages.hpp); "" when it printed nothing.
   std::string engine_said;

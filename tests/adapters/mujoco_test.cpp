@@ -16,6 +16,7 @@
 #include "adapter_test_support.hpp"
 #include "harness/core/mujoco_world.hpp"
 #include "harness/core/registry.hpp"
+#include "harness/judge/slide_verdict.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/oracles/mujoco_step.hpp"
 #include "harness/run/runner.hpp"
@@ -376,4 +377,28 @@ TEST_CASE("MuJoCo moves as its re-solve in random contact scenes", "[mujoco][con
   // 40 of a sphere, with any friction and restitution (mjc_SphereBox, solref in the direct format):
   // within 1e-9 m (measured worst 3.6e-11 m).
   check_random_scenes({.planar = false}, Shape::sphere, 1e-9);
+}
+
+TEST_CASE(
+    "A hopping slide's departure from MuJoCo's re-solve is named as rounding its law amplifies",
+    "[mujoco][contact]") {
+  // stop_mu02 (2 m/s, mu 0.2, h = 1/1800): the pyramid launches the cube off its soft floor again
+  // and again, and each landing amplifies rounding. Measured: the run leaves the re-solve at step
+  // 998 (7.5e-4 m by step 1200), and the re-solve itself, its launch speed 4 epsilons away, leaves
+  // itself by up to 2e-4 m from step 1177.
+  ENGINE_OR_RETURN(engine, "mujoco");
+  const Scene scene = load_scene(DROPCHECK_SOURCE_DIR "/scenarios/friction/stop_mu02.toml");
+  const double h = scene.timestep.seconds;
+  const Trajectory run = run_scene(*engine, scene, h);
+  const SlideVerdict v = judge_slide(run, scene, slide_setups(scene).at(0), engine->info(), h);
+  CHECK_FALSE(v.follows);
+  CHECK(v.self_first > 0);
+  CHECK(v.self_off > 1e-5);
+  CHECK_THAT(v.sentence(), Catch::Contains("its law amplifies rounding"));
+  // A slide whose law holds to its own rounding names no such cause: slide_stop at 1/60.
+  const Scene stop = scenario("slide_stop");
+  const SlideVerdict held = judge_slide(run_scene(*engine, stop, 1.0 / 60), stop,
+                                        slide_setups(stop).at(0), engine->info(), 1.0 / 60);
+  CHECK(held.follows);
+  CHECK(held.self_first == -1);
 }

@@ -2,12 +2,13 @@
 // figure that names the cause, on hand-written runs of one body whose answers are known; and a
 // failing landing's departure (harness/judge/landing_expectation.cpp).
 #include "harness/judge/resting_departure.hpp"
-#include "harness/judge/landing_expectation.hpp"
 
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <functional>
 #include <numbers>
+
+#include "harness/judge/landing_expectation.hpp"
 
 using namespace dropcheck;
 using Catch::Contains;
@@ -15,11 +16,10 @@ using Catch::Contains;
 namespace {
 
 // One body, every step of h = 0.01 recorded, at height y(n) with vertical speed v(n) and x(n).
-Trajectory resting_run(std::int64_t steps, const std::function<double(std::int64_t)>& y,
-                    const std::function<double(std::int64_t)>& v,
-                    const std::function<double(std::int64_t)>& x = [](std::int64_t) {
-                      return 0.0;
-                    }) {
+Trajectory resting_run(
+    std::int64_t steps, const std::function<double(std::int64_t)>& y,
+    const std::function<double(std::int64_t)>& v,
+    const std::function<double(std::int64_t)>& x = [](std::int64_t) { return 0.0; }) {
   Trajectory t;
   t.h = 0.01;
   t.steps = steps;
@@ -52,15 +52,17 @@ TEST_CASE("A body resting low departs where it last sank past its tolerance, a s
           "[contact][landing]") {
   // Settles to 0.01 m below 0.5 from step 20 (and passes through it once at step 5): a spring of
   // 9.8 N / 0.01 m holds a 1 kg weight there.
-  const Trajectory run =
-      resting_run(60, [](std::int64_t n) { return n == 5 ? 0.49 : n < 20 ? 0.5 : 0.49; },
-               [](std::int64_t) { return 0.0; });
+  const Trajectory run = resting_run(
+      60, [](std::int64_t n) { return n == 5   ? 0.49
+                                      : n < 20 ? 0.5
+                                               : 0.49; },
+      [](std::int64_t) { return 0.0; });
   const RestingDeparture d = rest_departure(run, 0, 0.5, 1e-3, 9.8);
   CHECK(d.step == 20);
   CHECK_THAT(d.cause, Contains("rests 0.01 m below") && Contains("a spring of 980 N/m"));
   CHECK(rest_departure(run, 0, 0.49, 1e-3, 9.8).step == -1);
-  const Trajectory high = resting_run(10, [](std::int64_t) { return 0.52; },
-                                   [](std::int64_t) { return 0.0; });
+  const Trajectory high = resting_run(
+      10, [](std::int64_t) { return 0.52; }, [](std::int64_t) { return 0.0; });
   CHECK_THAT(rest_departure(high, 0, 0.5, 1e-3, 9.8).cause, Contains("rests 0.02 m above"));
 }
 
@@ -82,7 +84,8 @@ TEST_CASE("A body that never stills departs at its first fast step: an oscillati
 TEST_CASE("A drift and a path departure name their first step", "[contact][stack]") {
   const Trajectory run = resting_run(
       100, [](std::int64_t n) { return 0.5 - 1e-4 * static_cast<double>(n); },
-      [](std::int64_t) { return 0.0; }, [](std::int64_t n) { return 1e-4 * static_cast<double>(n); });
+      [](std::int64_t) { return 0.0; },
+      [](std::int64_t n) { return 1e-4 * static_cast<double>(n); });
   CHECK(drift_departure(run, 0, 1e-3).step == 11);  // 1.1e-3 m across
   const std::vector<double> law(101, 0.5);
   const RestingDeparture d = path_departure(run, 0, law, 5.05e-3);
