@@ -18,6 +18,7 @@ DROPCHECK_PACKAGES=(
   libbenchmark-dev                     # benchmarks (bench/, scripts/bench.sh)
   slurmctld slurmd slurm-client munge  # sweeps on a localhost Slurm (ctest slurm, scripts/slurm/)
   python3-jsonschema                   # validates sweep records against docs/results.schema.json
+  libxml2-utils                        # xmllint: validates `check --junit` (tests/check/junit.xsd)
 )
 # The engines compared: the packages column of adapters/engines.txt, the one list of engines.
 engines="$(dirname "${BASH_SOURCE[0]}")/../adapters/engines.txt"

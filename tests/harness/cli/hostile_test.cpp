@@ -316,6 +316,22 @@ TEST_CASE("stability S --json S is refused and the scene is untouched", "[cli][h
   CHECK(slurp(s) == before);
 }
 
+TEST_CASE("check DIR --junit DIR/x.xml and --json S are refused before any check runs",
+          "[cli][hostile]") {
+  ScratchDir d("hostile-check-input");
+  const std::string s = hostile_scene(d);
+  const std::string before = slurp(s);
+  Result r = cli({"check", s, "--engine", "ours-f64", "--json", s});
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Contains("--json"));
+  CHECK(slurp(s) == before);
+  r = cli({"check", d.path.string(), "--engine", "ours-f64", "--junit", d.file("v.xml")});
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Contains("--junit"));
+  CHECK_FALSE(fs::exists(d.file("v.xml")));
+  CHECK(r.out.empty());  // no check ran
+}
+
 TEST_CASE("diff A B --out A/summary.md is refused: A is an input", "[cli][hostile]") {
   ScratchDir a("hostile-diff-in-a"), b("hostile-diff-in-b");
   const std::string s = hostile_scene(a, "s.toml");

@@ -1,0 +1,122 @@
+#include "harness/report/verdict_files.hpp"
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+namespace dropcheck {
+namespace {
+
+// XML 1.0 text: the five markup characters as entities; a control character other than tab,
+// newline and carriage return, which XML 1.0 cannot carry at all, as U+FFFD. Bytes of UTF-8
+// sequences pass through (engine messages are already escaped to printable text).
+std::string xml_escape(const std::string& s) {
+  std::string out;
+  out.reserve(s.size());
+  for (const char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r')
+          out += "\xEF\xBF\xBD";
+        else
+          out += c;
+    }
+  }
+  return out;
+}
+
+struct Counts {
+  int tests = 0, failures = 0, skipped = 0;
+  void add(const CheckRecord& r) {
+    ++tests;
+    failures += !r.skipped && !r.result.passed;
+    skipped += r.skipped;
+  }
+  std::string attributes() const {
+    return "tests=\"" + std::to_string(tests) + "\" failures=\"" + std::to_string(failures) +
+           "\" errors=\"0\" skipped=\"" + std::to_string(skipped) + "\"";
+  }
+};
+
+void write_case(std::ostream& out, const CheckRecord& r) {
+  const CheckResult& c = r.result;
+  out << "    <testcase classname=\"" << xml_escape(c.scene + "." + c.engine) << "\" name=\""
+      << xml_escape(r.skipped ? std::string("run") : c.check) << "\"";
+  if (r.skipped) {
+    out << ">\n      <skipped message=\"" << xml_escape(r.skipped_because) << "\"/>\n"
+        << "    </testcase>\n";
+  } else if (!c.passed) {
+    out << ">\n      <failure message=\"" << xml_escape(c.message) << "\" type=\"FAIL\">"
+        << xml_escape(c.message) << "</failure>\n    </testcase>\n";
+  } else if (!c.limit.empty()) {
+    out << ">\n      <system-out>LIMIT " << xml_escape(c.limit + "; " + c.message)
+        << "</system-out>\n    </testcase>\n";
+  } else {
+    out << "/>\n";
+  }
+}
+
+}  // namespace
+
+std::string verdict_word(const CheckRecord& r) {
+  if (r.skipped) return "skipped";
+  if (!r.result.passed) return "fail";
+  return r.result.limit.empty() ? "pass" : "limit";
+}
+
+void write_junit(std::ostream& out, const std::vector<CheckRecord>& records) {
+  std::vector<std::string> scenes;  // in order of first appearance
+  for (const CheckRecord& r : records)
+    if (std::find(scenes.begin(), scenes.end(), r.result.scene) == scenes.end())
+      scenes.push_back(r.result.scene);
+  Counts all;
+  for (const CheckRecord& r : records) all.add(r);
+  out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      << "<testsuites name=\"dropcheck check\" " << all.attributes() << ">\n";
+  for (const std::string& scene : scenes) {
+    Counts these;
+    for (const CheckRecord& r : records)
+      if (r.result.scene == scene) these.add(r);
+    out << "  <testsuite name=\"" << xml_escape(scene) << "\" " << these.attributes() << ">\n";
+    for (const CheckRecord& r : records)
+      if (r.result.scene == scene) write_case(out, r);
+    out << "  </testsuite>\n";
+  }
+  out << "</testsuites>\n";
+}
+
+void write_check_json(std::ostream& out, const std::vector<CheckRecord>& records) {
+  using Json = nlohmann::ordered_json;
+  Json results = Json::array();
+  int passed = 0, limits = 0, failed = 0, skipped = 0;
+  for (const CheckRecord& r : records) {
+    const std::string verdict = verdict_word(r);
+    passed += verdict == "pass";
+    limits += verdict == "limit";
+    failed += verdict == "fail";
+    skipped += verdict == "skipped";
+    Json e;
+    e["scene"] = r.result.scene;
+    e["engine"] = r.result.engine;
+    e["check"] = r.skipped ? std::string() : r.result.check;
+    e["verdict"] = verdict;
+    e["limit"] = r.result.limit;
+    e["message"] = r.skipped ? r.skipped_because : r.result.message;
+    results.push_back(std::move(e));
+  }
+  Json doc;
+  doc["schema"] = "dropcheck-check/1";
+  doc["passed"] = passed;
+  doc["limits"] = limits;
+  doc["failed"] = failed;
+  doc["skipped"] = skipped;
+  doc["results"] = std::move(results);
+  // Invalid UTF-8 in a message (an engine's bytes) is replaced, never a throw.
+  out << doc.dump(2, ' ', false, Json::error_handler_t::replace) << "\n";
+}
+
+}  // namespace dropcheck
