@@ -5,7 +5,9 @@
 // law or design, named), scene, engine, check, measured figures. Exit 1 if any check
 // failed. An engine that cannot run a scene is printed as "skipped: <reason>" (ctest reports it
 // skipped). --junit and --json write the same verdicts for CI (harness/report/verdict_files.hpp),
-// each replaced atomically once every check has run.
+// each replaced atomically once every check has run. With one --engine, a page of that engine
+// alone ends the output: each scene passed, failed (its first failing check) or skipped (with the
+// capability that would let it run).
 #include "args.hpp"
 #include "cli.hpp"
 #include "harness/core/input_error.hpp"
@@ -23,6 +25,28 @@ namespace {
 
 EngineFactory factory(const std::string& name) {
   return [name] { return make_engine(name); };
+}
+
+// One engine alone (`--engine X` given once): its scenes passed, failed with the first failing
+// check and its cause, skipped with the capability that would let it run them.
+void print_engine_page(const std::vector<CheckRecord>& records, const std::string& engine,
+                       std::ostream& out) {
+  const std::vector<SceneOutcome> outcomes = engine_outcomes(records, engine);
+  int passed = 0, failed = 0, skipped = 0;
+  for (const SceneOutcome& o : outcomes)
+    (o.verdict == "passed" ? passed : o.verdict == "failed" ? failed : skipped)++;
+  out << "\n"
+      << engine << " alone: " << outcomes.size() << " scenes, " << passed << " passed, " << failed
+      << " failed, " << skipped << " skipped\n";
+  for (const SceneOutcome& o : outcomes) {
+    out << "  " << o.verdict << std::string(9 - o.verdict.size(), ' ') << o.scene;
+    if (o.verdict == "passed") out << " (" << o.checks << (o.checks == 1 ? " check)" : " checks)");
+    if (!o.detail.empty()) out << ": " << o.detail;
+    if (!o.capability.empty())
+      out << " (declare the capability `" << o.capability
+          << "` to run it, if the engine can: docs/protocol.md)";
+    out << "\n";
+  }
 }
 
 void print(const CheckResult& r, std::ostream& out) {
@@ -84,6 +108,8 @@ int cmd_check(const std::vector<std::string>& argv, std::ostream& out, std::ostr
     }
   }
   out << passed << " checks passed, " << failed << " failed\n";
+  if (args.values("--engine").size() == 1 && !records.empty())
+    print_engine_page(records, records.front().result.engine, out);
   if (args.has("--junit"))
     write_file_atomic(args.value("--junit"), [&](std::ostream& o) { write_junit(o, records); });
   if (args.has("--json"))

@@ -10,27 +10,45 @@
 
 namespace dropcheck {
 
+namespace {
+
+// Engine::cannot_run's refusals that a capability lifts, each beside the protocol's word for it
+// (docs/protocol.md, `capabilities`).
+constexpr const char* kNoContacts = "no contacts";
+constexpr const char* kNoSpheres = "spheres: this engine's adapter builds boxes only";
+constexpr const char* kNoFriction = "friction: this engine's adapter does not map it";
+constexpr const char* kNoRestitution = "restitution: this engine's adapter does not map it";
+constexpr const char* kNoRotation = "rotation: this engine's adapter does not rotate bodies";
+constexpr const char* kOnlyZ = "rotation: a 2-D engine turns bodies about z only";
+
+}  // namespace
+
+std::string capability_lifting(const std::string& refusal) {
+  if (refusal == kNoContacts) return "contacts";
+  if (refusal == kNoSpheres) return "spheres";
+  if (refusal == kNoFriction) return "friction";
+  if (refusal == kNoRestitution) return "restitution";
+  if (refusal == kNoRotation || refusal == kOnlyZ) return "rotation";
+  return {};
+}
+
 std::string Engine::cannot_run(const Scene& scene) const {
   const EngineInfo self = info();
   const Capabilities& caps = self.capabilities;
-  if (scene.world.contacts && !caps.contacts) return "no contacts";
+  if (scene.world.contacts && !caps.contacts) return kNoContacts;
   if (caps.planar_only && !is_planar(scene)) return "not planar";
-  if (has_spheres(scene) && !caps.spheres)
-    return "spheres: this engine's adapter builds boxes only";
+  if (has_spheres(scene) && !caps.spheres) return kNoSpheres;
   const Material m = scene_material(scene);
-  if (m.friction && !caps.friction) return "friction: this engine's adapter does not map it";
-  if (m.restitution && !caps.restitution)
-    return "restitution: this engine's adapter does not map it";
+  if (m.friction && !caps.friction) return kNoFriction;
+  if (m.restitution && !caps.restitution) return kNoRestitution;
   if (self.law.scheme == Scheme::ErrorControlled)
     for (const Force& f : scene.forces)
       if (std::holds_alternative<Spring>(f.law))
         return "springs: the harness sets a spring's force once per step, and an "
                "error-controlled integrator would integrate that held force, not the spring";
   if (!needs_rotation(scene)) return {};
-  if (caps.rotation == Rotation::none)
-    return "rotation: this engine's adapter does not rotate bodies";
-  if (caps.rotation == Rotation::spin_z && !spins_about_z(scene))
-    return "rotation: a 2-D engine turns bodies about z only";
+  if (caps.rotation == Rotation::none) return kNoRotation;
+  if (caps.rotation == Rotation::spin_z && !spins_about_z(scene)) return kOnlyZ;
   return {};
 }
 

@@ -124,6 +124,11 @@ struct RotationState {
   Vec3 angular_velocity = Vec3::Zero();  // rad/s, world frame
 };
 
+// The capability (the protocol's word, docs/protocol.md) whose absence makes Engine::cannot_run
+// refuse with `refusal` ("contacts" for "no contacts"), or empty when none lifts it (a 3-D scene
+// on a 2-D engine, an adapter's own limit).
+std::string capability_lifting(const std::string& refusal);
+
 // A 2-D engine's turn: the angle a about z as q = (cos(a/2), 0, 0, sin(a/2)), w = (0, 0, w_z).
 RotationState turn_about_z(double angle, double w_z);
 

@@ -14,11 +14,21 @@ std::string xml_escape(const std::string& s) {
   out.reserve(s.size());
   for (const char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
       default:
         if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r')
           out += "\xEF\xBF\xBD";
@@ -61,6 +71,29 @@ void write_case(std::ostream& out, const CheckRecord& r) {
 }
 
 }  // namespace
+
+std::vector<SceneOutcome> engine_outcomes(const std::vector<CheckRecord>& records,
+                                          const std::string& engine) {
+  std::vector<SceneOutcome> out;
+  for (const CheckRecord& r : records) {
+    if (r.result.engine != engine) continue;
+    if (out.empty() || out.back().scene != r.result.scene)
+      out.push_back({r.result.scene, "passed", 0, "", ""});
+    SceneOutcome& o = out.back();
+    if (r.skipped) {
+      o.verdict = "skipped";
+      o.detail = r.skipped_because;
+      o.capability = capability_lifting(r.skipped_because);
+      continue;
+    }
+    ++o.checks;
+    if (!r.result.passed && o.verdict != "failed") {
+      o.verdict = "failed";
+      o.detail = r.result.check + ": " + r.result.message;
+    }
+  }
+  return out;
+}
 
 std::string verdict_word(const CheckRecord& r) {
   if (r.skipped) return "skipped";

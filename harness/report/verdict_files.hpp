@@ -19,6 +19,19 @@ struct CheckRecord {
   std::string skipped_because;  // the engine's reason ("not planar", "no contacts")
 };
 
+// One engine's scenes at a glance (`check --engine X` ends with it): per scene, in order, whether
+// every check passed (limits pass), the first that failed, or why the engine could not run it and
+// the capability that would let it (capability_lifting, harness/core/engine.hpp).
+struct SceneOutcome {
+  std::string scene;
+  std::string verdict;     // "passed", "failed", "skipped"
+  int checks = 0;          // checks run (0 when skipped)
+  std::string detail;      // the first failed check and its message; a skip's reason
+  std::string capability;  // a skip a capability lifts: its protocol word
+};
+std::vector<SceneOutcome> engine_outcomes(const std::vector<CheckRecord>& records,
+                                          const std::string& engine);
+
 // "pass", "limit", "fail" or "skipped".
 std::string verdict_word(const CheckRecord& r);
 

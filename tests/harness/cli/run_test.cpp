@@ -395,3 +395,20 @@ TEST_CASE("a skipped external engine is named by its own name, not its file's pa
   CHECK_THAT(r.out, Contains("skipped: drop_on_floor  seed-python: no contacts"));
   CHECK(r.out.find("seed_engine.toml") == std::string::npos);
 }
+
+TEST_CASE("check with one engine ends with that engine's page: passed, failed, skipped and why",
+          "[cli]") {
+  if (!make_engine("wildmagic")) return;
+  const Result r =
+      cli({"check", DROPCHECK_SOURCE_DIR "/scenarios/throw_up.toml",
+           DROPCHECK_SOURCE_DIR "/scenarios/bounce_e01.toml", "--engine", "wildmagic"});
+  CHECK(r.code == 0);
+  CHECK_THAT(r.out, Contains("wildmagic alone: 2 scenes, 1 passed, 0 failed, 1 skipped") &&
+                        Contains("  passed   throw_up (") &&
+                        Contains("  skipped  bounce_e01: no contacts (declare the capability "
+                                 "`contacts` to run it"));
+  // Two engines: no page.
+  const Result two = cli({"check", DROPCHECK_SOURCE_DIR "/scenarios/throw_up.toml", "--engine",
+                          "wildmagic", "--engine", "ours"});
+  CHECK_THAT(two.out, !Contains(" alone: "));
+}

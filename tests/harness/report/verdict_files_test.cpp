@@ -13,8 +13,7 @@ TEST_CASE("check's verdict files: one case a record, failures and skips counted,
           "[check][junit]") {
   std::vector<CheckRecord> records(4);
   records[0].result = {"free_fall", "ode", "own law at h = 1/60", true, "", "max |x - law| 0 m"};
-  records[1].result = {"free_fall", "evil", "own law", false, "",
-                       "x < 1 & \"y\" > 2\x01 'z'"};
+  records[1].result = {"free_fall", "evil", "own law", false, "", "x < 1 & \"y\" > 2\x01 'z'"};
   records[2].result = {"thin_floor", "ode", "landing", true, "tunnels", "ends below"};
   records[3].result.scene = "throw_3d";
   records[3].result.engine = "box2d";
@@ -23,13 +22,14 @@ TEST_CASE("check's verdict files: one case a record, failures and skips counted,
   std::ostringstream xml, json;
   write_junit(xml, records);
   write_check_json(json, records);
-  CHECK_THAT(xml.str(),
-             Contains("<testsuites name=\"dropcheck check\" tests=\"4\" failures=\"1\" errors=\"0\" "
-                      "skipped=\"1\">") &&
-                 Contains("<testsuite name=\"free_fall\" tests=\"2\" failures=\"1\"") &&
-                 Contains("x &lt; 1 &amp; &quot;y&quot; &gt; 2\xEF\xBF\xBD &apos;z&apos;") &&
-                 Contains("<system-out>LIMIT tunnels; ends below</system-out>") &&
-                 Contains("<skipped message=\"not planar\"/>"));
+  CHECK_THAT(
+      xml.str(),
+      Contains("<testsuites name=\"dropcheck check\" tests=\"4\" failures=\"1\" errors=\"0\" "
+               "skipped=\"1\">") &&
+          Contains("<testsuite name=\"free_fall\" tests=\"2\" failures=\"1\"") &&
+          Contains("x &lt; 1 &amp; &quot;y&quot; &gt; 2\xEF\xBF\xBD &apos;z&apos;") &&
+          Contains("<system-out>LIMIT tunnels; ends below</system-out>") &&
+          Contains("<skipped message=\"not planar\"/>"));
   CHECK_THAT(json.str(), Contains("\"passed\": 1") && Contains("\"limits\": 1") &&
                              Contains("\"failed\": 1") && Contains("\"skipped\": 1") &&
                              Contains("\"verdict\": \"limit\"") &&
