@@ -73,7 +73,7 @@ RestingDeparture landing_departure(const Trajectory& run, const LandingSetup& se
   if (!end.settled && seen.still_judged)
     d = earlier(d, stillness_departure(run, setup.body,
                                        run.recorded.back() - std::llround(still.seconds / run.h),
-                                       still.max_speed));
+                                       still.max_speed, still.max_range));
   return d;
 }
 

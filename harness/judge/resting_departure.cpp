@@ -49,11 +49,12 @@ RestingDeparture rest_departure(const Trajectory& run, std::size_t body, double 
   RestingDeparture d;
   if (run.samples() == 0) return d;
   const double off = run.final_state(body).position.y() - expected_y;
-  if (!(std::abs(off) > tolerance)) return d;
+  if (std::abs(off) <= tolerance) return d;  // NaN departs
   // Beyond the tolerance on the side it ends on (a stack starting at its geometry is not yet
   // below the sink its law reaches).
   const auto beyond = [&](std::size_t n) {
     const double o = run.at(n, body).position.y() - expected_y;
+    if (!std::isfinite(o) || !std::isfinite(off)) return !(std::abs(o) <= tolerance);
     return std::abs(o) > tolerance && (o < 0.0) == (off < 0.0);
   };
   std::size_t first = run.samples() - 1;
@@ -94,16 +95,21 @@ RestingDeparture drift_departure(const Trajectory& run, std::size_t body, double
 }
 
 RestingDeparture stillness_departure(const Trajectory& run, std::size_t body, std::int64_t from,
-                                     double max_speed) {
+                                     double max_speed, double max_range) {
   RestingDeparture d;
   int reversals = 0;
   double last_vy = 0.0, fastest = 0.0;
   std::int64_t first_reversal = -1, last_reversal = -1;
+  Vec3 low = Vec3::Constant(INFINITY), high = Vec3::Constant(-INFINITY);
   for (std::size_t n = 0; n < run.samples(); ++n) {
     if (run.recorded[n] < from) continue;
     const Vec3& v = run.at(n, body).velocity;
+    const Vec3& x = run.at(n, body).position;
+    low = low.cwiseMin(x);
+    high = high.cwiseMax(x);
     fastest = std::max(fastest, v.norm());
-    if (d.step < 0 && !(v.norm() <= max_speed)) d.step = run.recorded[n];
+    const bool ranges = !((high - low).maxCoeff() <= max_range) || !x.allFinite();
+    if (d.step < 0 && (!(v.norm() <= max_speed) || ranges)) d.step = run.recorded[n];
     if (last_vy * v.y() < 0.0) {
       ++reversals;
       if (first_reversal < 0) first_reversal = run.recorded[n];
@@ -119,8 +125,10 @@ RestingDeparture stillness_departure(const Trajectory& run, std::size_t body, st
                       "reversals, a period of about %.3g steps): its contact has not settled",
                       fastest, reversals,
                       2.0 * static_cast<double>(last_reversal - first_reversal) / (reversals - 1))
-                : printf_string("it still moves at up to %.3g m/s without turning back: a creep",
-                                fastest);
+                : printf_string(
+                      "it still moves at up to %.3g m/s without turning back, %.3g m over the "
+                      "window: a creep",
+                      fastest, (high - low).maxCoeff());
   return d;
 }
 

@@ -36,10 +36,11 @@ RestingDeparture rest_departure(const Trajectory& run, std::size_t body, double 
 // The first step at which `body` is more than `bound` from its start across the floor (x-z).
 RestingDeparture drift_departure(const Trajectory& run, std::size_t body, double bound);
 
-// The first step from `from` on at which `body` moves faster than `max_speed`: an oscillation about
-// its rest (with its reversals) or a creep.
+// The first step from `from` on at which `body` moves faster than `max_speed`, or has spread over
+// more than `max_range` along an axis since `from`: an oscillation about its rest (with its
+// reversals) or a creep.
 RestingDeparture stillness_departure(const Trajectory& run, std::size_t body, std::int64_t from,
-                                     double max_speed);
+                                     double max_speed, double max_range);
 
 // The first step at which `body`'s height is more than `tolerance` from `path` (its law's height at
 // every step).

@@ -63,6 +63,7 @@ struct SlideVerdict {
   // tell a run's rounding from another law past that step.
   double self_off = 0.0;
   std::int64_t self_first = -1;
+  bool self_measured = false;  // false for a slide not launched (its speed starts at 0)
   // When none fits: what the engine printed during the run, and what its adapter says that means
   // (harness/judge/engine_messages.hpp); "" when it printed nothing.
   std::string engine_said;

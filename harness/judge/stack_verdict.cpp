@@ -69,9 +69,10 @@ std::vector<StackBodyVerdict> judge_stack(const Trajectory& run, const StackSetu
     if (!v.drift_ok)
       v.departure = earlier(v.departure, drift_departure(run, l.body, info.stack_law.drift_bound));
     if (!v.still_ok)
-      v.departure = earlier(
-          v.departure,
-          stillness_departure(run, l.body, from, law_still.speed + info.stack_law.still_bound));
+      v.departure =
+          earlier(v.departure, stillness_departure(run, l.body, from,
+                                                   law_still.speed + info.stack_law.still_bound,
+                                                   law_still.range + info.stack_law.still_bound));
     out.push_back(v);
   }
   // A contact the sweeps cannot hold lets the load squeeze every body of the column, those under
@@ -110,7 +111,7 @@ std::string StackBodyVerdict::sentence() const {
                        : std::string(
                              ", stillness not judged: the run ends less than 2 s after "
                              "the column's last landing");
-  if (!holds() && departure.step >= 0) text += "; " + departure.sentence();
+  if (!passes() && departure.step >= 0) text += "; " + departure.sentence();
   return text;
 }
 

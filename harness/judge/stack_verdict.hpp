@@ -34,7 +34,8 @@ struct StackBodyVerdict {
   // the floor waived where the law ends the body below it too.
   bool unheld = false;
   StackPrediction limiting;
-  // When it does not hold: the first step it departs (sink, drift or stillness), and how.
+  // When it does not hold: the first step it departs (sink, drift or stillness), and how (named in
+  // the sentence when it fails, not when a limit passes it).
   RestingDeparture departure;
   bool holds() const { return sink_ok && drift_ok && still_ok; }
   bool passes() const { return holds() || (unheld && above_floor); }

@@ -37,8 +37,9 @@ std::string verdict_word(const CheckRecord& r);
 
 // <testsuites name="dropcheck check" tests= failures= skipped=>, one <testsuite> per scene in
 // order of first appearance, one <testcase classname="SCENE.ENGINE" name="CHECK"> per record; a
-// failure's <failure message="VERDICT">, a skip's <skipped message="REASON"/>, a limit's cause in
-// <system-out>. Text is escaped; characters XML 1.0 cannot carry become U+FFFD.
+// failure's <failure message="MESSAGE"> (its figures, first departure and cause), a skip's
+// <skipped message="REASON"/>, a limit's cause in <system-out>. Text is escaped; what XML 1.0
+// cannot carry (control characters, bytes that are not UTF-8) becomes U+FFFD.
 void write_junit(std::ostream& out, const std::vector<CheckRecord>& records);
 
 // {"schema": "dropcheck-check/1", "passed", "limits", "failed", "skipped", "results": [{"scene",

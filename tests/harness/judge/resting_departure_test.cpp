@@ -72,13 +72,27 @@ TEST_CASE("A body that never stills departs at its first fast step: an oscillati
   const Trajectory run = resting_run(
       200, [](std::int64_t) { return 0.5; },
       [](std::int64_t n) { return 0.01 * std::sin(2 * std::numbers::pi * (n + 0.5) / 20.0); });
-  const RestingDeparture d = stillness_departure(run, 0, 100, 1e-3);
+  const RestingDeparture d = stillness_departure(run, 0, 100, 1e-3, 1e-3);
   CHECK(d.step == 100);
   CHECK_THAT(d.cause, Contains("oscillating about its rest") && Contains("a period of about 20"));
   const Trajectory creep = resting_run(
       200, [](std::int64_t) { return 0.5; }, [](std::int64_t n) { return n < 150 ? 0.0 : -2e-3; });
-  CHECK(stillness_departure(creep, 0, 100, 1e-3).step == 150);
-  CHECK_THAT(stillness_departure(creep, 0, 100, 1e-3).cause, Contains("a creep"));
+  CHECK(stillness_departure(creep, 0, 100, 1e-3, 1.0).step == 150);
+  CHECK_THAT(stillness_departure(creep, 0, 100, 1e-3, 1.0).cause, Contains("a creep"));
+}
+
+TEST_CASE("A height gone NaN and a slow creep past the range each name a departure",
+          "[contact][landing]") {
+  const Trajectory lost = resting_run(
+      20, [](std::int64_t n) { return n < 12 ? 0.5 : std::nan(""); },
+      [](std::int64_t) { return 0.0; });
+  CHECK(rest_departure(lost, 0, 0.5, 1e-3, 9.8).step == 12);
+  CHECK_THAT(rest_departure(lost, 0, 0.5, 1e-3, 9.8).cause, Contains("no longer finite"));
+  // 0.79 mm/s, under the speed bound, spreads past 1 mm after 126.6 steps of 0.01 s.
+  const Trajectory creep = resting_run(
+      300, [](std::int64_t n) { return 0.5 - 7.9e-6 * static_cast<double>(n); },
+      [](std::int64_t) { return -7.9e-4; });
+  CHECK(stillness_departure(creep, 0, 100, 1e-3, 1e-3).step == 227);
 }
 
 TEST_CASE("A drift and a path departure name their first step", "[contact][stack]") {

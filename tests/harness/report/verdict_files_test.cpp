@@ -13,7 +13,8 @@ TEST_CASE("check's verdict files: one case a record, failures and skips counted,
           "[check][junit]") {
   std::vector<CheckRecord> records(4);
   records[0].result = {"free_fall", "ode", "own law at h = 1/60", true, "", "max |x - law| 0 m"};
-  records[1].result = {"free_fall", "evil", "own law", false, "", "x < 1 & \"y\" > 2\x01 'z'"};
+  records[1].result = {"free_fall", "evil", "own law",
+                       false,       "",     "x < 1 & \"y\" > 2\x01 'z'\nnext \xff\xfe \xC3\xA9"};
   records[2].result = {"thin_floor", "ode", "landing", true, "tunnels", "ends below"};
   records[3].result.scene = "throw_3d";
   records[3].result.engine = "box2d";
@@ -27,7 +28,8 @@ TEST_CASE("check's verdict files: one case a record, failures and skips counted,
       Contains("<testsuites name=\"dropcheck check\" tests=\"4\" failures=\"1\" errors=\"0\" "
                "skipped=\"1\">") &&
           Contains("<testsuite name=\"free_fall\" tests=\"2\" failures=\"1\"") &&
-          Contains("x &lt; 1 &amp; &quot;y&quot; &gt; 2\xEF\xBF\xBD &apos;z&apos;") &&
+          Contains("x &lt; 1 &amp; &quot;y&quot; &gt; 2\xEF\xBF\xBD &apos;z&apos;&#10;next "
+                   "\xEF\xBF\xBD\xEF\xBF\xBD \xC3\xA9") &&
           Contains("<system-out>LIMIT tunnels; ends below</system-out>") &&
           Contains("<skipped message=\"not planar\"/>"));
   CHECK_THAT(json.str(), Contains("\"passed\": 1") && Contains("\"limits\": 1") &&
