@@ -60,6 +60,7 @@
 
 #include "adapters.hpp"
 #include "harness/core/mujoco_world.hpp"
+#include "harness/io/xml_text.hpp"
 
 namespace dropcheck {
 namespace {
@@ -109,30 +110,6 @@ std::string vec(const Vec3& v) {
   return num(v.x()) + " " + num(v.y()) + " " + num(v.z());
 }
 
-// A name as an XML attribute value (scene names are free text).
-std::string xml_escaped(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 // The geoms' defaults: no collision at all without contacts; else the world's soft contact
 // (harness/core/mujoco_world.hpp).
 std::string geom_defaults(const MujocoWorld& w) {
@@ -158,7 +135,7 @@ std::string shape_xml(const MujocoBody& b) {
 // A static body is a box geom of the worldbody; a dynamic one a body with a free joint, its exact
 // inertial and its geom. Both are named after the scene's body (MuJoCo's messages name them).
 std::string body_xml(const MujocoBody& b) {
-  const std::string name = R"( name=")" + xml_escaped(b.name) + R"(")";
+  const std::string name = R"( name=")" + xml_escape(b.name) + R"(")";
   if (b.is_static)
     return "<geom" + name + friction_xml(b) + shape_xml(b) + R"( pos=")" + vec(b.position) +
            R"("/>)";
