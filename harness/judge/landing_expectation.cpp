@@ -83,7 +83,9 @@ LandingEnd judge_landing_end(const Trajectory& run, const LandingSetup& setup,
                              const LandingObservation& seen, const LandingExpectation& expected,
                              const EngineInfo& info, const StillCriteria& still) {
   LandingEnd end = landing_end(run, setup, seen, expected, info, still);
-  end.rebounds = !expected.climb && seen.rebound - expected.rest_offset > tolerance::kMaxRebound;
+  // NaN (no contact) counts as a rebound: nothing shows it came to rest.
+  end.rebounds =
+      !expected.climb && !(seen.rebound - expected.rest_offset <= tolerance::kMaxRebound);
   if (!end.rests || !end.settled || end.rebounds)
     end.departure = landing_departure(run, setup, seen, expected, end, still);
   return end;

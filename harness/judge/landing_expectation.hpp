@@ -34,7 +34,8 @@ struct LandingEnd {
   // When it fails (rebound, rest height, stillness, its path): the first step it departs, and how.
   RestingDeparture departure;
   bool rebounds = false;  // above its expected rest by more than tolerance::kMaxRebound after
-                          // first contact (a body on a path is held to the path instead)
+                          // first contact, or no contact at all (a body on a path is held to the
+                          // path instead): the one rebound judgement of check and report
 };
 LandingEnd judge_landing_end(const Trajectory& run, const LandingSetup& setup,
                              const LandingObservation& seen, const LandingExpectation& expected,

@@ -9,16 +9,16 @@
 namespace dropcheck {
 namespace {
 
+// How many records have each verdict (verdict_word).
 struct Counts {
-  int tests = 0, failures = 0, skipped = 0;
+  int passed = 0, limits = 0, failed = 0, skipped = 0;
   void add(const CheckRecord& r) {
-    ++tests;
-    failures += !r.skipped && !r.result.passed;
-    skipped += r.skipped;
+    const std::string v = verdict_word(r);
+    (v == "pass" ? passed : v == "limit" ? limits : v == "fail" ? failed : skipped)++;
   }
   std::string attributes() const {
-    return "tests=\"" + std::to_string(tests) + "\" failures=\"" + std::to_string(failures) +
-           "\" errors=\"0\" skipped=\"" + std::to_string(skipped) + "\"";
+    return "tests=\"" + std::to_string(passed + limits + failed + skipped) + "\" failures=\"" +
+           std::to_string(failed) + "\" errors=\"0\" skipped=\"" + std::to_string(skipped) + "\"";
   }
 };
 
@@ -96,13 +96,10 @@ void write_junit(std::ostream& out, const std::vector<CheckRecord>& records) {
 void write_check_json(std::ostream& out, const std::vector<CheckRecord>& records) {
   using Json = nlohmann::ordered_json;
   Json results = Json::array();
-  int passed = 0, limits = 0, failed = 0, skipped = 0;
+  Counts n;
   for (const CheckRecord& r : records) {
+    n.add(r);
     const std::string verdict = verdict_word(r);
-    passed += verdict == "pass";
-    limits += verdict == "limit";
-    failed += verdict == "fail";
-    skipped += verdict == "skipped";
     Json e;
     e["scene"] = r.result.scene;
     e["engine"] = r.result.engine;
@@ -114,10 +111,10 @@ void write_check_json(std::ostream& out, const std::vector<CheckRecord>& records
   }
   Json doc;
   doc["schema"] = "dropcheck-check/1";
-  doc["passed"] = passed;
-  doc["limits"] = limits;
-  doc["failed"] = failed;
-  doc["skipped"] = skipped;
+  doc["passed"] = n.passed;
+  doc["limits"] = n.limits;
+  doc["failed"] = n.failed;
+  doc["skipped"] = n.skipped;
   doc["results"] = std::move(results);
   // Invalid UTF-8 in a message (an engine's bytes) is replaced, never a throw.
   out << doc.dump(2, ' ', false, Json::error_handler_t::replace) << "\n";

@@ -206,8 +206,8 @@ std::string landing_text(const Trajectory& run, const LandingSetup& setup, const
   const double rebound = o.rebound - expected.rest_offset;  // above the engine's own rest height
   // A climb path is followed at every step, its first contact sample included (which may sit up
   // to the floor shift above the path's end): the rebound limit is for bodies that come to rest.
-  const bool no_rebound = expected.climb || rebound <= tolerance::kMaxRebound;
   const LandingEnd end = judge_landing_end(run, setup, o, expected, info, still);
+  const bool no_rebound = !end.rebounds;
   passed = passed && on_time && no_rebound && end.rests && end.settled;
   return fmt("first contact at step %.0f (law: step %.0f; continuous t = %.4f s)",
              double(o.first_contact_step), double(law_step), setup.contact_time) +
