@@ -120,6 +120,13 @@ Baseline make_baseline(const Scene& scene, const EngineFactory& make,
   out.skipped = engine->cannot_run(scene);
   if (!out.skipped.empty()) return out;
 
+  // What the baseline keeps of the run at the scene's own step.
+  const auto keep = [&](const Trajectory& run) {
+    out.status = status_text(run);
+    out.hash = trajectory_hash_hex(run);
+    out.samples = downsample(run, out.record_every);
+    out.contact = contact_figures(scene, run);
+  };
   bool default_in_sweep = false;
   for (const Timestep& dt : scene_sweep(scene)) {
     const Trajectory run = run_scene(*make(), scene, dt.seconds);
@@ -127,18 +134,9 @@ Baseline make_baseline(const Scene& scene, const EngineFactory& make,
     if (options.timing) add_timing(scene, make, info.name, out.sweep.back());
     if (!same_step(dt.seconds, scene.timestep.seconds)) continue;
     default_in_sweep = true;
-    out.status = status_text(run);
-    out.hash = trajectory_hash_hex(run);
-    out.samples = downsample(run, out.record_every);
-    out.contact = contact_figures(scene, run);
+    keep(run);
   }
-  if (!default_in_sweep) {
-    const Trajectory run = run_scene(*make(), scene, scene.timestep.seconds);
-    out.status = status_text(run);
-    out.hash = trajectory_hash_hex(run);
-    out.samples = downsample(run, out.record_every);
-    out.contact = contact_figures(scene, run);
-  }
+  if (!default_in_sweep) keep(run_scene(*make(), scene, scene.timestep.seconds));
   return out;
 }
 
