@@ -45,6 +45,7 @@ std::string describe(const BounceLaw& law) {
     text += ", " + contact_distance_text(law);
   if (law.touching) text += ", a touch (gap 0) is a contact";
   if (law.cfm > 0.0) text += ", " + cfm_text(law);
+  if (law.resolved_after_position) text += ", the contact resolved after the position update";
   return text;
 }
 

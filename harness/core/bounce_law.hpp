@@ -19,7 +19,8 @@
 //   v     <- max(v_free, (cfm*v_free + target)/(1 + cfm))
 //            (the contact only pushes; a regularised row, solved against (1 + cfm) times its
 //            diagonal entry, stops 1/(1 + cfm) of the way from v_free to its target)
-// and then x += h*v. Out of contact the sphere flies as semi-implicit Euler.
+// and then x += h*v (x += h*v_free for a contact resolved after the position update, a neighbour no
+// engine declares). Out of contact the sphere flies as semi-implicit Euler.
 #pragma once
 
 #include <limits>
@@ -48,6 +49,9 @@ struct BounceLaw {
   bool threshold_on_rebound = false;
   double max_rebound = std::numeric_limits<double>::infinity();  // m/s: the restitution's cap
   double cfm = 0.0;  // constraint force mixing relative to the contact row's diagonal entry
+  // The position moves with v_free before the contact is resolved (a neighbour `check` names; no
+  // engine declares it): the contact changes the velocity and not the step's position.
+  bool resolved_after_position = false;
 };
 
 // The ideal member: restitution of the step-start approach, no push-out, no threshold.

@@ -13,7 +13,9 @@
 #include "harness/oracles/contact_laws.hpp"
 #include "harness/oracles/discrete_law.hpp"
 #include "harness/oracles/identify_rotation.hpp"
+#include "harness/oracles/landing.hpp"
 #include "harness/oracles/own_arithmetic.hpp"
+#include "harness/oracles/stack.hpp"
 #include "harness/run/runner.hpp"
 #include "harness/study/sweep.hpp"
 #include "harness/timing/timing.hpp"
@@ -147,7 +149,9 @@ std::vector<ContactFigure> contact_figures(const Scene& scene, const Trajectory&
   const auto add = [&](const std::string& name, double value) {
     if (std::isfinite(value) && out.size() < kMaxContactFigures) out.push_back({name, value});
   };
+  std::vector<char> judged(scene.bodies.size(), 0);  // by a slide or a bounce
   for (const SlideSetup& s : slide_setups(scene)) {
+    judged[s.body] = 1;
     const SlideObservation o = observe_slide(observed_slide_path(run, s), tolerance::kStoppedSpeed,
                                              tolerance::kSlideDistance);
     const std::string& body = scene.bodies[s.body].name;
@@ -155,6 +159,7 @@ std::vector<ContactFigure> contact_figures(const Scene& scene, const Trajectory&
     add(body + ".distance", o.distance);
   }
   for (const BounceSetup& s : bounce_setups(scene)) {
+    judged[s.body] = 1;
     const BouncePath path = observed_path(run, s);
     const BounceObservation o = observe_bounce(path.gap, path.v, s.g, run.h);
     const std::string& body = scene.bodies[s.body].name;
@@ -162,6 +167,17 @@ std::vector<ContactFigure> contact_figures(const Scene& scene, const Trajectory&
     for (std::size_t i = 0; i < o.apexes.size(); ++i)
       add(body + ".apex_" + std::to_string(i + 1), o.apexes[i]);
   }
+  for (const LandingExclusion& x : landing_exclusions(scene)) judged[x.body] = 1;
+  for (const LandingSetup& s : landing_setups(scene)) {
+    if (judged[s.body]) continue;
+    const std::string& body = scene.bodies[s.body].name;
+    add(body + ".first_contact_step", static_cast<double>(first_contact_step(run, s)));
+    add(body + ".rest_offset", run.final_state(s.body).position.y() - s.rest_height);
+  }
+  for (const StackSetup& s : stack_setups(scene))
+    for (const StackLevel& l : s.levels)
+      add(scene.bodies[l.body].name + ".sink",
+          l.rest_height - run.final_state(l.body).position.y());
   return out;
 }
 

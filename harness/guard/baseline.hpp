@@ -82,15 +82,17 @@ struct Baseline {
       sweep;                 // scene_sweep(scene) (harness/study/sweep.hpp): largest step first
   std::string failed_tiers;  // written as a "# FAILED ..." comment by `bless --out` (not parsed)
   // The run at dt in contact terms (contact_figures): each slide's stop step (-1: never) and
-  // distance, each bounce's first contact step and first three apexes.
+  // distance, each bounce's first contact step and first three apexes, each landing's first
+  // contact step and rest offset, each stacked level's sink.
   std::vector<ContactFigure> contact;
 };
 
 // At most this many contact figures in a baseline (the reader's bound).
 inline constexpr std::size_t kMaxContactFigures = 4096;
 
-// What `run` (every step kept) shows of the slides and bounces of `scene` (contact_laws.hpp): at
-// most kMaxContactFigures, the rest left out.
+// What `run` (every step kept) shows of the slides and bounces of `scene` (contact_laws.hpp), of
+// its landings (landing.hpp: the bodies alone over a floor that neither slide nor bounce) and of
+// its stacks (stack.hpp): at most kMaxContactFigures, the rest left out.
 std::vector<ContactFigure> contact_figures(const Scene& scene, const Trajectory& run);
 
 // How make_baseline samples and whether it times.

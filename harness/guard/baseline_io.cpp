@@ -73,7 +73,8 @@ std::string baseline_to_text(const Baseline& b) {
   for (const SweepPoint& p : b.sweep) out += sweep_line(p);
   for (const SweepPoint& p : b.sweep)
     if (!std::isnan(p.wall_min)) out += timing_line(p);
-  if (!b.contact.empty()) out += "# contact: what the run at dt shows of its slides and bounces\n";
+  if (!b.contact.empty())
+    out += "# contact: what the run at dt shows of its slides, bounces, landings and stacks\n";
   for (const ContactFigure& f : b.contact) out += "contact " + f.name + " " + exact(f.value) + "\n";
   return out + samples_text(b.samples);
 }

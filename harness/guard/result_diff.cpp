@@ -118,10 +118,13 @@ std::string curves_section(const ResultSet& before, const ResultSet& after) {
   return out;
 }
 
-// A contact figure as its name reads: a step as an integer ("never" for -1), a distance or height
-// in m to 7 digits; "-" when the set has no such figure.
+// A contact figure as its name reads: a step as an integer ("never" for -1; a stop step -1 "slides
+// on" and 0 "never moves"), a distance or height in m to 7 digits; "-" when the set has no such
+// figure.
 std::string figure_text(const std::string& name, const ContactFigure* f) {
   if (!f) return "-";
+  if (name.ends_with(".stop_step") && f->value <= 0.0)
+    return f->value < 0.0 ? "slides on" : "never moves";
   if (name.ends_with("_step"))
     return f->value < 0.0 ? "never" : std::to_string(static_cast<long long>(f->value));
   return digits(f->value, 7) + " m";
@@ -166,9 +169,11 @@ std::string contact_section(const ResultSet& before, const ResultSet& after) {
       std::to_string(same) + (same == 1 ? " figure identical" : " figures identical");
   if (rows.empty())
     return "\n## Contact\n\nNo contact figure moved (" + identical +
-           ": slides' stop steps and distances, bounces' first contacts and apexes).\n";
+           ": slides' stop steps and distances, bounces' first contacts and apexes, landings' "
+           "first contacts and rest offsets, stacked levels' sinks).\n";
   return "\n## Contact\n\nEach slide's stop step and distance, each bounce's first contact step "
-         "and apexes, at the scene's step, where they differ (" +
+         "and apexes, each landing's first contact step and rest offset, each stacked level's "
+         "sink, at the scene's step, where they differ (" +
          identical +
          ").\n\n| scene | engine | figure | before -> after |\n"
          "|---|---|---|---|\n" +

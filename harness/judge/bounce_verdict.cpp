@@ -134,6 +134,11 @@ void name_bounce_neighbour(BounceVerdict& v, const BouncePath& seen, const Bounc
        law.free_approach ? "its law with the restitution of the step-start approach"
                          : "its law with the restitution of the approach after the step's gravity "
                            "(applied one step late)");
+  BounceLaw late = law;
+  late.resolved_after_position = true;
+  take(late, s.e,
+       "its law with the contact resolved after the position update (the position moves with the "
+       "speed before the contact)");
   take({.erp = 1.0, .push_in_position = true, .touching = true}, s.e,
        "the law that snaps the body to the surface at contact (" +
            describe(BounceLaw{.erp = 1.0, .push_in_position = true, .touching = true}) + ")");
@@ -253,9 +258,9 @@ std::string BounceVerdict::sentence() const {
   else if (!follows && !solver)
     text +=
         ": UNEXPLAINED, no neighbouring member fits (the ideal law, the restitution applied twice, "
-        "the approach read on the other side of the step's gravity, the body snapped to the "
-        "surface); `dropcheck identify SCENE --engine E` lays its run beside every declared "
-        "bounce law";
+        "the approach read on the other side of the step's gravity, the contact resolved after the "
+        "position update, the body snapped to the surface); `dropcheck identify SCENE --engine E` "
+        "lays its run beside every declared bounce law";
   if (law_to_ideal > tolerance::kBouncePath) {
     text += printf_string("; its law is %.3g m off the ideal law (apexes ", law_to_ideal) +
             apex_text(ideal.apexes) + ")";

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "harness/core/law.hpp"
 #include "harness/core/number_format.hpp"
 #include "harness/judge/tolerances.hpp"
 
@@ -10,6 +11,9 @@ namespace dropcheck {
 LandingExpectation landing_expectation(const EngineInfo& info, const Scene& scene, double h,
                                        const LandingSetup& setup) {
   LandingExpectation e{info.rest_offset, info.rest_tolerance, climb_path(info, scene, h, setup)};
+  Vec3 x = Vec3::Zero(), v = Vec3::Zero();
+  advance(info.law, decay_per_step(scene, h), h, scene.world.gravity, x, v);
+  e.one_step_fall = -x.y();
   if (!e.climb) e.climb = replayed_landing_path(info, scene, h, setup);
   if (e.climb) {
     e.rest_offset = e.climb->y.back() - setup.rest_height;
@@ -69,7 +73,8 @@ RestingDeparture landing_departure(const Trajectory& run, const LandingSetup& se
   if (end.rebounds)
     d = rebound_departure(run, setup.body, seen.first_contact_step, rest_y, tolerance::kMaxRebound);
   if (!end.rests)
-    d = earlier(d, rest_departure(run, setup.body, rest_y, expected.tolerance, setup.weight));
+    d = earlier(d, rest_departure(run, setup.body, rest_y, expected.tolerance, setup.weight,
+                                  expected.one_step_fall));
   if (!end.settled && seen.still_judged)
     d = earlier(d, stillness_departure(run, setup.body,
                                        run.recorded.back() - std::llround(still.seconds / run.h),

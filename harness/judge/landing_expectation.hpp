@@ -18,6 +18,10 @@ struct LandingExpectation {
   double rest_offset = 0.0;        // m: the centre's expected final offset from the rest height
   double tolerance = 0.0;          // m
   std::optional<ClimbPath> climb;  // set: judged by the path, not by stillness
+  // m: how far its law moves a body in one step from rest (g*h^2*phi for semi-implicit Euler):
+  // what a contact resolved after the position update leaves it below its rest, the cause a rest
+  // height that far low is named by.
+  double one_step_fall = 0.0;
 };
 
 LandingExpectation landing_expectation(const EngineInfo& info, const Scene& scene, double h,

@@ -29,9 +29,11 @@ RestingDeparture rebound_departure(const Trajectory& run, std::size_t body, std:
 
 // The first step of the run's last stretch in which `body`'s height stays more than `tolerance`
 // from `expected_y`: resting too low (a soft contact's sag, with the spring that would hold the
-// weight m*g there) or too high (pushed out beyond its rest).
+// weight m*g there) or too high (pushed out beyond its rest). A body resting `one_step_fall` low
+// (its law's move in one step from rest, to 1e-3 of it) has its contact resolved after the position
+// update: each step it falls that far before the push-out returns the depth the step started with.
 RestingDeparture rest_departure(const Trajectory& run, std::size_t body, double expected_y,
-                                double tolerance, double weight);
+                                double tolerance, double weight, double one_step_fall = 0.0);
 
 // The first step at which `body` is more than `bound` from its start across the floor (x-z).
 RestingDeparture drift_departure(const Trajectory& run, std::size_t body, double bound);

@@ -267,7 +267,7 @@ class BounceStepper {
     } else {
       v_ = v_free;
     }
-    gap_ += h_ * v_ + moved;
+    gap_ += h_ * (law_.resolved_after_position ? v_free : v_) + moved;
   }
   double gap() const { return gap_; }
   double v() const { return v_; }

@@ -142,8 +142,9 @@ ContactLawIdentity identify_bounce_law(const Scene& scene, Engine& engine, doubl
     id.declared = describe(own.contact_solver) + ", replayed";
     id.fits.push_back({id.declared, {own.name}, v.not_judged.empty(), v.follows, bounce_detail(v)});
   }
-  // The declared member first, then the ideal law, then every other adapter's, each once with
-  // the engines that declare it.
+  // The declared member first, then the ideal law and the declared member with its contact
+  // resolved after the position update (a neighbour no adapter declares), then every other
+  // adapter's, each once with the engines that declare it.
   std::vector<std::pair<BounceLaw, std::vector<std::string>>> members;
   const auto add = [&](const BounceLaw& law, const std::string& engine) {
     auto same = std::find_if(members.begin(), members.end(),
@@ -154,6 +155,9 @@ ContactLawIdentity identify_bounce_law(const Scene& scene, Engine& engine, doubl
   };
   add(own.bounce_law, "");
   add(kIdealBounce, "");
+  BounceLaw late = own.bounce_law;
+  late.resolved_after_position = true;
+  add(late, "");
   // A replayed solver's engine declares no member of the law: its replay is its law.
   for (const EngineInfo& info : declared_members())
     if (info.capabilities.restitution && !replayed(info.contact_solver))
