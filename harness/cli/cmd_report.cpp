@@ -163,8 +163,9 @@ const CommandSpec& report_spec() {
        {"--engine", "E", "an engine to include (repeatable; default: every engine dropcheck knows)",
         true},
        {"--reference", "E",
-        "the engine divergences are measured from (default: ours-f64; on a scene it does not run, "
-        "the first engine that ran it, named in that scene's section)"},
+        "the engine divergences are measured from, named in every header (default: ours-f64, or "
+        "the first engine given when ours-f64 is not; on a scene it does not run, the first "
+        "engine that ran it, named in that scene's section)"},
        {"--no-timing", "", "leave out the wall-clock timings"},
        {"--compare-timings", "FILE",
         "the timings.json the slowdown alert compares with (default: the one in --out)"},
@@ -224,8 +225,18 @@ int cmd_report(const std::vector<std::string>& argv, std::ostream& out, std::ost
     throw InputError("", 0, "--reference " + options.reference,
                      "not one of the engines this report runs (give it with --engine too, or "
                      "leave out --engine)");
+  // Without --reference: ours-f64 when it runs, else the first engine that does.
+  if (!args.has("--reference") &&
+      std::none_of(slots.begin(), slots.end(),
+                   [&](const EngineSlot& s) { return s.name == options.reference && s.make; }))
+    for (const EngineSlot& s : slots)
+      if (s.make) {
+        options.reference = s.name;
+        break;
+      }
 
   ReportInput in;
+  in.reference = options.reference;
   in.timing = !args.has("--no-timing");
   in.provenance = current_provenance(".", out_dir);
   in.machine = this_machine();

@@ -21,6 +21,9 @@ struct ReportInput {
   std::vector<EngineInfo> engines;  // the engines compiled in, in registry order
   std::vector<std::pair<std::string, std::string>> missing;  // engines not compiled in: name, why
   std::vector<SceneEvaluation> scenes;
+  // The engine divergences are measured from (EvaluateOptions::reference), named in every header;
+  // a scene it did not run says which engine stood in.
+  std::string reference = "ours-f64";
   bool timing = true;            // timing columns, overhead and work-precision plots
   TimingOptions timing_options;  // as used, for the note on how timings are made
   std::string stability;         // Markdown of the stability section ("" when none)

@@ -22,6 +22,26 @@ TEST_CASE("report --reference measures the divergences from the engine asked for
   const std::string md = slurp(d.file("r/README.md"));
   CHECK_THAT(md, Contains("#### Divergence from ode at h = 1/60"));
   CHECK_THAT(md, !Contains("Divergence from ours-f64"));
+  // Every header names it: the summary's column and note, the introduction, the method.
+  CHECK_THAT(md, Contains("| max divergence from ode |") &&
+                     Contains("over the run from ode at the same step") &&
+                     Contains("and against ode, and the divergence") &&
+                     Contains("- Divergence: distance from ode at the same step"));
+  CHECK_THAT(md, !Contains("from ours-f64") && !Contains("against ours-f64"));
+}
+
+TEST_CASE("report without ours-f64 measures from the first engine given and says so everywhere",
+          "[cli][report]") {
+  ScratchDir d("report-reference-first");
+  const std::string scene = d.write("fall.toml", scene_head("0.5", "1/60", kEarth) +
+                                                     body_text("cube", "[0.0, 10.0, 0.0]", kZero));
+  const Result r = cli({"report", scene, "--out", d.file("r"), "--engine", "ode", "--engine",
+                        "ours", "--no-timing"});
+  REQUIRE(r.code == 0);
+  const std::string md = slurp(d.file("r/README.md"));
+  CHECK_THAT(md, Contains("| max divergence from ode |") &&
+                     Contains("#### Divergence from ode at h = 1/60"));
+  CHECK_THAT(md, !Contains("ours-f64"));
 }
 
 TEST_CASE("report --reference with an engine it does not run is refused before any work",
