@@ -23,6 +23,7 @@
 #include "harness/core/input_error.hpp"
 #include "harness/core/number_format.hpp"
 #include "harness/core/registry.hpp"
+#include "harness/core/trajectory_hash.hpp"
 #include "harness/io/bounded_read.hpp"
 #include "harness/io/trajectory_io.hpp"
 #include "harness/process/child_process.hpp"
@@ -337,6 +338,38 @@ ExecSpec parse_exec_spec(const std::string& name) {
   if (std::string p = program_problem(spec.command[0], ""); !p.empty())
     throw InputError("", 0, "--engine " + excerpt(name), p);
   return spec;
+}
+
+// The largest file an external engine's fingerprint reads (a script, a compiled engine).
+constexpr std::int64_t kMaxFingerprintBytes = 64LL << 20;
+
+std::optional<ExternalEngineId> external_engine_id(const std::string& name) {
+  if (!is_exec_spec(name)) return std::nullopt;
+  const ExecSpec spec = parse_exec_spec(name);
+  std::string bytes;  // each part with its tag and length, so that no two engines run together
+  const auto add = [&](const char* tag, const std::string& part) {
+    bytes += std::string(tag) + '\0' + std::to_string(part.size()) + '\0' + part;
+  };
+  if (!spec.file.empty())
+    add("file", read_regular_file(spec.file, kMaxEngineFileBytes, "64 KiB, for an engine file"));
+  for (const std::string& word : spec.command) {
+    add("word", word);
+    std::filesystem::path p(word);
+    if (p.is_relative() && !spec.cwd.empty()) p = std::filesystem::path(spec.cwd) / p;
+    std::error_code ec;
+    if (!word.empty() && std::filesystem::is_regular_file(p, ec))
+      add("bytes", read_regular_file(p.string(), kMaxFingerprintBytes,
+                                     "64 MiB, for a file an external engine runs"));
+  }
+  ExternalEngineId id;
+  id.name = !spec.name.empty()  ? spec.name
+            : spec.file.empty() ? std::filesystem::path(spec.command[0]).filename().string()
+                                : std::filesystem::path(spec.file).stem().string();
+  if (std::string p = engine_name_problem(id.name, known_engine_names()); !p.empty())
+    throw InputError(spec.file, 0, spec.file.empty() ? "exec:" : "name",
+                     p + " (an engine file's `name` key names it)");
+  id.fingerprint = fnv1a_hex(bytes);
+  return id;
 }
 
 std::unique_ptr<Engine> make_exec_engine(const ExecSpec& spec) {

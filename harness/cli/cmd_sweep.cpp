@@ -5,6 +5,7 @@
 #include "args.hpp"
 #include "cli.hpp"
 #include "harness/core/input_error.hpp"
+#include "harness/core/registry.hpp"
 #include "harness/io/atomic_file.hpp"
 #include "harness/io/output_plan.hpp"
 #include "harness/plan/shard.hpp"
@@ -34,9 +35,51 @@ const CommandSpec& sweep_spec() {
        {"--jobs", "J",
         "run J cells side by side (default: every core this process may use, as its CPU "
         "affinity says: what a Slurm task or taskset gives it)"},
+       {"--engine-file", "FILE",
+        "an engine file (NAME.toml) or exec:PATH the plan names (repeatable): a plan never starts "
+        "a program by itself, and each is checked against the fingerprint it was planned with",
+        true},
        {"--quiet", "", "no progress line per cell"}}};
   return spec;
 }
+
+namespace {
+
+// Each external engine of the plan authorised by an --engine-file of the same id (the same name
+// and fingerprint), before any cell runs.
+void authorise_external(Plan& plan, const Args& args) {
+  for (const std::string& f : args.values("--engine-file")) {
+    const std::string key = "--engine-file " + excerpt(f);
+    const std::optional<ExternalEngineId> id = external_engine_id(f);
+    if (!id) throw InputError("", 0, key, "not an engine file (NAME.toml) or exec:PATH");
+    const auto named = [&](const std::string& prefix) {
+      return std::find_if(plan.external.begin(), plan.external.end(),
+                          [&](const ExternalEngine& e) { return e.id.starts_with(prefix); });
+    };
+    const auto e = named(id->id());
+    if (e != plan.external.end()) {
+      e->runs = f;
+      continue;
+    }
+    const auto same_name = named(id->name + "@");
+    throw InputError(
+        "", 0, key,
+        same_name == plan.external.end()
+            ? id->id() + " is not an engine of plan " + plan.hash
+            : "is " + id->id() + " now, and the plan has " + same_name->id +
+                  ": the engine file or what it runs changed since `dropcheck plan` (plan the "
+                  "sweep again: a changed engine is another engine, with other cells)");
+  }
+  for (const ExternalEngine& e : plan.external)
+    if (e.runs.empty())
+      throw InputError("", 0, "--engine-file",
+                       "plan " + plan.hash + " runs the external engine " + e.id +
+                           (e.file.empty() ? "" : " (planned from " + excerpt(e.file) + ")") +
+                           ": a plan never starts a program by itself; give its engine file with "
+                           "--engine-file");
+}
+
+}  // namespace
 
 int cmd_sweep(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
   const Args args = parse_args(sweep_spec(), argv);
@@ -60,7 +103,8 @@ int cmd_sweep(const std::vector<std::string>& argv, std::ostream& out, std::ostr
                            ", got " + excerpt(j));
     jobs = parsed;
   }
-  const Plan plan = read_plan(args.positional[0]);
+  Plan plan = read_plan(args.positional[0]);
+  authorise_external(plan, args);
   std::vector<std::size_t> cells;
   std::string name;
   if (args.has("--shard")) {
@@ -77,6 +121,8 @@ int cmd_sweep(const std::vector<std::string>& argv, std::ostream& out, std::ostr
   OutputPlan files;
   files.read(args.positional[0]);
   if (args.has("--cells-from")) files.read(args.value("--cells-from"));
+  for (const std::string& f : args.values("--engine-file"))
+    if (!f.starts_with("exec:")) files.read(f);
   files.write_into("--out", dir);
   files.write_entry("--out", target);
   if (args.has("--cache")) files.write_into("--cache", args.value("--cache"));

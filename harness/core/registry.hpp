@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,21 @@ std::vector<std::string> available_engine_names();
 // A fresh engine by name; nullptr when the name is unknown or not compiled in. "exec:PATH" and
 // "FILE.toml" name external engines (docs/protocol.md); a malformed one throws InputError.
 std::unique_ptr<Engine> make_engine(const std::string& name);
+
+// An external engine as a plan names it without starting it (a plan is data): its name (the engine
+// file's `name` key, else the file's stem; for exec:PATH the program's file name) and a fingerprint
+// of what it runs, FNV-1a over the engine file's bytes, its command's words and the bytes of each
+// word that names a file (the program, a script; an interpreter found on PATH is not hashed). A
+// changed engine file or script is another engine, so its cells are other cells.
+struct ExternalEngineId {
+  std::string name;         // 1-64 of A-Z a-z 0-9 . _ + -
+  std::string fingerprint;  // 16 hex digits
+  std::string id() const { return name + "@" + fingerprint; }
+};
+
+// nullopt for a registry name. Throws InputError for a malformed engine file, a name that is not a
+// valid engine name, or a file it runs that is larger than 64 MiB.
+std::optional<ExternalEngineId> external_engine_id(const std::string& name);
 
 // Why `name` is not available ("unknown engine", "not compiled in: ..."); empty when it is.
 // Throws InputError for a malformed external engine name (an engine file with a bad key, ...).

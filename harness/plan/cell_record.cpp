@@ -146,8 +146,16 @@ CellRecord run_cell(const Plan& plan, const Cell& cell, Isolation isolation,
   } catch (const InputError& e) {
     return finish(r, "invalid", e.what());
   }
-  std::unique_ptr<Engine> engine = make_engine(c.engine);
-  if (!engine) return finish(r, "skipped", c.engine + ": " + engine_unavailable_reason(c.engine));
+  // An external engine starts as `sweep --engine-file` named it; a scalar axis may have turned ours
+  // into ours-f64.
+  const std::string start =
+      c.engine == plan.engines[cell.engine] ? plan.runs(cell.engine) : c.engine;
+  std::unique_ptr<Engine> engine = start.empty() ? nullptr : make_engine(start);
+  if (!engine)
+    return finish(r, "skipped",
+                  c.engine + ": " +
+                      (start.empty() ? "an external engine not given to `sweep --engine-file`"
+                                     : engine_unavailable_reason(start)));
   const EngineInfo info = engine->info();
   r["engine"] = record_engine_json(info);
   r["h"] = c.h.text;

@@ -19,6 +19,15 @@ using Json = nlohmann::ordered_json;
 
 constexpr const char* kPlanFormat = "dropcheck-plan/1";
 
+// An external engine's id: NAME@FP, NAME 1-64 of A-Z a-z 0-9 . _ + -, FP 16 hex digits.
+bool external_id(const std::string& e) {
+  const std::size_t at = e.rfind('@');
+  if (at == std::string::npos || at == 0 || at > 64 || e.size() != at + 17) return false;
+  return e.find_first_not_of(
+             "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._+-") == at &&
+         e.find_first_not_of("0123456789abcdef", at + 1) == std::string::npos;
+}
+
 // Checks that each value of each axis applies to each scene on its own, and that each engine's run
 // there is within the limits a run is held to (run_limits.hpp: steps, recorded samples' memory,
 // float range), so that `run --dt` and a plan refuse the same steps. The product is not built: a
@@ -54,6 +63,12 @@ Json content(const Plan& p, bool paths = true) {
   if (paths) j["sweep"] = p.sweep;
   j["description"] = p.description;
   j["engines"] = p.engines;
+  if (paths && !p.external.empty()) {
+    Json external = Json::array();
+    for (const ExternalEngine& e : p.external)
+      external.push_back({{"engine", e.id}, {"file", e.file}});
+    j["external"] = external;
+  }
   Json measures = Json::array();
   for (Measure m : p.measures) measures.push_back(to_string(m));
   j["measure"] = measures;
@@ -114,12 +129,31 @@ Plan from_json(const Json& j) {
   p.sweep = j.at("sweep").get<std::string>();
   p.description = j.at("description").get<std::string>();
   p.engines = j.at("engines").get<std::vector<std::string>>();
-  // Only a registry name (lower-case letters, digits, '-'): a plan is data, and an external engine
-  // ("exec:PATH", "FILE.toml") is a program to start. A name this build lacks is a skipped cell.
-  for (const std::string& e : p.engines)
+  // A registry name (lower-case letters, digits, '-'), or an external engine's id NAME@FP: a plan
+  // is data and names no program to start (`sweep --engine-file` does). A name this build lacks is
+  // a skipped cell.
+  for (const std::string& e : p.engines) {
+    if (external_id(e)) {
+      p.external.push_back({e, "", ""});
+      continue;
+    }
     if (e.empty() || e.size() > 32 ||
         e.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-") != std::string::npos)
       throw std::invalid_argument("unknown engine " + excerpt(e));
+  }
+  if (j.contains("external"))
+    for (const Json& x : j.at("external")) {
+      const std::string id = x.at("engine").get<std::string>(),
+                        file = x.at("file").get<std::string>();
+      const auto e = std::find_if(p.external.begin(), p.external.end(),
+                                  [&](const ExternalEngine& k) { return k.id == id; });
+      if (e == p.external.end() || !e->file.empty())
+        throw std::invalid_argument("external engine " + excerpt(id) +
+                                    " is not one of the engines");
+      if (find_unsafe_in_line(file) != std::string::npos || file.size() > 4096)
+        throw std::invalid_argument("external engine " + excerpt(id) + "'s file " + excerpt(file));
+      e->file = file;
+    }
   for (const Json& m : j.at("measure")) {
     const std::optional<Measure> measure = measure_named(m.get<std::string>());
     if (!measure) throw std::invalid_argument("unknown measure " + excerpt(m.get<std::string>()));
@@ -178,6 +212,12 @@ Cell Plan::cell(std::size_t i) const {
   return c;
 }
 
+std::string Plan::runs(std::size_t engine) const {
+  for (const ExternalEngine& e : external)
+    if (e.id == engines[engine]) return e.runs;
+  return engines[engine];
+}
+
 bool Plan::has(Measure m) const {
   return std::find(measures.begin(), measures.end(), m) != measures.end();
 }
@@ -187,6 +227,7 @@ Plan make_plan(const SweepSpec& sweep, std::span<const EngineInfo> engines) {
   p.sweep = sweep.file;
   p.description = sweep.description;
   p.engines = sweep.engines;
+  p.external = sweep.external;
   p.axes = sweep.axes;
   p.measures = sweep.measures;
   std::set<std::string> names;

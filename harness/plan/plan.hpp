@@ -34,12 +34,16 @@ struct Plan {
   std::string sweep;  // the sweep file it was planned from
   std::string description;
   std::vector<PlanScene> scenes;
-  std::vector<std::string> engines;
+  std::vector<std::string> engines;      // registry names and external engines' ids (NAME@FP)
+  std::vector<ExternalEngine> external;  // one per external id, in engine order
   std::vector<Axis> axes;
   std::vector<Measure> measures;
   std::string hash;  // FNV-1a of the plan's JSON without this field: 16 hex digits
 
   std::size_t cell_count() const;
+  // What to start for engines[i]: a registry name as it is; an external engine's `runs` ("" until
+  // `sweep --engine-file` authorised it).
+  std::string runs(std::size_t engine) const;
   Cell cell(std::size_t i) const;  // i < cell_count(), in plan order
   bool has(Measure m) const;
 };

@@ -8,6 +8,7 @@
 
 #include "harness/core/input_error.hpp"
 #include "harness/core/number_format.hpp"
+#include "harness/core/registry.hpp"
 #include "harness/core/timestep.hpp"
 #include "harness/io/bounded_read.hpp"
 #include "harness/scene/toml_reader.hpp"
@@ -84,17 +85,42 @@ void add_scenes(const Reader& r, const std::string& entry, std::size_t i,
   out.push_back(p.lexically_normal().string());
 }
 
-std::vector<std::string> load_engines(const Reader& r, const std::vector<std::string>& known) {
-  std::vector<std::string> engines = string_list(r, "engines");
+bool names_external(const std::string& e) {
+  return e.starts_with("exec:") || e.ends_with(".toml");
+}
+
+// An engine file or exec:PATH, its path relative to the sweep file's folder: resolved, read and
+// fingerprinted (never started).
+ExternalEngine load_external(const Reader& r, const std::string& key, const std::string& e) {
+  const bool exec = e.starts_with("exec:");
+  fs::path p(exec ? e.substr(5) : e);
+  if (p.is_relative()) p = fs::path(r.file()).parent_path() / p;
+  const std::string file = (exec ? "exec:" : "") + p.lexically_normal().string();
+  try {
+    return {external_engine_id(file).value().id(), file, ""};
+  } catch (const InputError& x) {
+    r.fail(key, "engine " + excerpt(e) + ": " + x.what());
+  }
+}
+
+void load_engines(const Reader& r, const std::vector<std::string>& known, SweepSpec& out) {
+  const std::vector<std::string> engines = string_list(r, "engines");
   std::set<std::string> seen;
   for (std::size_t i = 0; i < engines.size(); ++i) {
     const std::string key = "engines[" + std::to_string(i) + "]";
     const std::string& e = engines[i];
-    if (!seen.insert(e).second) r.fail(key, "engine " + excerpt(e) + " listed twice");
-    if (std::find(known.begin(), known.end(), e) == known.end())
-      r.fail(key, "unknown engine " + excerpt(e) + " (dropcheck engines lists them)");
+    std::string id = e;
+    if (names_external(e)) {
+      out.external.push_back(load_external(r, key, e));
+      id = out.external.back().id;
+    } else if (std::find(known.begin(), known.end(), e) == known.end()) {
+      r.fail(key, "unknown engine " + excerpt(e) +
+                      " (`dropcheck engines` lists the built-in ones; an external engine is an "
+                      "engine file NAME.toml or exec:PATH)");
+    }
+    if (!seen.insert(id).second) r.fail(key, "engine " + excerpt(e) + " listed twice");
+    out.engines.push_back(id);
   }
-  return engines;
 }
 
 std::vector<Measure> load_measures(const Reader& r) {
@@ -214,7 +240,7 @@ SweepSpec load_sweep(const std::string& path, const std::vector<std::string>& kn
   s.description = r.string("description", "");
   const std::vector<std::string> entries = string_list(r, "scenes");
   for (std::size_t i = 0; i < entries.size(); ++i) add_scenes(r, entries[i], i, s.scene_files);
-  s.engines = load_engines(r, known_engines);
+  load_engines(r, known_engines, s);
   s.measures = load_measures(r);
   // Counted as the axes load, so that a sweep asking for more cells stops before it allocates them.
   double cells = static_cast<double>(s.scene_files.size() * s.engines.size());

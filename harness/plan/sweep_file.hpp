@@ -33,18 +33,29 @@ struct Axis {
 // What a cell records besides its status (docs/results.md).
 enum class Measure { error, own_law, stability, hash, timing };
 
+// An external engine of a sweep (an engine file or exec:PATH; docs/protocol.md): the id its cells
+// carry, NAME@FINGERPRINT (harness/core/registry.hpp: a changed engine is another engine), and
+// where it was found. A plan never starts it by itself: `sweep --engine-file FILE` names what runs
+// it, checked against the fingerprint (`runs`).
+struct ExternalEngine {
+  std::string id;
+  std::string file;  // "DIR/NAME.toml" or "exec:PATH", resolved from the sweep file's folder
+  std::string runs;  // what `sweep` starts for it; "" until a --engine-file of that id is given
+};
+
 struct SweepSpec {
   std::string file;
   std::string description;
   std::vector<std::string> scene_files;  // as resolved: a folder gives its *.toml files, sorted
-  std::vector<std::string> engines;
+  std::vector<std::string> engines;      // registry names and external engines' ids
+  std::vector<ExternalEngine> external;
   std::vector<Axis> axes;
   std::vector<Measure> measures;
 };
 
 // Reads and validates a sweep file. Throws InputError naming the file, line, key and problem for
 // a syntax error, an unknown key, a scene path that is not a scene file or folder, an engine not
-// in `known_engines` (the registry's names: an external engine is a program, and a sweep is data),
+// in `known_engines` nor an engine file or exec:PATH (read and fingerprinted, never started),
 // an unknown axis, a range that is not one (count < 1, a log range through 0), an axis given twice,
 // or more than kMaxCells cells.
 SweepSpec load_sweep(const std::string& path, const std::vector<std::string>& known_engines);

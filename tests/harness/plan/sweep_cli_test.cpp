@@ -392,3 +392,67 @@ TEST_CASE("plan refuses what run refuses, and one step written two ways", "[plan
   CHECK(seconds.code == 2);
   CHECK_THAT(seconds.err, Contains("0.001 appears twice (as 0.0010)"));
 }
+
+namespace {
+
+// An engine file in `d` running tests/adapters/bad_engine.py MODE at step STEP, named `name`.
+std::string bad_engine_file(const ScratchDir& d, const std::string& file, const std::string& name,
+                            const std::string& mode) {
+  return d.write(file, "name = \"" + name + "\"\ncommand = [\"python3\", \"" +
+                           std::string(DROPCHECK_SOURCE_DIR) +
+                           "/tests/adapters/bad_engine.py\", \"" + mode +
+                           "\", \"3\"]\ntimeout = 2.0\n");
+}
+
+}  // namespace
+
+TEST_CASE(
+    "a sweep names engine files: the plan fingerprints them, sweep runs them only when given, a "
+    "changed one is refused, and one that hangs or dies costs its cells only",
+    "[plan][cli][exec]") {
+  ScratchDir d("sweep-external");
+  const std::string good = bad_engine_file(d, "good.toml", "steady", "none");
+  const std::string hang = bad_engine_file(d, "hang.toml", "stuck", "hang");
+  const std::string crash = bad_engine_file(d, "crash.toml", "falls", "crash");
+  const std::string sweep = d.write(
+      "s.toml", "scenes = [\"" + std::string(DROPCHECK_SOURCE_DIR) +
+                    "/scenarios/free_fall_drag.toml\"]\n"
+                    "engines = [\"ours-f64\", \"good.toml\", \"hang.toml\", \"crash.toml\"]\n"
+                    "[[axis]]\nname = \"timestep\"\nvalues = [\"1/120\", \"1/60\"]\n");
+  const Cli p = run_sweep_cli({"plan", sweep, "--out", d.file("p.plan"), "--keys"});
+  REQUIRE(p.code == 0);
+  // Each external engine's cells carry its name and fingerprint.
+  CHECK_THAT(p.out, Contains("8 cells") && Contains("free_fall_drag|steady@") &&
+                        Contains("free_fall_drag|stuck@") && Contains("free_fall_drag|falls@"));
+  const std::string plan = d.file("p.plan");
+  // The plan alone never starts them.
+  const Cli alone = run_sweep_cli({"sweep", plan, "--shard", "1/1", "--out", d.file("a")});
+  CHECK(alone.code == 2);
+  CHECK_THAT(alone.err, Contains("runs the external engine steady@") &&
+                            Contains("a plan never starts a program by itself"));
+  CHECK(!std::filesystem::exists(d.file("a/shard-1-of-1.jsonl")));
+  // Given, they run: the hanging and the dying engine's cells are their records, the rest ok.
+  const Cli ran =
+      run_sweep_cli({"sweep", plan, "--shard", "1/1", "--out", d.file("b"), "--engine-file", good,
+                     "--engine-file", hang, "--engine-file", crash, "--quiet"});
+  REQUIRE(ran.code == 0);
+  CHECK_THAT(ran.out, Contains("8 cells (4 ok, 4 not ok, 0 skipped)"));
+  const std::string records = slurp(d.file("b/shard-1-of-1.jsonl"));
+  // The hang is an engine error (no answer within its engine file's 2 s), the death a crash.
+  CHECK_THAT(records, Contains("\"status\":\"engine-error\",\"reason\":\"at step 3: no") &&
+                          Contains("\"status\":\"crashed\",\"reason\":\"at step 3"));
+  // A changed engine file is another engine: refused, naming both fingerprints.
+  std::ofstream(good, std::ios::app) << "# edited\n";
+  const Cli changed =
+      run_sweep_cli({"sweep", plan, "--shard", "1/1", "--out", d.file("c"), "--engine-file", good,
+                     "--engine-file", hang, "--engine-file", crash});
+  CHECK(changed.code == 2);
+  CHECK_THAT(changed.err, Contains("changed since `dropcheck plan`") && Contains("steady@"));
+  // A plan's external engine id is data: one that is not NAME@16 hex digits is refused.
+  std::string text = slurp(plan);
+  const std::size_t at = text.find("\"steady@");
+  REQUIRE(at != std::string::npos);
+  text.replace(at, 8, "\"steady:");
+  CHECK(run_sweep_cli({"sweep", d.write("bad.plan", text), "--shard", "1/1", "--out", d.file("d")})
+            .code == 2);
+}
