@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what dropcheck needs from Debian 12's packages, skipping the apt calls when all are there.
-# Sourced by scripts/report.sh and scripts/test.sh; safe to run on its own.
+# Run by scripts/report.sh and scripts/test.sh (with `test`: the tests' packages too); safe to run
+# on its own.
 set -euo pipefail
 
 DROPCHECK_PACKAGES=(
@@ -19,7 +20,13 @@ DROPCHECK_PACKAGES=(
   slurmctld slurmd slurm-client munge  # sweeps on a localhost Slurm (ctest slurm, scripts/slurm/)
   python3-jsonschema                   # validates sweep records against docs/results.schema.json
   libxml2-utils                        # xmllint: validates `check --junit` (tests/check/junit.xsd)
+  libcmark-gfm-dev libcmark-gfm-extensions-dev  # the report's index.html (Markdown to HTML)
 )
+# Only for the tests (`bash scripts/deps.sh test`, as scripts/test.sh calls it): a browser that
+# opens the report's index.html (ctest report.html_browser) and its DevTools client.
+if [ "${1:-}" = test ]; then
+  DROPCHECK_PACKAGES+=(chromium python3-websocket)
+fi
 # The engines compared: the packages column of adapters/engines.txt, the one list of engines.
 engines="$(dirname "${BASH_SOURCE[0]}")/../adapters/engines.txt"
 while read -r name source find packages rest; do

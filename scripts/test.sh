@@ -2,7 +2,7 @@
 # Installs what is missing, builds with the CI preset (-Werror, ASan, UBSan) and runs every test.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/deps.sh
+bash scripts/deps.sh test
 # The ci preset builds with Ninja (it compiles the tests while the libraries are still building,
 # where make waits for each library): a build/ci that make configured is started afresh, since
 # CMake cannot switch a build folder's generator.

@@ -8,6 +8,7 @@
 
 #include "harness/io/atomic_file.hpp"
 #include "harness/report/report_format.hpp"
+#include "harness/report/report_html.hpp"
 #include "harness/report/report_messages.hpp"
 #include "harness/report/report_scene.hpp"
 #include "harness/report/report_summary.hpp"
@@ -53,7 +54,7 @@ std::string summary(const ReportInput& in) {
     std::vector<std::string> row{"[" + se.scene.name + "](#" + heading_anchor(se.scene.name) + ")",
                                  s.engines_run, s.divergence, s.cause};
     for (const EngineInfo& e : in.engines) row.push_back(error_cell(se, e.name));
-    row.push_back(s.verdict);
+    row.push_back("[" + s.verdict + "](#" + heading_anchor(se.scene.name) + ")");
     t.add(std::move(row));
   }
   return "## Summary\n\nAt each scene's default step. Divergence: max |dx| over the run from " +
@@ -351,7 +352,7 @@ std::string report_markdown(const ReportInput& in, const PlotOutcomes& plots) {
                    reproducibility(in, now) + slowdown_section(in, now) + "## Scenes\n\n";
   for (std::size_t i = 0; i < in.scenes.size(); ++i)
     md += scene_section(in.scenes[i], all[i], plots, in.timing);
-  return md + determinism(in) + stability(in);
+  return literal_stars(md + determinism(in) + stability(in));
 }
 
 void write_report(const ReportInput& in, const std::string& dir, const Progress& progress) {
@@ -363,7 +364,9 @@ void write_report(const ReportInput& in, const std::string& dir, const Progress&
     }
   }
   const std::filesystem::path folder(dir);
-  write_file_atomic((folder / "README.md").string(), report_markdown(in, outcomes));
+  const std::string md = report_markdown(in, outcomes);
+  write_file_atomic((folder / "README.md").string(), md);
+  write_report_html(dir, md, "dropcheck comparison report");
   if (in.timing)
     write_file_atomic((folder / kTimingsFile).string(),
                       timing_json(timing_record(in.scenes, in.provenance, in.machine)));

@@ -52,4 +52,19 @@ std::string when(double t) {
   return t < 0.0 ? "never" : sig(t, 4);
 }
 
+std::string literal_stars(const std::string& md) {
+  std::string out;
+  out.reserve(md.size() + md.size() / 32);
+  bool code = false;  // inside a `code span` (a line never leaves one open)
+  for (std::size_t i = 0; i < md.size(); ++i) {
+    const char c = md[i];
+    if (c == '`') code = !code;
+    if (c == '\n') code = false;
+    const bool pair = (i > 0 && md[i - 1] == '*') || (i + 1 < md.size() && md[i + 1] == '*');
+    if (c == '*' && !code && !pair && !(i > 0 && md[i - 1] == '\\')) out += '\\';
+    out += c;
+  }
+  return out;
+}
+
 }  // namespace dropcheck

@@ -27,6 +27,10 @@ class MarkdownTable {
   std::vector<std::vector<std::string>> rows_;
 };
 
+// `md` with every lone '*' outside a code span escaped ('\*'): the report writes products as m*g
+// and h*v, which Markdown would otherwise read as emphasis (a pair "**" is left for bold).
+std::string literal_stars(const std::string& md);
+
 // The dash shown where a figure does not exist.
 inline constexpr const char* kNone = "—";
 

@@ -16,6 +16,7 @@
 #include "harness/io/file_slug.hpp"
 #include "harness/report/plot.hpp"
 #include "harness/report/report_format.hpp"
+#include "harness/report/report_html.hpp"
 
 namespace dropcheck {
 namespace {
@@ -219,7 +220,9 @@ void write_sweep_report(const std::vector<SweepCell>& cells, const std::string& 
     md << "## " << text_cell(g.scene) << " / " << text_cell(g.engine) << "\n\n";
     maps(g, dir, md);
   }
-  write_file_atomic(dir + "/README.md", md.str());
+  const std::string text = literal_stars(md.str());
+  write_file_atomic(dir + "/README.md", text);
+  write_report_html(dir, text, "dropcheck sweep report");
 }
 
 }  // namespace dropcheck
