@@ -18,6 +18,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <set>
 
 #include "exec_protocol.hpp"
 #include "harness/core/input_error.hpp"
@@ -340,36 +341,57 @@ ExecSpec parse_exec_spec(const std::string& name) {
   return spec;
 }
 
-// The largest file an external engine's fingerprint reads (a script, a compiled engine).
+// The largest file an external engine's fingerprint reads (a script, a compiled engine), and the
+// most files one command may name.
 constexpr std::int64_t kMaxFingerprintBytes = 64LL << 20;
+constexpr std::size_t kMaxFingerprintFiles = 32;
 
 std::optional<ExternalEngineId> external_engine_id(const std::string& name) {
   if (!is_exec_spec(name)) return std::nullopt;
   const ExecSpec spec = parse_exec_spec(name);
-  std::string bytes;  // each part with its tag and length, so that no two engines run together
-  const auto add = [&](const char* tag, const std::string& part) {
-    bytes += std::string(tag) + '\0' + std::to_string(part.size()) + '\0' + part;
+  const std::string where = spec.file.empty() ? name : spec.file;
+  // Each part by its tag, its file name and the FNV-1a of its bytes: one file in memory at a time.
+  std::string parts;
+  const auto add = [&](const char* tag, const std::filesystem::path& file, std::int64_t limit,
+                       const char* limit_text) {
+    parts += std::string(tag) + '\0' + file.filename().string() + '\0' +
+             fnv1a_hex(read_regular_file(file.string(), limit, limit_text)) + '\n';
   };
   if (!spec.file.empty())
-    add("file", read_regular_file(spec.file, kMaxEngineFileBytes, "64 KiB, for an engine file"));
+    add("engine-file", spec.file, kMaxEngineFileBytes, "64 KiB, for an engine file");
+  std::set<std::filesystem::path> files;
   for (const std::string& word : spec.command) {
-    add("word", word);
     std::filesystem::path p(word);
     if (p.is_relative() && !spec.cwd.empty()) p = std::filesystem::path(spec.cwd) / p;
     std::error_code ec;
-    if (!word.empty() && std::filesystem::is_regular_file(p, ec))
-      add("bytes", read_regular_file(p.string(), kMaxFingerprintBytes,
-                                     "64 MiB, for a file an external engine runs"));
+    if (word.empty() || !std::filesystem::is_regular_file(p, ec)) continue;
+    if (!files.insert(p.lexically_normal()).second) continue;
+    if (files.size() > kMaxFingerprintFiles)
+      throw InputError(where, 0, "command",
+                       "names more than " + std::to_string(kMaxFingerprintFiles) +
+                           " files, the most a fingerprint reads");
+    add("runs", p, kMaxFingerprintBytes, "64 MiB, for a file an external engine runs");
   }
   ExternalEngineId id;
   id.name = !spec.name.empty()  ? spec.name
             : spec.file.empty() ? std::filesystem::path(spec.command[0]).filename().string()
                                 : std::filesystem::path(spec.file).stem().string();
   if (std::string p = engine_name_problem(id.name, known_engine_names()); !p.empty())
-    throw InputError(spec.file, 0, spec.file.empty() ? "exec:" : "name",
+    throw InputError(where, 0, spec.file.empty() ? "exec:" : "name",
                      p + " (an engine file's `name` key names it)");
-  id.fingerprint = fnv1a_hex(bytes);
+  id.fingerprint = fnv1a_hex(parts);
   return id;
+}
+
+bool is_external_engine_name(const std::string& name) {
+  return is_exec_spec(name);
+}
+
+bool is_external_engine_id(const std::string& id) {
+  const std::size_t at = id.rfind('@');
+  return at != std::string::npos && engine_name_problem(id.substr(0, at), {}).empty() &&
+         id.size() == at + 17 &&
+         id.find_first_not_of("0123456789abcdef", at + 1) == std::string::npos;
 }
 
 std::unique_ptr<Engine> make_exec_engine(const ExecSpec& spec) {

@@ -34,6 +34,8 @@ int cmd_plan(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   OutputPlan files;  // the plan lands on neither the sweep file nor a scene it names
   files.read(sweep.file);
   for (const std::string& f : sweep.scene_files) files.read(f);
+  for (const ExternalEngine& e : sweep.external)
+    if (!e.file.starts_with("exec:")) files.read(e.file);
   files.write_file("--out", target);
   files.check();
   std::vector<EngineInfo> engines;  // the sweep's engines this build has, for the run limits

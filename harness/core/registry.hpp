@@ -23,9 +23,10 @@ std::unique_ptr<Engine> make_engine(const std::string& name);
 
 // An external engine as a plan names it without starting it (a plan is data): its name (the engine
 // file's `name` key, else the file's stem; for exec:PATH the program's file name) and a fingerprint
-// of what it runs, FNV-1a over the engine file's bytes, its command's words and the bytes of each
-// word that names a file (the program, a script; an interpreter found on PATH is not hashed). A
-// changed engine file or script is another engine, so its cells are other cells.
+// of what it runs: FNV-1a over the engine file's bytes (its command's words among them) and over
+// each file a word names (the program, a script; an interpreter found on PATH is not hashed),
+// each by its file name and bytes, so that the same engine planned from another folder is the same
+// engine. A changed engine file or script is another engine, so its cells are other cells.
 struct ExternalEngineId {
   std::string name;         // 1-64 of A-Z a-z 0-9 . _ + -
   std::string fingerprint;  // 16 hex digits
@@ -33,8 +34,15 @@ struct ExternalEngineId {
 };
 
 // nullopt for a registry name. Throws InputError for a malformed engine file, a name that is not a
-// valid engine name, or a file it runs that is larger than 64 MiB.
+// valid engine name, a command naming more than 32 files, or a file it runs over 64 MiB. `sweep`
+// computes it again for each --engine-file, to compare with the plan's.
 std::optional<ExternalEngineId> external_engine_id(const std::string& name);
+
+// Whether `name` names an external engine (exec:PATH or FILE.toml), not a registry name.
+bool is_external_engine_name(const std::string& name);
+
+// Whether `id` has the form of an ExternalEngineId's id(): a valid engine name, '@', 16 hex digits.
+bool is_external_engine_id(const std::string& id);
 
 // Why `name` is not available ("unknown engine", "not compiled in: ..."); empty when it is.
 // Throws InputError for a malformed external engine name (an engine file with a bad key, ...).

@@ -167,6 +167,7 @@ std::vector<ContactFigure> contact_figures(const Scene& scene, const Trajectory&
     for (std::size_t i = 0; i < o.apexes.size(); ++i)
       add(body + ".apex_" + std::to_string(i + 1), o.apexes[i]);
   }
+  if (run.samples() == 0) return out;  // a run that never started has no final state
   for (const LandingExclusion& x : landing_exclusions(scene)) judged[x.body] = 1;
   for (const LandingSetup& s : landing_setups(scene)) {
     if (judged[s.body]) continue;

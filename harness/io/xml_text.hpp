@@ -1,5 +1,6 @@
 // XML 1.0 text, escaped once for every XML dropcheck writes: `check --junit` (harness/report/
-// verdict_files.hpp) and the model MuJoCo reads (adapters/mujoco.cpp), whose names are free text.
+// verdict_files.hpp), the model MuJoCo reads (adapters/mujoco.cpp), whose names are free text, and
+// the text the report's HTML page adds to what cmark-gfm renders (harness/report/report_html.cpp).
 #pragma once
 
 #include <string>

@@ -150,7 +150,12 @@ CellRecord run_cell(const Plan& plan, const Cell& cell, Isolation isolation,
   // into ours-f64.
   const std::string start =
       c.engine == plan.engines[cell.engine] ? plan.runs(cell.engine) : c.engine;
-  std::unique_ptr<Engine> engine = start.empty() ? nullptr : make_engine(start);
+  std::unique_ptr<Engine> engine;
+  try {
+    engine = start.empty() ? nullptr : make_engine(start);
+  } catch (const InputError& e) {  // an engine file gone or broken since the sweep began
+    return finish(r, "engine-error", e.what());
+  }
   if (!engine)
     return finish(r, "skipped",
                   c.engine + ": " +
@@ -158,6 +163,8 @@ CellRecord run_cell(const Plan& plan, const Cell& cell, Isolation isolation,
                                      : engine_unavailable_reason(start)));
   const EngineInfo info = engine->info();
   r["engine"] = record_engine_json(info);
+  // An external engine is named as its cells are (NAME@FP): two versions of it never pool.
+  if (start != c.engine) r["engine"]["name"] = c.engine;
   r["h"] = c.h.text;
   r["steps"] = step_count(c.scene, c.h.seconds);
   if (!c.scalar.empty() && c.scalar != to_string(info.scalar))

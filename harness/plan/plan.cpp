@@ -5,6 +5,7 @@
 #include <set>
 
 #include "harness/core/input_error.hpp"
+#include "harness/core/registry.hpp"
 #include "harness/core/trajectory_hash.hpp"
 #include "harness/io/bounded_read.hpp"
 #include "harness/io/json_text.hpp"
@@ -18,15 +19,6 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 constexpr const char* kPlanFormat = "dropcheck-plan/1";
-
-// An external engine's id: NAME@FP, NAME 1-64 of A-Z a-z 0-9 . _ + -, FP 16 hex digits.
-bool external_id(const std::string& e) {
-  const std::size_t at = e.rfind('@');
-  if (at == std::string::npos || at == 0 || at > 64 || e.size() != at + 17) return false;
-  return e.find_first_not_of(
-             "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._+-") == at &&
-         e.find_first_not_of("0123456789abcdef", at + 1) == std::string::npos;
-}
 
 // Checks that each value of each axis applies to each scene on its own, and that each engine's run
 // there is within the limits a run is held to (run_limits.hpp: steps, recorded samples' memory,
@@ -133,7 +125,7 @@ Plan from_json(const Json& j) {
   // is data and names no program to start (`sweep --engine-file` does). A name this build lacks is
   // a skipped cell.
   for (const std::string& e : p.engines) {
-    if (external_id(e)) {
+    if (is_external_engine_id(e)) {
       p.external.push_back({e, "", ""});
       continue;
     }

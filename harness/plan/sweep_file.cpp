@@ -85,10 +85,6 @@ void add_scenes(const Reader& r, const std::string& entry, std::size_t i,
   out.push_back(p.lexically_normal().string());
 }
 
-bool names_external(const std::string& e) {
-  return e.starts_with("exec:") || e.ends_with(".toml");
-}
-
 // An engine file or exec:PATH, its path relative to the sweep file's folder: resolved, read and
 // fingerprinted (never started).
 ExternalEngine load_external(const Reader& r, const std::string& key, const std::string& e) {
@@ -110,7 +106,7 @@ void load_engines(const Reader& r, const std::vector<std::string>& known, SweepS
     const std::string key = "engines[" + std::to_string(i) + "]";
     const std::string& e = engines[i];
     std::string id = e;
-    if (names_external(e)) {
+    if (is_external_engine_name(e)) {
       out.external.push_back(load_external(r, key, e));
       id = out.external.back().id;
     } else if (std::find(known.begin(), known.end(), e) == known.end()) {

@@ -10,6 +10,7 @@
 
 #include "harness/io/atomic_file.hpp"
 #include "harness/io/bounded_read.hpp"
+#include "harness/io/xml_text.hpp"
 #include "harness/report/report_scene.hpp"
 
 namespace dropcheck {
@@ -41,25 +42,11 @@ std::string text_of(const std::string& html) {
     if (!in_tag) text += c;
     if (c == '>') in_tag = false;
   }
-  for (const auto& [entity, c] : {std::pair{"&lt;", "<"}, {"&gt;", ">"}, {"&quot;", "\""},
-                                  {"&#39;", "'"}, {"&amp;", "&"}})
+  for (const auto& [entity, c] :
+       {std::pair{"&lt;", "<"}, {"&gt;", ">"}, {"&quot;", "\""}, {"&#39;", "'"}, {"&amp;", "&"}})
     for (std::size_t at = 0; (at = text.find(entity, at)) != std::string::npos; ++at)
       text.replace(at, std::string(entity).size(), c);
   return text;
-}
-
-std::string html_escaped(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
 }
 
 struct Heading {
@@ -80,7 +67,8 @@ std::vector<Heading> anchor_headings(std::string& html) {
     if (end == std::string::npos) break;
     Heading h{level - '0', "", text_of(html.substr(at + 4, end - at - 4))};
     h.id = heading_anchor(h.text);
-    for (int n = 1; !used.insert(h.id).second; ++n) h.id = heading_anchor(h.text) + "-" + std::to_string(n);
+    for (int n = 1; !used.insert(h.id).second; ++n)
+      h.id = heading_anchor(h.text) + "-" + std::to_string(n);
     const std::string open = std::string("<h") + level + " id=\"" + h.id + "\">";
     html.replace(at, 4, open);
     out.push_back(std::move(h));
@@ -134,7 +122,7 @@ std::string navigation(const std::vector<Heading>& headings) {
       nav += "<li><ul>\n";
       open = true;
     }
-    nav += "<li><a href=\"#" + h.id + "\">" + html_escaped(h.text) + "</a></li>\n";
+    nav += "<li><a href=\"#" + h.id + "\">" + xml_escape(h.text) + "</a></li>\n";
   }
   return nav + (open ? "</ul></li>\n" : "") + "</ul>\n</nav>\n";
 }
@@ -216,16 +204,16 @@ constexpr const char* kScript = R"((function () {
 
 }  // namespace
 
-std::string report_html(const std::string& markdown, const std::string& title,
-                        const std::function<std::optional<std::string>(const std::string&)>&
-                            read_plot) {
+std::string report_html(
+    const std::string& markdown, const std::string& title,
+    const std::function<std::optional<std::string>(const std::string&)>& read_plot) {
   std::string body = markdown_html(markdown);
   const std::vector<Heading> headings = anchor_headings(body);
   embed_plots(body, read_plot);
   return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
          "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; "
          "img-src data:; style-src 'unsafe-inline'; script-src 'unsafe-inline'\">\n<title>" +
-         html_escaped(title) + "</title>\n<style>\n" + kStyle + "</style>\n</head>\n<body>\n" +
+         xml_escape(title) + "</title>\n<style>\n" + kStyle + "</style>\n</head>\n<body>\n" +
          navigation(headings) +
          "<main>\n<div id=\"filter\"><label>Engine: <select id=\"engine\"><option value=\"\">all "
          "engines</option></select></label> (click a column header to sort its table)</div>\n" +

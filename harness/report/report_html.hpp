@@ -14,9 +14,9 @@ namespace dropcheck {
 
 // The page of `markdown`. `read_plot(file)` gives the bytes of an image the Markdown names by a
 // plain file name (an SVG of the report folder), or nullopt: such an image is left as a link.
-std::string report_html(const std::string& markdown, const std::string& title,
-                        const std::function<std::optional<std::string>(const std::string&)>&
-                            read_plot);
+std::string report_html(
+    const std::string& markdown, const std::string& title,
+    const std::function<std::optional<std::string>(const std::string&)>& read_plot);
 
 // Writes DIR/index.html from `markdown`, the plots read from DIR (regular files only, never
 // through a link).

@@ -155,6 +155,12 @@ check_plan() {
     die "--dropcheck $dropcheck: did not read the plan as dropcheck does (dropcheck merge exited" \
         "$rc${said:+: ${said##*$'\n'}})"
   fi
+  # An external engine's cells (engine NAME@FINGERPRINT) run only with `sweep --engine-file`, which
+  # the tasks are not given: refused here rather than failed in every task.
+  if grep -q '^[^|]*|[^|]*@' "$checkdir/missing"; then
+    die "--plan $plan: it runs an external engine (an engine file or exec:), which a task starts" \
+        "only with dropcheck sweep --engine-file; run its shards with that, not with submit.sh"
+  fi
   rm -rf -- "$checkdir"; checkdir=
 }
 checkdir=

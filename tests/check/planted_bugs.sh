@@ -4,14 +4,14 @@
 # bug it passes `check` and is blessed. With each bug, `check` names the first departing step and
 # the cause, `bless --check` fails its physics tier with the same words, `bless` refuses and writes
 # nothing, and `diff` says what moved in contact terms.
-#   planted_bugs.sh DROPCHECK SOURCE_DIR
+#   planted_bugs.sh DROPCHECK SOURCE_DIR PYTHON
 set -euo pipefail
-dropcheck=$1 source=$2
+dropcheck=$1 source=$2 python=$3
 work=$(mktemp -d "${TMPDIR:-/tmp}/dropcheck-planted.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 for mode in correct friction_after_position grip_whole_gravity restitution_twice; do
-  printf 'name = "author"\ncommand = ["python3", "%s", "%s"]\ntimeout = 30.0\n' \
-    "$source/tests/check/author_engine.py" "$mode" > "$work/$mode.toml"
+  printf 'name = "author"\ncommand = ["%s", "%s", "%s"]\ntimeout = 30.0\n' \
+    "$python" "$source/tests/check/author_engine.py" "$mode" > "$work/$mode.toml"
 done
 scenes=()
 for s in slide_stop incline_slide incline_hold bounce_e05 drop_on_floor; do
@@ -30,6 +30,7 @@ says() {
   local name=$1 start=$2 line
   shift 2
   line=$(grep -F -- "$start" "$work/$name.txt" | head -1) || true
+  [ -n "$line" ] || { echo "$name: no line starting '$start':"; cat "$work/$name.txt"; exit 1; }
   for text in "$@"; do
     case "$line" in
       *"$text"*) ;;

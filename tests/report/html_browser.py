@@ -126,7 +126,7 @@ CHECKS = r"""
   out.byName = column(0);
   var select = document.getElementById("engine");
   out.engines = Array.prototype.map.call(select.options, function (o) { return o.value; });
-  select.value = "ode";
+  select.value = "ours";
   select.dispatchEvent(new Event("change"));
   out.shown = Array.prototype.filter.call(summary.tHead.rows[0].cells, function (c) {
     return !c.hidden; }).map(function (c) { return c.textContent.trim(); });
@@ -190,10 +190,10 @@ def check_page(name, html, readme):
             problems.append("not sorted descending: %s" % result["descending"])
     if result["byName"] != sorted(result["byName"]):
         problems.append("the scene column does not sort by name: %s" % result["byName"])
-    if "ode" not in result["engines"]:
-        problems.append("no ode in the engine filter: %s" % result["engines"])
-    if "error ode" not in result["shown"] or "error ours-f64" in result["shown"]:
-        problems.append("the filter on ode shows %s" % result["shown"])
+    if "ours" not in result["engines"]:
+        problems.append("no ours in the engine filter: %s" % result["engines"])
+    if "error ours" not in result["shown"] or "error ours-f64" in result["shown"]:
+        problems.append("the filter on ours shows %s" % result["shown"])
     png = base64.b64decode(shot["data"])
     if not png.startswith(b"\x89PNG") or len(png) < 10000:
         problems.append("the screenshot is not a page (%d bytes)" % len(png))
@@ -213,7 +213,7 @@ try:
     scenes = [os.path.join(SOURCE, "scenarios", s + ".toml")
               for s in ("bounce_e05", "slide_stop", "free_fall")]
     subprocess.run([DROPCHECK, "report"] + scenes +
-                   ["--engine", "ours", "--engine", "ode", "--engine", "ours-f64", "--no-timing",
+                   ["--engine", "ours", "--engine", "ours-f64", "--no-timing",
                     "--out", os.path.join(work, "r")], check=True, stdout=subprocess.DEVNULL)
     ok = check_page("fresh", os.path.join(work, "r", "index.html"),
                     os.path.join(work, "r", "README.md"))

@@ -231,6 +231,11 @@ sub "--plan a folder" "--plan $work: not a file" --plan "$work"
 sub "--plan {}" "--plan $work/not-a-plan.json: not a plan" --plan "$work/not-a-plan.json"
 sub "--plan empty" "--plan $work/empty.json: not a plan" --plan "$work/empty.json"
 sub "--plan a sweep file" "not a dropcheck plan" --plan "$source/tests/sweeps/slurm_1000.toml"
+# A plan with an external engine: its tasks would need `sweep --engine-file`.
+printf 'scenes = ["%s"]\nengines = ["ours", "%s"]\n' "$source/scenarios/free_fall.toml" \
+  "$source/examples/python/seed_engine.toml" >"$work/external.toml"
+"$dropcheck" plan "$work/external.toml" --out "$work/external.json" >/dev/null
+sub "--plan with an external engine" "it runs an external engine" --plan "$work/external.json"
 if [ "$(id -u)" -ne 0 ]; then
   cp "$work/plan.json" "$work/unreadable.json"
   chmod 000 "$work/unreadable.json"

@@ -425,6 +425,18 @@ TEST_CASE(
   CHECK_THAT(p.out, Contains("8 cells") && Contains("free_fall_drag|steady@") &&
                         Contains("free_fall_drag|stuck@") && Contains("free_fall_drag|falls@"));
   const std::string plan = d.file("p.plan");
+  // The same engines named from another folder are the same engines: the same plan.
+  std::filesystem::create_directories(d.path / "sub");
+  const std::string again =
+      d.write("sub/s.toml", "scenes = [\"" + std::string(DROPCHECK_SOURCE_DIR) +
+                                "/scenarios/free_fall_drag.toml\"]\n"
+                                "engines = [\"ours-f64\", \"../good.toml\", \"" +
+                                hang +
+                                "\", \"../crash.toml\"]\n"
+                                "[[axis]]\nname = \"timestep\"\nvalues = [\"1/120\", \"1/60\"]\n");
+  const Cli q = run_sweep_cli({"plan", again, "--out", d.file("q.plan"), "--keys"});
+  REQUIRE(q.code == 0);
+  CHECK(q.out.substr(q.out.find('\n')) == p.out.substr(p.out.find('\n')));
   // The plan alone never starts them.
   const Cli alone = run_sweep_cli({"sweep", plan, "--shard", "1/1", "--out", d.file("a")});
   CHECK(alone.code == 2);
@@ -448,11 +460,13 @@ TEST_CASE(
                      "--engine-file", hang, "--engine-file", crash});
   CHECK(changed.code == 2);
   CHECK_THAT(changed.err, Contains("changed since `dropcheck plan`") && Contains("steady@"));
-  // A plan's external engine id is data: one that is not NAME@16 hex digits is refused.
+  // A plan's external engine id is data: one that is not NAME@16 hex digits is refused for what it
+  // is, before its hash is looked at.
   std::string text = slurp(plan);
-  const std::size_t at = text.find("\"steady@");
-  REQUIRE(at != std::string::npos);
-  text.replace(at, 8, "\"steady:");
-  CHECK(run_sweep_cli({"sweep", d.write("bad.plan", text), "--shard", "1/1", "--out", d.file("d")})
-            .code == 2);
+  for (std::size_t at = 0; (at = text.find("\"steady@", at)) != std::string::npos; ++at)
+    text.replace(at, 8, "\"steady:");
+  const Cli forged =
+      run_sweep_cli({"sweep", d.write("bad.plan", text), "--shard", "1/1", "--out", d.file("d")});
+  CHECK(forged.code == 2);
+  CHECK_THAT(forged.err, Contains("unknown engine 'steady:"));
 }

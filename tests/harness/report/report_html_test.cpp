@@ -1,6 +1,6 @@
-// Tests the report's HTML page (harness/report/report_html.cpp): the Markdown's numbers as cmark-gfm
-// renders them, hostile text never rendered as HTML, the anchors the Markdown links to, plots
-// embedded and never read through a link. The page in a browser: ctest report.html_browser.
+// Tests the report's HTML page (harness/report/report_html.cpp): the Markdown's numbers as
+// cmark-gfm renders them, hostile text never rendered as HTML, the anchors the Markdown links to,
+// plots embedded and never read through a link. The page in a browser: ctest report.html_browser.
 #include "harness/report/report_html.hpp"
 
 #include <catch2/catch.hpp>
@@ -30,8 +30,8 @@ TEST_CASE("The HTML page renders the Markdown's tables and numbers, with the anc
       "| [drop](#drop_2) | 3.67 cm | [ok](#drop_2) |\n\n## Scenes\n\n### drop_2\n\ntext\n\n"
       "### drop_2\n\nagain\n";
   const std::string html = report_html(md, "t", no_plot);
-  CHECK_THAT(html, Contains("<td align=\"right\">3.67 cm</td>") &&
-                       Contains("<a href=\"#drop_2\">ok</a>"));
+  CHECK_THAT(
+      html, Contains("<td align=\"right\">3.67 cm</td>") && Contains("<a href=\"#drop_2\">ok</a>"));
   // Each h2 and h3 gets the anchor of the Markdown's links; a repeated one is numbered.
   CHECK_THAT(html, Contains("<h2 id=\"summary\">Summary</h2>") &&
                        Contains("<h3 id=\"drop_2\">drop_2</h3>") &&
@@ -50,9 +50,8 @@ TEST_CASE("Text a scene or an engine supplied is never rendered as HTML in the p
       "[click](javascript:alert(3)) and ![p](data:image/svg+xml;base64,PHN2Zz4=)\n\n"
       "| engine | note |\n|---|---|\n| <b onmouseover=alert(4)>e</b> | \"quoted\" & more |\n";
   const std::string html = report_html(md, "<title>", no_plot);
-  CHECK_THAT(html, !Contains("<script>alert") && !Contains("onerror") &&
-                       !Contains("onmouseover") && !Contains("javascript:") &&
-                       !Contains("data:image/svg+xml;base64,PHN2Zz4="));
+  CHECK_THAT(html, !Contains("<script>alert") && !Contains("onerror") && !Contains("onmouseover") &&
+                       !Contains("javascript:") && !Contains("data:image/svg+xml;base64,PHN2Zz4="));
   CHECK_THAT(html, Contains("<title>&lt;title&gt;</title>"));
   // One script element: the page's own.
   std::size_t scripts = 0;
