@@ -221,6 +221,21 @@ std::string coulomb_departure(const CoulombCertificate& c, const ContactSolver& 
 
 }  // namespace
 
+// The law's own sensitivity explains a departure of its size (within a factor of 10), not one far
+// larger.
+bool SlideVerdict::rounding_limited() const {
+  return !follows && solver && !coulomb && instead.empty() && self_first >= 0 &&
+         10.0 * self_off >= off_law;
+}
+
+std::string SlideVerdict::limit_text() const {
+  return printf_string(
+      "its law amplifies rounding: with its launch speed changed by %.0f machine epsilons it "
+      "departs from itself by up to %.2g m, first at step %lld, so a departure of this size (%.2g "
+      "m) is rounding it amplifies, not another law",
+      kSensitivityUlps, self_off, static_cast<long long>(self_first), off_law);
+}
+
 SlideVerdict judge_slide(const Trajectory& run, const SlideSetup& s, FrictionModel model, double h,
                          PositionUpdate position, const RelativeCfm& soft) {
   SlideVerdict v;
@@ -341,15 +356,7 @@ std::string SlideVerdict::sentence() const {
                           tolerance::kSlideDistance);
   if (!instead.empty())
     return text + ": it follows " + instead + printf_string(" instead (to %.2g m)", instead_off);
-  // The law's own sensitivity explains a departure of its size (within a factor of 10), not one
-  // far larger.
-  if (solver && self_first >= 0 && 10.0 * self_off >= off_law)
-    return text + printf_string(
-                      ": its law amplifies rounding: with its launch speed changed by %.0f "
-                      "machine epsilons it departs from itself by up to %.2g m, first at step "
-                      "%lld, so a departure of this size is rounding it amplifies, not another "
-                      "law",
-                      kSensitivityUlps, self_off, static_cast<long long>(self_first));
+  if (rounding_limited()) return text + ": " + limit_text();
   if (solver)
     return text + ": no cause named (" +
            (!self_measured ? std::string("its law's sensitivity is measured on a launched slide")

@@ -64,6 +64,11 @@ struct SlideVerdict {
   double self_off = 0.0;
   std::int64_t self_first = -1;
   bool self_measured = false;  // false for a slide not launched (its speed starts at 0)
+  // Departs by at most 10 times what its law departs from itself under that rounding: the run
+  // cannot be told from its law at this step, a limit of the law, not a fault of the engine
+  // (`check` prints LIMIT with limit_text()).
+  bool rounding_limited() const;
+  std::string limit_text() const;
   // When none fits: what the engine printed during the run, and what its adapter says that means
   // (harness/judge/engine_messages.hpp); "" when it printed nothing.
   std::string engine_said;

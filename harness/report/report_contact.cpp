@@ -146,10 +146,11 @@ std::string slide_section(const SceneEvaluation& se) {
              v.exact ? stop_cell(v.solver ? v.clamp_seen : v.law_seen) : kNone,
              v.exact ? closed_form_cell(v) : kNone,
              v.exact ? printf_string("%.2g", v.off_law) : kNone,
-             !v.exact             ? "not judged: " + v.not_judged
-             : v.follows          ? "yes"
-             : !v.instead.empty() ? "**NO**: " + v.instead
-                                  : std::string("**NO**")});
+             !v.exact               ? "not judged: " + v.not_judged
+             : v.follows            ? "yes"
+             : v.rounding_limited() ? "limit: " + v.limit_text()
+             : !v.instead.empty()   ? "**NO**: " + v.instead
+                                    : std::string("**NO**")});
     }
   }
   return "#### Slides at h = " + se.scene.timestep.text +

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <tuple>
 
 #include "harness/core/number_format.hpp"
 #include "harness/core/timestep.hpp"
@@ -345,10 +346,12 @@ CheckResult check_contact_law(const Scene& scene, const EngineFactory& make, con
   CheckResult& r = c.result;
   const Trajectory& run = *c.run;
   for (const Setup& s : setups) {
-    const auto [passes, sentence] = judge(run, s, c.info);
+    const auto [passes, sentence, limit] = judge(run, s, c.info);
     r.passed = r.passed && passes;
     append(r.message, run.body_names[s.body] + ": " + sentence);
+    if (!limit.empty()) append(r.limit, run.body_names[s.body] + ": " + limit);
   }
+  if (!r.passed) r.limit.clear();  // a failure is printed as one, whatever else met a limit
   return r;
 }
 
@@ -358,7 +361,9 @@ CheckResult check_slide(const Scene& scene, const EngineFactory& make, const Tim
   return check_contact_law(scene, make, h, "slide", slide_setups(scene),
                            [&](const Trajectory& run, const SlideSetup& s, const EngineInfo& i) {
                              const SlideVerdict v = judge_slide(run, scene, s, i, h.seconds);
-                             return std::pair(v.follows || !v.exact, v.sentence());
+                             const bool limited = v.rounding_limited();
+                             return std::tuple(v.follows || !v.exact || limited, v.sentence(),
+                                               limited ? v.limit_text() : std::string());
                            });
 }
 
@@ -366,7 +371,7 @@ CheckResult check_bounce(const Scene& scene, const EngineFactory& make, const Ti
   return check_contact_law(scene, make, h, "bounce", bounce_setups(scene),
                            [&](const Trajectory& run, const BounceSetup& s, const EngineInfo& i) {
                              const BounceVerdict v = judge_bounce(run, scene, s, i, h.seconds);
-                             return std::pair(v.follows, v.sentence());
+                             return std::tuple(v.follows, v.sentence(), std::string());
                            });
 }
 

@@ -395,6 +395,9 @@ TEST_CASE(
   CHECK(v.self_first > 0);
   CHECK(v.self_off > 1e-5);
   CHECK_THAT(v.sentence(), Catch::Contains("its law amplifies rounding"));
+  // Within 10 times its law's own departure: a limit of the law at this step, not a fault.
+  CHECK(v.rounding_limited());
+  CHECK_THAT(v.limit_text(), Catch::Contains("a departure of this size (0.00075 m)"));
   // A slide whose law holds to its own rounding names no such cause: slide_stop at 1/60.
   const Scene stop = scenario("slide_stop");
   const SlideVerdict held = judge_slide(run_scene(*engine, stop, 1.0 / 60), stop,

@@ -212,3 +212,27 @@ TEST_CASE("only a box launched along a floor it rests on is a slide", "[contact]
   CHECK(slide_setups(scene).empty());
   CHECK(slide_setups(testing::shipped("drop_on_floor")).empty());
 }
+
+TEST_CASE("A replayed slide's departure is a limit only within 10 times its law's own",
+          "[slide][contact]") {
+  // The verdict's figures as judge_slide leaves them for a re-solved law that amplifies rounding.
+  SlideVerdict v;
+  v.solver = ContactSolver{};
+  v.off_law = 7.5e-4;
+  v.self_off = 2e-4;
+  v.self_first = 1177;
+  v.first_off = 998;
+  CHECK(v.rounding_limited());
+  CHECK_THAT(v.limit_text(), Catch::Contains("up to 0.0002 m, first at step 1177"));
+  v.off_law = 2.1e-3;  // over 10 times: a fault, not the law's rounding
+  CHECK_FALSE(v.rounding_limited());
+  v.off_law = 7.5e-4;
+  v.instead = "the cone's clamp law";  // another law fits: that is the cause
+  CHECK_FALSE(v.rounding_limited());
+  v.instead.clear();
+  v.self_first = -1;  // the law holds to its own rounding: nothing excuses the departure
+  CHECK_FALSE(v.rounding_limited());
+  v.self_first = 1177;
+  v.solver.reset();  // a clamp law is exact: its departures are never rounding
+  CHECK_FALSE(v.rounding_limited());
+}
