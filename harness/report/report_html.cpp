@@ -76,20 +76,24 @@ std::vector<Heading> anchor_headings(std::string& html) {
   return out;
 }
 
-std::string base64(const std::string& bytes) {
-  static constexpr char kDigits[] =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+// `bytes` as the data of a data: URI: letters, digits and -_.~!*();:@=+,/ as they are, every other
+// byte as %XX. An SVG's text stays text (it compresses as well as the plot file does), and no
+// quote, ampersand, angle bracket or white space reaches the attribute.
+std::string percent_encoded(const std::string& bytes) {
+  static constexpr char kHex[] = "0123456789ABCDEF";
+  static constexpr std::string_view kKept = "-_.~!*();:@=+,/";
   std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const auto byte = [&](std::size_t k) {
-      return k < bytes.size() ? static_cast<unsigned char>(bytes[k]) : 0u;
-    };
-    const unsigned v = byte(i) << 16 | byte(i + 1) << 8 | byte(i + 2);
-    out += kDigits[v >> 18 & 63];
-    out += kDigits[v >> 12 & 63];
-    out += i + 1 < bytes.size() ? kDigits[v >> 6 & 63] : '=';
-    out += i + 2 < bytes.size() ? kDigits[v & 63] : '=';
+  out.reserve(bytes.size() + bytes.size() / 4);
+  for (const char c : bytes) {
+    const auto u = static_cast<unsigned char>(c);
+    if ((u >= 'a' && u <= 'z') || (u >= 'A' && u <= 'Z') || (u >= '0' && u <= '9') ||
+        kKept.find(c) != std::string_view::npos) {
+      out += c;
+    } else {
+      out += '%';
+      out += kHex[u >> 4];
+      out += kHex[u & 15];
+    }
   }
   return out;
 }
@@ -105,7 +109,7 @@ void embed_plots(std::string& html,
     if (!file.ends_with(".svg") || file.find_first_of("/\\:&%") != std::string::npos) continue;
     const std::optional<std::string> svg = read_plot(file);
     if (!svg) continue;
-    html.replace(from, end - from, "data:image/svg+xml;base64," + base64(*svg));
+    html.replace(from, end - from, "data:image/svg+xml," + percent_encoded(*svg));
   }
 }
 

@@ -5,6 +5,7 @@ and the committed reports/index.html):
   - it loads with no console error, no uncaught exception and no request other than file: and data:;
   - its summary table has one row per scene (the "### " headings of its README.md's Scenes);
   - every summary verdict links to its scene's section, which exists;
+  - every plot is shown (an embedded image that decoded);
   - a click on a numeric column sorts it ascending, a second click descending; the scene column
     sorts by name;
   - the engine filter hides the other engines' error columns;
@@ -110,7 +111,10 @@ CHECKS = r"""
     return c.textContent.trim(); });
   var rows = function () { return Array.prototype.slice.call(summary.tBodies[0].rows); };
   var column = function (i) { return rows().map(function (r) { return r.cells[i].textContent.trim(); }); };
-  var out = {rows: rows().length, heads: heads, broken: []};
+  var out = {rows: rows().length, heads: heads, broken: [],
+             images: document.images.length,
+             unshown: Array.prototype.filter.call(document.images, function (i) {
+               return !(i.complete && i.naturalWidth > 0); }).map(function (i) { return i.alt; })};
   rows().forEach(function (r) {
     var link = r.cells[r.cells.length - 1].querySelector("a");
     var id = link ? decodeURIComponent(link.getAttribute("href").slice(1)) : "";
@@ -177,6 +181,10 @@ def check_page(name, html, readme):
     scenes = scene_count(readme)
     if result["rows"] != scenes:
         problems.append("the summary has %d rows for %d scenes" % (result["rows"], scenes))
+    if result["unshown"]:
+        problems.append("plots not shown: %s" % result["unshown"])
+    if result["images"] == 0:
+        problems.append("no plot in the page")
     if result["broken"]:
         problems.append("verdicts without their scene's section: %s" % result["broken"])
     if result["numeric"] < 0:
@@ -203,8 +211,9 @@ def check_page(name, html, readme):
     if problems:
         print("html_browser: %s:\n  %s" % (html, "\n  ".join(problems)))
         return False
-    print("html_browser: %s: %d summary rows, sorted both ways, filtered, no console error, "
-          "nothing fetched; screenshot %s-top.png (%d bytes)" % (html, scenes, name, len(png)))
+    print("html_browser: %s: %d summary rows, %d plots shown, sorted both ways, filtered, no "
+          "console error, nothing fetched; screenshot %s-top.png (%d bytes)"
+          % (html, scenes, result["images"], name, len(png)))
     return True
 
 
