@@ -138,7 +138,9 @@ int slowdown_exit(const ReportInput& in, bool fail, std::ostream& err) {
   for (const Slowdown& s : alert.flagged)
     err << "slowdown: " << s.cell.scene << " / " << s.cell.engine << " / h = " << s.cell.h << ": "
         << to_string(kAlertFigure) << " rose " << printf_string("%.1f %%", 100.0 * s.cell.moved)
-        << printf_string(" (threshold %.0f %%)", 100.0 * s.threshold) << "\n";
+        << printf_string(", its engine's median %.1f %% (threshold %.0f %%)",
+                         100.0 * s.engine_median, 100.0 * s.threshold)
+        << "\n";
   err << "slowdown alert: " << alert.judged << " of " << now.cells.size() << " cells judged, "
       << alert.flagged.size() << " flagged\n";
   if (fail && alert.judged == 0) {

@@ -259,9 +259,9 @@ std::string reproducibility(const ReportInput& in, const TimingRecord& now) {
          against_previous(in, now);
 }
 
-// The slowdown alert: every cell whose minimum over the calibration rose by more than two reports
-// of the same code move for its engine, against `report --compare-timings FILE` or the report
-// replaced.
+// The slowdown alert: every cell of an engine whose median over the calibration rose, and which
+// rose itself, by more than two reports of the same code move that engine's median, against
+// `report --compare-timings FILE` or the report replaced.
 std::string slowdown_section(const ReportInput& in, const TimingRecord& now) {
   if (!in.timing) return {};
   std::string md = "## Slowdown alert (⏱ wall time)\n\n";
@@ -280,9 +280,11 @@ std::string slowdown_section(const ReportInput& in, const TimingRecord& now) {
   const std::vector<Slowdown>& slow = alert.flagged;
   const std::size_t judged = alert.judged;
   md += printf_string(
-      "Against the timings of commit %s: a cell is flagged when its %s rose by more than 1.5 "
-      "times the largest move that six reports of the same code showed for that engine on this "
-      "project's machine (%s; an engine not measured there: the largest). ",
+      "Against the timings of commit %s: a cell is flagged when its %s rose, and the median of "
+      "its engine's cells rose, by more than 1.5 times the largest move of that median that four "
+      "reports of the same code showed on this project's machine (%s; an engine not measured "
+      "there: the largest). One cell's noise alone never raises it; an engine that slowed moves "
+      "every cell. ",
       before.commit, to_string(kAlertFigure), threshold_list(in));
   md += printf_string(
       "%zu of this report's %zu cells were judged (a cell is judged when the record holds it "
@@ -291,11 +293,12 @@ std::string slowdown_section(const ReportInput& in, const TimingRecord& now) {
   md += "Both were timed on " + describe(now.machine) + ". ";
   if (slow.empty()) return md + "No cell is flagged.\n\n";
   MarkdownTable t({"scene", "engine", "h", "⏱ before (min / calibration)",
-                   "⏱ now (min / calibration)", "rose", "threshold"},
-                  "lllrrrr");
+                   "⏱ now (min / calibration)", "rose", "its engine's median rose", "threshold"},
+                  "lllrrrrr");
   for (const Slowdown& s : slow)
     t.add({s.cell.scene, s.cell.engine, s.cell.h, cell(s.cell.before), cell(s.cell.now),
            printf_string("%.1f %%", 100.0 * s.cell.moved),
+           printf_string("%.1f %%", 100.0 * s.engine_median),
            printf_string("%.0f %%", 100.0 * s.threshold)});
   return md +
          printf_string("**%zu %s flagged:**\n\n", slow.size(),

@@ -279,10 +279,20 @@ std::vector<Slowdown> slowdowns(const TimingRecord& before, const TimingRecord& 
   if (!machine_differences(before.machine, now.machine).empty()) return out;
   std::vector<MovedCell> cells = pairs(before, now, kAlertFigure);
   if (judged) *judged = cells.size();
+  std::map<std::string, std::vector<double>> by_engine;
   for (MovedCell& m : cells) {
     m.moved = m.now / m.before - 1.0;
+    by_engine[m.engine].push_back(m.moved);
+  }
+  std::map<std::string, double> median;
+  for (auto& [engine, moves] : by_engine) {
+    std::nth_element(moves.begin(), moves.begin() + moves.size() / 2, moves.end());
+    median[engine] = moves[moves.size() / 2];
+  }
+  for (const MovedCell& m : cells) {
     const double threshold = slowdown_threshold(m.engine);
-    if (m.moved > threshold) out.push_back({m, threshold});
+    if (median[m.engine] > threshold && m.moved > threshold)
+      out.push_back({m, threshold, median[m.engine]});
   }
   std::stable_sort(out.begin(), out.end(), [](const Slowdown& a, const Slowdown& b) {
     return a.cell.moved > b.cell.moved;

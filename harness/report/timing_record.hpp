@@ -114,8 +114,9 @@ inline constexpr TimingFigure kAlertFigure{kHeadline, true};
 // slowdown_threshold of their engine, largest first. A cell found in one record only is not
 // judged.
 struct Slowdown {
-  MovedCell cell;          // `moved` here is now / before - 1, signed
-  double threshold = 0.0;  // the threshold it crossed
+  MovedCell cell;              // `moved` here is now / before - 1, signed
+  double threshold = 0.0;      // the threshold it crossed
+  double engine_median = 0.0;  // the median of `moved` over its engine's judged cells
 };
 // `judged` (when given) receives how many cells were compared: a cell of `now` is judged only when
 // `before` holds it once, timed the same way (copies, repeats, number of samples) and finite, and
@@ -123,8 +124,11 @@ struct Slowdown {
 std::vector<Slowdown> slowdowns(const TimingRecord& before, const TimingRecord& now,
                                 std::size_t* judged = nullptr);
 
-// How far (now / before - 1) a cell's kAlertFigure may rise before it is called a slowdown: the
-// largest two-run move measured for that engine's cells, times 1.5 (timing_record.cpp).
+// How far (now / before - 1) an engine's kAlertFigure may rise before it is called a slowdown: the
+// largest move of the median over its cells measured between two reports of unchanged code, times
+// 1.5 (adapters/engines.txt). A cell is flagged when its engine's median rose past it (the engine
+// slowed, not one noisy cell) and the cell did too: one cell's noise (up to 17 % measured) never
+// raises the alarm alone, and a 20 % slowdown of an engine moves every cell.
 double slowdown_threshold(const std::string& engine);
 
 }  // namespace dropcheck

@@ -169,7 +169,19 @@ TEST_CASE("the slowdown alert flags a cell whose headline rose past its engine's
   CHECK(s[0].cell.h == "1/120");
   CHECK(s[0].cell.moved == Approx(0.20));
   CHECK(s[0].threshold == t);
+  CHECK(s[0].engine_median == Approx(0.20));
   CHECK(slowdowns(now, now).empty());
+  // One noisy cell alone, its engine's other cells unmoved: its engine did not slow, no flag.
+  TimingRecord three = before;
+  three.cells.push_back(timed("s", "ode", "1/240", 1.0));
+  TimingRecord noisy = three;
+  noisy.cells[1] = timed("s", "ode", "1/120", 1.30);
+  CHECK(slowdowns(three, noisy).empty());
+  // The engine slowed, every cell 20 %: each is flagged.
+  TimingRecord slowed = three;
+  for (TimedCell& c : slowed.cells)
+    if (c.engine == "ode") c = timed("s", "ode", c.h, 1.20);
+  CHECK(slowdowns(three, slowed).size() == 3);
   CHECK(slowdown_threshold("exec:my-engine") >= slowdown_threshold("ode"));
   // The whole machine 30 % slower (the calibration loop too): the ratio holds, nothing is flagged.
   TimingRecord slower_machine = before;
