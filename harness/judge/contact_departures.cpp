@@ -13,7 +13,7 @@ std::vector<ContactDeparture> contact_departures(const Scene& scene, const Traje
   if (run.samples() == 0) return out;
   for (const SlideSetup& s : slide_setups(scene)) {
     const SlideVerdict v = judge_slide(run, scene, s, info, h);
-    if (v.exact && !v.follows && !v.rounding_limited())  // a limit of its law is no departure
+    if (!v.passes())
       out.push_back({ContactLaw::slide, s.body,
                      v.first_off >= 0        ? v.first_off
                      : v.seen.stop_step >= 0 ? v.seen.stop_step

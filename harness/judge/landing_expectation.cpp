@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-#include "harness/core/law.hpp"
 #include "harness/core/number_format.hpp"
 #include "harness/judge/tolerances.hpp"
 
@@ -11,9 +10,7 @@ namespace dropcheck {
 LandingExpectation landing_expectation(const EngineInfo& info, const Scene& scene, double h,
                                        const LandingSetup& setup) {
   LandingExpectation e{info.rest_offset, info.rest_tolerance, climb_path(info, scene, h, setup)};
-  Vec3 x = Vec3::Zero(), v = Vec3::Zero();
-  advance(info.law, decay_per_step(scene, h), h, scene.world.gravity, x, v);
-  e.one_step_fall = -x.y();
+  e.one_step_fall = one_step_fall(info.law, decay_per_step(scene, h), h, -scene.world.gravity.y());
   if (!e.climb) e.climb = replayed_landing_path(info, scene, h, setup);
   if (e.climb) {
     e.rest_offset = e.climb->y.back() - setup.rest_height;

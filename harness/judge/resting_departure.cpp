@@ -45,7 +45,7 @@ RestingDeparture rebound_departure(const Trajectory& run, std::size_t body, std:
 }
 
 RestingDeparture rest_departure(const Trajectory& run, std::size_t body, double expected_y,
-                                double tolerance, double weight, double one_step_fall) {
+                                double tolerance, double weight, double one_step_fall, int level) {
   RestingDeparture d;
   if (run.samples() == 0) return d;
   const double off = run.final_state(body).position.y() - expected_y;
@@ -61,16 +61,16 @@ RestingDeparture rest_departure(const Trajectory& run, std::size_t body, double 
   while (first > 0 && beyond(first - 1)) --first;
   d.step = run.recorded[first];
   d.quantity = "rest height";
-  const bool fell_first =
-      one_step_fall > 0.0 && std::abs(-off - one_step_fall) <= 1e-3 * one_step_fall;
+  const double fell = level * one_step_fall;  // each level falls onto the one below it
+  const bool fell_first = fell > 0.0 && std::abs(-off - fell) <= 1e-3 * fell;
   d.cause = !std::isfinite(off) ? std::string("its height is no longer finite")
             : fell_first
                 ? printf_string(
-                      "it rests %.4g m below, and stays: one step's fall from rest under its law "
-                      "(%.4g m), so its contact is resolved after the position update (each step "
-                      "moves it with the speed before the contact, and the push-out returns only "
-                      "the depth the step started with)",
-                      -off, one_step_fall)
+                      "it rests %.4g m below, and stays: %d x one step's fall from rest under its "
+                      "law (%.4g m), one for each contact under it, so its contact is resolved "
+                      "after the position update (each step moves it with the speed before the "
+                      "contact, and the push-out returns only the depth the step started with)",
+                      -off, level, one_step_fall)
             : off < 0.0
                 ? printf_string(
                       "it rests %.3g m below, and stays: a soft contact's sag, as a spring of "
@@ -81,6 +81,12 @@ RestingDeparture rest_departure(const Trajectory& run, std::size_t body, double 
                       "beyond its rest (a contact distance or skin it does not declare)",
                       off);
   return d;
+}
+
+double one_step_fall(Law law, double phi, double h, double g) {
+  Vec3 x = Vec3::Zero(), v = Vec3::Zero();
+  advance(law, phi, h, Vec3(0.0, -g, 0.0), x, v);
+  return -x.y();
 }
 
 RestingDeparture drift_departure(const Trajectory& run, std::size_t body, double bound) {

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 
+#include "harness/core/law.hpp"
 #include "harness/core/trajectory.hpp"
 
 namespace dropcheck {
@@ -29,11 +30,19 @@ RestingDeparture rebound_departure(const Trajectory& run, std::size_t body, std:
 
 // The first step of the run's last stretch in which `body`'s height stays more than `tolerance`
 // from `expected_y`: resting too low (a soft contact's sag, with the spring that would hold the
-// weight m*g there) or too high (pushed out beyond its rest). A body resting `one_step_fall` low
-// (its law's move in one step from rest, to 1e-3 of it) has its contact resolved after the position
-// update: each step it falls that far before the push-out returns the depth the step started with.
+// weight m*g there) or too high (pushed out beyond its rest). A body resting `level` times
+// `one_step_fall` low (its law's move in one step from rest, to 1e-3 of it; `level` of a stack, 1
+// on the floor) has its contacts resolved after the position update: each step it falls that far
+// before the push-out returns the depth the step started with, and so does each body under it.
 RestingDeparture rest_departure(const Trajectory& run, std::size_t body, double expected_y,
-                                double tolerance, double weight, double one_step_fall = 0.0);
+                                double tolerance, double weight, double one_step_fall = 0.0,
+                                int level = 1);
+
+// m: how far `law` moves a body in one step from rest under a gravity of `g` (m/s^2, straight down)
+// with the per-step drag factor `phi` (g*h^2*phi for semi-implicit Euler; 0 for an explicit
+// position update): what a contact resolved after the position update leaves a resting body below
+// its rest, per level of a stack (rest_departure's one_step_fall).
+double one_step_fall(Law law, double phi, double h, double g);
 
 // The first step at which `body` is more than `bound` from its start across the floor (x-z).
 RestingDeparture drift_departure(const Trajectory& run, std::size_t body, double bound);

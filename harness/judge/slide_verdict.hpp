@@ -69,6 +69,9 @@ struct SlideVerdict {
   // (`check` prints LIMIT with limit_text()).
   bool rounding_limited() const;
   std::string limit_text() const;
+  // Not blamed: it follows its law, is not judged (no exact answer), or meets that limit. The one
+  // judgement `check`, the report's summary and the stability classifier share.
+  bool passes() const { return follows || !exact || rounding_limited(); }
   // When none fits: what the engine printed during the run, and what its adapter says that means
   // (harness/judge/engine_messages.hpp); "" when it printed nothing.
   std::string engine_said;

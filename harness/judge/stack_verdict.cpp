@@ -64,7 +64,11 @@ std::vector<StackBodyVerdict> judge_stack(const Trajectory& run, const StackSetu
                           : v.sink > v.predicted.sink
                               ? (tolerance::kStackSink - 1.0) * v.predicted.sink + floor_bound
                               : (1.0 - tolerance::kStackSinkLow) * v.predicted.sink + floor_bound;
-      v.departure = rest_departure(run, l.body, expected_y, band, l.load * setup.g);
+      // Under a contact resolved after the position update each level falls one step's fall onto
+      // the one below: level n rests n of them low.
+      v.departure = rest_departure(
+          run, l.body, expected_y, band, l.load * setup.g,
+          one_step_fall(info.law, std::exp(-setup.damping_rate * h), h, setup.g), l.level);
     }
     if (!v.drift_ok)
       v.departure = earlier(v.departure, drift_departure(run, l.body, info.stack_law.drift_bound));

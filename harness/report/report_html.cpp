@@ -98,10 +98,13 @@ std::string percent_encoded(const std::string& bytes) {
   return out;
 }
 
-// Each <img src="FILE.svg"> of a plain file name that `read_plot` gives turned into a data: URI.
+// Each <img src="FILE.svg"> of a plain file name that `read_plot` gives turned into a data: URI,
+// the page copied once into a new string (a plot is large: no replace inside the page).
 void embed_plots(std::string& html,
                  const std::function<std::optional<std::string>(const std::string&)>& read_plot) {
   static const std::string kSrc = "<img src=\"";
+  std::string out;
+  std::size_t copied = 0;
   for (std::size_t at = 0; (at = html.find(kSrc, at)) != std::string::npos; ++at) {
     const std::size_t from = at + kSrc.size(), end = html.find('"', from);
     if (end == std::string::npos) break;
@@ -109,8 +112,12 @@ void embed_plots(std::string& html,
     if (!file.ends_with(".svg") || file.find_first_of("/\\:&%") != std::string::npos) continue;
     const std::optional<std::string> svg = read_plot(file);
     if (!svg) continue;
-    html.replace(from, end - from, "data:image/svg+xml," + percent_encoded(*svg));
+    out.append(html, copied, from - copied);
+    out += "data:image/svg+xml," + percent_encoded(*svg);
+    copied = end;
   }
+  out.append(html, copied, std::string::npos);
+  html = std::move(out);
 }
 
 // The navigation: every section, and under "Scenes" every scene.

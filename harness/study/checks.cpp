@@ -351,7 +351,6 @@ CheckResult check_contact_law(const Scene& scene, const EngineFactory& make, con
     append(r.message, run.body_names[s.body] + ": " + sentence);
     if (!limit.empty()) append(r.limit, run.body_names[s.body] + ": " + limit);
   }
-  if (!r.passed) r.limit.clear();  // a failure is printed as one, whatever else met a limit
   return r;
 }
 
@@ -361,9 +360,9 @@ CheckResult check_slide(const Scene& scene, const EngineFactory& make, const Tim
   return check_contact_law(scene, make, h, "slide", slide_setups(scene),
                            [&](const Trajectory& run, const SlideSetup& s, const EngineInfo& i) {
                              const SlideVerdict v = judge_slide(run, scene, s, i, h.seconds);
-                             const bool limited = v.rounding_limited();
-                             return std::tuple(v.follows || !v.exact || limited, v.sentence(),
-                                               limited ? v.limit_text() : std::string());
+                             return std::tuple(
+                                 v.passes(), v.sentence(),
+                                 v.rounding_limited() ? v.limit_text() : std::string());
                            });
 }
 

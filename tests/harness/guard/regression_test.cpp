@@ -198,6 +198,14 @@ TEST_CASE("The guard sees contact: friction after the position update and a doub
              Catch::StartsWith("incline_slide / ours-f64 / physics: contact: slide") &&
                  Catch::Contains("DEPARTS at step 1 ") &&
                  Catch::Contains("the normal force ignores the incline"));
+  // The friction-after-position bug in a resting stack: each level rests one step's fall
+  // (g*h^2 = 0.0027 m at 1/60) lower than the one under it, and the cause is named.
+  const TierResult stack = physics("stack_rest", ContactBug::friction_after_position);
+  std::cout << "  " << stack.message << "\n";
+  REQUIRE(stack.verdict == TierVerdict::failed);
+  CHECK_THAT(stack.message,
+             Catch::Contains("(rest height): it rests") &&
+                 Catch::Contains("its contact is resolved after the position update"));
 }
 
 TEST_CASE("The guard sees a tumbling landing: a turned box's arm forgotten, its turn misplaced",
