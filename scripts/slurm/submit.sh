@@ -4,21 +4,24 @@
 # timed out or was preempted, the merge lists the cells it left missing.
 #
 #   scripts/slurm/submit.sh --plan PLAN --shards N --out DIR --results FILE \
-#                           [--dropcheck PATH] [--logs DIR] [--wait] [-- SBATCH_OPTIONS...]
+#                           [--dropcheck PATH] [--logs DIR] [--engine-file FILE]... [--wait]
+#                           [-- SBATCH_OPTIONS...]
 #
 # PLAN, DIR, FILE and the dropcheck binary must be on a file system every node sees. SBATCH_OPTIONS
 # go to both jobs; only those of FORWARDED below are taken (-p short, -pshort, --partition short,
 # --partition=short), anything else is refused (exit 2). Before submitting anything it checks its
 # input and exits 2 naming the option and the problem: the binary must run and read PLAN as a plan
 # (it is run once here, on the submitting machine), DIR and the logs folder may not hold % # or \
-# (Slurm reads log paths as patterns). Prints "array JOBID" and "merge JOBID"; with --wait,
+# (Slurm reads log paths as patterns), and a plan that names an external engine needs each given
+# with --engine-file, unchanged since the plan (docs/sweeps.md, "External engines in a sweep").
+# Prints "array JOBID" and "merge JOBID"; with --wait,
 # returns when the merge job has ended, with its exit code (0: FILE holds every record; 1: cells
 # missing, listed in FILE.missing: rerun them with
 # `dropcheck sweep PLAN --cells-from FILE.missing --out DIR`).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 
-plan="" shards="" out="" results="" logs="" wait=0
+plan="" shards="" out="" results="" logs="" wait=0 engine_files=()
 need() { [ $# -ge 2 ] || { echo "submit.sh: $1 needs a value" >&2; exit 2; }; }
 dropcheck=$(command -v dropcheck || true)
 while [ $# -gt 0 ]; do
@@ -29,6 +32,7 @@ while [ $# -gt 0 ]; do
     --results) need "$@"; results=$2; shift 2 ;;
     --dropcheck) need "$@"; dropcheck=$2; shift 2 ;;
     --logs) need "$@"; logs=$2; shift 2 ;;
+    --engine-file) need "$@"; engine_files+=("$2"); shift 2 ;;
     --wait) wait=1; shift ;;
     --) shift; break ;;
     *) echo "submit.sh: unknown option $1" >&2; exit 2 ;;
@@ -155,16 +159,34 @@ check_plan() {
     die "--dropcheck $dropcheck: did not read the plan as dropcheck does (dropcheck merge exited" \
         "$rc${said:+: ${said##*$'\n'}})"
   fi
-  # An external engine's cells (engine NAME@FINGERPRINT) run only with `sweep --engine-file`, which
-  # the tasks are not given: refused here rather than failed in every task.
+  # An external engine's cells (engine NAME@FINGERPRINT) run only with `sweep --engine-file`: each
+  # must be given, unchanged since the plan, or every task would fail. `sweep` checks them before
+  # it reads its list of cells, so an empty list passes that check and stops there ("lists no
+  # cell"), running nothing.
   if grep -q '^[^|]*|[^|]*@' "$checkdir/missing"; then
-    die "--plan $plan: it runs an external engine (an engine file or exec:), which a task starts" \
-        "only with dropcheck sweep --engine-file; run its shards with that, not with submit.sh"
+    [ ${#engine_files[@]} -gt 0 ] ||
+      die "--plan $plan: it runs an external engine (an engine file or exec:); give each with" \
+          "--engine-file FILE, on a file system every node sees"
+    : >"$checkdir/none"
+    said=$(timeout 300 "$dropcheck" sweep "$plan" --cells-from "$checkdir/none" \
+           --out "$checkdir/dry" "${engine_args[@]}" 2>&1 </dev/null) || true
+    case $said in
+      *"lists no cell"*) ;;
+      *) die "--engine-file: ${said##*$'\n'}" ;;
+    esac
   fi
   rm -rf -- "$checkdir"; checkdir=
 }
 checkdir=
 trap '[ -z "$checkdir" ] || rm -rf -- "$checkdir"' EXIT
+# Each engine file as an absolute path (exec:PATH too), as every task will name it.
+engine_args=()
+for f in ${engine_files[@]+"${engine_files[@]}"}; do
+  case $f in
+    exec:*) engine_args+=(--engine-file "exec:$(abs "${f#exec:}")") ;;
+    *) engine_args+=(--engine-file "$(abs "$f")") ;;
+  esac
+done
 check_binary
 check_plan
 plan=$(abs "$plan") dropcheck=$(abs "$dropcheck")
@@ -172,7 +194,7 @@ plan=$(abs "$plan") dropcheck=$(abs "$dropcheck")
 mkdir -p "$out" "$(dirname "$results")" "$logs"
 
 array=$(sbatch --parsable --array="1-$shards" --output="$logs/shard-%A_%a.out" "${SBATCH_OPTS[@]}" \
-  "$here/shard.sbatch" "$dropcheck" "$plan" "$shards" "$out")
+  "$here/shard.sbatch" "$dropcheck" "$plan" "$shards" "$out" ${engine_args[@]+"${engine_args[@]}"})
 array=${array%%;*}
 echo "array $array"
 merge_args=(--parsable --dependency="afterany:$array"

@@ -235,7 +235,11 @@ sub "--plan a sweep file" "not a dropcheck plan" --plan "$source/tests/sweeps/sl
 printf 'scenes = ["%s"]\nengines = ["ours", "%s"]\n' "$source/scenarios/free_fall.toml" \
   "$source/examples/python/seed_engine.toml" >"$work/external.toml"
 "$dropcheck" plan "$work/external.toml" --out "$work/external.json" >/dev/null
+# The same engine file edited after the plan: another fingerprint.
+sed 's/^timeout = .*/timeout = 6.0/' "$source/examples/python/seed_engine.toml" >"$work/edited.toml"
 sub "--plan with an external engine" "it runs an external engine" --plan "$work/external.json"
+sub "--engine-file changed" "changed since \`dropcheck plan\`" --plan "$work/external.json" \
+  --engine-file "$work/edited.toml"
 if [ "$(id -u)" -ne 0 ]; then
   cp "$work/plan.json" "$work/unreadable.json"
   chmod 000 "$work/unreadable.json"
@@ -276,6 +280,18 @@ if "$submit" --plan "$work/plan.json" --shards 3 --out "$work/ok" --results "$wo
     fail "sbatch was called with"$'\n'"$(cat "$work/sbatch.calls")"$'\n'"expected"$'\n'"$expected"
 else
   fail "a good submission was refused: $(cat "$work/stderr")"
+fi
+
+# A plan with an external engine, its engine file given: each task names it, as an absolute path.
+checks=$((checks + 1))
+rm -f "$work/sbatch.calls"
+if (cd "$source/examples/python" && "$submit" --plan "$work/external.json" --shards 2 \
+      --out "$work/ext" --results "$work/ext.jsonl" --dropcheck "$dropcheck" \
+      --engine-file seed_engine.toml) >"$work/stdout" 2>"$work/stderr"; then
+  grep -qF "shard.sbatch $dropcheck $work/external.json 2 $work/ext --engine-file $source/examples/python/seed_engine.toml" \
+    "$work/sbatch.calls" || fail "the engine file did not reach the tasks: $(cat "$work/sbatch.calls")"
+else
+  fail "a submission with its engine file was refused: $(cat "$work/stderr")"
 fi
 
 if [ "$failures" -ne 0 ]; then
