@@ -1,7 +1,10 @@
 #include "harness/core/simbody_contact.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <numbers>
 
 namespace dropcheck {
@@ -55,6 +58,27 @@ double dissipation_for(Leaves leaves, double e, double v) {
   return hi;
 }
 
+// dissipation_for once per distinct contact: the bisection steps the continuous contact some 120
+// times (about 30 ms), and every load of a scene at a step asks again (a timed Simbody cell loads
+// its scene up to 17 times per round). `key` holds every figure `leaves` depends on (the kind,
+// stiffness, friction, transition velocity, mass, radius, g, impact speed, e and h); the answer is
+// a pure function of them, so the memo changes no result.
+using DissipationKey = std::array<double, 10>;
+
+template <class Leaves>
+double memoised_dissipation(const DissipationKey& key, Leaves leaves, double e, double v) {
+  static std::mutex mutex;
+  static std::map<DissipationKey, double> known;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (const auto it = known.find(key); it != known.end()) return it->second;
+  }
+  const double c = dissipation_for(leaves, e, v);
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (known.size() >= 4096) known.clear();  // a sweep of many contacts: memory stays bounded
+  return known.emplace(key, c).first->second;
+}
+
 // The first dynamic body of `shape`'s impact speed on the floor: sqrt(v_y^2 + 2*g*gap), at least
 // the speed of a fall from `least` m.
 double impact_speed(const Scene& scene, const Body& first, double g, double least) {
@@ -85,7 +109,9 @@ SimbodyContact brick_contact(const Scene& scene, double h, double g, double omeg
     return c;
   }
   const double m = first->mass;
-  c.dissipation = dissipation_for(
+  const DissipationKey key{1.0, c.stiffness, c.friction, c.transition_velocity, m, 0.0, g, v, e, h};
+  c.dissipation = memoised_dissipation(
+      key,
       [&](double dissipation) {
         SimbodyContact trial = c;
         trial.dissipation = dissipation;
@@ -120,7 +146,11 @@ SimbodyContact simbody_contact(const Scene& scene, double h) {
   const double K = std::pow(m * omega * omega / (1.5 * std::cbrt(m * g)), 1.5);
   c.stiffness = 3.0 * K / (4.0 * std::sqrt(light->radius)) / pair_stiffness(1.0);
   const double v_impact = impact_speed(scene, *first, g, first->radius);
-  c.dissipation = dissipation_for(
+  const DissipationKey key{
+      0.0,      c.stiffness, c.friction, c.transition_velocity, first->mass, first->radius, g,
+      v_impact, e,           h};
+  c.dissipation = memoised_dissipation(
+      key,
       [&](double dissipation) {
         SimbodyContact trial = c;
         trial.dissipation = dissipation;
