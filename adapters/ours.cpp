@@ -125,7 +125,7 @@ class OursEngine final : public Engine {
 
   // Like read_append: written once from the bodies' own numbers, checked in the same pass.
   bool read_rotation_append(std::size_t, RotationBuffer& out, StateUse use) const override {
-    return append_rotations(out, models_.size(), use, [this](auto w) { return turn(w); });
+    return append_rotations(out, models_.size(), use, [this](auto w) { return this->turn(w); });
   }
 
   // Seconds of `steps` calls of ours::ApplyPhysics alone (bare_step_loop in adapters.hpp).
@@ -142,7 +142,7 @@ class OursEngine final : public Engine {
   // Each state written once from the bodies' own numbers (exact: every float is a double) and
   // checked in the same pass; kept states streamed (StateWriter).
   bool read_append(std::size_t, StateBuffer& out, StateUse use) const override {
-    return append_states(out, models_.size(), use, [this](auto w) { return write(w); });
+    return append_states(out, models_.size(), use, [this](auto w) { return this->write(w); });
   }
 
  private:

@@ -110,7 +110,7 @@ Baseline make_baseline(const Scene& scene, const EngineFactory& make,
   std::unique_ptr<Engine> engine = make();
   const EngineInfo info = engine->info();
   out.provenance = provenance("unknown commit");
-  out.build_key = current_build().key;
+  out.build_keys = {current_build().key};
   out.scene = scene.name;
   out.engine = info.name;
   out.scalar = info.scalar;

@@ -8,11 +8,12 @@
 //
 //   # dropcheck baseline: made by `dropcheck bless` with <toolchain>, <build type> "<flags>", on
 //   <commit> build_key x86_64, GNU 12.2.0, Eigen 3.4.0, glibc 2.36, -O2 -ffp-contract=off   (bits
-//   tier key) scene free_fall_drag / engine ours-f64 / scalar f64 / law v = phi*(v + a*h); x += h*v
-//   analytic closed form                    (or why there is none: "contacts", ...)
-//   skipped no contacts                     (instead of everything below, when it cannot run)
-//   dt 1/60 0.016666666666666666 / steps 60 / record_every 10 / status ok / hash 3f2a...
-//   sweep h=1/30 steps=30 status=ok analytic_max_dx=... analytic_final_dx=... law_max_dx=...
+//   tier key; one line per build known to give these numbers) scene free_fall_drag / engine
+//   ours-f64 / scalar f64 / law v = phi*(v + a*h); x += h*v analytic closed form (or why there is
+//   none: "contacts", ...) skipped no contacts                     (instead of everything below,
+//   when it cannot run) dt 1/60 0.016666666666666666 / steps 60 / record_every 10 / status ok /
+//   hash 3f2a... sweep h=1/30 steps=30 status=ok analytic_max_dx=... analytic_final_dx=...
+//   law_max_dx=...
 //         law_worst_body=cube law_first_over=-1            (one line per h of the scene's sweep)
 //   timing h=1/60 min_per_sim_s=... median_per_sim_s=... replicas=...   (only with --timing)
 //   bodies cube
@@ -65,9 +66,14 @@ struct ContactFigure {
 };
 
 // One scene on one engine: the golden record that the regression tiers compare a fresh run with.
+inline constexpr std::size_t kMaxBuildKeys = 16;
+
 struct Baseline {
   std::string provenance;  // the "# dropcheck baseline: made by ..." line (not compared)
-  std::string build_key;   // BuildId::key of the build that made it
+  // BuildId::key of the build that made it, then of each build that `bless` later found to give
+  // the same numbers (one `build_key` line each, at most kMaxBuildKeys): the bits tier runs on
+  // any of them.
+  std::vector<std::string> build_keys;
   std::string scene, engine;
   Scalar scalar = Scalar::f64;
   std::string law;       // to_string(DampingOrder) the engine declares

@@ -61,8 +61,9 @@ std::string samples_text(const Trajectory& t) {
 
 std::string baseline_to_text(const Baseline& b) {
   std::string out = kProvenancePrefix + b.provenance + "\n";
-  out += "build_key " + b.build_key + "\nscene " + b.scene + "\nengine " + b.engine + "\nscalar " +
-         to_string(b.scalar) + "\nlaw " + b.law + "\nanalytic " + b.analytic + "\n";
+  for (const std::string& key : b.build_keys) out += "build_key " + key + "\n";
+  out += "scene " + b.scene + "\nengine " + b.engine + "\nscalar " + to_string(b.scalar) +
+         "\nlaw " + b.law + "\nanalytic " + b.analytic + "\n";
   if (!b.skipped.empty()) return out + "skipped " + b.skipped + "\n";
   out += "dt " + b.dt.text + " " + exact(b.dt.seconds) + "\nsteps " +
          std::to_string(b.samples.steps) + "\nrecord_every " + std::to_string(b.record_every) +

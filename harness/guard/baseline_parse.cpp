@@ -170,6 +170,12 @@ struct Parser {
     next_body = (next_body + 1) % t.body_names.size();
   }
 
+  void build_key(const std::string& rest) {
+    if (b.build_keys.size() >= kMaxBuildKeys)
+      fail("build_key", "more than " + std::to_string(kMaxBuildKeys) + " build keys");
+    b.build_keys.push_back(rest);
+  }
+
   Scalar scalar(const std::string& rest) const {
     if (rest == "f32") return Scalar::f32;
     if (rest != "f64") fail("scalar", "expected f32 or f64, got " + excerpt(rest));
@@ -178,7 +184,7 @@ struct Parser {
 
   void record(const std::string& key, const std::string& rest) {
     if (key == "build_key")
-      b.build_key = rest;
+      build_key(rest);
     else if (key == "scene")
       b.scene = rest;
     else if (key == "engine")

@@ -1,5 +1,6 @@
 #include "harness/guard/bless.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 
@@ -23,13 +24,31 @@ std::string read_or_empty(const std::string& path) {
   return read_regular_file(path, kMaxBaselineBytes, "512 MiB, for a baseline", Links::refuse);
 }
 
-// Writes one baseline unless the file already holds the same data; returns the log line.
+// The file at `path`, which holds the same numbers as this build's run, with this build's key
+// added (the oldest other key dropped when it holds kMaxBuildKeys); "" when it names it already.
+std::string with_this_build(const std::string& path, const std::string& key) {
+  Baseline kept = read_baseline(path);
+  std::vector<std::string>& keys = kept.build_keys;
+  if (std::find(keys.begin(), keys.end(), key) != keys.end()) return {};
+  if (keys.size() >= kMaxBuildKeys) keys.erase(keys.begin());
+  keys.push_back(key);
+  return baseline_to_text(kept);
+}
+
+// Writes one baseline unless the file already holds the same data; returns the log line. A file
+// with the same numbers made by another build gains this build's key, so that the bits tier runs
+// on both (a compiler that gives the same bits); new numbers replace the file and its keys.
 std::string write_one(const Baseline& b, const std::string& dir) {
   const std::string path = baseline_path(dir, b.scene, b.engine);
   const std::string text = baseline_to_text(b), old = read_or_empty(path);
   std::string what = b.skipped.empty() ? "hash " + b.hash : "skipped: " + b.skipped;
   if (!b.failed_tiers.empty()) what += "; FAILED " + b.failed_tiers;
-  if (!old.empty() && same_data(old, text)) return "unchanged " + path + " (" + what + ")";
+  if (!old.empty() && same_data(old, text)) {
+    const std::string added = with_this_build(path, b.build_keys.front());
+    if (added.empty()) return "unchanged " + path + " (" + what + ")";
+    write_file_atomic(path, added, Links::refuse);
+    return "same data " + path + " (" + what + "; build key added: " + b.build_keys.front() + ")";
+  }
   write_file_atomic(path, text, Links::refuse);
   return (old.empty() ? "new       " : "updated   ") + path + " (" + what + ")";
 }
