@@ -1,4 +1,4 @@
-// A stand-in for libFuzzer's main, for compilers without it (CI builds with g++): runs a fuzz
+// A stand-in for libFuzzer's main, for builds without it (the ci preset's): runs a fuzz
 // target (LLVMFuzzerTestOneInput) on every file of the corpus directories given, then on a fixed
 // number of deterministic mutations of them (bit flips, interesting bytes and tokens, deletions,
 // duplications, splices), so the same inputs run on every machine. With the ci preset's sanitizers

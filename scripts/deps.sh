@@ -5,7 +5,7 @@
 set -euo pipefail
 
 DROPCHECK_PACKAGES=(
-  cmake g++ gcc make pkg-config        # build (gcc: the C example engine in examples/c)
+  cmake g++ gcc make pkg-config        # build: the release preset (gcc: the C example engine)
   ninja-build                          # the ci preset's generator (scripts/test.sh)
   clang-14 libclang-rt-14-dev          # the ci preset's compiler and its sanitizer runtimes
   python3                              # the Python example engines and the bad-engine test doubles

@@ -57,6 +57,8 @@ if [ $rc -ne 0 ] && [ ${#bad[@]} -eq 0 ]; then
   echo "format.sh: $tool failed without naming a file to format" >&2
   exit 2
 fi
+# Any other error (a file clang-format could not read) is shown too.
+printf '%s\n' "$out" | grep ': error: ' | grep -v 'code should be clang-formatted' >&2 || true
 if [ ${#bad[@]} -gt 0 ]; then
   printf '%s\n' "${bad[@]}"
   echo "format.sh: ${#bad[@]} of ${#files[@]} files need formatting ($tool); run scripts/format.sh --fix" >&2

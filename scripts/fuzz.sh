@@ -20,7 +20,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=$root/build/fuzz
-cxx=${CXX_FUZZ:-clang++}
+cxx=${CXX_FUZZ:-clang++-14}
 build_only=0
 seconds=600
 targets=()

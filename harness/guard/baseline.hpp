@@ -6,18 +6,21 @@
 // (tests/baselines/ is the committed one; `dropcheck bless --out DIR` writes one anywhere). Format,
 // one record per line, numbers printed with %.17g so that they read back to the bit:
 //
-//   # dropcheck baseline: made by `dropcheck bless` with <toolchain>, <build type> "<flags>", on
-//   <commit> build_key x86_64, GNU 12.2.0, Eigen 3.4.0, glibc 2.36, -O2 -ffp-contract=off   (bits
-//   tier key; one line per build known to give these numbers) scene free_fall_drag / engine
-//   ours-f64 / scalar f64 / law v = phi*(v + a*h); x += h*v analytic closed form (or why there is
-//   none: "contacts", ...) skipped no contacts                     (instead of everything below,
-//   when it cannot run) dt 1/60 0.016666666666666666 / steps 60 / record_every 10 / status ok /
-//   hash 3f2a... sweep h=1/30 steps=30 status=ok analytic_max_dx=... analytic_final_dx=...
-//   law_max_dx=...
+// clang-format off
+//   # dropcheck baseline: made by `dropcheck bless` with <toolchain>, <build type> "<flags>", on <commit>
+//   build_key x86_64, GNU 12.2.0, Eigen 3.4.0, glibc 2.36, -O2 -ffp-contract=off
+//                                           (the bits tier's key; one line per build known to give
+//                                           these numbers)
+//   scene free_fall_drag / engine ours-f64 / scalar f64 / law v = phi*(v + a*h); x += h*v
+//   analytic closed form                    (or why there is none: "contacts", ...)
+//   skipped no contacts                     (instead of everything below, when it cannot run)
+//   dt 1/60 0.016666666666666666 / steps 60 / record_every 10 / status ok / hash 3f2a...
+//   sweep h=1/30 steps=30 status=ok analytic_max_dx=... analytic_final_dx=... law_max_dx=...
 //         law_worst_body=cube law_first_over=-1            (one line per h of the scene's sweep)
 //   timing h=1/60 min_per_sim_s=... median_per_sim_s=... replicas=...   (only with --timing)
 //   bodies cube
 //   sample STEP BODY x y z vx vy vz         (every record_every-th step and the last, at dt)
+// clang-format on
 #pragma once
 
 #include <cstdint>

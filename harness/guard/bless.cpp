@@ -24,15 +24,20 @@ std::string read_or_empty(const std::string& path) {
   return read_regular_file(path, kMaxBaselineBytes, "512 MiB, for a baseline", Links::refuse);
 }
 
-// The file at `path`, which holds the same numbers as this build's run, with this build's key
-// added (the oldest other key dropped when it holds kMaxBuildKeys); "" when it names it already.
-std::string with_this_build(const std::string& path, const std::string& key) {
-  Baseline kept = read_baseline(path);
-  std::vector<std::string>& keys = kept.build_keys;
+// The file at `path`, which holds the same numbers as this build's run `b`: `b` under the file's
+// provenance and build keys, this build's added (the oldest other dropped when it holds
+// kMaxBuildKeys); "" when the file names this build already.
+std::string with_this_build(const std::string& path, const Baseline& b) {
+  const Baseline kept = read_baseline(path);
+  const std::string& key = b.build_keys.front();
+  std::vector<std::string> keys = kept.build_keys;
   if (std::find(keys.begin(), keys.end(), key) != keys.end()) return {};
   if (keys.size() >= kMaxBuildKeys) keys.erase(keys.begin());
   keys.push_back(key);
-  return baseline_to_text(kept);
+  Baseline out = b;
+  out.provenance = kept.provenance;
+  out.build_keys = keys;
+  return baseline_to_text(out);
 }
 
 // Writes one baseline unless the file already holds the same data; returns the log line. A file
@@ -44,7 +49,7 @@ std::string write_one(const Baseline& b, const std::string& dir) {
   std::string what = b.skipped.empty() ? "hash " + b.hash : "skipped: " + b.skipped;
   if (!b.failed_tiers.empty()) what += "; FAILED " + b.failed_tiers;
   if (!old.empty() && same_data(old, text)) {
-    const std::string added = with_this_build(path, b.build_keys.front());
+    const std::string added = with_this_build(path, b);
     if (added.empty()) return "unchanged " + path + " (" + what + ")";
     write_file_atomic(path, added, Links::refuse);
     return "same data " + path + " (" + what + "; build key added: " + b.build_keys.front() + ")";

@@ -2,6 +2,7 @@
 #include "harness/guard/regression.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -127,8 +128,12 @@ TierResult check_bits(const Baseline& expected, const Baseline& now) {
   const std::string p = prefix(now, Tier::bits);
   if (!now.skipped.empty())
     return result(TierVerdict::skipped, p + "the engine cannot run this scene: " + now.skipped);
-  const std::string& key = now.build_keys.front();
   const std::vector<std::string>& known = expected.build_keys;
+  if (now.build_keys.empty() || known.empty())
+    return result(TierVerdict::skipped,
+                  p + (known.empty() ? "the baseline" : "this run") +
+                      " names no build; bits may differ, tier 2 compares at tolerance");
+  const std::string& key = now.build_keys.front();
   if (std::find(known.begin(), known.end(), key) == known.end())
     return result(TierVerdict::skipped, p + "the baseline was made by [" +
                                             fmt::format("{}", fmt::join(known, "] and [")) +

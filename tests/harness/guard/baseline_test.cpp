@@ -149,6 +149,18 @@ TEST_CASE(
   const std::string text = slurp(dir.file("free_fall_drag.ours-f64.txt"));
   CHECK_THAT(text, Catch::Contains("\n# FAILED physics: "));
   CHECK(parse_baseline(text, "x").hash.size() > 0);  // still a baseline `diff` can read
+  // The same numbers from another build: its key is added and the FAILED mark stays.
+  std::string other = text;
+  const std::size_t key = other.find("build_key ");
+  other.replace(key, other.find('\n', key) - key, "build_key x86_64, GNU 99.0.0, -O3");
+  dir.write("free_fall_drag.ours-f64.txt", other);
+  const BlessOutcome again = bless_moved_drag(dir, false);
+  REQUIRE(again.lines.size() == 1);
+  CHECK_THAT(again.lines[0], Catch::StartsWith("same data "));
+  const std::string both = slurp(dir.file("free_fall_drag.ours-f64.txt"));
+  CHECK_THAT(both, Catch::Contains("\n# FAILED physics: ") &&
+                       Catch::Contains("build_key x86_64, GNU 99.0.0, -O3\nbuild_key "));
+  CHECK_THAT(bless_moved_drag(dir, false).lines[0], Catch::StartsWith("unchanged "));
 }
 
 TEST_CASE("Bless writes every baseline and leaves unchanged data byte for byte",

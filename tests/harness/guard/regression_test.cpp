@@ -41,6 +41,8 @@ TEST_CASE(
                             Catch::Contains("tier 2 compares at tolerance"));
   other.build_keys.push_back(now.build_keys.front());  // another build gave the same bits too
   CHECK(check_bits(other, now).verdict == TierVerdict::passed);
+  other.build_keys.clear();  // a hand-written baseline with no key
+  CHECK_THAT(check_bits(other, now).message, Catch::Contains("the baseline names no build"));
   other = now;
   other.hash = "0123456789abcdef";  // same build, different bits
   CHECK(check_bits(other, now).verdict == TierVerdict::failed);
