@@ -6,6 +6,7 @@
 
 #include "harness/core/input_error.hpp"
 #include "harness/guard/baseline_io.hpp"
+#include "harness/guard/baseline_parse.hpp"
 #include "harness/guard/regression.hpp"
 #include "harness/guard/regression_physics.hpp"
 #include "harness/io/atomic_file.hpp"
@@ -24,11 +25,11 @@ std::string read_or_empty(const std::string& path) {
   return read_regular_file(path, kMaxBaselineBytes, "512 MiB, for a baseline", Links::refuse);
 }
 
-// The file at `path`, which holds the same numbers as this build's run `b`: `b` under the file's
-// provenance and build keys, this build's added (the oldest other dropped when it holds
-// kMaxBuildKeys); "" when the file names this build already.
-std::string with_this_build(const std::string& path, const Baseline& b) {
-  const Baseline kept = read_baseline(path);
+// The file `old` (read from `path`), which holds the same numbers as this build's run `b`: `b`
+// under the file's provenance and build keys, this build's added (the oldest other dropped when it
+// holds kMaxBuildKeys); "" when the file names this build already.
+std::string with_this_build(const std::string& old, const std::string& path, const Baseline& b) {
+  const Baseline kept = parse_baseline(old, path);
   const std::string& key = b.build_keys.front();
   std::vector<std::string> keys = kept.build_keys;
   if (std::find(keys.begin(), keys.end(), key) != keys.end()) return {};
@@ -49,7 +50,7 @@ std::string write_one(const Baseline& b, const std::string& dir) {
   std::string what = b.skipped.empty() ? "hash " + b.hash : "skipped: " + b.skipped;
   if (!b.failed_tiers.empty()) what += "; FAILED " + b.failed_tiers;
   if (!old.empty() && same_data(old, text)) {
-    const std::string added = with_this_build(path, b);
+    const std::string added = with_this_build(old, path, b);
     if (added.empty()) return "unchanged " + path + " (" + what + ")";
     write_file_atomic(path, added, Links::refuse);
     return "same data " + path + " (" + what + "; build key added: " + b.build_keys.front() + ")";

@@ -285,10 +285,7 @@ std::vector<Slowdown> slowdowns(const TimingRecord& before, const TimingRecord& 
     by_engine[m.engine].push_back(m.moved);
   }
   std::map<std::string, double> median;
-  for (auto& [engine, moves] : by_engine) {
-    std::nth_element(moves.begin(), moves.begin() + moves.size() / 2, moves.end());
-    median[engine] = moves[moves.size() / 2];
-  }
+  for (const auto& [engine, moves] : by_engine) median[engine] = quantile(moves, 0.5);
   for (const MovedCell& m : cells) {
     const double threshold = slowdown_threshold(m.engine);
     if (median[m.engine] > threshold && m.moved > threshold)
@@ -316,8 +313,7 @@ TimingComparison compare_timings(const TimingRecord& before, const TimingRecord&
   if (!all.empty()) {
     std::vector<double> m;
     for (const MovedCell& c : all) m.push_back(c.moved);
-    std::nth_element(m.begin(), m.begin() + m.size() / 2, m.end());
-    out.median_moved = m[m.size() / 2];
+    out.median_moved = quantile(std::move(m), 0.5);
   }
   all.resize(std::min(keep, all.size()));
   out.worst = std::move(all);
